@@ -1,0 +1,89 @@
+/* librugo — base types: reals, 2-D vectors, status codes, allocator hooks, version.
+ *
+ * Every public function that takes outside input returns a rugo_status and never aborts, prints or
+ * exits. Memory goes through a rugo_allocator carried by the def of each object that allocates; a NULL
+ * or zeroed allocator means the C library's malloc/free. There is no global mutable state. */
+#ifndef RUGO_BASE_H
+#define RUGO_BASE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RUGO_VERSION_MAJOR 0
+#define RUGO_VERSION_MINOR 1
+#define RUGO_VERSION_PATCH 0
+#define RUGO_VERSION_STRING "0.1.0"
+
+/* Double precision everywhere inside librugo. */
+typedef double rugo_real;
+
+typedef struct rugo_vec2 {
+    rugo_real x, y;
+} rugo_vec2;
+
+/* Status codes. Values are stable (files and tools may print them); add new codes at the end. */
+typedef enum rugo_status {
+    RUGO_OK = 0,
+    RUGO_ERR_NULL_ARGUMENT = 1,     /* a required pointer was NULL */
+    RUGO_ERR_OUT_OF_MEMORY = 2,     /* the allocator returned NULL */
+    RUGO_ERR_TOO_FEW_POINTS = 3,    /* a closed cubic contour needs at least 4 control points */
+    RUGO_ERR_NOT_FINITE = 4,        /* a NaN or infinite value in the input */
+    RUGO_ERR_ZERO_AREA = 5,         /* the outline encloses no area (collinear or coincident points) */
+    RUGO_ERR_SELF_INTERSECTING = 6, /* the outline crosses itself (see rugo_contour_problem) */
+    RUGO_ERR_NOT_POWER_OF_TWO = 7,  /* the count must be a power of two here */
+    RUGO_ERR_BAD_ARGUMENT = 8,      /* a parameter out of its documented range */
+    RUGO_ERR_BAD_FILTER = 9,        /* unknown wavelet filter */
+    RUGO_ERR_BAD_LEVEL = 10,        /* a level outside the pyramid, or a coarsest level below 4 points */
+    RUGO_ERR_TOO_MANY_POINTS = 11,  /* a count beyond RUGO_MAX_CONTROL_POINTS */
+    RUGO_ERR_PARSE = 12,            /* malformed text (JSON syntax) */
+    RUGO_ERR_BAD_FIELD = 13,        /* well-formed text with a missing or wrongly typed field */
+    RUGO_ERR_SINGULAR = 14,         /* a linear system has no unique solution (e.g. too few fit points) */
+    RUGO_ERR_NOT_CONVERGED = 15,    /* an iteration did not reach its tolerance */
+    RUGO_ERR_UNSUPPORTED = 16,      /* the feature was left out of this build (e.g. no Eigen shim) */
+    RUGO_ERR_IO = 17,               /* a file could not be read or written */
+    RUGO_STATUS_COUNT
+} rugo_status;
+
+/* A short constant English name for a status, e.g. "self-intersecting outline". Never NULL. */
+const char* rugo_status_string(rugo_status status);
+
+/* Largest control-point count any function accepts (2^20): bounds memory use on hostile input. */
+#define RUGO_MAX_CONTROL_POINTS (1 << 20)
+
+/* User-replaceable allocation. alloc(size, ctx) returns NULL on failure; free(ptr, ctx) accepts NULL.
+ * Objects keep a copy of the allocator they were created with and free through it. */
+typedef struct rugo_allocator {
+    void* (*alloc)(size_t size, void* ctx);
+    void (*free)(void* ptr, void* ctx);
+    void* ctx;
+} rugo_allocator;
+
+/* The malloc/free allocator. */
+rugo_allocator rugo_default_allocator(void);
+
+/* Runtime version, for checking that headers and library agree. */
+const char* rugo_version_string(void);
+
+/* Small vector helpers (inline so that hot loops stay cheap). */
+static inline rugo_vec2 rugo_v2(rugo_real x, rugo_real y) {
+    rugo_vec2 v;
+    v.x = x;
+    v.y = y;
+    return v;
+}
+static inline rugo_vec2 rugo_v2_add(rugo_vec2 a, rugo_vec2 b) { return rugo_v2(a.x + b.x, a.y + b.y); }
+static inline rugo_vec2 rugo_v2_sub(rugo_vec2 a, rugo_vec2 b) { return rugo_v2(a.x - b.x, a.y - b.y); }
+static inline rugo_vec2 rugo_v2_scale(rugo_real s, rugo_vec2 a) { return rugo_v2(s * a.x, s * a.y); }
+static inline rugo_real rugo_v2_dot(rugo_vec2 a, rugo_vec2 b) { return a.x * b.x + a.y * b.y; }
+static inline rugo_real rugo_v2_cross(rugo_vec2 a, rugo_vec2 b) { return a.x * b.y - a.y * b.x; }
+/* Counter-clockwise perpendicular (-y, x). */
+static inline rugo_vec2 rugo_v2_perp(rugo_vec2 a) { return rugo_v2(-a.y, a.x); }
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

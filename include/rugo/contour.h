@@ -1,0 +1,123 @@
+/* librugo — closed uniform cubic B-spline contours (SPEC 1).
+ *
+ * A contour is a view of n >= 4 control points c_0..c_{n-1} (cyclic). Segment j, t in [0,1):
+ *   f_j(t) = 1/6 [t^3 t^2 t 1] M [c_{j-1} c_j c_{j+1} c_{j+2}]^T        (thesis 2.4-2.5)
+ * so f_j(1) = f_{j+1}(0) and the curve is C2. A point with t = 1 belongs to segment j+1.
+ * The view borrows its points; the caller keeps them alive. Query functions expect a contour that
+ * passed rugo_contour_check (they do not re-validate; segment indices wrap cyclically).
+ * Lengths are in the caller's units; the library is unit-free. */
+#ifndef RUGO_CONTOUR_H
+#define RUGO_CONTOUR_H
+
+#include "rugo/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rugo_contour {
+    const rugo_vec2* points; /* borrowed, count entries */
+    int count;
+} rugo_contour;
+
+/* Flags for rugo_contour_check. */
+enum {
+    RUGO_CHECK_POWER_OF_TWO = 1 << 0,      /* require count to be a power of two */
+    RUGO_CHECK_SELF_INTERSECTION = 1 << 1, /* test the curve for crossings (O(n log n) typical) */
+    RUGO_CHECK_ALL = RUGO_CHECK_POWER_OF_TWO | RUGO_CHECK_SELF_INTERSECTION
+};
+
+/* What a failed check found, for messages: the offending index or segment pair. */
+typedef struct rugo_contour_problem {
+    int index;     /* first non-finite point index, or -1 */
+    int segment_a; /* for RUGO_ERR_SELF_INTERSECTING: two segments that cross (segment_a <= segment_b), */
+    int segment_b; /* possibly equal for a loop inside one segment; -1 otherwise */
+    rugo_vec2 where; /* an approximate crossing point */
+} rugo_contour_problem;
+
+/* Validates control points, in this order: NULL, count < 4 (TOO_FEW_POINTS), count > max
+ * (TOO_MANY_POINTS), power of two if asked (NOT_POWER_OF_TWO), non-finite coordinate (NOT_FINITE),
+ * |area| <= 1e-12 * bounds diagonal^2 (ZERO_AREA), crossings if asked (SELF_INTERSECTING).
+ * problem may be NULL. */
+rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags,
+                               rugo_contour_problem* problem);
+
+/* Signed area of the region bounded by the curve (positive when counter-clockwise). */
+rugo_real rugo_contour_signed_area(rugo_contour c);
+
+/* Reverses points in place if the curve is clockwise, so it becomes counter-clockwise.
+ * Returns 1 if it reversed, 0 if not. Reversal maps segment j to segment n-2-j, t to 1-t. */
+int rugo_contour_orient_ccw(rugo_vec2* points, int count);
+
+/* Evaluation in the matrix form (2.4) and derivatives (2.6)-(2.7). */
+rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t);
+rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t);
+rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t);
+/* Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically). */
+rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u);
+
+/* The four cubic Bezier control points of segment j (a uniform cubic B-spline segment is a cubic
+ * Bezier curve; the convex hull of these points contains the segment). */
+void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4]);
+
+/* The coefficients of (3.8): f'_j(t) = 1/2 (v t^2 + w t + r). */
+void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
+                                          rugo_vec2* r);
+
+/* Arc length of one segment by 4-point Gauss-Legendre (3.6)-(3.7). */
+rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
+/* Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
+ * estimate of the error actually reached goes to *error_bound (may be NULL). Returns
+ * RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached. */
+rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
+                                                 rugo_real* length, rugo_real* error_bound);
+/* Whole perimeter, 4-point Gauss-Legendre per segment. */
+rugo_real rugo_contour_perimeter(rugo_contour c);
+
+/* Exact mass properties of the enclosed region for unit density, by Green's theorem with Gauss
+ * quadrature exact for the polynomial integrands (no sampling), evaluated about an interior
+ * reference point for precision far from the origin. */
+typedef struct rugo_mass_properties {
+    rugo_real area;     /* > 0 for a counter-clockwise contour, negative for clockwise */
+    rugo_vec2 centroid;
+    rugo_real inertia;  /* polar moment of the region about the centroid, unit density: ∫∫|p-c|^2 dA */
+} rugo_mass_properties;
+rugo_mass_properties rugo_contour_mass_properties(rugo_contour c);
+
+/* Axis-aligned bounds of the curve itself (exact, from the derivative's roots). */
+void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper);
+
+/* Closest point on the curve to p. */
+typedef struct rugo_curve_point {
+    int segment;
+    rugo_real t;       /* in [0,1) */
+    rugo_vec2 point;
+    rugo_real distance;
+} rugo_curve_point;
+rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
+
+/* 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the
+ * curve itself (within round-off) may go either way. */
+int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
+
+/* First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
+ * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal) or 0 for no hit.
+ * direction must be non-zero; fraction, hit and normal may be NULL. */
+int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
+                          rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
+                          rugo_vec2* normal);
+
+/* Unit tangent and outward unit normal (for a counter-clockwise contour) at f_j(t). Degenerate
+ * (zero-speed) points take the direction of the second, then third derivative. */
+rugo_vec2 rugo_contour_tangent(rugo_contour c, int segment, rugo_real t);
+rugo_vec2 rugo_contour_normal(rugo_contour c, int segment, rugo_real t);
+
+/* Uniform cubic B-spline basis values N_1..N_4 at t (weights of c_{j-1}, c_j, c_{j+1}, c_{j+2});
+ * they sum to 1. */
+void rugo_bspline_basis(rugo_real t, rugo_real out[4]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,11 @@
+/* librugo — rough curved 2-D shapes. Include this for the whole C API. */
+#ifndef RUGO_RUGO_H
+#define RUGO_RUGO_H
+
+#include "rugo/base.h"
+#include "rugo/contour.h"
+#include "rugo/wavelet.h"
+#include "rugo/multires.h"
+#include "rugo/shape_file.h"
+
+#endif

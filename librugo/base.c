@@ -1,0 +1,66 @@
+#include "internal.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+
+const char* rugo_status_string(rugo_status status) {
+    switch (status) {
+    case RUGO_OK: return "ok";
+    case RUGO_ERR_NULL_ARGUMENT: return "a required argument is NULL";
+    case RUGO_ERR_OUT_OF_MEMORY: return "out of memory";
+    case RUGO_ERR_TOO_FEW_POINTS: return "fewer than 4 control points";
+    case RUGO_ERR_NOT_FINITE: return "non-finite value (NaN or infinity)";
+    case RUGO_ERR_ZERO_AREA: return "outline encloses zero area";
+    case RUGO_ERR_SELF_INTERSECTING: return "self-intersecting outline";
+    case RUGO_ERR_NOT_POWER_OF_TWO: return "count is not a power of two";
+    case RUGO_ERR_BAD_ARGUMENT: return "argument out of range";
+    case RUGO_ERR_BAD_FILTER: return "unknown wavelet filter";
+    case RUGO_ERR_BAD_LEVEL: return "level out of range";
+    case RUGO_ERR_TOO_MANY_POINTS: return "too many control points";
+    case RUGO_ERR_PARSE: return "malformed input text";
+    case RUGO_ERR_BAD_FIELD: return "missing or wrongly typed field";
+    case RUGO_ERR_SINGULAR: return "singular linear system";
+    case RUGO_ERR_NOT_CONVERGED: return "iteration did not converge";
+    case RUGO_ERR_UNSUPPORTED: return "not supported by this build";
+    case RUGO_ERR_IO: return "file input/output error";
+    case RUGO_STATUS_COUNT: break;
+    }
+    return "unknown status";
+}
+
+const char* rugo_version_string(void) { return RUGO_VERSION_STRING; }
+
+static void* default_alloc(size_t size, void* ctx) {
+    (void)ctx;
+    return malloc(size);
+}
+
+static void default_free(void* p, void* ctx) {
+    (void)ctx;
+    free(p);
+}
+
+rugo_allocator rugo_default_allocator(void) {
+    rugo_allocator a;
+    a.alloc = default_alloc;
+    a.free = default_free;
+    a.ctx = NULL;
+    return a;
+}
+
+rugo_allocator rugo__allocator_or_default(const rugo_allocator* a) {
+    if (a == NULL || a->alloc == NULL || a->free == NULL) return rugo_default_allocator();
+    return *a;
+}
+
+void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size) {
+    rugo_allocator al = rugo__allocator_or_default(a);
+    if (count == 0 || size == 0) count = size = 1; /* never ask for 0 bytes: malloc(0) may be NULL */
+    if (count > SIZE_MAX / size) return NULL;
+    return al.alloc(count * size, al.ctx);
+}
+
+void rugo__free(const rugo_allocator* a, void* p) {
+    rugo_allocator al = rugo__allocator_or_default(a);
+    if (p != NULL) al.free(p, al.ctx);
+}

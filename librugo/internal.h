@@ -1,0 +1,37 @@
+/* Private helpers shared by librugo's sources. Not installed. */
+#ifndef RUGO_INTERNAL_H
+#define RUGO_INTERNAL_H
+
+#include "rugo/base.h"
+
+#include <math.h>
+
+/* Internal invariants: on in debug and test builds (RUGO_ENABLE_ASSERT), off in release builds.
+ * Never used for outside input, which gets a status instead. */
+#ifdef RUGO_ENABLE_ASSERT
+#include <assert.h>
+#define RUGO_ASSERT(cond) assert(cond)
+#else
+#define RUGO_ASSERT(cond) ((void)0)
+#endif
+
+/* A usable allocator from a possibly NULL or zeroed one. */
+rugo_allocator rugo__allocator_or_default(const rugo_allocator* a);
+
+/* Allocate count * size bytes, checking the multiplication for overflow; NULL on failure. */
+void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size);
+void rugo__free(const rugo_allocator* a, void* p);
+
+/* Cyclic index in [0, n). */
+static inline int rugo__wrap(int i, int n) {
+    int r = i % n;
+    return r < 0 ? r + n : r;
+}
+
+static inline int rugo__is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+static inline int rugo__v2_finite(rugo_vec2 v) { return isfinite(v.x) && isfinite(v.y); }
+
+static inline rugo_real rugo__v2_length(rugo_vec2 v) { return hypot(v.x, v.y); }
+
+#endif

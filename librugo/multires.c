@@ -1,0 +1,1 @@
+/* placeholder: being written */ typedef int rugo__placeholder_multires;

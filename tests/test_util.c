@@ -1,0 +1,73 @@
+#include "test_util.h"
+
+#include <stdlib.h>
+
+test_rng test_rng_seed(uint64_t seed) {
+    test_rng r;
+    r.state = seed;
+    return r;
+}
+
+uint64_t test_rng_next(test_rng* r) {
+    uint64_t z = (r->state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+double test_rng_uniform(test_rng* r, double lo, double hi) {
+    double u = (double)(test_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
+    return lo + (hi - lo) * u;
+}
+
+void test_random_star(test_rng* r, int n, rugo_vec2 centre, double radius, double bumpiness, rugo_vec2* out) {
+    enum { H = 4 };
+    double amp[H], phase[H];
+    double total = 0.0;
+    for (int h = 0; h < H; ++h) {
+        amp[h] = test_rng_uniform(r, 0.0, 1.0);
+        phase[h] = test_rng_uniform(r, 0.0, 6.283185307179586);
+        total += amp[h];
+    }
+    for (int k = 0; k < n; ++k) {
+        double th = 6.283185307179586 * k / n;
+        double rad = 1.0;
+        for (int h = 0; h < H; ++h) rad += bumpiness * amp[h] / total * sin((h + 2) * th + phase[h]);
+        out[k].x = centre.x + radius * rad * cos(th);
+        out[k].y = centre.y + radius * rad * sin(th);
+    }
+}
+
+void test_random_points(test_rng* r, int n, double scale, rugo_vec2* out) {
+    for (int k = 0; k < n; ++k) {
+        out[k].x = test_rng_uniform(r, -scale, scale);
+        out[k].y = test_rng_uniform(r, -scale, scale);
+    }
+}
+
+double test_max_diff(const rugo_vec2* a, const rugo_vec2* b, int n) {
+    double m = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double dx = fabs(a[i].x - b[i].x), dy = fabs(a[i].y - b[i].y);
+        if (dx > m) m = dx;
+        if (dy > m) m = dy;
+    }
+    return m;
+}
+
+double test_max_abs(const rugo_vec2* a, int n) {
+    double m = 0.0;
+    for (int i = 0; i < n; ++i) {
+        if (fabs(a[i].x) > m) m = fabs(a[i].x);
+        if (fabs(a[i].y) > m) m = fabs(a[i].y);
+    }
+    return m;
+}
+
+int test_run_suite(Suite* s) {
+    SRunner* sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

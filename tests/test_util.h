@@ -1,0 +1,45 @@
+/* Shared helpers for the Check suites: a seeded test RNG and random test contours.
+ * (The library's own documented RNG arrives with the roughness module; tests keep theirs so that
+ * test inputs do not change when the library's generator evolves.) */
+#ifndef RUGO_TEST_UTIL_H
+#define RUGO_TEST_UTIL_H
+
+#include "rugo/rugo.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdint.h>
+
+/* splitmix64: tiny, well-mixed, deterministic. */
+typedef struct test_rng {
+    uint64_t state;
+} test_rng;
+
+test_rng test_rng_seed(uint64_t seed);
+uint64_t test_rng_next(test_rng* r);
+double test_rng_uniform(test_rng* r, double lo, double hi); /* [lo, hi) */
+
+/* A random star-shaped control polygon of n points around `centre` with mean radius `radius`:
+ * radii 1 + a few random low harmonics of total amplitude <= `bumpiness` (< 0.5 keeps the curve
+ * simple). Counter-clockwise. */
+void test_random_star(test_rng* r, int n, rugo_vec2 centre, double radius, double bumpiness, rugo_vec2* out);
+
+/* Fully random periodic 2-D data (not a valid outline; for transform tests). */
+void test_random_points(test_rng* r, int n, double scale, rugo_vec2* out);
+
+/* Largest |a_i - b_i| over both coordinates, and the largest |a_i|. */
+double test_max_diff(const rugo_vec2* a, const rugo_vec2* b, int n);
+double test_max_abs(const rugo_vec2* a, int n);
+
+/* Check assertion that |a - b| <= tol, printing both values on failure. */
+#define ck_assert_near(a, b, tol)                                                                  \
+    do {                                                                                           \
+        double ck_a_ = (a), ck_b_ = (b), ck_t_ = (tol);                                            \
+        ck_assert_msg(fabs(ck_a_ - ck_b_) <= ck_t_, "%s = %.17g, %s = %.17g, |diff| = %.3g > %.3g", \
+                      #a, ck_a_, #b, ck_b_, fabs(ck_a_ - ck_b_), ck_t_);                           \
+    } while (0)
+
+/* Runs one suite and returns the process exit code. */
+int test_run_suite(Suite* s);
+
+#endif

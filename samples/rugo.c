@@ -1,0 +1,584 @@
+/* rugo — librugo's command-line tool for asset pipelines, debugging and black-box tests.
+ *
+ * JSON in, JSON out on stdout; errors on stderr with a non-zero exit status (1: the input or the
+ * operation failed, 2: the command line is wrong). docs/cli.md documents every subcommand and format. */
+#include "rugo/rugo.h"
+#ifdef RUGO_HAVE_FIT
+#include "rugo/fit.h"
+#endif
+#include "svg.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { EXIT_INPUT = 1, EXIT_USAGE = 2 };
+
+static const char* g_command = "rugo";
+
+static int usage_error(const char* fmt, const char* arg) {
+    fprintf(stderr, "rugo %s: ", g_command);
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n(run 'rugo help' for usage)\n");
+    return EXIT_USAGE;
+}
+
+static int fail(const char* what, rugo_status st) {
+    fprintf(stderr, "rugo %s: %s: %s (status %d)\n", g_command, what, rugo_status_string(st), (int)st);
+    return EXIT_INPUT;
+}
+
+/* ---- argument parsing ---------------------------------------------------------------------- */
+
+static int parse_real(const char* s, double* out) {
+    char* end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_int(const char* s, int lo, int hi, int* out) {
+    char* end = NULL;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* "X,Y" */
+static int parse_pair(const char* s, rugo_vec2* out) {
+    char buf[128];
+    const char* comma = strchr(s, ',');
+    if (comma == NULL || (size_t)(comma - s) >= sizeof buf) return -1;
+    memcpy(buf, s, (size_t)(comma - s));
+    buf[comma - s] = '\0';
+    if (parse_real(buf, &out->x) != 0 || parse_real(comma + 1, &out->y) != 0) return -1;
+    return 0;
+}
+
+/* Options: a flat table of "--name" -> value (NULL for flags). Positional arguments in order. */
+typedef struct args {
+    const char* positional[4];
+    int positional_count;
+    const char* names[16];
+    const char* values[16];
+    int count;
+} args;
+
+/* Parses argv against the allowed option names; value_options take a value. */
+static int parse_args(int argc, char** argv, const char* const* value_options, const char* const* flag_options,
+                      args* a) {
+    memset(a, 0, sizeof *a);
+    for (int i = 0; i < argc; ++i) {
+        const char* s = argv[i];
+        if (s[0] == '-' && s[1] != '\0' && !(s[1] >= '0' && s[1] <= '9')) {
+            int known = 0;
+            for (const char* const* o = value_options; o && *o; ++o)
+                if (strcmp(s, *o) == 0) {
+                    if (i + 1 >= argc) return usage_error("option %s needs a value", s);
+                    if (a->count >= 16) return usage_error("too many options%s", "");
+                    a->names[a->count] = s;
+                    a->values[a->count++] = argv[++i];
+                    known = 1;
+                    break;
+                }
+            for (const char* const* o = flag_options; !known && o && *o; ++o)
+                if (strcmp(s, *o) == 0) {
+                    if (a->count >= 16) return usage_error("too many options%s", "");
+                    a->names[a->count] = s;
+                    a->values[a->count++] = NULL;
+                    known = 1;
+                }
+            if (!known) return usage_error("unknown option %s", s);
+        } else {
+            if (a->positional_count >= 4) return usage_error("unexpected argument %s", s);
+            a->positional[a->positional_count++] = s;
+        }
+    }
+    return 0;
+}
+
+/* Last value given for an option (NULL if absent); *present for flags. */
+static const char* opt(const args* a, const char* name, int* present) {
+    const char* v = NULL;
+    if (present) *present = 0;
+    for (int i = 0; i < a->count; ++i)
+        if (strcmp(a->names[i], name) == 0) {
+            v = a->values[i];
+            if (present) *present = 1;
+        }
+    return v;
+}
+
+/* ---- shapes in and out ----------------------------------------------------------------------- */
+
+static int load_shape(const char* path, rugo_shape_desc* desc) {
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_read_file(path, NULL, &text, &len);
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, path, rugo_status_string(st), (int)st);
+        return EXIT_INPUT;
+    }
+    rugo_parse_error err;
+    st = rugo_shape_desc_parse(text, len, NULL, desc, &err);
+    rugo_text_free(NULL, text);
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo %s: %s:%d:%d: %s%s%s (status %d: %s)\n", g_command, path, err.line, err.column,
+                err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+static void report_problem(const char* path, rugo_status st, const rugo_contour_problem* pr) {
+    fprintf(stderr, "rugo %s: %s: %s (status %d)", g_command, path, rugo_status_string(st), (int)st);
+    if (st == RUGO_ERR_SELF_INTERSECTING)
+        fprintf(stderr, ": segments %d and %d cross near (%.9g, %.9g)", pr->segment_a, pr->segment_b, pr->where.x,
+                pr->where.y);
+    else if (st == RUGO_ERR_NOT_FINITE && pr->index >= 0)
+        fprintf(stderr, ": control point %d", pr->index);
+    fprintf(stderr, "\n");
+}
+
+static int build_pyramid(const char* path, const rugo_shape_desc* desc, rugo_filter filter, int coarsest,
+                         rugo_pyramid** out) {
+    rugo_pyramid_def def = rugo_default_pyramid_def();
+    def.points = desc->control_points;
+    def.count = desc->count;
+    def.filter = filter;
+    def.coarsest_level = coarsest;
+    rugo_contour_problem pr;
+    rugo_status st = rugo_pyramid_create(&def, out, &pr);
+    if (st != RUGO_OK) {
+        report_problem(path, st, &pr);
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+static void print_points(FILE* f, const rugo_vec2* p, int n) {
+    fputc('[', f);
+    for (int i = 0; i < n; ++i) fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", p[i].x, p[i].y);
+    fputc(']', f);
+}
+
+/* Writes a shape file (the library's writer) to `path` or stdout, with an optional extra member
+ * (`"name": {...}`) spliced in before the closing brace. Returns 0 or EXIT_INPUT. */
+static int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filter filter,
+                       const char* extra) {
+    rugo_shape_desc d;
+    memset(&d, 0, sizeof d);
+    d.control_points = (rugo_vec2*)points;
+    d.count = count;
+    d.filter = filter;
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_shape_desc_write(&d, NULL, &text, &len);
+    if (st != RUGO_OK) return fail("writing the shape", st);
+    FILE* f = path ? fopen(path, "w") : stdout;
+    if (f == NULL) {
+        rugo_text_free(NULL, text);
+        fprintf(stderr, "rugo %s: %s: cannot open for writing\n", g_command, path);
+        return EXIT_INPUT;
+    }
+    char* close = strrchr(text, '}');
+    if (extra && close) {
+        fwrite(text, 1, (size_t)(close - text), f);
+        fprintf(f, ", %s}\n", extra);
+    } else {
+        fputs(text, f);
+        if (len == 0 || text[len - 1] != '\n') fputc('\n', f);
+    }
+    rugo_text_free(NULL, text);
+    int bad = ferror(f);
+    if (path) bad |= fclose(f) != 0;
+    if (bad) {
+        fprintf(stderr, "rugo %s: %s: write failed\n", g_command, path ? path : "stdout");
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+static int log2_exact(int n) {
+    int j = 0;
+    while ((1 << j) < n) ++j;
+    return (1 << j) == n ? j : -1;
+}
+
+/* ---- subcommands ---------------------------------------------------------------------------- */
+
+static int cmd_info(int argc, char** argv) {
+    args a;
+    int rc = parse_args(argc, argv, NULL, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    rugo_contour_problem pr;
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    if (st != RUGO_OK) {
+        report_problem(a.positional[0], st, &pr);
+        rugo_shape_desc_free(&desc);
+        return EXIT_INPUT;
+    }
+    rugo_contour_orient_ccw(desc.control_points, desc.count);
+    rugo_contour c = {desc.control_points, desc.count};
+    rugo_mass_properties mp = rugo_contour_mass_properties(c);
+    int levels = log2_exact(desc.count);
+    printf("{\"control_points\": %d, \"levels\": ", desc.count);
+    if (levels >= 0)
+        printf("%d", levels);
+    else
+        printf("null");
+    printf(", \"area\": %.17g, \"centroid\": [%.17g, %.17g], \"inertia\": %.17g, \"perimeter\": %.17g}\n", mp.area,
+           mp.centroid.x, mp.centroid.y, mp.inertia, rugo_contour_perimeter(c));
+    rugo_shape_desc_free(&desc);
+    return 0;
+}
+
+static int filter_option(const args* a, const rugo_shape_desc* desc, rugo_filter* f) {
+    const char* name = opt(a, "--filter", NULL);
+    *f = desc->filter;
+    if (name && rugo_filter_from_name(name, f) != RUGO_OK)
+        return usage_error("unknown filter '%s' (cdf4.2, cdf4.4, cdf4.6, cdf4.8, cdf4.12)", name);
+    return 0;
+}
+
+static int cmd_decompose(int argc, char** argv) {
+    static const char* const vals[] = {"--filter", "--levels", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    rugo_filter filter;
+    if ((rc = filter_option(&a, &desc, &filter))) goto done;
+    int J = log2_exact(desc.count);
+    if (J < 2) {
+        fail(a.positional[0], desc.count < 4 ? RUGO_ERR_TOO_FEW_POINTS : RUGO_ERR_NOT_POWER_OF_TWO);
+        rc = EXIT_INPUT;
+        goto done;
+    }
+    int levels = J - 2;
+    const char* lv = opt(&a, "--levels", NULL);
+    if (lv && parse_int(lv, 1, J - 2 > 0 ? J - 2 : 1, &levels) != 0) {
+        fprintf(stderr, "rugo decompose: --levels must be an integer from 1 to %d for %d control points\n",
+                J - 2, desc.count);
+        rc = EXIT_USAGE;
+        goto done;
+    }
+    if (levels < 1) {
+        fprintf(stderr, "rugo decompose: %d control points cannot be decomposed (a level needs >= 4)\n", desc.count);
+        rc = EXIT_INPUT;
+        goto done;
+    }
+    rugo_pyramid* p = NULL;
+    if ((rc = build_pyramid(a.positional[0], &desc, filter, J - levels, &p))) goto done;
+    printf("{\"filter\": \"%s\", \"levels\": [", rugo_filter_name(filter));
+    for (int j = J - 1; j >= J - levels; --j) {
+        rugo_contour c;
+        const rugo_vec2 *dw, *dl;
+        rugo_pyramid_level(p, j, &c);
+        rugo_pyramid_details(p, j, &dw, &dl);
+        printf("%s\n  {\"level\": %d, \"control_points\": ", j == J - 1 ? "" : ",", j);
+        print_points(stdout, c.points, c.count);
+        printf(", \"details\": ");
+        print_points(stdout, dw, c.count);
+        printf("}");
+    }
+    printf("\n]}\n");
+    rugo_pyramid_destroy(p);
+done:
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+static int cmd_refine(int argc, char** argv) {
+    static const char* const vals[] = {"--times", "-o", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    int times = 1;
+    const char* tv = opt(&a, "--times", NULL);
+    if (tv && parse_int(tv, 1, 10, &times) != 0) return usage_error("--times must be 1..10, got '%s'", tv);
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    rugo_contour_problem pr;
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    if (st == RUGO_OK && ((long)desc.count << times) > RUGO_MAX_CONTROL_POINTS) st = RUGO_ERR_TOO_MANY_POINTS;
+    if (st != RUGO_OK) {
+        report_problem(a.positional[0], st, &pr);
+        rugo_shape_desc_free(&desc);
+        return EXIT_INPUT;
+    }
+    rugo_contour_orient_ccw(desc.control_points, desc.count);
+    int n = desc.count;
+    rugo_vec2* cur = malloc(sizeof *cur * (size_t)n);
+    if (cur == NULL) {
+        rugo_shape_desc_free(&desc);
+        return fail("refine", RUGO_ERR_OUT_OF_MEMORY);
+    }
+    memcpy(cur, desc.control_points, sizeof *cur * (size_t)n);
+    for (int i = 0; i < times && rc == 0; ++i) {
+        rugo_vec2* next = malloc(sizeof *next * (size_t)n * 2);
+        if (next == NULL) {
+            rc = fail("refine", RUGO_ERR_OUT_OF_MEMORY);
+            break;
+        }
+        st = rugo_wavelet_refine(cur, n, next);
+        free(cur);
+        cur = next;
+        n *= 2;
+        if (st != RUGO_OK) rc = fail("refine", st);
+    }
+    if (rc == 0) rc = write_shape(opt(&a, "-o", NULL), cur, n, desc.filter, NULL);
+    free(cur);
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+static int cmd_deform(int argc, char** argv) {
+    static const char* const vals[] = {"--at", "--delta", "--levels", "--w", "--details", "-o", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    const char *at = opt(&a, "--at", NULL), *dv = opt(&a, "--delta", NULL);
+    double u = 0.0, w = 0.0;
+    rugo_vec2 delta;
+    int spread = 1;
+    rugo_detail_mode mode = RUGO_DETAILS_FIXED;
+    if (at == NULL || parse_real(at, &u) != 0 || u < 0.0) return usage_error("--at U (curve parameter >= 0) is required%s", "");
+    if (dv == NULL || parse_pair(dv, &delta) != 0) return usage_error("--delta DX,DY is required%s", "");
+    const char *lv = opt(&a, "--levels", NULL), *wv = opt(&a, "--w", NULL), *mv = opt(&a, "--details", NULL);
+    if (lv && parse_int(lv, 1, 30, &spread) != 0) return usage_error("--levels must be a positive integer, got '%s'", lv);
+    if (wv && parse_real(wv, &w) != 0) return usage_error("--w must be a number, got '%s'", wv);
+    if (mv && strcmp(mv, "fixed") != 0 && strcmp(mv, "local") != 0)
+        return usage_error("--details must be fixed or local, got '%s'", mv);
+    if (mv && strcmp(mv, "local") == 0) mode = RUGO_DETAILS_LOCAL;
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    rugo_pyramid* p = NULL;
+    if ((rc = build_pyramid(a.positional[0], &desc, desc.filter, 0, &p))) goto done;
+    int J = rugo_pyramid_finest_level(p);
+    if (u >= (double)(1 << J)) {
+        fprintf(stderr, "rugo deform: --at must be below the control point count %d\n", 1 << J);
+        rc = EXIT_USAGE;
+        goto free_pyramid;
+    }
+    if (spread > J - rugo_pyramid_coarsest_level(p) + 1) {
+        fprintf(stderr, "rugo deform: --levels at most %d for this shape\n", J - rugo_pyramid_coarsest_level(p) + 1);
+        rc = EXIT_USAGE;
+        goto free_pyramid;
+    }
+    int seg = (int)floor(u);
+    double t = u - seg;
+    if (rugo_pyramid_was_reversed(p)) { /* the input was clockwise: map its parameter onto the stored curve */
+        seg = (1 << J) - 2 - seg;
+        t = 1.0 - t;
+        if (t >= 1.0) {
+            t -= 1.0;
+            seg += 1;
+        }
+        seg = (seg % (1 << J) + (1 << J)) % (1 << J);
+    }
+    rugo_contour c;
+    rugo_pyramid_level(p, J, &c);
+    rugo_vec2 before = rugo_contour_point(c, seg, t);
+    double weights[32];
+    rugo_status st = rugo_pyramid_deform(p, seg, t, delta, spread, w, mode, weights);
+    if (st != RUGO_OK) {
+        rc = fail("deform", st);
+        goto free_pyramid;
+    }
+    rugo_pyramid_level(p, J, &c);
+    rugo_vec2 after = rugo_contour_point(c, seg, t);
+    char extra[2048];
+    int len = snprintf(extra, sizeof extra,
+                       "\"deformation\": {\"point_before\": [%.17g, %.17g], \"point_after\": [%.17g, %.17g], "
+                       "\"moved\": [%.17g, %.17g], \"weights\": [",
+                       before.x, before.y, after.x, after.y, after.x - before.x, after.y - before.y);
+    for (int i = 0; i < spread && len < (int)sizeof extra; ++i)
+        len += snprintf(extra + len, sizeof extra - (size_t)len, "%s%.17g", i ? ", " : "", weights[i]);
+    if (len < (int)sizeof extra) snprintf(extra + len, sizeof extra - (size_t)len, "]}");
+    rc = write_shape(opt(&a, "-o", NULL), c.points, c.count, desc.filter, extra);
+free_pyramid:
+    rugo_pyramid_destroy(p);
+done:
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+static int cmd_fit(int argc, char** argv) {
+#ifdef RUGO_HAVE_FIT
+    static const char* const vals[] = {"--control-points", "--param", "-o", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one points file%s", "");
+    int n = 32;
+    const char *nv = opt(&a, "--control-points", NULL), *pv = opt(&a, "--param", NULL);
+    if (nv && parse_int(nv, 4, RUGO_MAX_CONTROL_POINTS, &n) != 0)
+        return usage_error("--control-points must be a power of two >= 4, got '%s'", nv);
+    rugo_parameterization param = RUGO_PARAM_CHORD_LENGTH;
+    if (pv && strcmp(pv, "uniform") == 0)
+        param = RUGO_PARAM_UNIFORM;
+    else if (pv && strcmp(pv, "chord") != 0)
+        return usage_error("--param must be chord or uniform, got '%s'", pv);
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_read_file(a.positional[0], NULL, &text, &len);
+    if (st != RUGO_OK) return fail(a.positional[0], st);
+    rugo_vec2* pts = NULL;
+    int count = 0;
+    rugo_parse_error err;
+    st = rugo_points_parse(text, len, "points", NULL, &pts, &count, &err);
+    rugo_text_free(NULL, text);
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo fit: %s:%d:%d: %s%s%s (status %d: %s)\n", a.positional[0], err.line, err.column,
+                err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
+        return EXIT_INPUT;
+    }
+    rugo_vec2* ctrl = malloc(sizeof *ctrl * (size_t)n);
+    if (ctrl == NULL) {
+        rugo_points_free(NULL, pts);
+        return fail("fit", RUGO_ERR_OUT_OF_MEMORY);
+    }
+    rugo_fit_def def = rugo_default_fit_def();
+    def.samples = pts;
+    def.sample_count = count;
+    def.control_count = n;
+    def.parameterization = param;
+    rugo_fit_result res;
+    st = rugo_fit_contour(&def, ctrl, &res);
+    if (st == RUGO_OK) {
+        rugo_contour_orient_ccw(ctrl, n);
+        char extra[256];
+        snprintf(extra, sizeof extra,
+                 "\"fit\": {\"samples\": %d, \"parameterization\": \"%s\", \"max_error\": %.17g, \"rms_error\": %.17g}",
+                 count, param == RUGO_PARAM_UNIFORM ? "uniform" : "chord", res.max_error, res.rms_error);
+        rc = write_shape(opt(&a, "-o", NULL), ctrl, n, RUGO_FILTER_DEFAULT, extra);
+    } else {
+        rc = fail("fit", st);
+    }
+    free(ctrl);
+    rugo_points_free(NULL, pts);
+    return rc;
+#else
+    (void)argc;
+    (void)argv;
+    return fail("fit", RUGO_ERR_UNSUPPORTED);
+#endif
+}
+
+static int cmd_render(int argc, char** argv) {
+    static const char* const vals[] = {"-o", "--levels", "--samples", NULL};
+    static const char* const flags[] = {"--no-control-polygon", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, flags, &a);
+    if (rc) return rc;
+    const char* out = opt(&a, "-o", NULL);
+    if (a.positional_count != 1 || out == NULL) return usage_error("expects SHAPE.json -o OUT.svg%s", "");
+    int levels = 0, samples = 16, no_polygon = 0;
+    const char *lv = opt(&a, "--levels", NULL), *sv = opt(&a, "--samples", NULL);
+    opt(&a, "--no-control-polygon", &no_polygon);
+    if (lv && parse_int(lv, 0, 30, &levels) != 0) return usage_error("--levels must be >= 0, got '%s'", lv);
+    if (sv && parse_int(sv, 1, 256, &samples) != 0) return usage_error("--samples must be 1..256, got '%s'", sv);
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    rugo_contour_problem pr;
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    if (st != RUGO_OK) {
+        report_problem(a.positional[0], st, &pr);
+        rugo_shape_desc_free(&desc);
+        return EXIT_INPUT;
+    }
+    rugo_contour_orient_ccw(desc.control_points, desc.count);
+    rugo_pyramid* p = NULL;
+    int J = log2_exact(desc.count);
+    if (levels > 0) {
+        if (J < 2 || levels > J - 2) {
+            fprintf(stderr, "rugo render: --levels needs a power-of-two count with %d coarser levels of >= 4 points\n",
+                    levels);
+            rugo_shape_desc_free(&desc);
+            return EXIT_USAGE;
+        }
+        if ((rc = build_pyramid(a.positional[0], &desc, desc.filter, J - levels, &p))) {
+            rugo_shape_desc_free(&desc);
+            return rc;
+        }
+    }
+    rugo_contour c = {desc.control_points, desc.count};
+    rugo_vec2 lo, hi;
+    svg_contour_extent(c, &lo, &hi);
+    svg_canvas svg;
+    if (svg_open(&svg, out, lo, hi, 800.0) != 0) {
+        fprintf(stderr, "rugo render: %s: cannot open for writing\n", out);
+        rugo_pyramid_destroy(p);
+        rugo_shape_desc_free(&desc);
+        return EXIT_INPUT;
+    }
+    static const char* const level_colours[] = {"#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02"};
+    for (int k = 1; k <= levels; ++k) {
+        rugo_contour ck;
+        rugo_pyramid_level(p, J - k, &ck);
+        svg_contour(&svg, ck, samples, level_colours[(k - 1) % 5], 1.2, "6,4");
+    }
+    if (!no_polygon) svg_control_polygon(&svg, c, "#999999");
+    svg_contour(&svg, c, samples, "#1b9e77", 2.0, NULL);
+    rc = svg_close(&svg) == 0 ? 0 : EXIT_INPUT;
+    if (rc) fprintf(stderr, "rugo render: %s: write failed\n", out);
+    rugo_pyramid_destroy(p);
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+static void usage(FILE* f) {
+    fprintf(f,
+            "usage: rugo COMMAND [ARGS]\n"
+            "  info SHAPE.json                      control points, levels, area, centroid, inertia, perimeter\n"
+            "  decompose SHAPE.json [--filter F] [--levels K]\n"
+            "                                       wavelet pyramid from level J-1 down (F: cdf4.2 cdf4.4\n"
+            "                                       cdf4.6 cdf4.8 cdf4.12)\n"
+            "  refine SHAPE.json [--times K] [-o OUT.json]\n"
+            "                                       double the control points K times; same curve\n"
+            "  deform SHAPE.json --at U --delta DX,DY [--levels R] [--w W] [--details fixed|local] [-o OUT.json]\n"
+            "                                       move the curve point at parameter U by (DX, DY), spread\n"
+            "                                       over R levels with weights e^(-W s)\n"
+            "  fit POINTS.json [--control-points N] [--param chord|uniform] [-o OUT.json]\n"
+            "                                       least-squares closed contour through {\"points\": [...]}\n"
+            "  render SHAPE.json -o OUT.svg [--levels K] [--samples N] [--no-control-polygon]\n"
+            "  help                                 this text\n"
+            "Output is JSON on stdout (or the -o file); errors go to stderr with exit status 1 (bad input)\n"
+            "or 2 (bad command line). See docs/cli.md.\n");
+}
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        usage(stderr);
+        return EXIT_USAGE;
+    }
+    g_command = argv[1];
+    static const struct {
+        const char* name;
+        int (*run)(int, char**);
+    } commands[] = {{"info", cmd_info},     {"decompose", cmd_decompose}, {"refine", cmd_refine},
+                    {"deform", cmd_deform}, {"fit", cmd_fit},             {"render", cmd_render}};
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
+        if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 2, argv + 2);
+    if (strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    fprintf(stderr, "rugo: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return EXIT_USAGE;
+}

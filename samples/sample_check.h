@@ -1,0 +1,14 @@
+/* Assertions for samples that run as tests: print what was checked, count failures. */
+#ifndef RUGO_SAMPLE_CHECK_H
+#define RUGO_SAMPLE_CHECK_H
+
+/* Records "name: value <= limit" as a pass or a failure and prints it. Returns 1 if it passed. */
+int sample_expect_le(const char* name, double value, double limit);
+/* Records a condition. */
+int sample_expect(const char* name, int ok);
+/* 0 if every expectation passed, 1 otherwise; prints a summary line "N passed, M failed". */
+int sample_finish(void);
+/* Creates a directory and its parents (like mkdir -p); 0 on success. */
+int sample_mkdir(const char* path);
+
+#endif

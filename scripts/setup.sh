@@ -1,0 +1,20 @@
+#!/bin/sh
+# Installs what librugo needs on a Debian machine, if anything is missing.
+# As root it runs apt-get; otherwise it prints the exact install line and stops with status 1.
+set -eu
+PACKAGES="cmake make gcc g++ pkg-config check libeigen3-dev"
+missing=""
+for p in $PACKAGES; do
+    dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing$missing"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends $missing
+else
+    echo "setup: missing packages; run this as root, then try again:" >&2
+    echo "  apt-get update && apt-get install -y$missing" >&2
+    exit 1
+fi

@@ -1,0 +1,19 @@
+#!/bin/sh
+# Every test: set up what is missing, then build and run the whole suite twice — a normal build with
+# warnings as errors, and an AddressSanitizer + UndefinedBehaviorSanitizer build.
+set -eu
+cd "$(dirname "$0")/.."
+sh scripts/setup.sh
+jobs="$(nproc 2>/dev/null || echo 2)"
+status=0
+for variant in normal sanitize; do
+    dir="build-test-$variant"
+    san=OFF
+    [ "$variant" = sanitize ] && san=ON
+    echo "=== $variant build ($dir) ==="
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRUGO_WARNINGS_AS_ERRORS=ON \
+        -DRUGO_SANITIZE="$san" >/dev/null
+    cmake --build "$dir" -j "$jobs"
+    (cd "$dir" && ctest --output-on-failure -j "$jobs") || status=1
+done
+exit $status

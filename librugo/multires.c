@@ -252,6 +252,9 @@ int rugo_pyramid_finest_level(const rugo_pyramid* p) { return p ? p->finest : -1
 int rugo_pyramid_coarsest_level(const rugo_pyramid* p) { return p ? p->coarsest : -1; }
 rugo_filter rugo_pyramid_filter(const rugo_pyramid* p) { return p ? p->filter : RUGO_FILTER_COUNT; }
 int rugo_pyramid_was_reversed(const rugo_pyramid* p) { return p ? p->reversed : 0; }
+rugo_allocator rugo_pyramid_allocator(const rugo_pyramid* p) {
+    return p ? p->allocator : rugo_default_allocator();
+}
 
 rugo_status rugo_pyramid_level(const rugo_pyramid* p, int level, rugo_contour* out) {
     if (p == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;

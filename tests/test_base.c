@@ -1,6 +1,7 @@
 #include "internal.h"
 #include "test_util.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 START_TEST(status_strings_distinct) {

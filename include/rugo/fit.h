@@ -36,16 +36,26 @@ typedef struct rugo_fit_result {
 
 /* Least-squares fit of a closed uniform cubic B-spline with control_count control points to the
  * samples. control_points receives control_count points (caller-owned). The result keeps the
- * samples' orientation; normalise with rugo_contour_orient_ccw if needed.
- * Errors: NULL_ARGUMENT, TOO_FEW_POINTS, NOT_POWER_OF_TWO, NOT_FINITE, TOO_MANY_POINTS, BAD_ARGUMENT
+ * samples' orientation; normalise with rugo_contour_orient_ccw if needed. Parameters stay as chosen
+ * (no parameter correction), so the errors are distances to the curve point at each sample's own
+ * parameter. Samples are scaled into [-1, 1]^2 internally, so any scale and offset works.
+ * result may be NULL; on error control_points and result are untouched.
+ * Errors: NULL_ARGUMENT, TOO_FEW_POINTS, NOT_POWER_OF_TWO, NOT_FINITE (input, or a fitted point that
+ * would overflow), TOO_MANY_POINTS (either count beyond RUGO_MAX_CONTROL_POINTS), BAD_ARGUMENT
  * (sample_count < control_count, bad parameterization, repeated consecutive samples making chord
- * length zero), SINGULAR, OUT_OF_MEMORY. */
+ * length zero), SINGULAR (a control point no sample influences, or condition number beyond ~1e11:
+ * with chord-length parameters and about as many samples as control points this happens often),
+ * OUT_OF_MEMORY. Buffers of its own use def->allocator; Eigen's containers use the default heap. */
 rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points, rugo_fit_result* result);
 
 /* Simultaneous direct manipulation of several points of one level (2.30-2.31 generalised): move
  * f^level_{segments[i]}(ts[i]) by deltas[i] for all i with the least-norm change of that level's
- * control points, then rebuild the pyramid as rugo_pyramid_move_point does.
- * RUGO_ERR_SINGULAR if the constraints conflict (e.g. the same point twice with different deltas). */
+ * control points, then rebuild the pyramid as rugo_pyramid_move_point does. Constraints that share
+ * control points are solved together (rank-revealing, so consistent duplicates are fine); the cost
+ * grows with the cube of the largest such cluster: meant for an editor's handful of points.
+ * Errors: NULL_ARGUMENT, BAD_LEVEL, BAD_ARGUMENT (segment out of range, t outside [0,1] or NaN, bad
+ * mode, count < 1), NOT_FINITE, TOO_MANY_POINTS, OUT_OF_MEMORY, and SINGULAR if the constraints
+ * conflict (e.g. the same point twice with different deltas); on error the pyramid is unchanged. */
 rugo_status rugo_pyramid_move_points(rugo_pyramid* p, int level, int count, const int* segments,
                                      const rugo_real* ts, const rugo_vec2* deltas, rugo_detail_mode mode);
 

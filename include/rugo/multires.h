@@ -5,7 +5,15 @@
  * The pyramid keeps the control points of every level C^j (J_min <= j <= J) and the details D^j
  * (J_min <= j < J, 2^j each, d_s centred at fine index 2s-1), both in world coordinates, and the
  * details in local frames: d = u * tangent + v * normal of the coarse curve f^j at the midpoint of
- * segment s-1 (the point of f^j that corresponds to fine index 2s-1). */
+ * segment s-1 (the point of f^j that corresponds to fine index 2s-1); the frame is (unit tangent,
+ * outward unit normal), so the local y component is the outward part.
+ *
+ * Errors common to the functions below: NULL_ARGUMENT; BAD_ARGUMENT for a def without the cookie of
+ * rugo_default_pyramid_def, a segment outside [0, 2^level) (not wrapped, unlike the contour queries),
+ * t outside [0, 1], or a wrong count; NOT_FINITE for a non-finite delta or w, or an edit whose result
+ * would overflow (the pyramid is then left exactly as it was); BAD_LEVEL for a level or spread out of
+ * range. Edits allocate nothing (working space is reserved at creation). Edits do not re-check the
+ * outline: a large edit can make it cross itself; check with rugo_contour_check if that matters. */
 #ifndef RUGO_MULTIRES_H
 #define RUGO_MULTIRES_H
 
@@ -42,6 +50,8 @@ int rugo_pyramid_coarsest_level(const rugo_pyramid* p); /* J_min */
 rugo_filter rugo_pyramid_filter(const rugo_pyramid* p);
 /* 1 if the input was clockwise and was reversed. */
 int rugo_pyramid_was_reversed(const rugo_pyramid* p);
+/* The allocator the pyramid was created with (so helpers can allocate scratch from the same heap). */
+rugo_allocator rugo_pyramid_allocator(const rugo_pyramid* p);
 
 /* The curve of level j (a view into the pyramid, valid until the next edit or destroy).
  * RUGO_ERR_BAD_LEVEL outside [J_min, J]. */
@@ -52,7 +62,9 @@ rugo_status rugo_pyramid_details(const rugo_pyramid* p, int level, const rugo_ve
                                  const rugo_vec2** local);
 
 /* Parameter correspondence between levels: point (segment, t) on level `from` is the point
- * (segment', t') on level `to` that converges to it (segment alignment, SPEC 2.2). */
+ * (segment', t') on level `to` that converges to it (segment alignment, SPEC 2.2). Going up, t = 1
+ * stays in the last sub-segment with t' = 1. Levels outside 0..30 or a non-finite t are returned
+ * unchanged (this function has no status; validate first). */
 void rugo_level_parameter(int from, int segment, rugo_real t, int to, int* out_segment, rugo_real* out_t);
 
 /* How details follow an edit of coarser points. */
@@ -83,7 +95,9 @@ rugo_status rugo_deformation_weights(int m, rugo_real w, rugo_real* out);
 rugo_status rugo_pyramid_displace_level(rugo_pyramid* p, int level, const rugo_vec2* delta,
                                         rugo_detail_mode mode);
 
-/* Replace the finest control points (count must match) and rebuild every level. */
+/* Replace the finest control points (count must match) and rebuild every level. The points are
+ * checked with the flags used at creation and re-oriented to counter-clockwise (was_reversed is
+ * updated). */
 rugo_status rugo_pyramid_set_finest(rugo_pyramid* p, const rugo_vec2* points, int count);
 
 #ifdef __cplusplus

@@ -4,7 +4,13 @@
  * One analysis step maps 2m fine points C^j to m coarse points C^{j-1} and m details D^{j-1};
  * synthesis inverts it to round-off. d_s is centred at fine index 2s-1. The analysis lowpass sums to 1
  * (so coarse points keep the mean). Refinement is synthesis with zero details: it doubles the points
- * and leaves the curve unchanged (cubic B-spline subdivision). */
+ * and leaves the curve unchanged (cubic B-spline subdivision).
+ *
+ * Filters longer than a level wrap around periodically; perfect reconstruction still holds down to 4
+ * points for every filter (tested). Errors: NULL_ARGUMENT; TOO_FEW_POINTS (half < 2);
+ * TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS); NOT_POWER_OF_TWO (multi-level n); BAD_LEVEL
+ * (levels < 0 or n / 2^levels < 4; levels = 0 is a no-op); BAD_FILTER; BAD_ARGUMENT (overlapping
+ * buffers); OUT_OF_MEMORY. Values are not checked for finiteness: NaN in, NaN out. */
 #ifndef RUGO_WAVELET_H
 #define RUGO_WAVELET_H
 

@@ -123,6 +123,10 @@ static rugo_status check_step(rugo_filter f, int half) {
     return RUGO_OK;
 }
 
+/* Cyclic index with a cheap test first: inside the level (the common case) no division is needed.
+ * Same arithmetic either way, so results are bit-identical to plain wrapping. */
+static inline int wrap_near(int i, int n) { return (unsigned)i < (unsigned)n ? i : rugo__wrap(i, n); }
+
 /* Unchecked kernels (arguments validated by the callers). */
 static void analyze_step(const filter_info* fi, const rugo_vec2* x, int half, rugo_vec2* c, rugo_vec2* d) {
     const int n = 2 * half;
@@ -133,17 +137,17 @@ static void analyze_step(const filter_info* fi, const rugo_vec2* x, int half, ru
         const int ce = 2 * s;
         rugo_real cx = a[0] * x[ce].x, cy = a[0] * x[ce].y;
         for (int i = 1; i < na; ++i) {
-            const rugo_vec2 l = x[rugo__wrap(ce - i, n)], r = x[rugo__wrap(ce + i, n)];
+            const rugo_vec2 l = x[wrap_near(ce - i, n)], r = x[wrap_near(ce + i, n)];
             cx += a[i] * (l.x + r.x);
             cy += a[i] * (l.y + r.y);
         }
         c[s] = rugo_v2(cx, cy);
         /* (2.28, corrected): d_s = b_0 x_{2s-1} + sum_{i>=1} b_i (x_{2s-1-i} + x_{2s-1+i}) */
         const int co = ce - 1;
-        rugo_vec2 m = x[rugo__wrap(co, n)];
+        rugo_vec2 m = x[wrap_near(co, n)];
         rugo_real dx = B_[0] * m.x, dy = B_[0] * m.y;
         for (int i = 1; i < B_COUNT; ++i) {
-            const rugo_vec2 l = x[rugo__wrap(co - i, n)], r = x[rugo__wrap(co + i, n)];
+            const rugo_vec2 l = x[wrap_near(co - i, n)], r = x[wrap_near(co + i, n)];
             dx += B_[i] * (l.x + r.x);
             dy += B_[i] * (l.y + r.y);
         }
@@ -160,7 +164,7 @@ static void synthesize_step(const filter_info* fi, const rugo_vec2* c, const rug
          * x_{2s} = p_0 c_s + sum_{i>=1} p_{2i} (c_{s-i} + c_{s+i}) + sum_{i>=0} q_{2i+1} (d_{s-i} + d_{s+i+1}) */
         rugo_real ex = P_[0] * c[s].x, ey = P_[0] * c[s].y;
         for (int i = 1; 2 * i < P_COUNT; ++i) {
-            const rugo_vec2 l = c[rugo__wrap(s - i, half)], r = c[rugo__wrap(s + i, half)];
+            const rugo_vec2 l = c[wrap_near(s - i, half)], r = c[wrap_near(s + i, half)];
             ex += P_[2 * i] * (l.x + r.x);
             ey += P_[2 * i] * (l.y + r.y);
         }
@@ -168,21 +172,21 @@ static void synthesize_step(const filter_info* fi, const rugo_vec2* c, const rug
          * x_{2s+1} = sum_{i>=0} p_{2i+1} (c_{s-i} + c_{s+i+1}) + q_0 d_{s+1} + sum_{i>=1} q_{2i} (d_{s+1-i} + d_{s+1+i}) */
         rugo_real ox = 0.0, oy = 0.0;
         for (int i = 0; 2 * i + 1 < P_COUNT; ++i) {
-            const rugo_vec2 l = c[rugo__wrap(s - i, half)], r = c[rugo__wrap(s + i + 1, half)];
+            const rugo_vec2 l = c[wrap_near(s - i, half)], r = c[wrap_near(s + i + 1, half)];
             ox += P_[2 * i + 1] * (l.x + r.x);
             oy += P_[2 * i + 1] * (l.y + r.y);
         }
         if (d != NULL) {
             for (int i = 0; 2 * i + 1 < nq; ++i) {
-                const rugo_vec2 l = d[rugo__wrap(s - i, half)], r = d[rugo__wrap(s + i + 1, half)];
+                const rugo_vec2 l = d[wrap_near(s - i, half)], r = d[wrap_near(s + i + 1, half)];
                 ex += q[2 * i + 1] * (l.x + r.x);
                 ey += q[2 * i + 1] * (l.y + r.y);
             }
-            const rugo_vec2 m = d[rugo__wrap(s + 1, half)];
+            const rugo_vec2 m = d[wrap_near(s + 1, half)];
             ox += q[0] * m.x;
             oy += q[0] * m.y;
             for (int i = 1; 2 * i < nq; ++i) {
-                const rugo_vec2 l = d[rugo__wrap(s + 1 - i, half)], r = d[rugo__wrap(s + 1 + i, half)];
+                const rugo_vec2 l = d[wrap_near(s + 1 - i, half)], r = d[wrap_near(s + 1 + i, half)];
                 ox += q[2 * i] * (l.x + r.x);
                 oy += q[2 * i] * (l.y + r.y);
             }

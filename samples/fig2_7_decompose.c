@@ -83,6 +83,14 @@ int main(int argc, char** argv) {
     /* The picture: original (solid), first and second decomposition (dashed), as in Fig. 2.7. */
     rugo_vec2 lo, hi;
     svg_contour_extent(fine, &lo, &hi);
+    for (int j = 5 - LEVELS; j < 5; ++j) { /* coarse control polygons reach further out */
+        rugo_contour c;
+        rugo_vec2 a, b;
+        rugo_pyramid_level(p, j, &c);
+        svg_contour_extent(c, &a, &b);
+        lo = rugo_v2(fmin(lo.x, a.x), fmin(lo.y, a.y));
+        hi = rugo_v2(fmax(hi.x, b.x), fmax(hi.y, b.y));
+    }
     snprintf(path, sizeof path, "%s/fig2_7.svg", dir);
     svg_canvas svg;
     if (svg_open(&svg, path, lo, hi, 600.0) != 0) return 1;

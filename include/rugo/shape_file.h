@@ -5,7 +5,10 @@
  * Unknown fields are ignored (later versions add e.g. "roughness"). A points file for fitting is
  * {"points": [[x, y], ...]}. Input may be in either orientation; nothing here validates geometry
  * (use rugo_contour_check / rugo_pyramid_create for that). The parser never reads past `length`,
- * limits nesting depth and array sizes, and reports where it failed. */
+ * limits nesting depth (64) and the number of values (2^23), accepts one leading UTF-8 byte order
+ * mark, and reports where it failed (lines end at '\n'; columns count bytes).
+ * A repeated "control_points", "filter" or "points" member is BAD_FIELD, and so is "filter": null.
+ * An empty control_points list parses (count 0, NULL points); geometry checks reject it later. */
 #ifndef RUGO_SHAPE_FILE_H
 #define RUGO_SHAPE_FILE_H
 
@@ -50,8 +53,8 @@ rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
 void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
 
 /* Writes a shape description as JSON into a newly allocated NUL-terminated string (*text, *length
- * without the NUL; free with rugo_text_free). Numbers are written with 17 significant digits so that
- * reading back gives the same bits. */
+ * without the NUL; both required; allocated with `allocator`, free with rugo_text_free). One point
+ * per line; numbers with 17 significant digits so that reading back gives the same bits. */
 rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator,
                                   char** text, size_t* length);
 void rugo_text_free(const rugo_allocator* allocator, char* text);

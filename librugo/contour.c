@@ -1,1 +1,962 @@
-/* placeholder: being written */ typedef int rugo__placeholder_contour;
+/* Closed uniform cubic B-spline contours (SPEC 1): evaluation, derivatives, orientation, arc length,
+ * exact mass properties, bounds, closest point, containment, ray cast and validation. Queries do not
+ * allocate; only rugo_contour_check's crossing test takes O(n) scratch memory. */
+#include "rugo/contour.h"
+
+#include "internal.h"
+#include "poly.h"
+
+#include <float.h>
+#include <stdlib.h>
+
+/* The four control points c_{j-1}, c_j, c_{j+1}, c_{j+2} of segment j. */
+static void segment_points(rugo_contour c, int j, rugo_vec2 q[4]) {
+    int n = c.count;
+    for (int i = 0; i < 4; ++i) q[i] = c.points[rugo__wrap(j - 1 + i, n)];
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Segments relative to a reference point. Subtracting the reference from the control points before
+ * combining them keeps full relative precision for contours far from the origin (a body at 1e6 with
+ * features of size 1 would otherwise lose ten digits in every difference). */
+
+static void segment_points_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 q[4]) {
+    int n = c.count;
+    for (int i = 0; i < 4; ++i) q[i] = rugo_v2_sub(c.points[rugo__wrap(j - 1 + i, n)], o);
+}
+
+/* Power form f(t) = k3 t^3 + k2 t^2 + k1 t + k0 (k3 = v/6, k2 = w/4, k1 = r/2 in the terms of (3.8)).
+ * k0 is computed exactly like Bezier b0, so it is the joint, bitwise. */
+static void power_from_points(const rugo_vec2 q[4], rugo_vec2 k[4]) {
+    k[0] = rugo_v2((q[0].x + 4.0 * q[1].x + q[2].x) / 6.0, (q[0].y + 4.0 * q[1].y + q[2].y) / 6.0);
+    k[1] = rugo_v2(0.5 * (q[2].x - q[0].x), 0.5 * (q[2].y - q[0].y));
+    k[2] = rugo_v2(0.5 * (q[0].x - 2.0 * q[1].x + q[2].x), 0.5 * (q[0].y - 2.0 * q[1].y + q[2].y));
+    k[3] = rugo_v2((q[3].x - 3.0 * q[2].x + 3.0 * q[1].x - q[0].x) / 6.0,
+                   (q[3].y - 3.0 * q[2].y + 3.0 * q[1].y - q[0].y) / 6.0);
+}
+
+static rugo_vec2 power_point(const rugo_vec2 k[4], rugo_real t) {
+    return rugo_v2(((k[3].x * t + k[2].x) * t + k[1].x) * t + k[0].x,
+                   ((k[3].y * t + k[2].y) * t + k[1].y) * t + k[0].y);
+}
+
+static rugo_vec2 power_d1(const rugo_vec2 k[4], rugo_real t) {
+    return rugo_v2((3.0 * k[3].x * t + 2.0 * k[2].x) * t + k[1].x, (3.0 * k[3].y * t + 2.0 * k[2].y) * t + k[1].y);
+}
+
+/* Neumaier's compensated sum: perimeters and areas of 2^20 segments keep their last digits. */
+typedef struct ksum {
+    rugo_real s, c;
+} ksum;
+
+static void ksum_add(ksum* k, rugo_real x) {
+    rugo_real t = k->s + x;
+    if (fabs(k->s) >= fabs(x))
+        k->c += (k->s - t) + x;
+    else
+        k->c += (x - t) + k->s;
+    k->s = t;
+}
+
+static rugo_real ksum_value(const ksum* k) { return k->s + k->c; }
+
+void rugo_bspline_basis(rugo_real t, rugo_real out[4]) {
+    /* Rows of 1/6 [t^3 t^2 t 1] M (2.4)-(2.5). */
+    rugo_real s = 1.0 - t, t2 = t * t, t3 = t2 * t;
+    out[0] = s * s * s / 6.0;
+    out[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+    out[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
+    out[3] = t3 / 6.0;
+}
+
+rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t) {
+    rugo_vec2 q[4];
+    rugo_real b[4];
+    segment_points(c, segment, q);
+    rugo_bspline_basis(t, b);
+    return rugo_v2(b[0] * q[0].x + b[1] * q[1].x + b[2] * q[2].x + b[3] * q[3].x,
+                   b[0] * q[0].y + b[1] * q[1].y + b[2] * q[2].y + b[3] * q[3].y);
+}
+
+void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
+                                          rugo_vec2* r) {
+    rugo_vec2 q[4];
+    segment_points(c, segment, q);
+    /* (3.8) with c_{j-1} = q0, c_j = q1, c_{j+1} = q2, c_{j+2} = q3. */
+    rugo_vec2 vv = rugo_v2(q[3].x - 3.0 * q[2].x + 3.0 * q[1].x - q[0].x, q[3].y - 3.0 * q[2].y + 3.0 * q[1].y - q[0].y);
+    rugo_vec2 ww = rugo_v2(2.0 * q[2].x - 4.0 * q[1].x + 2.0 * q[0].x, 2.0 * q[2].y - 4.0 * q[1].y + 2.0 * q[0].y);
+    rugo_vec2 rr = rugo_v2_sub(q[2], q[0]);
+    if (v) *v = vv;
+    if (w) *w = ww;
+    if (r) *r = rr;
+}
+
+rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t) {
+    rugo_vec2 v, w, r;
+    rugo_contour_derivative_coefficients(c, segment, &v, &w, &r);
+    return rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+}
+
+rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t) {
+    rugo_vec2 v, w;
+    rugo_contour_derivative_coefficients(c, segment, &v, &w, NULL);
+    return rugo_v2(v.x * t + 0.5 * w.x, v.y * t + 0.5 * w.y);
+}
+
+rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u) {
+    rugo_real f = floor(u);
+    int seg = rugo__wrap((int)fmod(f, (rugo_real)c.count), c.count);
+    return rugo_contour_point(c, seg, u - f);
+}
+
+/* Uniform cubic B-spline to Bezier: b0 = (q0 + 4 q1 + q2)/6, b1 = (2 q1 + q2)/3,
+ * b2 = (q1 + 2 q2)/3, b3 = (q1 + 4 q2 + q3)/6. b3 of segment j and b0 of segment j+1 come from the
+ * same three numbers by the same operations, so joints are bitwise shared: the containment test's
+ * consistency relies on that. */
+static void bezier_from_points(const rugo_vec2 q[4], rugo_vec2 out[4]) {
+    out[0] = rugo_v2((q[0].x + 4.0 * q[1].x + q[2].x) / 6.0, (q[0].y + 4.0 * q[1].y + q[2].y) / 6.0);
+    out[1] = rugo_v2((2.0 * q[1].x + q[2].x) / 3.0, (2.0 * q[1].y + q[2].y) / 3.0);
+    out[2] = rugo_v2((q[1].x + 2.0 * q[2].x) / 3.0, (q[1].y + 2.0 * q[2].y) / 3.0);
+    out[3] = rugo_v2((q[1].x + 4.0 * q[2].x + q[3].x) / 6.0, (q[1].y + 4.0 * q[2].y + q[3].y) / 6.0);
+}
+
+void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4]) {
+    rugo_vec2 q[4];
+    segment_points(c, segment, q);
+    bezier_from_points(q, out);
+}
+
+rugo_vec2 rugo_contour_tangent(rugo_contour c, int segment, rugo_real t) {
+    rugo_vec2 v, w, r;
+    rugo_contour_derivative_coefficients(c, segment, &v, &w, &r);
+    rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    rugo_real len = rugo__v2_length(d);
+    /* Scale of the segment, so that "zero speed" is judged relative to its size. */
+    rugo_real scale = rugo__v2_length(v) + rugo__v2_length(w) + rugo__v2_length(r);
+    if (!(len > 1e-12 * scale)) {
+        /* A cusp or a point-like spot: the direction of the curve is that of the first non-vanishing
+         * higher derivative (f'' then f'''). */
+        d = rugo_v2(v.x * t + 0.5 * w.x, v.y * t + 0.5 * w.y);
+        len = rugo__v2_length(d);
+        if (!(len > 1e-12 * scale)) {
+            d = v;
+            len = rugo__v2_length(d);
+        }
+        if (!(len > 0.0)) return rugo_v2(1.0, 0.0); /* a segment shrunk to a point has no direction */
+    }
+    return rugo_v2(d.x / len, d.y / len);
+}
+
+rugo_vec2 rugo_contour_normal(rugo_contour c, int segment, rugo_real t) {
+    /* Outward for a counter-clockwise curve: the tangent turned clockwise. */
+    rugo_vec2 tg = rugo_contour_tangent(c, segment, t);
+    return rugo_v2(tg.y, -tg.x);
+}
+
+rugo_real rugo_contour_signed_area(rugo_contour c) {
+    /* 1/2 ∮ (x y' - y x') dt, exact: per segment a quintic, integrated by 3-point Gauss-Legendre
+     * (exact to degree 5), relative to the first control point for precision far from the origin
+     * (the control points are shifted before they are combined, so no digits are lost). */
+    static const rugo_real gx[3] = {0.1127016653792583115, 0.5, 0.8872983346207416885};
+    static const rugo_real gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    if (c.count < 1 || c.points == NULL) return 0.0;
+    rugo_vec2 o = c.points[0];
+    ksum sum = {0.0, 0.0};
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], k[4];
+        segment_points_rel(c, j, o, q);
+        power_from_points(q, k);
+        rugo_real seg = 0.0;
+        for (int g = 0; g < 3; ++g) seg += gw[g] * rugo_v2_cross(power_point(k, gx[g]), power_d1(k, gx[g]));
+        ksum_add(&sum, seg);
+    }
+    return 0.5 * ksum_value(&sum);
+}
+
+int rugo_contour_orient_ccw(rugo_vec2* points, int count) {
+    if (points == NULL || count < 2) return 0;
+    rugo_contour c;
+    c.points = points;
+    c.count = count;
+    if (!(rugo_contour_signed_area(c) < 0.0)) return 0;
+    for (int i = 0, k = count - 1; i < k; ++i, --k) {
+        rugo_vec2 tmp = points[i];
+        points[i] = points[k];
+        points[k] = tmp;
+    }
+    return 1;
+}
+
+/* Power form of segment j about its own control point c_j: derivatives are translation invariant,
+ * so this is the most precise frame for lengths. */
+static void segment_power_local(rugo_contour c, int j, rugo_vec2 k[4]) {
+    rugo_vec2 q[4];
+    segment_points_rel(c, j, c.points[rugo__wrap(j, c.count)], q);
+    power_from_points(q, k);
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Arc length (3.6)-(3.7). */
+
+/* Gauss-Legendre rules on [0, 1]: nodes and weights (the weights sum to 1). */
+static const rugo_real gl4_x[4] = {0.06943184420297371238802676, 0.3300094782075718675986671,
+                                   0.6699905217924281324013329, 0.9305681557970262876119732};
+static const rugo_real gl4_w[4] = {0.173927422568726928686532, 0.326072577431273071313468,
+                                   0.326072577431273071313468, 0.173927422568726928686532};
+static const rugo_real gl6_x[6] = {0.03376524289842398609384922, 0.1693953067668677431693002,
+                                   0.3806904069584015456847491, 0.6193095930415984543152509,
+                                   0.8306046932331322568306998, 0.9662347571015760139061508};
+static const rugo_real gl6_w[6] = {0.08566224618958517252014807, 0.1803807865240693037849168,
+                                   0.2339569672863455236949352, 0.2339569672863455236949352,
+                                   0.1803807865240693037849168, 0.08566224618958517252014807};
+
+/* Integral of |f'| over [a, b] by 4-point Gauss-Legendre. */
+static rugo_real speed_gl4(const rugo_vec2 k[4], rugo_real a, rugo_real b) {
+    rugo_real h = b - a, s = 0.0;
+    for (int i = 0; i < 4; ++i) s += gl4_w[i] * rugo__v2_length(power_d1(k, a + h * gl4_x[i]));
+    return h * s;
+}
+
+rugo_real rugo_contour_segment_length(rugo_contour c, int segment) {
+    if (c.points == NULL || c.count < 1) return 0.0;
+    rugo_vec2 k[4];
+    segment_power_local(c, segment, k);
+    return speed_gl4(k, 0.0, 1.0);
+}
+
+/* Depth 40 resolves features down to 1e-12 of the segment; the evaluation budget bounds the work
+ * when the tolerance asks for more than double precision can give. */
+#define ARC_MAX_DEPTH 40
+#define ARC_MAX_RULES 20000
+
+typedef struct arc_ctx {
+    const rugo_vec2* k;
+    rugo_real tol; /* per unit of parameter */
+    int rules;     /* GL4 evaluations so far */
+    int failed;
+    ksum err;
+} arc_ctx;
+
+/* whole = GL4 on [a, b]. The halves' sum is accepted once it agrees with whole to the interval's
+ * share of the tolerance. |whole - halves| is the error estimate of `whole`; the halves are far more
+ * accurate (GL4 error falls as h^8 for smooth speed, and still at least as h^2 at a cusp, where
+ * |f'| has a kink), so summing these differences bounds the error of the result from above. */
+static rugo_real arc_adapt(arc_ctx* x, rugo_real a, rugo_real b, rugo_real whole, int depth) {
+    rugo_real m = a + 0.5 * (b - a);
+    rugo_real left = speed_gl4(x->k, a, m), right = speed_gl4(x->k, m, b);
+    x->rules += 2;
+    /* The halves' own round-off joins the estimate, so that the bound stays honest when the two
+     * estimates agree to the last bit, and a tolerance below double precision is not "met". */
+    rugo_real halves = left + right, diff = fabs(halves - whole) + 4.0 * DBL_EPSILON * fabs(halves);
+    /* Never accept at the top level: one lucky agreement of two estimates proves little. */
+    if (depth > 0 && diff <= x->tol * (b - a)) {
+        ksum_add(&x->err, diff);
+        return halves;
+    }
+    if (depth >= ARC_MAX_DEPTH || x->rules >= ARC_MAX_RULES || !isfinite(diff)) {
+        x->failed = 1;
+        ksum_add(&x->err, diff);
+        return halves;
+    }
+    return arc_adapt(x, a, m, left, depth + 1) + arc_adapt(x, m, b, right, depth + 1);
+}
+
+rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
+                                                 rugo_real* length, rugo_real* error_bound) {
+    if (length == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *length = 0.0;
+    if (error_bound) *error_bound = 0.0;
+    if (c.points == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (c.count < 4) return RUGO_ERR_TOO_FEW_POINTS;
+    if (!(tolerance > 0.0) || !isfinite(tolerance)) return RUGO_ERR_BAD_ARGUMENT;
+    rugo_vec2 k[4];
+    segment_power_local(c, segment, k);
+    arc_ctx x;
+    x.k = k;
+    x.tol = tolerance;
+    x.rules = 1;
+    x.failed = 0;
+    x.err.s = x.err.c = 0.0;
+    rugo_real len = arc_adapt(&x, 0.0, 1.0, speed_gl4(k, 0.0, 1.0), 0);
+    *length = len;
+    if (error_bound) *error_bound = ksum_value(&x.err);
+    return x.failed ? RUGO_ERR_NOT_CONVERGED : RUGO_OK;
+}
+
+rugo_real rugo_contour_perimeter(rugo_contour c) {
+    if (c.points == NULL || c.count < 1) return 0.0;
+    ksum s = {0.0, 0.0};
+    for (int j = 0; j < c.count; ++j) ksum_add(&s, rugo_contour_segment_length(c, j));
+    return ksum_value(&s);
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Mass properties by Green's theorem. With P = f - o and cr = P x P':
+ *   A = 1/2 ∮ cr dt,   ∫∫ (p - o) dA = 1/3 ∮ P cr dt,   ∫∫ |p - o|^2 dA = 1/4 ∮ |P|^2 cr dt.
+ * Per segment the integrands are polynomials of degree 5, 8 and 11 in t, so 6-point Gauss-Legendre
+ * (exact to degree 11) gives them exactly up to round-off. All three are signed: a clockwise contour
+ * gives negative area and inertia, and the centroid (a ratio) is right either way. */
+
+typedef struct green_sums {
+    rugo_real area;  /* ∫∫ dA */
+    rugo_vec2 first; /* ∫∫ (p - o) dA */
+    rugo_real polar; /* ∫∫ |p - o|^2 dA */
+} green_sums;
+
+static green_sums green_integrals(rugo_contour c, rugo_vec2 o) {
+    ksum sa = {0.0, 0.0}, sx = {0.0, 0.0}, sy = {0.0, 0.0}, sj = {0.0, 0.0};
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], k[4];
+        segment_points_rel(c, j, o, q);
+        power_from_points(q, k);
+        rugo_real a = 0.0, mx = 0.0, my = 0.0, jj = 0.0;
+        for (int i = 0; i < 6; ++i) {
+            rugo_vec2 p = power_point(k, gl6_x[i]);
+            rugo_real cr = gl6_w[i] * rugo_v2_cross(p, power_d1(k, gl6_x[i]));
+            a += cr;
+            mx += p.x * cr;
+            my += p.y * cr;
+            jj += (p.x * p.x + p.y * p.y) * cr;
+        }
+        ksum_add(&sa, a);
+        ksum_add(&sx, mx);
+        ksum_add(&sy, my);
+        ksum_add(&sj, jj);
+    }
+    green_sums g;
+    g.area = 0.5 * ksum_value(&sa);
+    g.first = rugo_v2(ksum_value(&sx) / 3.0, ksum_value(&sy) / 3.0);
+    g.polar = 0.25 * ksum_value(&sj);
+    return g;
+}
+
+rugo_mass_properties rugo_contour_mass_properties(rugo_contour c) {
+    rugo_mass_properties m;
+    m.area = 0.0;
+    m.centroid = rugo_v2(0.0, 0.0);
+    m.inertia = 0.0;
+    if (c.points == NULL || c.count < 1) return m;
+    /* First pass about the mean control point (inside or near the region) finds the centroid; the
+     * second pass about the centroid itself gives the polar moment without the cancellation of the
+     * parallel-axis shift, and a last correction to the centroid. */
+    ksum sx = {0.0, 0.0}, sy = {0.0, 0.0};
+    for (int i = 0; i < c.count; ++i) {
+        ksum_add(&sx, c.points[i].x);
+        ksum_add(&sy, c.points[i].y);
+    }
+    rugo_vec2 o = rugo_v2(ksum_value(&sx) / c.count, ksum_value(&sy) / c.count);
+    green_sums g = green_integrals(c, o);
+    if (!(g.area != 0.0) || !isfinite(g.area)) {
+        /* No region (the contour would fail rugo_contour_check): keep the output finite. */
+        m.area = g.area;
+        m.centroid = o;
+        m.inertia = g.polar;
+        return m;
+    }
+    rugo_vec2 c1 = rugo_v2_add(o, rugo_v2_scale(1.0 / g.area, g.first));
+    green_sums h = green_integrals(c, c1);
+    rugo_vec2 shift = rugo_v2_scale(1.0 / h.area, h.first);
+    m.area = h.area;
+    m.centroid = rugo_v2_add(c1, shift);
+    /* Parallel axes: J_c = J_c1 - A |c - c1|^2 (tiny: c1 is already the centroid to round-off). */
+    m.inertia = h.polar - h.area * rugo_v2_dot(shift, shift);
+    return m;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Bounds. */
+
+void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper) {
+    rugo_vec2 lo = rugo_v2(0.0, 0.0), hi = lo;
+    if (c.points != NULL && c.count >= 1) {
+        /* Joints first: they settle most of the box, so the hull test below skips most segments. */
+        lo = hi = rugo_contour_point(c, 0, 0.0);
+        for (int j = 1; j < c.count; ++j) {
+            rugo_vec2 p = rugo_contour_point(c, j, 0.0);
+            lo = rugo_v2(fmin(lo.x, p.x), fmin(lo.y, p.y));
+            hi = rugo_v2(fmax(hi.x, p.x), fmax(hi.y, p.y));
+        }
+        for (int j = 0; j < c.count; ++j) {
+            rugo_vec2 b[4];
+            rugo_contour_bezier(c, j, b);
+            for (int axis = 0; axis < 2; ++axis) {
+                rugo_real e[4];
+                for (int i = 0; i < 4; ++i) e[i] = axis == 0 ? b[i].x : b[i].y;
+                rugo_real blo = axis == 0 ? lo.x : lo.y, bhi = axis == 0 ? hi.x : hi.y;
+                int inside = 1;
+                for (int i = 0; i < 4; ++i) inside &= e[i] >= blo && e[i] <= bhi;
+                if (inside) continue; /* the hull, hence the segment, is within the box already */
+                rugo_vec2 v, w, r;
+                rugo_contour_derivative_coefficients(c, j, &v, &w, &r);
+                rugo_real a[3];
+                a[0] = axis == 0 ? r.x : r.y;
+                a[1] = axis == 0 ? w.x : w.y;
+                a[2] = axis == 0 ? v.x : v.y;
+                rugo_real roots[RUGO__POLY_MAX_ROOTS];
+                int nr = rugo__poly_roots(a, 2, 0.0, 1.0, 0.0, roots);
+                for (int i = 0; i < nr; ++i) {
+                    rugo_vec2 p = rugo_contour_point(c, j, roots[i]);
+                    lo = rugo_v2(fmin(lo.x, p.x), fmin(lo.y, p.y));
+                    hi = rugo_v2(fmax(hi.x, p.x), fmax(hi.y, p.y));
+                }
+            }
+        }
+    }
+    if (lower) *lower = lo;
+    if (upper) *upper = hi;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Closest point. */
+
+rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
+    rugo_curve_point res;
+    res.segment = 0;
+    res.t = 0.0;
+    res.point = p;
+    res.distance = HUGE_VAL;
+    if (c.points == NULL || c.count < 1) return res;
+    /* Work relative to p. The joints give an upper bound quickly; then a segment is solved only if
+     * its Bezier hull's box could hold a closer point. */
+    rugo_real best = HUGE_VAL, best_t = 0.0;
+    int best_j = 0;
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], k[4];
+        segment_points_rel(c, j, p, q);
+        power_from_points(q, k);
+        rugo_real d2 = rugo_v2_dot(k[0], k[0]);
+        if (d2 < best) {
+            best = d2;
+            best_j = j;
+        }
+    }
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], b[4], k[4];
+        segment_points_rel(c, j, p, q);
+        bezier_from_points(q, b);
+        rugo_real x0 = fmin(fmin(b[0].x, b[1].x), fmin(b[2].x, b[3].x));
+        rugo_real x1 = fmax(fmax(b[0].x, b[1].x), fmax(b[2].x, b[3].x));
+        rugo_real y0 = fmin(fmin(b[0].y, b[1].y), fmin(b[2].y, b[3].y));
+        rugo_real y1 = fmax(fmax(b[0].y, b[1].y), fmax(b[2].y, b[3].y));
+        rugo_real dx = x0 > 0.0 ? x0 : (x1 < 0.0 ? -x1 : 0.0);
+        rugo_real dy = y0 > 0.0 ? y0 : (y1 < 0.0 ? -y1 : 0.0);
+        if (dx * dx + dy * dy >= best) continue;
+        power_from_points(q, k);
+        /* d/dt |f - p|^2 / 2 = (f - p)·f', with f - p = A t^3 + B t^2 + C t + D. */
+        rugo_vec2 D = k[0], C = k[1], B = k[2], A = k[3];
+        rugo_real g[6];
+        g[0] = rugo_v2_dot(C, D);
+        g[1] = 2.0 * rugo_v2_dot(B, D) + rugo_v2_dot(C, C);
+        g[2] = 3.0 * (rugo_v2_dot(A, D) + rugo_v2_dot(B, C));
+        g[3] = 4.0 * rugo_v2_dot(A, C) + 2.0 * rugo_v2_dot(B, B);
+        g[4] = 5.0 * rugo_v2_dot(A, B);
+        g[5] = 3.0 * rugo_v2_dot(A, A);
+        rugo_real roots[RUGO__POLY_MAX_ROOTS];
+        int nr = rugo__poly_roots(g, 5, 0.0, 1.0, 0.0, roots);
+        for (int i = 0; i < nr; ++i) {
+            if (!(roots[i] < 1.0)) continue; /* t = 1 is the next segment's start, seen as a joint */
+            rugo_vec2 f = power_point(k, roots[i]);
+            rugo_real d2 = rugo_v2_dot(f, f);
+            if (d2 < best) {
+                best = d2;
+                best_j = j;
+                best_t = roots[i];
+            }
+        }
+    }
+    res.segment = best_j;
+    res.t = best_t;
+    res.point = rugo_contour_point(c, best_j, best_t);
+    res.distance = sqrt(best);
+    return res;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Containment: winding number of the curve around p, counted on the ray from p towards +x.
+ *
+ * Each point of the curve is "up" (y >= p.y) or "down". Walking the curve, the winding number is the
+ * signed count of down->up (+1) and up->down (-1) changes that happen right of p. Per segment the
+ * state at its two joints is taken from the Bezier end points, which neighbouring segments share
+ * bitwise, and the states in between from the sign of y(t) - p.y between its roots. So the changes
+ * telescope around the closed curve whatever round-off does inside a segment: a tangency, a ray
+ * through a joint or a horizontal piece on the ray yields canceling pairs of changes, never a lone
+ * one. Only the x of a change (left or right of p) can be affected by round-off, which matters only
+ * when p is within round-off of the curve. */
+
+int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
+    if (c.points == NULL || c.count < 1) return 0;
+    int winding = 0;
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], b[4], k[4];
+        segment_points_rel(c, j, p, q);
+        bezier_from_points(q, b);
+        int all_up = 1, all_down = 1, all_left = 1;
+        for (int i = 0; i < 4; ++i) {
+            all_up &= b[i].y > 0.0;
+            all_down &= b[i].y < 0.0;
+            all_left &= b[i].x < 0.0;
+        }
+        /* Hull strictly on one side of the ray's line: both joints agree, no change. Hull left of p:
+         * every change happens left of p. */
+        if (all_up || all_down || all_left) continue;
+        power_from_points(q, k);
+        rugo_real a[4] = {k[0].y, k[1].y, k[2].y, k[3].y};
+        rugo_real roots[RUGO__POLY_MAX_ROOTS];
+        int nr = rugo__poly_roots(a, 3, 0.0, 1.0, 0.0, roots);
+        rugo_real brk[RUGO__POLY_MAX_ROOTS + 2];
+        int nb = 0;
+        brk[nb++] = 0.0;
+        for (int i = 0; i < nr; ++i)
+            if (roots[i] > 0.0 && roots[i] < 1.0) brk[nb++] = roots[i];
+        brk[nb++] = 1.0;
+        int state = b[0].y >= 0.0;
+        for (int i = 0; i + 1 < nb; ++i) {
+            rugo_real mid = 0.5 * (brk[i] + brk[i + 1]);
+            int s = rugo__poly_eval(a, 3, mid) >= 0.0;
+            if (s != state) {
+                rugo_real x = i == 0 ? b[0].x : power_point(k, brk[i]).x;
+                if (x > 0.0) winding += s - state;
+                state = s;
+            }
+        }
+        int s_end = b[3].y >= 0.0;
+        if (s_end != state && b[3].x > 0.0) winding += s_end - state;
+    }
+    return winding != 0;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Ray cast. */
+
+#define RAY_JOINT_SLACK 1e-12
+
+int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction,
+                          rugo_real* fraction, rugo_curve_point* hit, rugo_vec2* normal) {
+    rugo_vec2 d = direction;
+    rugo_real dd = rugo_v2_dot(d, d);
+    if (c.points == NULL || c.count < 1 || !(dd > 0.0) || !isfinite(dd) || !(max_fraction >= 0.0)) return 0;
+    rugo_real dmax = fmax(fabs(d.x), fabs(d.y));
+    int found = 0, best_j = 0;
+    rugo_real best_s = max_fraction, best_t = 0.0;
+    for (int j = 0; j < c.count; ++j) {
+        rugo_vec2 q[4], b[4], k[4];
+        segment_points_rel(c, j, origin, q);
+        bezier_from_points(q, b);
+        /* Prune: hull strictly on one side of the ray's line, behind the origin, or beyond the
+         * best hit so far (s * |d|^2 = (f - origin)·d). */
+        int pos = 0, neg = 0, behind = 0, beyond = 0;
+        rugo_real smax = best_s * dd;
+        for (int i = 0; i < 4; ++i) {
+            rugo_real h = rugo_v2_cross(d, b[i]), s = rugo_v2_dot(b[i], d);
+            pos += h > 0.0;
+            neg += h < 0.0;
+            behind += s < 0.0;
+            beyond += s > smax;
+        }
+        if (pos == 4 || neg == 4 || behind == 4 || beyond == 4) continue;
+        power_from_points(q, k);
+        rugo_real h[4], sp[4];
+        for (int i = 0; i < 4; ++i) {
+            h[i] = rugo_v2_cross(d, k[i]);
+            sp[i] = rugo_v2_dot(k[i], d);
+        }
+        /* Values of d x (f - origin) are uncertain by round-off of the products and of the shifted
+         * coefficients; that tolerance lets a ray grazing the curve (a double root) hit, and makes
+         * a straight segment lying on the ray's line report "every t". */
+        rugo_real kmax = 0.0;
+        for (int i = 0; i < 4; ++i) kmax = fmax(kmax, fmax(fabs(k[i].x), fabs(k[i].y)));
+        rugo_real tol = 32.0 * DBL_EPSILON * dmax * kmax;
+        rugo_real cand[2 * RUGO__POLY_MAX_ROOTS + 2];
+        int nc = 0;
+        rugo_real roots[RUGO__POLY_MAX_ROOTS];
+        /* A crossing at a joint can land a hair outside [0, 1] in both segments that share it; the
+         * slightly widened interval catches it. Outside [0, 1] the polynomial continues the
+         * neighbouring segment to O(t^3) (the curve is C2), so s is still evaluated exactly there;
+         * only the reported parameter is clamped. */
+        int nr = rugo__poly_roots(h, 3, -RAY_JOINT_SLACK, 1.0 + RAY_JOINT_SLACK, tol, roots);
+        if (nr == RUGO__POLY_ALL) {
+            /* The segment lies on the ray's line: the first point with s >= 0 is an end, a point
+             * where s = 0 (the origin), or a turning point of s. */
+            cand[nc++] = 0.0;
+            cand[nc++] = 1.0;
+            nr = rugo__poly_roots(sp, 3, 0.0, 1.0, 0.0, roots);
+            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+            rugo_real ds[3] = {sp[1], 2.0 * sp[2], 3.0 * sp[3]};
+            nr = rugo__poly_roots(ds, 2, 0.0, 1.0, 0.0, roots);
+            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        } else {
+            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        }
+        /* An origin on the curve (within round-off) hits at s = 0 rather than at -1e-17 or never. */
+        rugo_real s_slack = 32.0 * DBL_EPSILON * kmax / sqrt(dd);
+        for (int i = 0; i < nc; ++i) {
+            rugo_real s = rugo_v2_dot(power_point(k, cand[i]), d) / dd;
+            if (s < 0.0 && s >= -s_slack) s = 0.0;
+            if (s >= 0.0 && s <= max_fraction && (!found || s < best_s)) {
+                found = 1;
+                best_s = s;
+                best_j = j;
+                best_t = fmin(1.0, fmax(0.0, cand[i]));
+            }
+        }
+    }
+    if (!found) return 0;
+    if (best_t >= 1.0) { /* t = 1 belongs to the next segment */
+        best_j = rugo__wrap(best_j + 1, c.count);
+        best_t = 0.0;
+    }
+    if (fraction) *fraction = best_s;
+    if (hit) {
+        hit->segment = best_j;
+        hit->t = best_t;
+        hit->point = rugo_contour_point(c, best_j, best_t);
+        hit->distance = best_s * sqrt(dd);
+    }
+    if (normal) *normal = rugo_contour_normal(c, best_j, best_t);
+    return 1;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Validation and self-intersection.
+ *
+ * Segments are compared pairwise, candidates coming from a sweep over their Bezier hull boxes sorted
+ * by x. A pair is decided by recursive de Casteljau halving of the larger piece:
+ *  - boxes apart by more than touch_tol: no contact;
+ *  - pieces sharing a joint (consecutive segments, or halves of one segment): no contact besides the
+ *    joint if the control points of one piece, seen from the joint, and those of the other, seen
+ *    reversed, fit in an open half-plane (a line through the joint separates the pieces);
+ *  - both pieces flat (inner control points within flat_tol of the chord): contact iff the chords
+ *    come within touch_tol.
+ * A single segment loops only if its hodograph (derivative control points) is not in an open
+ * half-plane, i.e. it is not monotone in any direction; then its halves are compared as above.
+ *
+ * Round-off behaviour, with D the diagonal of the curve's bounds: every real crossing or touching is
+ * found (a crossing lies within flat_tol of both flat chords, and touch_tol >= 2 flat_tol), so there
+ * are no false negatives beyond round-off, except loops smaller than ~1e-15 D inside one segment.
+ * Parts of the curve closer than touch_tol + 2 flat_tol (5e-10 D) may be reported as touching
+ * (false positive). A segment shrunk to a point (four equal control points) is skipped and its
+ * neighbours count as consecutive. A cusp at a joint whose two branches leave in exactly the same
+ * direction (the curve retraces itself) is reported, since the branches overlap. */
+
+#define SI_FLAT_TOL 1e-10
+#define SI_TOUCH_TOL 2.5e-10
+#define SI_MAX_DEPTH 100 /* halvings of either piece; pieces end far below flat_tol long before */
+
+typedef struct bez4 {
+    rugo_vec2 p[4];
+} bez4;
+
+typedef struct si_ctx {
+    rugo_real flat_tol, touch_tol;
+    rugo_vec2 where; /* relative to the frame origin */
+} si_ctx;
+
+static void bez_split(const bez4* b, bez4* l, bez4* r) {
+    rugo_vec2 p01 = rugo_v2_scale(0.5, rugo_v2_add(b->p[0], b->p[1]));
+    rugo_vec2 p12 = rugo_v2_scale(0.5, rugo_v2_add(b->p[1], b->p[2]));
+    rugo_vec2 p23 = rugo_v2_scale(0.5, rugo_v2_add(b->p[2], b->p[3]));
+    rugo_vec2 a = rugo_v2_scale(0.5, rugo_v2_add(p01, p12));
+    rugo_vec2 e = rugo_v2_scale(0.5, rugo_v2_add(p12, p23));
+    rugo_vec2 m = rugo_v2_scale(0.5, rugo_v2_add(a, e));
+    l->p[0] = b->p[0];
+    l->p[1] = p01;
+    l->p[2] = a;
+    l->p[3] = m;
+    r->p[0] = m;
+    r->p[1] = e;
+    r->p[2] = p23;
+    r->p[3] = b->p[3];
+}
+
+static void bez_box(const bez4* b, rugo_vec2* lo, rugo_vec2* hi) {
+    *lo = *hi = b->p[0];
+    for (int i = 1; i < 4; ++i) {
+        lo->x = fmin(lo->x, b->p[i].x);
+        lo->y = fmin(lo->y, b->p[i].y);
+        hi->x = fmax(hi->x, b->p[i].x);
+        hi->y = fmax(hi->y, b->p[i].y);
+    }
+}
+
+/* Distance from p to the segment [a, b]; the nearest point goes to *near. */
+static rugo_real point_segment_distance(rugo_vec2 p, rugo_vec2 a, rugo_vec2 b, rugo_vec2* near) {
+    rugo_vec2 ab = rugo_v2_sub(b, a);
+    rugo_real l2 = rugo_v2_dot(ab, ab);
+    rugo_real u = l2 > 0.0 ? rugo_v2_dot(rugo_v2_sub(p, a), ab) / l2 : 0.0;
+    u = fmin(1.0, fmax(0.0, u));
+    *near = rugo_v2_add(a, rugo_v2_scale(u, ab));
+    return rugo__v2_length(rugo_v2_sub(p, *near));
+}
+
+static int bez_flat(const bez4* b, rugo_real tol) {
+    rugo_vec2 n;
+    return point_segment_distance(b->p[1], b->p[0], b->p[3], &n) <= tol &&
+           point_segment_distance(b->p[2], b->p[0], b->p[3], &n) <= tol;
+}
+
+/* Distance between segments [a0, a1] and [b0, b1]; an approximate meeting point to *where. */
+static rugo_real segment_distance(rugo_vec2 a0, rugo_vec2 a1, rugo_vec2 b0, rugo_vec2 b1, rugo_vec2* where) {
+    rugo_vec2 ea = rugo_v2_sub(a1, a0), eb = rugo_v2_sub(b1, b0);
+    rugo_real d0 = rugo_v2_cross(ea, rugo_v2_sub(b0, a0)), d1 = rugo_v2_cross(ea, rugo_v2_sub(b1, a0));
+    rugo_real d2 = rugo_v2_cross(eb, rugo_v2_sub(a0, b0)), d3 = rugo_v2_cross(eb, rugo_v2_sub(a1, b0));
+    if (((d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0)) && ((d2 > 0.0 && d3 < 0.0) || (d2 < 0.0 && d3 > 0.0))) {
+        *where = rugo_v2_add(b0, rugo_v2_scale(d0 / (d0 - d1), eb));
+        return 0.0;
+    }
+    rugo_vec2 n, best_n = a0, best_p = a0;
+    rugo_real best = HUGE_VAL, dist;
+    if ((dist = point_segment_distance(a0, b0, b1, &n)) < best) best = dist, best_p = a0, best_n = n;
+    if ((dist = point_segment_distance(a1, b0, b1, &n)) < best) best = dist, best_p = a1, best_n = n;
+    if ((dist = point_segment_distance(b0, a0, a1, &n)) < best) best = dist, best_p = b0, best_n = n;
+    if ((dist = point_segment_distance(b1, a0, a1, &n)) < best) best = dist, best_p = b1, best_n = n;
+    *where = rugo_v2_scale(0.5, rugo_v2_add(best_p, best_n));
+    return best;
+}
+
+static rugo_real norm_inf(rugo_vec2 u) { return fmax(fabs(u.x), fabs(u.y)); }
+
+/* Whether the non-negligible vectors u[0..m) lie in an open half-plane (their directions span an
+ * angle below pi). Vectors shorter than 1e-12 of the longest (max-norm) are round-off of a zero (a
+ * cusp, or a piece's shared end) and are ignored. `hint` is a likely direction inside the
+ * half-plane: if every vector has a clearly positive component along it, that settles it without
+ * trigonometry (the common case: smooth, gently curved pieces). */
+static int in_open_half_plane(const rugo_vec2* u, int m, rugo_vec2 hint) {
+    rugo_real lmax = 0.0;
+    for (int i = 0; i < m; ++i) lmax = fmax(lmax, norm_inf(u[i]));
+    if (!(lmax > 0.0)) return 1;
+    rugo_real cut = 1e-12 * lmax, hn = norm_inf(hint);
+    int fast = hn > 0.0;
+    for (int i = 0; i < m && fast; ++i) {
+        rugo_real ln = norm_inf(u[i]);
+        /* component along the hint above 1e-9 of the lengths: an angle below pi/2 - 1e-9 */
+        if (ln > cut && !(rugo_v2_dot(u[i], hint) > 1e-9 * 2.0 * ln * hn)) fast = 0;
+    }
+    if (fast) return 1;
+    rugo_real ang[8];
+    int na = 0;
+    for (int i = 0; i < m && na < 8; ++i) {
+        if (norm_inf(u[i]) > cut) ang[na++] = atan2(u[i].y, u[i].x);
+    }
+    for (int i = 1; i < na; ++i) { /* insertion sort: at most 8 angles */
+        rugo_real v = ang[i];
+        int k = i - 1;
+        for (; k >= 0 && ang[k] > v; --k) ang[k + 1] = ang[k];
+        ang[k + 1] = v;
+    }
+    const rugo_real two_pi = 6.283185307179586476925;
+    rugo_real gap = ang[0] + two_pi - ang[na - 1];
+    for (int i = 1; i < na; ++i) gap = fmax(gap, ang[i] - ang[i - 1]);
+    /* The largest empty angular sector must exceed a half turn, by a margin above atan2's round-off. */
+    return gap > 0.5 * two_pi + 1e-9;
+}
+
+/* x ends where y starts (at x->p[3] == y->p[0]): a line through that joint separates the pieces iff
+ * x's control points seen from the joint and y's seen backwards lie in one open half-plane. */
+static int joint_separates(const bez4* x, const bez4* y) {
+    rugo_vec2 j = x->p[3], u[6];
+    for (int i = 0; i < 3; ++i) {
+        u[i] = rugo_v2_sub(x->p[i], j);
+        u[3 + i] = rugo_v2_sub(j, y->p[i + 1]);
+    }
+    /* Likely separating direction (negated): from y's end back to x's start. */
+    return in_open_half_plane(u, 6, rugo_v2_sub(x->p[0], y->p[3]));
+}
+
+/* Whether pieces a and b meet anywhere other than their shared joints. ab: a ends where b starts;
+ * ba: b ends where a starts. */
+static int pieces_meet(si_ctx* x, const bez4* a, const bez4* b, int ab, int ba, int depth) {
+    rugo_vec2 alo, ahi, blo, bhi;
+    bez_box(a, &alo, &ahi);
+    bez_box(b, &blo, &bhi);
+    if (!ab && !ba) {
+        rugo_real t = x->touch_tol;
+        if (alo.x > bhi.x + t || blo.x > ahi.x + t || alo.y > bhi.y + t || blo.y > ahi.y + t) return 0;
+    }
+    if (ab && !ba && joint_separates(a, b)) return 0;
+    if (ba && !ab && joint_separates(b, a)) return 0;
+    if (depth >= SI_MAX_DEPTH) {
+        /* Pieces far below the tolerances: next to a joint that is their only contact; elsewhere
+         * they touch. */
+        if (ab || ba) return 0;
+        x->where = rugo_v2_scale(0.5, rugo_v2_add(alo, ahi));
+        return 1;
+    }
+    if (!ab && !ba && bez_flat(a, x->flat_tol) && bez_flat(b, x->flat_tol))
+        return segment_distance(a->p[0], a->p[3], b->p[0], b->p[3], &x->where) <= x->touch_tol;
+    rugo_vec2 ea = rugo_v2_sub(ahi, alo), eb = rugo_v2_sub(bhi, blo);
+    bez4 h1, h2;
+    if (fmax(ea.x, ea.y) >= fmax(eb.x, eb.y)) {
+        bez_split(a, &h1, &h2); /* h1 keeps a's start, h2 its end */
+        return pieces_meet(x, &h1, b, 0, ba, depth + 1) || pieces_meet(x, &h2, b, ab, 0, depth + 1);
+    }
+    bez_split(b, &h1, &h2);
+    return pieces_meet(x, a, &h1, ab, 0, depth + 1) || pieces_meet(x, a, &h2, 0, ba, depth + 1);
+}
+
+/* Whether one piece crosses itself; closed: its end is its own start (a lone non-point segment). */
+static int piece_loops(si_ctx* x, const bez4* b, int closed, int depth) {
+    if (!closed) {
+        rugo_vec2 u[3];
+        for (int i = 0; i < 3; ++i) u[i] = rugo_v2_sub(b->p[i + 1], b->p[i]);
+        if (in_open_half_plane(u, 3, rugo_v2_sub(b->p[3], b->p[0]))) return 0; /* monotone along some direction */
+    }
+    if (depth >= SI_MAX_DEPTH / 2) return 0; /* a loop below 1e-15 of the segment is round-off */
+    bez4 l, r;
+    bez_split(b, &l, &r);
+    return piece_loops(x, &l, 0, depth + 1) || piece_loops(x, &r, 0, depth + 1) ||
+           pieces_meet(x, &l, &r, 1, closed, depth + 1);
+}
+
+typedef struct si_box {
+    rugo_real x0, x1, y0, y1;
+    int seg;
+} si_box;
+
+/* Sort keys kept small (the sort moves them, not the boxes); ties broken by box index so the order,
+ * hence the pair reported, does not depend on the sort algorithm. */
+typedef struct si_key {
+    rugo_real x0;
+    int box;
+} si_key;
+
+static int si_key_cmp(const void* pa, const void* pb) {
+    const si_key* a = (const si_key*)pa;
+    const si_key* b = (const si_key*)pb;
+    if (a->x0 < b->x0) return -1;
+    if (a->x0 > b->x0) return 1;
+    return (a->box > b->box) - (a->box < b->box);
+}
+
+static int point_like(rugo_contour c, int j) {
+    const rugo_vec2* p = c.points;
+    int n = c.count;
+    rugo_vec2 a = p[rugo__wrap(j - 1, n)];
+    for (int i = 0; i < 3; ++i) {
+        rugo_vec2 b = p[rugo__wrap(j + i, n)];
+        if (b.x != a.x || b.y != a.y) return 0;
+    }
+    return 1;
+}
+
+static void segment_bez_rel(rugo_contour c, int j, rugo_vec2 o, bez4* b) {
+    rugo_vec2 q[4];
+    segment_points_rel(c, j, o, q);
+    bezier_from_points(q, b->p);
+}
+
+static void report_crossing(rugo_contour_problem* problem, int a, int b, rugo_vec2 o, rugo_vec2 where) {
+    if (problem == NULL) return;
+    problem->segment_a = a < b ? a : b;
+    problem->segment_b = a < b ? b : a;
+    problem->where = rugo_v2_add(o, where);
+}
+
+static rugo_status check_crossings(rugo_contour c, rugo_vec2 lower, rugo_vec2 upper,
+                                   rugo_contour_problem* problem, const rugo_allocator* allocator) {
+    int n = c.count;
+    rugo_allocator al = rugo__allocator_or_default(allocator);
+    int* next = (int*)rugo__alloc_array(&al, (size_t)n, sizeof(int));
+    si_box* boxes = (si_box*)rugo__alloc_array(&al, (size_t)n, sizeof(si_box));
+    si_key* keys = (si_key*)rugo__alloc_array(&al, (size_t)n, sizeof(si_key));
+    if (next == NULL || boxes == NULL || keys == NULL) {
+        rugo__free(&al, next);
+        rugo__free(&al, boxes);
+        rugo__free(&al, keys);
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    /* The frame's origin at the box centre keeps coordinates small; tolerances scale with the box. */
+    rugo_vec2 o = rugo_v2_scale(0.5, rugo_v2_add(lower, upper));
+    rugo_real diag = rugo__v2_length(rugo_v2_sub(upper, lower));
+    si_ctx x;
+    x.flat_tol = SI_FLAT_TOL * diag;
+    x.touch_tol = SI_TOUCH_TOL * diag;
+    x.where = rugo_v2(0.0, 0.0);
+
+    /* next[j]: the next segment after j that is not a point; consecutive in that sense share a
+     * joint. Two passes around the cycle settle the wrap. */
+    int last = -1;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (int j = n - 1; j >= 0; --j) {
+            next[j] = last;
+            if (!point_like(c, j)) last = j;
+        }
+    }
+    rugo_status st = RUGO_OK;
+    int m = 0;
+    if (last >= 0) {
+        for (int j = 0; j < n && st == RUGO_OK; ++j) {
+            if (point_like(c, j)) continue;
+            bez4 b;
+            segment_bez_rel(c, j, o, &b);
+            if (piece_loops(&x, &b, next[j] == j, 0)) {
+                report_crossing(problem, j, j, o, x.where);
+                st = RUGO_ERR_SELF_INTERSECTING;
+            }
+            rugo_vec2 lo, hi;
+            bez_box(&b, &lo, &hi);
+            rugo_real h = 0.5 * x.touch_tol;
+            boxes[m].x0 = lo.x - h;
+            boxes[m].x1 = hi.x + h;
+            boxes[m].y0 = lo.y - h;
+            boxes[m].y1 = hi.y + h;
+            boxes[m].seg = j;
+            keys[m].x0 = boxes[m].x0;
+            keys[m].box = m;
+            ++m;
+        }
+    }
+    if (st == RUGO_OK) {
+        qsort(keys, (size_t)m, sizeof(si_key), si_key_cmp);
+        for (int i = 0; i < m && st == RUGO_OK; ++i) {
+            const si_box* bi = &boxes[keys[i].box];
+            for (int k = i + 1; k < m && keys[k].x0 <= bi->x1; ++k) {
+                const si_box* bk = &boxes[keys[k].box];
+                if (bk->y0 > bi->y1 || bi->y0 > bk->y1) continue;
+                int a = bi->seg, b = bk->seg;
+                bez4 ba, bb;
+                segment_bez_rel(c, a, o, &ba);
+                segment_bez_rel(c, b, o, &bb);
+                if (pieces_meet(&x, &ba, &bb, next[a] == b, next[b] == a, 0)) {
+                    report_crossing(problem, a, b, o, x.where);
+                    st = RUGO_ERR_SELF_INTERSECTING;
+                    break;
+                }
+            }
+        }
+    }
+    rugo__free(&al, next);
+    rugo__free(&al, boxes);
+    rugo__free(&al, keys);
+    return st;
+}
+
+rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, rugo_contour_problem* problem,
+                               const rugo_allocator* allocator) {
+    if (problem) {
+        problem->index = -1;
+        problem->segment_a = -1;
+        problem->segment_b = -1;
+        problem->where = rugo_v2(0.0, 0.0);
+    }
+    if (points == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (count < 4) return RUGO_ERR_TOO_FEW_POINTS;
+    if (count > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_TOO_MANY_POINTS;
+    if ((flags & RUGO_CHECK_POWER_OF_TWO) && !rugo__is_power_of_two(count)) return RUGO_ERR_NOT_POWER_OF_TWO;
+    for (int i = 0; i < count; ++i) {
+        if (!rugo__v2_finite(points[i])) {
+            if (problem) problem->index = i;
+            return RUGO_ERR_NOT_FINITE;
+        }
+    }
+    rugo_contour c;
+    c.points = points;
+    c.count = count;
+    rugo_vec2 lower, upper;
+    rugo_contour_bounds(c, &lower, &upper);
+    rugo_vec2 e = rugo_v2_sub(upper, lower);
+    rugo_real diag2 = rugo_v2_dot(e, e);
+    /* Written so that NaN (from overflowing coordinates) also counts as no area. */
+    if (!(fabs(rugo_contour_signed_area(c)) > 1e-12 * diag2)) return RUGO_ERR_ZERO_AREA;
+    if (flags & RUGO_CHECK_SELF_INTERSECTION) return check_crossings(c, lower, upper, problem, allocator);
+    return RUGO_OK;
+}

@@ -9,8 +9,11 @@
 /* Internal invariants: on in debug and test builds (RUGO_ENABLE_ASSERT), off in release builds.
  * Never used for outside input, which gets a status instead. */
 #ifdef RUGO_ENABLE_ASSERT
-#include <assert.h>
-#define RUGO_ASSERT(cond) assert(cond)
+/* Not assert(): NDEBUG (set by release build types) must not silently turn these off. */
+#include <stdio.h>
+#include <stdlib.h>
+#define RUGO_ASSERT(cond)                                                                          \
+    ((cond) ? (void)0 : (fprintf(stderr, "%s:%d: RUGO_ASSERT(%s) failed\n", __FILE__, __LINE__, #cond), abort()))
 #else
 #define RUGO_ASSERT(cond) ((void)0)
 #endif

@@ -196,7 +196,7 @@ rugo_status rugo_pyramid_create(const rugo_pyramid_def* def, rugo_pyramid** out,
     if (def->cookie != PYRAMID_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
     if ((int)def->filter < 0 || (int)def->filter >= (int)RUGO_FILTER_COUNT) return RUGO_ERR_BAD_FILTER;
     int flags = RUGO_CHECK_POWER_OF_TWO | (def->check_self_intersection ? RUGO_CHECK_SELF_INTERSECTION : 0);
-    rugo_status st = rugo_contour_check(def->points, def->count, flags, problem);
+    rugo_status st = rugo_contour_check(def->points, def->count, flags, problem, &def->allocator);
     if (st != RUGO_OK) return st;
     int finest = 0;
     while ((1 << finest) < def->count) ++finest;
@@ -387,7 +387,7 @@ rugo_status rugo_pyramid_deform(rugo_pyramid* p, int segment, rugo_real t, rugo_
 rugo_status rugo_pyramid_set_finest(rugo_pyramid* p, const rugo_vec2* points, int count) {
     if (p == NULL || points == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (count != p->count) return RUGO_ERR_BAD_ARGUMENT;
-    rugo_status st = rugo_contour_check(points, count, p->check_flags, NULL);
+    rugo_status st = rugo_contour_check(points, count, p->check_flags, NULL, &p->allocator);
     if (st != RUGO_OK) return st;
     memcpy(p->buf_a, points, (size_t)count * sizeof(rugo_vec2));
     int reversed = rugo_contour_orient_ccw(p->buf_a, count);

@@ -221,7 +221,7 @@ static int cmd_info(int argc, char** argv) {
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
     rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
     if (st != RUGO_OK) {
         report_problem(a.positional[0], st, &pr);
         rugo_shape_desc_free(&desc);
@@ -312,7 +312,7 @@ static int cmd_refine(int argc, char** argv) {
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
     rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
     if (st == RUGO_OK && ((long)desc.count << times) > RUGO_MAX_CONTROL_POINTS) st = RUGO_ERR_TOO_MANY_POINTS;
     if (st != RUGO_OK) {
         report_problem(a.positional[0], st, &pr);
@@ -495,7 +495,7 @@ static int cmd_render(int argc, char** argv) {
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
     rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr);
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
     if (st != RUGO_OK) {
         report_problem(a.positional[0], st, &pr);
         rugo_shape_desc_free(&desc);

@@ -37,10 +37,16 @@ typedef struct rugo_contour_problem {
 
 /* Validates control points, in this order: NULL, count < 4 (TOO_FEW_POINTS), count > max
  * (TOO_MANY_POINTS), power of two if asked (NOT_POWER_OF_TWO), non-finite coordinate (NOT_FINITE),
- * |area| <= 1e-12 * bounds diagonal^2 (ZERO_AREA), crossings if asked (SELF_INTERSECTING).
- * problem may be NULL. */
-rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags,
-                               rugo_contour_problem* problem);
+ * |area| <= 1e-12 * (diagonal of the curve's bounds)^2 (ZERO_AREA), crossings if asked
+ * (SELF_INTERSECTING; OUT_OF_MEMORY if its ~60 bytes per point cannot be had from `allocator`,
+ * which may be NULL for malloc/free). problem may be NULL.
+ * Crossing test: parts of the curve closer than about 5e-10 of the bounds diagonal count as
+ * touching; real crossings are found beyond round-off, except loops inside one segment smaller than
+ * about 1e-15 of the diagonal. Segments shrunk to a point are allowed (their neighbours count as
+ * adjacent); a spike where the curve retraces itself counts as self-intersecting, a cusp does not.
+ * Cost: about 3 ms for 4096 points, 0.65 s for 2^20 (optimised build). */
+rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, rugo_contour_problem* problem,
+                               const rugo_allocator* allocator);
 
 /* Signed area of the region bounded by the curve (positive when counter-clockwise). */
 rugo_real rugo_contour_signed_area(rugo_contour c);
@@ -67,8 +73,10 @@ void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2
 /* Arc length of one segment by 4-point Gauss-Legendre (3.6)-(3.7). */
 rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
 /* Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
- * estimate of the error actually reached goes to *error_bound (may be NULL). Returns
- * RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached. */
+ * estimate of the error actually reached, round-off included, goes to *error_bound (may be NULL).
+ * Returns RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached,
+ * e.g. for a tolerance tighter than double precision allows; NULL_ARGUMENT, TOO_FEW_POINTS,
+ * BAD_ARGUMENT (tolerance not finite and > 0). */
 rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
                                                  rugo_real* length, rugo_real* error_bound);
 /* Whole perimeter, 4-point Gauss-Legendre per segment. */
@@ -80,7 +88,8 @@ rugo_real rugo_contour_perimeter(rugo_contour c);
 typedef struct rugo_mass_properties {
     rugo_real area;     /* > 0 for a counter-clockwise contour, negative for clockwise */
     rugo_vec2 centroid;
-    rugo_real inertia;  /* polar moment of the region about the centroid, unit density: ∫∫|p-c|^2 dA */
+    rugo_real inertia;  /* polar moment of the region about the centroid, unit density: ∫∫|p-c|^2 dA;
+                           has the sign of area (negative for a clockwise contour) */
 } rugo_mass_properties;
 rugo_mass_properties rugo_contour_mass_properties(rugo_contour c);
 
@@ -101,8 +110,10 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
 int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
 
 /* First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
- * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal) or 0 for no hit.
- * direction must be non-zero; fraction, hit and normal may be NULL. */
+ * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal, hit->distance = s |d|) or
+ * 0 for no hit. direction must be non-zero; fraction, hit and normal may be NULL. An origin on the
+ * curve hits at s = 0; a ray along a straight segment hits its first point; a hit at a joint is
+ * reported as t = 0 of the next segment. */
 int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
                           rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
                           rugo_vec2* normal);

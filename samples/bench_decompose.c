@@ -5,6 +5,7 @@
 #include "rugo/rugo.h"
 #include "sample_shapes.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
     if (!src || !data || !scratch) return 1;
     sample_object(N, rugo_v2(0.0, 0.0), 1.0, src);
     double analysis_ns[RUGO_FILTER_COUNT], synthesis_ns[RUGO_FILTER_COUNT];
-    double checksum = 0.0;
+    double checksum = 0.0, worst_error = 0.0;
     printf("filter,n,operation,ns_per_call,points_per_us\n");
     for (int f = 0; f < RUGO_FILTER_COUNT; ++f) {
         /* Best of 5 batches: the least disturbed measurement on a shared machine. */
@@ -47,6 +48,11 @@ int main(int argc, char** argv) {
             if (ta / reps < best_a) best_a = ta / reps;
             if (ts / reps < best_s) best_s = ts / reps;
         }
+        /* What was timed must also be right: the last round trip reproduces the input. */
+        for (int i = 0; i < N; ++i) {
+            double e = fabs(data[i].x - src[i].x) + fabs(data[i].y - src[i].y);
+            if (!(e <= worst_error)) worst_error = e;
+        }
         analysis_ns[f] = best_a;
         synthesis_ns[f] = best_s;
         printf("%s,%d,analysis,%.0f,%.1f\n", rugo_filter_name((rugo_filter)f), N, best_a, N / (best_a / 1000.0));
@@ -60,5 +66,9 @@ int main(int argc, char** argv) {
     free(src);
     free(data);
     free(scratch);
+    if (!(worst_error <= 1e-12)) {
+        fprintf(stderr, "bench_decompose: round trip error %.3g > 1e-12\n", worst_error);
+        return 1;
+    }
     return 0;
 }

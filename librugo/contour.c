@@ -10,9 +10,16 @@
 #include <stdlib.h>
 
 /* The four control points c_{j-1}, c_j, c_{j+1}, c_{j+2} of segment j. */
+/* Wraps j first so that j - 1 + i cannot overflow for j near INT_MIN / INT_MAX; an empty contour
+ * gives zeros instead of a division by zero. */
 static void segment_points(rugo_contour c, int j, rugo_vec2 q[4]) {
     int n = c.count;
-    for (int i = 0; i < 4; ++i) q[i] = c.points[rugo__wrap(j - 1 + i, n)];
+    if (n < 1 || c.points == NULL) {
+        for (int i = 0; i < 4; ++i) q[i] = rugo_v2(0.0, 0.0);
+        return;
+    }
+    int base = rugo__wrap(j, n);
+    for (int i = 0; i < 4; ++i) q[i] = c.points[rugo__wrap(base - 1 + i, n)];
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -21,8 +28,8 @@ static void segment_points(rugo_contour c, int j, rugo_vec2 q[4]) {
  * features of size 1 would otherwise lose ten digits in every difference). */
 
 static void segment_points_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 q[4]) {
-    int n = c.count;
-    for (int i = 0; i < 4; ++i) q[i] = rugo_v2_sub(c.points[rugo__wrap(j - 1 + i, n)], o);
+    segment_points(c, j, q);
+    for (int i = 0; i < 4; ++i) q[i] = rugo_v2_sub(q[i], o);
 }
 
 /* Power form f(t) = k3 t^3 + k2 t^2 + k1 t + k0 (k3 = v/6, k2 = w/4, k1 = r/2 in the terms of (3.8)).
@@ -104,6 +111,7 @@ rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t) {
 }
 
 rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u) {
+    if (!isfinite(u) || c.count < 1) return rugo_v2(NAN, NAN); /* no segment to cast NaN/inf into */
     rugo_real f = floor(u);
     int seg = rugo__wrap((int)fmod(f, (rugo_real)c.count), c.count);
     return rugo_contour_point(c, seg, u - f);
@@ -930,6 +938,26 @@ static rugo_status check_crossings(rugo_contour c, rugo_vec2 lower, rugo_vec2 up
     return st;
 }
 
+/* 1 if every control point lies within 1e-9 of the bounds diagonal of one line (a flat outline,
+ * which retraces itself but does not cross). */
+static int collinear(const rugo_vec2* points, int count, rugo_real diag2) {
+    int far = 0;
+    rugo_real best = 0.0;
+    for (int i = 1; i < count; ++i) {
+        rugo_vec2 d = rugo_v2_sub(points[i], points[0]);
+        if (rugo_v2_dot(d, d) > best) {
+            best = rugo_v2_dot(d, d);
+            far = i;
+        }
+    }
+    if (!(best > 0.0)) return 1;
+    rugo_vec2 axis = rugo_v2_sub(points[far], points[0]);
+    rugo_real len = sqrt(best), limit = 1e-9 * sqrt(diag2);
+    for (int i = 1; i < count; ++i)
+        if (fabs(rugo_v2_cross(rugo_v2_sub(points[i], points[0]), axis)) / len > limit) return 0;
+    return 1;
+}
+
 rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, rugo_contour_problem* problem,
                                const rugo_allocator* allocator) {
     if (problem) {
@@ -955,8 +983,18 @@ rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, ru
     rugo_contour_bounds(c, &lower, &upper);
     rugo_vec2 e = rugo_v2_sub(upper, lower);
     rugo_real diag2 = rugo_v2_dot(e, e);
-    /* Written so that NaN (from overflowing coordinates) also counts as no area. */
-    if (!(fabs(rugo_contour_signed_area(c)) > 1e-12 * diag2)) return RUGO_ERR_ZERO_AREA;
+    rugo_real area = rugo_contour_signed_area(c);
+    /* Coordinates beyond ~1e150 have no representable area: that is an overflow, not a flat outline. */
+    if (!isfinite(diag2) || !isfinite(area)) return RUGO_ERR_NOT_FINITE;
+    if (!(fabs(area) > 1e-12 * diag2)) {
+        /* A figure eight with equal lobes has zero net area but is really a crossing outline: say so
+         * when the crossing test was asked for and the outline is not flat. */
+        if ((flags & RUGO_CHECK_SELF_INTERSECTION) && !collinear(points, count, diag2)) {
+            rugo_status st = check_crossings(c, lower, upper, problem, allocator);
+            if (st != RUGO_OK) return st;
+        }
+        return RUGO_ERR_ZERO_AREA;
+    }
     if (flags & RUGO_CHECK_SELF_INTERSECTION) return check_crossings(c, lower, upper, problem, allocator);
     return RUGO_OK;
 }

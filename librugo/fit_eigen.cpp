@@ -28,9 +28,7 @@
 #include <Eigen/SparseCore>
 
 /* internal.h is a C header without its own linkage block; its standard headers are already in. */
-extern "C" {
-#include "internal.h"
-}
+#include "internal.h" /* declares its C functions with C linkage itself */
 
 namespace {
 

@@ -18,12 +18,20 @@
 #define RUGO_ASSERT(cond) ((void)0)
 #endif
 
+#ifdef __cplusplus
+extern "C" { /* the Eigen shim includes this file too */
+#endif
+
 /* A usable allocator from a possibly NULL or zeroed one. */
 rugo_allocator rugo__allocator_or_default(const rugo_allocator* a);
 
 /* Allocate count * size bytes, checking the multiplication for overflow; NULL on failure. */
 void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size);
 void rugo__free(const rugo_allocator* a, void* p);
+
+#ifdef __cplusplus
+}
+#endif
 
 /* Cyclic index in [0, n). */
 static inline int rugo__wrap(int i, int n) {

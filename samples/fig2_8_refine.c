@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
             double t = i / 64.0;
             rugo_vec2 a = rugo_contour_point(c, k, t);
             rugo_vec2 b = t <= 0.5 ? rugo_contour_point(f, 2 * k, 2.0 * t) : rugo_contour_point(f, 2 * k + 1, 2.0 * t - 1.0);
-            worst = fmax(worst, hypot(a.x - b.x, a.y - b.y));
+            worst = sample_max(worst, hypot(a.x - b.x, a.y - b.y));
         }
     double size = 400.0;
     sample_expect_le("refined curve equals the original, relative", worst / size, 1e-13);
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
         rugo_vec2 cm = coarse[(s + N - 1) % N], c0 = coarse[s], cp = coarse[(s + 1) % N];
         rugo_vec2 even = rugo_v2((cm.x + 6 * c0.x + cp.x) / 8, (cm.y + 6 * c0.y + cp.y) / 8);
         rugo_vec2 odd = rugo_v2((c0.x + cp.x) / 2, (c0.y + cp.y) / 2);
-        sub = fmax(sub, fmax(hypot(fine[2 * s].x - even.x, fine[2 * s].y - even.y),
+        sub = sample_max(sub, sample_max(hypot(fine[2 * s].x - even.x, fine[2 * s].y - even.y),
                              hypot(fine[2 * s + 1].x - odd.x, fine[2 * s + 1].y - odd.y)));
     }
     sample_expect_le("refinement is cubic B-spline subdivision, relative", sub / size, 1e-13);

@@ -26,6 +26,8 @@ int sample_finish(void) {
     return g_failed == 0 ? 0 : 1;
 }
 
+double sample_max(double a, double b) { return (a != a || b != b) ? NAN : (a > b ? a : b); }
+
 int sample_mkdir(const char* path) {
     char buf[1024];
     size_t n = strlen(path);

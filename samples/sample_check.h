@@ -8,6 +8,8 @@ int sample_expect_le(const char* name, double value, double limit);
 int sample_expect(const char* name, int ok);
 /* 0 if every expectation passed, 1 otherwise; prints a summary line "N passed, M failed". */
 int sample_finish(void);
+/* max(a, b) that keeps NaN (fmax drops it): error accumulators must not hide a NaN. */
+double sample_max(double a, double b);
 /* Creates a directory and its parents (like mkdir -p); 0 on success. */
 int sample_mkdir(const char* path);
 

@@ -5,7 +5,8 @@ set -eu
 PACKAGES="cmake make gcc g++ pkg-config check libeigen3-dev"
 missing=""
 for p in $PACKAGES; do
-    dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+    # "installed" exactly: a removed package whose configuration files remain is not installed.
+    [ "$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null)" = installed ] || missing="$missing $p"
 done
 [ -z "$missing" ] && exit 0
 if [ "$(id -u)" -eq 0 ]; then

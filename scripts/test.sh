@@ -11,7 +11,7 @@ for variant in normal sanitize; do
     san=OFF
     [ "$variant" = sanitize ] && san=ON
     echo "=== $variant build ($dir) ==="
-    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRUGO_WARNINGS_AS_ERRORS=ON \
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRUGO_WARNINGS_AS_ERRORS=ON -DRUGO_ENABLE_ASSERTS=ON \
         -DRUGO_SANITIZE="$san" >/dev/null
     cmake --build "$dir" -j "$jobs"
     (cd "$dir" && ctest --output-on-failure -j "$jobs") || status=1

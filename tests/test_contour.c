@@ -7,6 +7,7 @@
 #include "test_util.h"
 
 #include <float.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -1262,6 +1263,37 @@ START_TEST(deterministic_outputs) {
 }
 END_TEST
 
+/* Review findings: an equal-lobe figure eight has zero net area but is a crossing outline; huge
+ * coordinates overflow the area (NOT_FINITE, not "zero area"); NaN parameters and empty contours
+ * never reach an int cast or a division by zero; huge segment indices wrap without overflow. */
+START_TEST(check_review_cases) {
+    const rugo_vec2 eight[4] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}};
+    rugo_contour_problem pr;
+    ck_assert_int_eq(rugo_contour_check(eight, 4, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_ge(pr.segment_a, 0);
+    ck_assert_int_eq(rugo_contour_check(eight, 4, 0, NULL, NULL), RUGO_ERR_ZERO_AREA); /* no crossing test asked */
+    const rugo_vec2 flat[4] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
+    ck_assert_int_eq(rugo_contour_check(flat, 4, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_ERR_ZERO_AREA);
+    const rugo_vec2 huge[4] = {{1e200, 0}, {0, 1e200}, {-1e200, 0}, {0, -1e200}};
+    ck_assert_int_eq(rugo_contour_check(huge, 4, RUGO_CHECK_ALL, NULL, NULL), RUGO_ERR_NOT_FINITE);
+    const rugo_vec2 sq[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    rugo_contour c = contour_of((rugo_vec2*)sq, 4);
+    rugo_vec2 p = rugo_contour_point_at(c, NAN);
+    ck_assert(isnan(p.x) && isnan(p.y));
+    p = rugo_contour_point_at(c, INFINITY);
+    ck_assert(isnan(p.x));
+    rugo_vec2 a = rugo_contour_point(c, INT_MAX, 0.25), b = rugo_contour_point(c, INT_MAX % 4, 0.25);
+    ck_assert(a.x == b.x && a.y == b.y);
+    a = rugo_contour_point(c, INT_MIN, 0.5);
+    b = rugo_contour_point(c, rugo__wrap(INT_MIN, 4), 0.5);
+    ck_assert(a.x == b.x && a.y == b.y);
+    rugo_contour empty = {NULL, 0};
+    p = rugo_contour_point(empty, 3, 0.5);
+    ck_assert(p.x == 0.0 && p.y == 0.0);
+    ck_assert(rugo_contour_d1(empty, 0, 0.5).x == 0.0);
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("contour");
     struct {
@@ -1276,7 +1308,8 @@ int main(void) {
         {"queries", {bounds_tight, closest_point_vs_brute_force, contains_vs_polygon, contains_tangent_and_joint_rays,
                      ray_cast_vs_brute_force, ray_cast_special}},
         {"check", {check_null_and_counts, check_power_of_two, check_not_finite, check_zero_area, check_figure_eight,
-                   check_loop_inside_segment, check_touching_and_near, check_random_stars_fast, check_self_intersection_vs_polyline}},
+                   check_loop_inside_segment, check_touching_and_near, check_random_stars_fast, check_self_intersection_vs_polyline,
+                   check_review_cases}},
     };
     for (size_t g = 0; g < sizeof groups / sizeof groups[0]; ++g) {
         TCase* tc = tcase_create(groups[g].name);

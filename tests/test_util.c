@@ -49,8 +49,9 @@ double test_max_diff(const rugo_vec2* a, const rugo_vec2* b, int n) {
     double m = 0.0;
     for (int i = 0; i < n; ++i) {
         double dx = fabs(a[i].x - b[i].x), dy = fabs(a[i].y - b[i].y);
-        if (dx > m) m = dx;
-        if (dy > m) m = dy;
+        /* Written as !(d <= m) so that a NaN difference wins and fails the caller's check. */
+        if (!(dx <= m)) m = dx;
+        if (!(dy <= m)) m = dy;
     }
     return m;
 }
@@ -58,8 +59,8 @@ double test_max_diff(const rugo_vec2* a, const rugo_vec2* b, int n) {
 double test_max_abs(const rugo_vec2* a, int n) {
     double m = 0.0;
     for (int i = 0; i < n; ++i) {
-        if (fabs(a[i].x) > m) m = fabs(a[i].x);
-        if (fabs(a[i].y) > m) m = fabs(a[i].y);
+        if (!(fabs(a[i].x) <= m)) m = fabs(a[i].x);
+        if (!(fabs(a[i].y) <= m)) m = fabs(a[i].y);
     }
     return m;
 }

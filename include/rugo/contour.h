@@ -37,7 +37,9 @@ typedef struct rugo_contour_problem {
 
 /* Validates control points, in this order: NULL, count < 4 (TOO_FEW_POINTS), count > max
  * (TOO_MANY_POINTS), power of two if asked (NOT_POWER_OF_TWO), non-finite coordinate (NOT_FINITE),
- * |area| <= 1e-12 * (diagonal of the curve's bounds)^2 (ZERO_AREA), crossings if asked
+ * coordinates so large (beyond ~1e150) that the area overflows (NOT_FINITE),
+ * |area| <= 1e-12 * (diagonal of the curve's bounds)^2 (ZERO_AREA — or SELF_INTERSECTING when the
+ * crossing test is asked for and finds one, e.g. a figure eight with equal lobes), crossings if asked
  * (SELF_INTERSECTING; OUT_OF_MEMORY if its ~60 bytes per point cannot be had from `allocator`,
  * which may be NULL for malloc/free). problem may be NULL.
  * Crossing test: parts of the curve closer than about 5e-10 of the bounds diagonal count as
@@ -59,7 +61,8 @@ int rugo_contour_orient_ccw(rugo_vec2* points, int count);
 rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t);
 rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t);
 rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t);
-/* Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically). */
+/* Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically).
+ * NaN for a non-finite u or an empty contour. Query functions given count < 1 return zeros. */
 rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u);
 
 /* The four cubic Bezier control points of segment j (a uniform cubic B-spline segment is a cubic

@@ -43,7 +43,8 @@ typedef struct rugo_fit_result {
  * Errors: NULL_ARGUMENT, TOO_FEW_POINTS, NOT_POWER_OF_TWO, NOT_FINITE (input, or a fitted point that
  * would overflow), TOO_MANY_POINTS (either count beyond RUGO_MAX_CONTROL_POINTS), BAD_ARGUMENT
  * (sample_count < control_count, bad parameterization, repeated consecutive samples making chord
- * length zero), SINGULAR (a control point no sample influences, or condition number beyond ~1e11:
+ * length zero), SINGULAR (a control point no sample influences, or a pivot showing the system may be singular
+ * (condition number beyond about 1e11):
  * with chord-length parameters and about as many samples as control points this happens often),
  * OUT_OF_MEMORY. Buffers of its own use def->allocator; Eigen's containers use the default heap. */
 rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points, rugo_fit_result* result);

@@ -23,6 +23,9 @@ const char* rugo_status_string(rugo_status status) {
     case RUGO_ERR_NOT_CONVERGED: return "iteration did not converge";
     case RUGO_ERR_UNSUPPORTED: return "not supported by this build";
     case RUGO_ERR_IO: return "file input/output error";
+    case RUGO_ERR_NEGATIVE_TOLERANCE: return "negative tolerance";
+    case RUGO_ERR_EMPTY_RANGE: return "empty range (lower end above upper end)";
+    case RUGO_ERR_BAD_QUANTILE: return "band factor q must be > 0";
     case RUGO_STATUS_COUNT: break;
     }
     return "unknown status";

@@ -6,6 +6,7 @@
 #ifndef RUGO_BASE_H
 #define RUGO_BASE_H
 
+#include <math.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -44,6 +45,9 @@ typedef enum rugo_status {
     RUGO_ERR_NOT_CONVERGED = 15,    /* an iteration did not reach its tolerance */
     RUGO_ERR_UNSUPPORTED = 16,      /* the feature was left out of this build (e.g. no Eigen shim) */
     RUGO_ERR_IO = 17,               /* a file could not be read or written */
+    RUGO_ERR_NEGATIVE_TOLERANCE = 18, /* a tolerance (roughness band) below zero */
+    RUGO_ERR_EMPTY_RANGE = 19,      /* a range whose lower end exceeds its upper end (e.g. λ_min > λ_max) */
+    RUGO_ERR_BAD_QUANTILE = 20,     /* the band factor q of λ = q σ is not > 0 */
     RUGO_STATUS_COUNT
 } rugo_status;
 
@@ -81,6 +85,36 @@ static inline rugo_real rugo_v2_dot(rugo_vec2 a, rugo_vec2 b) { return a.x * b.x
 static inline rugo_real rugo_v2_cross(rugo_vec2 a, rugo_vec2 b) { return a.x * b.y - a.y * b.x; }
 /* Counter-clockwise perpendicular (-y, x). */
 static inline rugo_vec2 rugo_v2_perp(rugo_vec2 a) { return rugo_v2(-a.y, a.x); }
+
+/* Rotation (cosine, sine) and rigid transform p + R v: a body's pose. */
+typedef struct rugo_rot {
+    rugo_real c, s;
+} rugo_rot;
+
+typedef struct rugo_transform {
+    rugo_vec2 p;
+    rugo_rot q;
+} rugo_transform;
+
+static inline rugo_rot rugo_rot_from_angle(rugo_real radians) {
+    rugo_rot q;
+    q.c = cos(radians);
+    q.s = sin(radians);
+    return q;
+}
+static inline rugo_vec2 rugo_rotate(rugo_rot q, rugo_vec2 v) { return rugo_v2(q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y); }
+static inline rugo_vec2 rugo_inv_rotate(rugo_rot q, rugo_vec2 v) { return rugo_v2(q.c * v.x + q.s * v.y, -q.s * v.x + q.c * v.y); }
+static inline rugo_transform rugo_make_transform(rugo_real x, rugo_real y, rugo_real radians) {
+    rugo_transform t;
+    t.p = rugo_v2(x, y);
+    t.q = rugo_rot_from_angle(radians);
+    return t;
+}
+static inline rugo_transform rugo_identity_transform(void) { return rugo_make_transform(0.0, 0.0, 0.0); }
+static inline rugo_vec2 rugo_transform_point(rugo_transform t, rugo_vec2 v) { return rugo_v2_add(t.p, rugo_rotate(t.q, v)); }
+static inline rugo_vec2 rugo_inv_transform_point(rugo_transform t, rugo_vec2 v) {
+    return rugo_inv_rotate(t.q, rugo_v2_sub(v, t.p));
+}
 
 #ifdef __cplusplus
 }

@@ -6,6 +6,10 @@
 #include "rugo/contour.h"
 #include "rugo/wavelet.h"
 #include "rugo/multires.h"
+#include "rugo/random.h"
+#include "rugo/rough.h"
+#include "rugo/tolerance.h"
+#include "rugo/mobb.h"
 #include "rugo/shape_file.h"
 
 #endif

@@ -1,0 +1,101 @@
+/* librugo — oriented boxes and the MOBBtree, the multiresolution oriented bounding box tree
+ * (SPEC 5; thesis chapters 3-4).
+ *
+ * Node (j, k) of the tree is the box of coarse segment f^j_k: it covers exactly the finest segments
+ * k 2^(J-j) .. (k+1) 2^(J-j) - 1 that converge to f^j_k (Theorem 4.1). Leaves (j = J) are the
+ * "basic boxes" of the finest segments. With n = 2^J segments there are 2n - 2^(J_min) ... 2n - 1
+ * boxes (levels J_min..J), built in O(n).
+ *
+ * Invariant (tested): node (j, k) contains (i) every descendant finest segment thickened by its hard
+ * bound β^J (so the finest curve plus its band), and (ii) its own coarse segment f^j_k thickened by
+ * that level's total tolerance λ^j_k, so that queries stopped at level j (levels of detail) are
+ * conservative too. Leaves use max(β^J, λ^J). Every tree box is grown by 64 ε (|centre| + extents)
+ * so that the invariant survives round-off, and the overlap test counts boxes touching up to
+ * round-off of their coordinates as overlapping. Boxes are in the shape's local frame; arc lengths
+ * and tolerances per node come from rugo_contour_segment_length and rugo_tolerances_level. */
+#ifndef RUGO_MOBB_H
+#define RUGO_MOBB_H
+
+#include "rugo/base.h"
+#include "rugo/contour.h"
+#include "rugo/multires.h"
+#include "rugo/tolerance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An oriented box: centre, orthonormal axes (axis[1] = perp(axis[0])), half-extents >= 0. */
+typedef struct rugo_obb {
+    rugo_vec2 center;
+    rugo_vec2 axis[2];
+    rugo_real half[2];
+} rugo_obb;
+
+/* Covariance axes of points (SPEC 5.1, thesis 3.2): eigenvectors of the 2x2 covariance about the mean
+ * (1/n) Σ p_k; b = 0 or equal eigenvalues give the coordinate axes. Returns unit axis[0], and
+ * axis[1] = perp(axis[0]). n >= 1. */
+void rugo_covariance_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]);
+
+/* Leaf box of segment j (SPEC 5.2): covariance axes of 5 samples (2 if the arc length <= min_length),
+ * exact extents from the segment's end points and the roots in [0,1] of f'(t)·e = 0 for each axis
+ * (all degenerate cases: cubic, linear when v·e = 0, straight and point-like segments), centre
+ * recomputed from the extents, both half-extents inflated by `band` (>= 0). */
+rugo_obb rugo_segment_box(rugo_contour c, int segment, rugo_real band, rugo_real min_length);
+
+/* Smallest box with the axes of box_with_axes (only its axes are used, not its extent) containing
+ * the box b (its four corners). */
+rugo_obb rugo_obb_enclose(rugo_obb box_with_axes, const rugo_obb* b);
+/* The box moved by a rigid transform. */
+rugo_obb rugo_obb_transform(rugo_transform t, const rugo_obb* b);
+/* Separating-axis test on the four box axes (SPEC 7, 6.7-6.8): 1 if the boxes overlap (touching
+ * counts as overlap), 0 if an axis separates them. Both boxes in the same frame. */
+int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b);
+/* 1 if p lies in the box grown by `slack` on every side (a negative slack shrinks it). */
+int rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack);
+rugo_real rugo_obb_area(const rugo_obb* b);
+/* The four corners, counter-clockwise. */
+void rugo_obb_corners(const rugo_obb* b, rugo_vec2 out[4]);
+
+/* How upper boxes are built (SPEC 5.3); both are required, (b) is the default. */
+typedef enum rugo_box_method {
+    RUGO_BOXES_MULTIRES = 0, /* (b) box of the coarse segment itself, enlarged to contain its descendants */
+    RUGO_BOXES_OF_BOXES = 1  /* (a) axes from the arc-length weighted covariance of the centres of all
+                                descendant leaf boxes (3.11-3.12; running sums keep it O(1) a node) */
+} rugo_box_method;
+
+typedef struct rugo_mobb_tree rugo_mobb_tree;
+
+typedef struct rugo_mobb_tree_def {
+    const rugo_pyramid* pyramid;       /* geometry of every level (borrowed during creation) */
+    const rugo_tolerances* tolerances; /* λ and β of every level; NULL = a smooth shape (all zero) */
+    rugo_box_method method;            /* default RUGO_BOXES_MULTIRES */
+    rugo_real min_length;              /* leaf sampling switch l_min (SPEC 5.2); default 0 */
+    rugo_allocator allocator;
+    int cookie;
+} rugo_mobb_tree_def;
+
+rugo_mobb_tree_def rugo_default_mobb_tree_def(void);
+
+/* Builds the tree for every level of the pyramid. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie,
+ * method, min_length < 0 or not finite), BAD_LEVEL (tolerances built for another pyramid),
+ * OUT_OF_MEMORY. */
+rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree** out);
+void rugo_mobb_tree_destroy(rugo_mobb_tree* tree);
+
+int rugo_mobb_tree_finest_level(const rugo_mobb_tree* tree);
+int rugo_mobb_tree_coarsest_level(const rugo_mobb_tree* tree);
+rugo_box_method rugo_mobb_tree_method(const rugo_mobb_tree* tree);
+/* Node (level, k), k in [0, 2^level); NULL outside the tree. */
+const rugo_obb* rugo_mobb_tree_node(const rugo_mobb_tree* tree, int level, int k);
+/* A box around the whole shape (covariance axes of the coarsest level's box corners, enclosing every
+ * coarsest node): the tree's root, for broad phases. */
+const rugo_obb* rugo_mobb_tree_root(const rugo_mobb_tree* tree);
+/* Sum of the box areas of one level (thesis Fig. 4.6); NaN outside the tree. */
+rugo_real rugo_mobb_tree_level_area(const rugo_mobb_tree* tree, int level);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,43 @@
+/* librugo — the seeded random generator used for roughness (and by anyone who wants reproducible
+ * noise). Same seed, same sequence, bit for bit, on every run and every platform with IEEE doubles.
+ *
+ * Algorithm: xoshiro256** (Blackman & Vigna, 2018) for 64-bit words; its 256-bit state is filled from
+ * the 64-bit seed by splitmix64, which never yields the all-zero state. Uniform doubles take the top
+ * 53 bits. Gaussian samples use the Marsaglia polar method (two uniforms in the unit disc, one log and
+ * one sqrt per pair, the second sample kept as a spare): no trigonometry, so the only libm calls are
+ * log and sqrt — sqrt is exact in IEEE arithmetic; log is deterministic for a given libm. */
+#ifndef RUGO_RANDOM_H
+#define RUGO_RANDOM_H
+
+#include "rugo/base.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rugo_rng {
+    uint64_t state[4];
+    rugo_real spare; /* the polar method's second sample */
+    int has_spare;
+} rugo_rng;
+
+/* Seeds the generator (any seed, including 0, is valid). */
+void rugo_rng_seed(rugo_rng* rng, uint64_t seed);
+/* Next 64 random bits. */
+uint64_t rugo_rng_next(rugo_rng* rng);
+/* Uniform in [0, 1), multiples of 2^-53. */
+rugo_real rugo_rng_uniform(rugo_rng* rng);
+/* Uniform in [lo, hi] (hi itself can come out by rounding of lo + (hi - lo) u). */
+rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi);
+/* Uniform integer in [0, n) for n >= 1 (unbiased, by rejection). 0 if n < 1. */
+uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n);
+/* Standard normal N(0, 1). */
+rugo_real rugo_rng_gaussian(rugo_rng* rng);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

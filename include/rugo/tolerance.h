@@ -1,0 +1,131 @@
+/* librugo — tolerances at every level, tolerance at a point, friction and restitution from roughness
+ * (SPEC 6; thesis 5.3-5.5, 7.3).
+ *
+ * Two quantities per segment of every level j of a pyramid:
+ *  - λ (total tolerance): a statistical band, λ = q σ. At the finest level it is the roughness input;
+ *    at a coarser level it is the segment's own estimate from its perturbation (the detail between
+ *    level j and j+1) plus the mean of its two finer segments' totals (5.3):
+ *        λ^j_k = own^j_k + (λ^{j+1}_{2k} + λ^{j+1}_{2k+1}) / 2.
+ *    Friction and restitution use λ. Being statistical, it is exceeded by some asperities.
+ *  - β (hard bound): the largest distance of the finest curve plus its band from the segment,
+ *    computed conservatively (Bezier hull bounds), so it is never exceeded. Boxes and certified
+ *    level-of-detail errors use β. At the finest level β_k bounds λ(t) over the segment.
+ * Lengths are in the shape's units. */
+#ifndef RUGO_TOLERANCE_H
+#define RUGO_TOLERANCE_H
+
+#include "rugo/base.h"
+#include "rugo/multires.h"
+#include "rugo/rough.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rugo_tolerance_estimator {
+    /* From wavelet coefficients (5.3.1): the normal components (local frames) of the 2k+1 details
+     * nearest the segment — centred on the detail inserted inside it (fine index 2j+1, i.e. d_{j+1}
+     * in SPEC 2.2's indexing) — give σ with mean 0; own = q σ. */
+    RUGO_ESTIMATOR_COEFFICIENTS = 0,
+    /* From the detail contour (5.3.2): g = f^{j+1} - f^j (f^j refined) on the segment's two fine
+     * halves, sampled; the `extremes` largest and smallest normal components give σ; own = q σ.
+     * The thesis finds this one more exact. Default. */
+    RUGO_ESTIMATOR_DETAIL = 1
+} rugo_tolerance_estimator;
+
+typedef struct rugo_tolerance_def {
+    const rugo_pyramid* pyramid; /* geometry of every level; borrowed only during creation */
+    const rugo_real* finest;     /* λ per finest segment (2^J values) in the PYRAMID's segment order
+                                    (counter-clockwise: remap if the pyramid reversed the input) */
+    int count;                   /* must equal 2^J */
+    rugo_real q;                 /* default RUGO_DEFAULT_Q */
+    rugo_tolerance_estimator estimator; /* default RUGO_ESTIMATOR_DETAIL */
+    int neighbours;              /* k of the 2k+1 coefficients; >= 1, default 1 (a window wider than a
+                                    level uses each of its details once) */
+    int extremes;                /* maxima and minima per segment for the detail estimator (of 32 samples,
+                                    16 per fine half); 3..16, default 3 */
+    rugo_real minimum;           /* floor of λ(t) (clamping of the cubic interpolation); >= 0, default 0 */
+    rugo_allocator allocator;
+    int cookie;
+} rugo_tolerance_def;
+
+rugo_tolerance_def rugo_default_tolerance_def(void);
+
+typedef struct rugo_tolerances rugo_tolerances;
+
+/* Builds λ and β for every level of the pyramid. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie, count
+ * mismatch, neighbours or extremes out of range, estimator), NOT_FINITE, NEGATIVE_TOLERANCE,
+ * BAD_QUANTILE (q <= 0 or not finite), OUT_OF_MEMORY. */
+rugo_status rugo_tolerances_create(const rugo_tolerance_def* def, rugo_tolerances** out);
+void rugo_tolerances_destroy(rugo_tolerances* t);
+
+int rugo_tolerances_finest_level(const rugo_tolerances* t);
+int rugo_tolerances_coarsest_level(const rugo_tolerances* t);
+
+typedef struct rugo_tolerance_level {
+    int level;
+    int count;              /* 2^level segments */
+    const rugo_real* own;   /* own^j_k: the estimate from this level's perturbation (finest: the input) */
+    const rugo_real* total; /* λ^j_k, accumulated by (5.3) */
+    const rugo_real* bound; /* β^j_k, the hard bound */
+} rugo_tolerance_level;
+
+/* Views of one level (valid until destroy). RUGO_ERR_BAD_LEVEL outside the pyramid's levels. */
+rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tolerance_level* out);
+
+/* λ(t) at the point f_segment(t) of a contour whose segments carry `lambda` (count values), by the
+ * corrected cubic interpolation of SPEC 6.3 (λ_i attached to the midpoint of segment i; continuous
+ * along the whole contour; equal to λ_j at f_j(1/2)), clamped below at `minimum`. Segment indices
+ * wrap; t in [0, 1]. NaN for NULL lambda or count < 1; a NaN λ stays NaN (the clamp does not hide it). */
+rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rugo_real t, rugo_real minimum);
+
+/* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
+
+/* μ(λ) = 0 if λ <= λ_min, α (λ - λ_min) otherwise (5.6). The thesis uses α = 1 (its tolerances lie in
+ * [0, 1]) and λ_min = the tolerance of a smooth surface; the defaults are α = 1, λ_min = 0.04 (the
+ * smooth segments of the thesis' tipo_5). α has units of 1/length: calibrate it to your scale. */
+typedef struct rugo_friction_map {
+    rugo_real alpha;
+    rugo_real lambda_min;
+} rugo_friction_map;
+
+rugo_friction_map rugo_default_friction_map(void);
+/* NOT_FINITE, BAD_ARGUMENT (alpha < 0), NEGATIVE_TOLERANCE (lambda_min < 0). */
+rugo_status rugo_friction_map_check(const rugo_friction_map* m);
+rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
+/* Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max
+ * (e.g. "the roughest point of this shape has μ = 0.9"). Checks in this order: NULL_ARGUMENT,
+ * NOT_FINITE, NEGATIVE_TOLERANCE, BAD_ARGUMENT (mu_max < 0), EMPTY_RANGE (lambda_min >= lambda_max:
+ * equality would divide by zero). */
+rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
+                                    rugo_friction_map* out);
+
+/* Mixing of a pair's values (7.2): the thesis takes the max for μ and the min for ε. */
+typedef enum rugo_mix_rule {
+    RUGO_MIX_MAX = 0,
+    RUGO_MIX_MIN = 1,
+    RUGO_MIX_MEAN = 2,
+    RUGO_MIX_GEOMETRIC = 3 /* sqrt(a b), Box2D's b2MixFriction */
+} rugo_mix_rule;
+/* Mixed value; NaN for an invalid rule. */
+rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);
+
+/* ---- restitution in continuous contact (6.5, 7.3) --------------------------------------------- */
+
+/* ε_c(δ) = (ε_max - ε) δ² / λ² + ε for a penetration δ inside the band λ (δ clamped to [0, λ]; λ = 0
+ * gives ε). Defaults ε = 0.5, ε_max = 0.9 (thesis). */
+typedef struct rugo_restitution {
+    rugo_real epsilon;
+    rugo_real epsilon_max;
+} rugo_restitution;
+
+rugo_restitution rugo_default_restitution(void);
+/* NOT_FINITE, BAD_ARGUMENT (outside [0, 1]), EMPTY_RANGE (epsilon > epsilon_max). */
+rugo_status rugo_restitution_check(const rugo_restitution* r);
+rugo_real rugo_restitution_in_band(const rugo_restitution* r, rugo_real delta, rugo_real lambda);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -61,6 +61,20 @@ static int parse_pair(const char* s, rugo_vec2* out) {
     return 0;
 }
 
+/* A seed: plain decimal digits, at most 2^53 (what a shape file can carry; see docs/roughness.md). */
+static int parse_seed(const char* s, uint64_t* out) {
+    uint64_t x = 0;
+    if (*s == '\0') return -1;
+    for (; *s; ++s) {
+        if (*s < '0' || *s > '9') return -1;
+        uint64_t d = (uint64_t)(*s - '0');
+        if (x > (RUGO_MAX_FILE_SEED - d) / 10) return -1;
+        x = x * 10 + d;
+    }
+    *out = x;
+    return 0;
+}
+
 /* Options: a flat table of "--name" -> value (NULL for flags). Positional arguments in order. */
 typedef struct args {
     const char* positional[4];
@@ -168,18 +182,12 @@ static void print_points(FILE* f, const rugo_vec2* p, int n) {
     fputc(']', f);
 }
 
-/* Writes a shape file (the library's writer) to `path` or stdout, with an optional extra member
+/* Writes a shape description (the library's writer) to `path` or stdout, with an optional extra member
  * (`"name": {...}`) spliced in before the closing brace. Returns 0 or EXIT_INPUT. */
-static int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filter filter,
-                       const char* extra) {
-    rugo_shape_desc d;
-    memset(&d, 0, sizeof d);
-    d.control_points = (rugo_vec2*)points;
-    d.count = count;
-    d.filter = filter;
+static int write_desc(const char* path, const rugo_shape_desc* d, const char* extra) {
     char* text = NULL;
     size_t len = 0;
-    rugo_status st = rugo_shape_desc_write(&d, NULL, &text, &len);
+    rugo_status st = rugo_shape_desc_write(d, NULL, &text, &len);
     if (st != RUGO_OK) return fail("writing the shape", st);
     FILE* f = path ? fopen(path, "w") : stdout;
     if (f == NULL) {
@@ -205,10 +213,88 @@ static int write_shape(const char* path, const rugo_vec2* points, int count, rug
     return 0;
 }
 
+/* A shape without roughness. */
+static int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filter filter,
+                       const char* extra) {
+    rugo_shape_desc d;
+    memset(&d, 0, sizeof d);
+    d.control_points = (rugo_vec2*)points;
+    d.count = count;
+    d.filter = filter;
+    return write_desc(path, &d, extra);
+}
+
 static int log2_exact(int n) {
     int j = 0;
     while ((1 << j) < n) ++j;
     return (1 << j) == n ? j : -1;
+}
+
+/* ---- roughness ------------------------------------------------------------------------------ */
+
+static const char* estimator_name(rugo_tolerance_estimator e) {
+    return e == RUGO_ESTIMATOR_COEFFICIENTS ? "coefficients" : "detail";
+}
+
+/* The roughness settings of a shape: its own, or the defaults when it has none. */
+static rugo_roughness_desc roughness_of(const rugo_shape_desc* d) {
+    return d->has_roughness ? d->roughness : rugo_default_roughness_desc();
+}
+
+/* The tolerance of every finest segment (n values, malloc'd into *out) as `r` gives them, or 0 when r
+ * is NULL (a shape without roughness is smooth). In the file's own segment numbering, or, when
+ * `reversed`, in that of the reversed (counter-clockwise) points, where the file's segment j is
+ * segment n-2-j. Returns 0 or EXIT_INPUT after a message. */
+static int finest_tolerances(const char* path, const rugo_roughness_desc* r, int n, int reversed,
+                             rugo_real** out) {
+    *out = NULL;
+    rugo_real* in = calloc((size_t)n, sizeof *in);
+    rugo_real* res = calloc((size_t)n, sizeof *res);
+    if (in == NULL || res == NULL) {
+        free(in);
+        free(res);
+        return fail("tolerances", RUGO_ERR_OUT_OF_MEMORY);
+    }
+    rugo_status st = r ? rugo_roughness_tolerances(r, n, in) : RUGO_OK;
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo %s: %s: roughness: %s (status %d)\n", g_command, path, rugo_status_string(st),
+                (int)st);
+        free(in);
+        free(res);
+        return EXIT_INPUT;
+    }
+    for (int k = 0; k < n; ++k)
+        res[k] = reversed ? in[((n - 2 - k) % n + n) % n] : in[k];
+    free(in);
+    *out = res;
+    return 0;
+}
+
+/* The roughness to write with the (counter-clockwise) points of a shape whose geometry an edit changed:
+ * the input's, re-numbered if the points were reversed (a list then, since presets start at segment 0),
+ * without the perturbation, which belonged to the old geometry. *tol receives an array to free. */
+static int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed,
+                             rugo_roughness_desc* out, rugo_real** tol) {
+    *tol = NULL;
+    *out = in->roughness;
+    out->has_perturbation = 0;
+    out->perturbation_points = NULL;
+    out->perturbation_count = 0;
+    out->perturbation_levels = 0;
+    if (!reversed || in->roughness.kind == RUGO_ROUGHNESS_CONSTANT) return 0;
+    int rc = finest_tolerances(path, &in->roughness, in->count, 1, tol);
+    if (rc) return rc;
+    out->kind = RUGO_ROUGHNESS_TOLERANCES;
+    out->tolerances = *tol;
+    out->tolerance_count = in->count;
+    return 0;
+}
+
+static void print_reals(FILE* f, const rugo_real* v, int n) {
+    fputc('[', f);
+    for (int i = 0; i < n; ++i)
+        fprintf(f, "%s%.17g", i ? ", " : "", v[i]);
+    fputc(']', f);
 }
 
 /* ---- subcommands ---------------------------------------------------------------------------- */
@@ -409,7 +495,19 @@ static int cmd_deform(int argc, char** argv) {
     for (int i = 0; i < spread && len < (int)sizeof extra; ++i)
         len += snprintf(extra + len, sizeof extra - (size_t)len, "%s%.17g", i ? ", " : "", weights[i]);
     if (len < (int)sizeof extra) snprintf(extra + len, sizeof extra - (size_t)len, "]}");
-    rc = write_shape(opt(&a, "-o", NULL), c.points, c.count, desc.filter, extra);
+    rugo_shape_desc shape_out;
+    memset(&shape_out, 0, sizeof shape_out);
+    shape_out.control_points = (rugo_vec2*)c.points;
+    shape_out.count = c.count;
+    shape_out.filter = desc.filter;
+    rugo_real* carried = NULL;
+    if (desc.has_roughness) {
+        shape_out.has_roughness = 1;
+        rc = carried_roughness(a.positional[0], &desc, rugo_pyramid_was_reversed(p), &shape_out.roughness,
+                               &carried);
+    }
+    if (rc == 0) rc = write_desc(opt(&a, "-o", NULL), &shape_out, extra);
+    free(carried);
 free_pyramid:
     rugo_pyramid_destroy(p);
 done:
@@ -479,17 +577,227 @@ static int cmd_fit(int argc, char** argv) {
 #endif
 }
 
+static int cmd_roughen(int argc, char** argv) {
+    static const char* const vals[] = {"--method", "--preset", "--seed", "--levels", "-o", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    const char *mv = opt(&a, "--method", NULL), *pv = opt(&a, "--preset", NULL),
+               *sv = opt(&a, "--seed", NULL), *lv = opt(&a, "--levels", NULL);
+    int method = -1; /* -1: the tolerance library only; else a rugo_roughen_method */
+    int levels = 2;
+    rugo_tolerance_preset preset = RUGO_PRESET_TIPO_1;
+    uint64_t seed = 0;
+    if (mv && strcmp(mv, "wavelet") == 0)
+        method = RUGO_ROUGHEN_WAVELET;
+    else if (mv && strcmp(mv, "local") == 0)
+        method = RUGO_ROUGHEN_LOCAL;
+    else if (mv && strcmp(mv, "library") != 0)
+        return usage_error("--method must be wavelet, local or library, got '%s'", mv);
+    if (pv && rugo_preset_from_name(pv, &preset) != RUGO_OK)
+        return usage_error("--preset must be tipo_1, tipo_2, tipo_3 or tipo_5, got '%s'", pv);
+    if (sv && parse_seed(sv, &seed) != 0)
+        return usage_error("--seed must be an integer from 0 to 9007199254740992 (2^53), got '%s'", sv);
+    if (lv && method < 0) return usage_error("--levels applies to --method wavelet or local%s", "");
+    if (lv && parse_int(lv, 1, RUGO_MAX_PERTURBATION_LEVELS, &levels) != 0)
+        return usage_error("--levels must be an integer from 1 to 20, got '%s'", lv);
+    rugo_shape_desc desc;
+    if ((rc = load_shape(a.positional[0], &desc))) return rc;
+    const char* path = a.positional[0];
+    int flags = RUGO_CHECK_SELF_INTERSECTION | (method >= 0 ? RUGO_CHECK_POWER_OF_TWO : 0);
+    rugo_contour_problem pr;
+    rugo_status st = rugo_contour_check(desc.control_points, desc.count, flags, &pr, NULL);
+    if (st == RUGO_OK && method >= 0 && ((long long)desc.count << levels) > RUGO_MAX_CONTROL_POINTS)
+        st = RUGO_ERR_TOO_MANY_POINTS;
+    if (st != RUGO_OK) {
+        report_problem(path, st, &pr);
+        rugo_shape_desc_free(&desc);
+        return EXIT_INPUT;
+    }
+    int n = desc.count;
+    int reversed = rugo_contour_orient_ccw(desc.control_points, n);
+    rugo_roughness_desc r = roughness_of(&desc);
+    if (pv) {
+        r.kind = RUGO_ROUGHNESS_PRESET;
+        r.preset = preset;
+    }
+    if (sv) r.seed = seed;
+    rugo_real* tol = NULL;
+    rugo_vec2* pert = NULL;
+    if ((rc = finest_tolerances(path, &r, n, reversed, &tol))) goto done;
+    /* The resolved values are written, not the preset: the file then says exactly what the shape is,
+     * in the numbering of the points written (counter-clockwise), whatever later versions of the
+     * presets do. */
+    rugo_roughness_desc out = r;
+    out.kind = RUGO_ROUGHNESS_TOLERANCES;
+    out.tolerances = tol;
+    out.tolerance_count = n;
+    out.has_perturbation = 0;
+    out.perturbation_points = NULL;
+    out.perturbation_count = 0;
+    out.perturbation_levels = 0;
+    if (method >= 0) {
+        int m = n << levels;
+        pert = malloc(sizeof *pert * (size_t)m);
+        if (pert == NULL) {
+            rc = fail("roughen", RUGO_ERR_OUT_OF_MEMORY);
+            goto done;
+        }
+        rugo_roughen_def def = rugo_default_roughen_def();
+        def.points = desc.control_points;
+        def.count = n;
+        def.tolerances = tol;
+        def.q = r.q;
+        def.method = (rugo_roughen_method)method;
+        def.levels = levels;
+        def.filter = desc.filter;
+        def.seed = r.seed;
+        st = rugo_roughen(&def, pert);
+        if (st != RUGO_OK) {
+            rc = fail("roughen", st);
+            goto done;
+        }
+        out.has_perturbation = 1;
+        out.perturbation_method = (rugo_roughen_method)method;
+        out.perturbation_levels = levels;
+        out.perturbation_points = pert;
+        out.perturbation_count = m;
+    }
+    rugo_shape_desc w;
+    memset(&w, 0, sizeof w);
+    w.control_points = desc.control_points;
+    w.count = n;
+    w.filter = desc.filter;
+    w.has_roughness = 1;
+    w.roughness = out;
+    rc = write_desc(opt(&a, "-o", NULL), &w, NULL);
+done:
+    free(pert);
+    free(tol);
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+static int cmd_tolerances(int argc, char** argv) {
+    static const char* const vals[] = {"--estimator", "--at", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
+    const char *ev = opt(&a, "--estimator", NULL), *at = opt(&a, "--at", NULL);
+    rugo_tolerance_estimator est = RUGO_ESTIMATOR_DETAIL;
+    if (ev && strcmp(ev, "coefficients") == 0)
+        est = RUGO_ESTIMATOR_COEFFICIENTS;
+    else if (ev && strcmp(ev, "detail") != 0)
+        return usage_error("--estimator must be detail or coefficients, got '%s'", ev);
+    rugo_vec2 st_pair = {0.0, 0.0};
+    if (at && (parse_pair(at, &st_pair) != 0 || st_pair.x != floor(st_pair.x) || st_pair.x < 0.0 ||
+               st_pair.x > (double)RUGO_MAX_CONTROL_POINTS || !(st_pair.y >= 0.0 && st_pair.y <= 1.0)))
+        return usage_error("--at SEGMENT,T needs an integer segment >= 0 and 0 <= T <= 1, got '%s'", at);
+    const char* path = a.positional[0];
+    rugo_shape_desc desc;
+    if ((rc = load_shape(path, &desc))) return rc;
+    rugo_roughness_desc r = roughness_of(&desc);
+    const rugo_roughness_desc* source = desc.has_roughness ? &desc.roughness : NULL;
+    rugo_real* tol = NULL;
+    if (at) {
+        /* A point query needs only the finest tolerances: any count, the file's own numbering (the
+         * interpolation is symmetric, so the reversed curve gives the same value at the same point). */
+        rugo_contour_problem pr;
+        rugo_status st =
+            rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
+        if (st != RUGO_OK) {
+            report_problem(path, st, &pr);
+            rc = EXIT_INPUT;
+            goto done;
+        }
+        int seg = (int)st_pair.x;
+        if (seg >= desc.count) {
+            fprintf(stderr, "rugo tolerances: --at segment must be below the control point count %d\n",
+                    desc.count);
+            rc = EXIT_USAGE;
+            goto done;
+        }
+        if ((rc = finest_tolerances(path, source, desc.count, 0, &tol))) goto done;
+        rugo_real lambda = rugo_tolerance_at(tol, desc.count, seg, st_pair.y, 0.0);
+        printf("{\"segment\": %d, \"t\": %.17g, \"tolerance\": %.17g, \"friction\": %.17g, \"restitution\": "
+               "%.17g}\n",
+               seg, st_pair.y, lambda, rugo_friction(&r.friction, lambda), r.restitution.epsilon);
+        goto done;
+    }
+    rugo_pyramid* p = NULL;
+    if ((rc = build_pyramid(path, &desc, desc.filter, 0, &p))) goto done;
+    int reversed = rugo_pyramid_was_reversed(p);
+    if ((rc = finest_tolerances(path, source, desc.count, reversed, &tol))) {
+        rugo_pyramid_destroy(p);
+        goto done;
+    }
+    rugo_tolerance_def def = rugo_default_tolerance_def();
+    def.pyramid = p;
+    def.finest = tol;
+    def.count = desc.count;
+    def.q = r.q;
+    def.estimator = ev ? est : r.estimator;
+    rugo_tolerances* t = NULL;
+    rugo_status st = rugo_tolerances_create(&def, &t);
+    rugo_pyramid_destroy(p);
+    if (st != RUGO_OK) {
+        rc = fail("tolerances", st);
+        goto done;
+    }
+    printf("{\"q\": %.17g, \"estimator\": \"%s\", \"reversed\": %s, \"levels\": [", def.q,
+           estimator_name(def.estimator), reversed ? "true" : "false");
+    int finest = rugo_tolerances_finest_level(t), coarsest = rugo_tolerances_coarsest_level(t);
+    for (int j = finest; j >= coarsest; --j) {
+        rugo_tolerance_level L;
+        rugo_tolerances_level(t, j, &L);
+        printf("%s\n  {\"level\": %d, \"tolerance\": ", j == finest ? "" : ",", j);
+        print_reals(stdout, L.total, L.count);
+        printf(", \"own\": ");
+        print_reals(stdout, L.own, L.count);
+        printf(", \"bound\": ");
+        print_reals(stdout, L.bound, L.count);
+        printf("}");
+    }
+    printf("\n]}\n");
+    rugo_tolerances_destroy(t);
+done:
+    free(tol);
+    rugo_shape_desc_free(&desc);
+    return rc;
+}
+
+/* One side of the tolerance band: the curve offset by sign * λ(t) along its outward normal, as a thin
+ * closed line (the contour is counter-clockwise, tol in its numbering). */
+static void svg_band(svg_canvas* svg, rugo_contour c, const rugo_real* tol, int per_segment, double sign) {
+    fprintf(svg->file,
+            "<polygon class=\"band\" fill=\"none\" stroke=\"#1b9e77\" stroke-width=\"0.6\" points=\"");
+    for (int j = 0; j < c.count; ++j)
+        for (int i = 0; i < per_segment; ++i) {
+            rugo_real t = (rugo_real)i / per_segment;
+            rugo_vec2 q = rugo_v2_add(rugo_contour_point(c, j, t),
+                                      rugo_v2_scale(sign * rugo_tolerance_at(tol, c.count, j, t, 0.0),
+                                                    rugo_contour_normal(c, j, t)));
+            fprintf(svg->file, "%.2f,%.2f ", (q.x - svg->ox) * svg->scale,
+                    svg->height - (q.y - svg->oy) * svg->scale);
+        }
+    fprintf(svg->file, "\"/>\n");
+}
+
 static int cmd_render(int argc, char** argv) {
     static const char* const vals[] = {"-o", "--levels", "--samples", NULL};
-    static const char* const flags[] = {"--no-control-polygon", NULL};
+    static const char* const flags[] = {"--no-control-polygon", "--band", "--perturbation", NULL};
     args a;
     int rc = parse_args(argc, argv, vals, flags, &a);
     if (rc) return rc;
     const char* out = opt(&a, "-o", NULL);
     if (a.positional_count != 1 || out == NULL) return usage_error("expects SHAPE.json -o OUT.svg%s", "");
-    int levels = 0, samples = 16, no_polygon = 0;
+    int levels = 0, samples = 16, no_polygon = 0, band = 0, perturbation = 0;
     const char *lv = opt(&a, "--levels", NULL), *sv = opt(&a, "--samples", NULL);
     opt(&a, "--no-control-polygon", &no_polygon);
+    opt(&a, "--band", &band);
+    opt(&a, "--perturbation", &perturbation);
     if (lv && parse_int(lv, 0, 30, &levels) != 0) return usage_error("--levels must be >= 0, got '%s'", lv);
     if (sv && parse_int(sv, 1, 256, &samples) != 0) return usage_error("--samples must be 1..256, got '%s'", sv);
     rugo_shape_desc desc;
@@ -501,17 +809,25 @@ static int cmd_render(int argc, char** argv) {
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
-    rugo_contour_orient_ccw(desc.control_points, desc.count);
+    int reversed = rugo_contour_orient_ccw(desc.control_points, desc.count);
+    rugo_real* tol = NULL;
+    if (band && (rc = finest_tolerances(a.positional[0], desc.has_roughness ? &desc.roughness : NULL,
+                                        desc.count, reversed, &tol))) {
+        rugo_shape_desc_free(&desc);
+        return rc;
+    }
     rugo_pyramid* p = NULL;
     int J = log2_exact(desc.count);
     if (levels > 0) {
         if (J < 2 || levels > J - 2) {
             fprintf(stderr, "rugo render: --levels needs a power-of-two count with %d coarser levels of >= 4 points\n",
                     levels);
+            free(tol);
             rugo_shape_desc_free(&desc);
             return EXIT_USAGE;
         }
         if ((rc = build_pyramid(a.positional[0], &desc, desc.filter, J - levels, &p))) {
+            free(tol);
             rugo_shape_desc_free(&desc);
             return rc;
         }
@@ -519,10 +835,27 @@ static int cmd_render(int argc, char** argv) {
     rugo_contour c = {desc.control_points, desc.count};
     rugo_vec2 lo, hi;
     svg_contour_extent(c, &lo, &hi);
+    if (band) { /* the band reaches at most the largest tolerance away from the curve */
+        rugo_real widest = 0.0;
+        for (int k = 0; k < desc.count; ++k)
+            widest = fmax(widest, tol[k]);
+        lo = rugo_v2(lo.x - widest, lo.y - widest);
+        hi = rugo_v2(hi.x + widest, hi.y + widest);
+    }
+    const rugo_roughness_desc* rd = &desc.roughness;
+    int draw_perturbation = perturbation && desc.has_roughness && rd->has_perturbation;
+    rugo_contour pc = {rd->perturbation_points, rd->perturbation_count};
+    if (draw_perturbation) {
+        rugo_vec2 plo, phi;
+        svg_contour_extent(pc, &plo, &phi);
+        lo = rugo_v2(fmin(lo.x, plo.x), fmin(lo.y, plo.y));
+        hi = rugo_v2(fmax(hi.x, phi.x), fmax(hi.y, phi.y));
+    }
     svg_canvas svg;
     if (svg_open(&svg, out, lo, hi, 800.0) != 0) {
         fprintf(stderr, "rugo render: %s: cannot open for writing\n", out);
         rugo_pyramid_destroy(p);
+        free(tol);
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
@@ -533,32 +866,57 @@ static int cmd_render(int argc, char** argv) {
         svg_contour(&svg, ck, samples, level_colours[(k - 1) % 5], 1.2, "6,4");
     }
     if (!no_polygon) svg_control_polygon(&svg, c, "#999999");
+    if (band) {
+        svg_band(&svg, c, tol, samples, 1.0);
+        svg_band(&svg, c, tol, samples, -1.0);
+    }
+    if (draw_perturbation) {
+        /* Each perturbation segment is 2^-levels of a shape segment: fewer samples keep the file small. */
+        int per = samples >> rd->perturbation_levels;
+        fprintf(svg.file, "<g class=\"perturbation\">\n");
+        svg_contour(&svg, pc, per < 2 ? 2 : per, "#a6761d", 0.8, NULL);
+        fprintf(svg.file, "</g>\n");
+    } else if (perturbation) {
+        fprintf(svg.file, "<!-- no perturbation stored in the shape -->\n");
+    }
     svg_contour(&svg, c, samples, "#1b9e77", 2.0, NULL);
     rc = svg_close(&svg) == 0 ? 0 : EXIT_INPUT;
     if (rc) fprintf(stderr, "rugo render: %s: write failed\n", out);
     rugo_pyramid_destroy(p);
+    free(tol);
     rugo_shape_desc_free(&desc);
     return rc;
 }
 
 static void usage(FILE* f) {
-    fprintf(f,
-            "usage: rugo COMMAND [ARGS]\n"
-            "  info SHAPE.json                      control points, levels, area, centroid, inertia, perimeter\n"
-            "  decompose SHAPE.json [--filter F] [--levels K]\n"
-            "                                       wavelet pyramid from level J-1 down (F: cdf4.2 cdf4.4\n"
-            "                                       cdf4.6 cdf4.8 cdf4.12)\n"
-            "  refine SHAPE.json [--times K] [-o OUT.json]\n"
-            "                                       double the control points K times; same curve\n"
-            "  deform SHAPE.json --at U --delta DX,DY [--levels R] [--w W] [--details fixed|local] [-o OUT.json]\n"
-            "                                       move the curve point at parameter U by (DX, DY), spread\n"
-            "                                       over R levels with weights e^(-W s)\n"
-            "  fit POINTS.json [--control-points N] [--param chord|uniform] [-o OUT.json]\n"
-            "                                       least-squares closed contour through {\"points\": [...]}\n"
-            "  render SHAPE.json -o OUT.svg [--levels K] [--samples N] [--no-control-polygon]\n"
-            "  help                                 this text\n"
-            "Output is JSON on stdout (or the -o file); errors go to stderr with exit status 1 (bad input)\n"
-            "or 2 (bad command line). See docs/cli.md.\n");
+    fprintf(
+        f,
+        "usage: rugo COMMAND [ARGS]\n"
+        "  info SHAPE.json                      control points, levels, area, centroid, inertia, perimeter\n"
+        "  decompose SHAPE.json [--filter F] [--levels K]\n"
+        "                                       wavelet pyramid from level J-1 down (F: cdf4.2 cdf4.4\n"
+        "                                       cdf4.6 cdf4.8 cdf4.12)\n"
+        "  refine SHAPE.json [--times K] [-o OUT.json]\n"
+        "                                       double the control points K times; same curve\n"
+        "  deform SHAPE.json --at U --delta DX,DY [--levels R] [--w W] [--details fixed|local] [-o "
+        "OUT.json]\n"
+        "                                       move the curve point at parameter U by (DX, DY), spread\n"
+        "                                       over R levels with weights e^(-W s)\n"
+        "  fit POINTS.json [--control-points N] [--param chord|uniform] [-o OUT.json]\n"
+        "                                       least-squares closed contour through {\"points\": [...]}\n"
+        "  render SHAPE.json -o OUT.svg [--levels K] [--samples N] [--no-control-polygon] [--band]\n"
+        "         [--perturbation]              SVG picture; --band: the tolerance band, --perturbation:\n"
+        "                                       the stored perturbation geometry\n"
+        "  roughen SHAPE.json [--method wavelet|local|library] [--preset tipo_1|tipo_2|tipo_3|tipo_5]\n"
+        "          [--seed N] [--levels M] [-o OUT.json]\n"
+        "                                       the shape with per-segment tolerances (and, for wavelet\n"
+        "                                       or local, display perturbations M levels finer)\n"
+        "  tolerances SHAPE.json [--estimator detail|coefficients] [--at SEGMENT,T]\n"
+        "                                       tolerance of every segment at every level, or tolerance,\n"
+        "                                       friction and restitution at one point\n"
+        "  help                                 this text\n"
+        "Output is JSON on stdout (or the -o file); errors go to stderr with exit status 1 (bad input)\n"
+        "or 2 (bad command line). See docs/cli.md.\n");
 }
 
 int main(int argc, char** argv) {
@@ -570,8 +928,10 @@ int main(int argc, char** argv) {
     static const struct {
         const char* name;
         int (*run)(int, char**);
-    } commands[] = {{"info", cmd_info},     {"decompose", cmd_decompose}, {"refine", cmd_refine},
-                    {"deform", cmd_deform}, {"fit", cmd_fit},             {"render", cmd_render}};
+    } commands[] = {{"info", cmd_info},       {"decompose", cmd_decompose},
+                    {"refine", cmd_refine},   {"deform", cmd_deform},
+                    {"fit", cmd_fit},         {"render", cmd_render},
+                    {"roughen", cmd_roughen}, {"tolerances", cmd_tolerances}};
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 2, argv + 2);
     if (strcmp(argv[1], "help") == 0 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {

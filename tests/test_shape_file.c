@@ -102,6 +102,17 @@ static void expect_shape_fail(const char* s, rugo_status status, const char* pat
                       err.message, fragment);
 }
 
+/* A caller-built description without roughness (the fields a caller sets; the rest zero). */
+static rugo_shape_desc make_desc(rugo_vec2* pts, int n, rugo_filter filter) {
+    rugo_shape_desc d;
+    memset(&d, 0, sizeof d);
+    d.control_points = pts;
+    d.count = n;
+    d.filter = filter;
+    d.allocator = rugo_default_allocator();
+    return d;
+}
+
 static char* read_data(const char* name, size_t* length) {
     char path[1024];
     data_path(name, path, sizeof path);
@@ -778,8 +789,9 @@ END_TEST
 START_TEST(shape_parse_valid) {
     rugo_shape_desc desc;
     rugo_parse_error err;
-    const char* t = "{\"name\": \"sq\", \"roughness\": {\"levels\": [1, 2, {\"x\": null}]},"
-                    " \"control_points\": [[0, 0], [1, 0.5], [-1e-3, 2E2], [0, 1]], \"extra\": [[[]]]}";
+    const char* t =
+        "{\"name\": \"sq\", \"roughness\": {\"constant\": 0.5, \"levels\": [1, 2, {\"x\": null}]},"
+        " \"control_points\": [[0, 0], [1, 0.5], [-1e-3, 2E2], [0, 1]], \"extra\": [[[]]]}";
     ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_OK);
     ck_assert_int_eq(desc.count, 4);
     ck_assert_int_eq(desc.filter, RUGO_FILTER_DEFAULT);
@@ -787,6 +799,9 @@ START_TEST(shape_parse_valid) {
     ck_assert(desc.control_points[2].x == -1e-3);
     ck_assert(desc.control_points[2].y == 200.0);
     ck_assert(desc.allocator.alloc != NULL);
+    ck_assert_int_eq(desc.has_roughness, 1);
+    ck_assert_int_eq(desc.roughness.kind, RUGO_ROUGHNESS_CONSTANT);
+    ck_assert(desc.roughness.constant == 0.5);
     rugo_shape_desc_free(&desc);
     ck_assert_ptr_null(desc.control_points);
     rugo_shape_desc_free(&desc);
@@ -993,7 +1008,7 @@ START_TEST(shape_too_many_points) {
     free(t);
 
     /* The writer refuses what the reader would. */
-    rugo_shape_desc big = {NULL, RUGO_MAX_CONTROL_POINTS + 1, RUGO_FILTER_DEFAULT, rugo_default_allocator()};
+    rugo_shape_desc big = make_desc(NULL, RUGO_MAX_CONTROL_POINTS + 1, RUGO_FILTER_DEFAULT);
     char* text = NULL;
     size_t len = 0;
     rugo_vec2 dummy = {0, 0};
@@ -1009,7 +1024,7 @@ START_TEST(shape_max_size_file_fits) {
     rugo_vec2* pts = (rugo_vec2*)malloc(sizeof *pts * (size_t)n);
     for (int i = 0; i < n; ++i)
         pts[i] = rugo_v2(-2.2250738585072014e-308, -1.2345678901234567e-300);
-    rugo_shape_desc desc = {pts, n, RUGO_FILTER_CDF4_12, rugo_default_allocator()};
+    rugo_shape_desc desc = make_desc(pts, n, RUGO_FILTER_CDF4_12);
     char* text = NULL;
     size_t len = 0;
     ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
@@ -1034,8 +1049,7 @@ START_TEST(shape_round_trip_bits) {
             pts[i].x = random_double(&r);
             pts[i].y = random_double(&r);
         }
-        rugo_shape_desc desc = {pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT),
-                                rugo_default_allocator()};
+        rugo_shape_desc desc = make_desc(pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT));
         char* text = NULL;
         size_t len = 0;
         ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
@@ -1063,7 +1077,7 @@ START_TEST(shape_round_trip_bits) {
     }
     /* The layout, once */
     rugo_vec2 two[2] = {{0.5, -0.0}, {1e300, 5e-324}};
-    rugo_shape_desc d = {two, 2, RUGO_FILTER_CDF4_4, rugo_default_allocator()};
+    rugo_shape_desc d = make_desc(two, 2, RUGO_FILTER_CDF4_4);
     char* text = NULL;
     size_t len = 0;
     ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
@@ -1079,7 +1093,7 @@ END_TEST
 
 START_TEST(shape_write_errors) {
     rugo_vec2 pts[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    rugo_shape_desc d = {pts, 4, RUGO_FILTER_DEFAULT, rugo_default_allocator()};
+    rugo_shape_desc d = make_desc(pts, 4, RUGO_FILTER_DEFAULT);
     char* text = (char*)1;
     size_t len = 5;
     pts[2].y = NAN;
@@ -1106,6 +1120,795 @@ START_TEST(shape_write_errors) {
     ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
     rugo_text_free(NULL, text);
     rugo_text_free(NULL, NULL);
+}
+END_TEST
+
+/* ------------------------------------------------------------------------------------------------ */
+/* Roughness in shape descriptions */
+
+static const char* const SQUARE4 = "\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]]";
+
+/* {SQUARE4, "roughness": {<body>}} */
+static void rough_text(const char* body, char* out, size_t size) {
+    snprintf(out, size, "{%s, \"roughness\": {%s}}", SQUARE4, body);
+}
+
+static void expect_rough_fail(const char* body, rugo_status status, const char* path, const char* fragment) {
+    char buf[1024];
+    rough_text(body, buf, sizeof buf);
+    expect_shape_fail(buf, status, path, fragment);
+}
+
+static rugo_shape_desc parse_rough_ok(const char* body) {
+    char buf[1024];
+    rough_text(body, buf, sizeof buf);
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    rugo_status st = shape_parse_n(buf, strlen(buf), &desc, &err);
+    ck_assert_msg(st == RUGO_OK, "input <%s>: status %d (%s) at %s: %s", buf, (int)st, rugo_status_string(st),
+                  err.path, err.message);
+    ck_assert_int_eq(desc.count, 4);
+    ck_assert_int_eq(desc.has_roughness, 1);
+    return desc;
+}
+
+/* Every member of two roughness descriptions, bit for bit. */
+static void assert_same_roughness(const rugo_roughness_desc* a, const rugo_roughness_desc* b) {
+    ck_assert_int_eq(a->kind, b->kind);
+    if (a->kind == RUGO_ROUGHNESS_PRESET) ck_assert_int_eq(a->preset, b->preset);
+    if (a->kind == RUGO_ROUGHNESS_CONSTANT) ck_assert(bits_of(a->constant) == bits_of(b->constant));
+    if (a->kind == RUGO_ROUGHNESS_TOLERANCES) {
+        ck_assert_int_eq(a->tolerance_count, b->tolerance_count);
+        for (int i = 0; i < a->tolerance_count; ++i)
+            ck_assert(bits_of(a->tolerances[i]) == bits_of(b->tolerances[i]));
+    }
+    ck_assert(a->seed == b->seed);
+    ck_assert(bits_of(a->q) == bits_of(b->q));
+    ck_assert_int_eq(a->estimator, b->estimator);
+    ck_assert(bits_of(a->friction.alpha) == bits_of(b->friction.alpha));
+    ck_assert(bits_of(a->friction.lambda_min) == bits_of(b->friction.lambda_min));
+    ck_assert(bits_of(a->restitution.epsilon) == bits_of(b->restitution.epsilon));
+    ck_assert(bits_of(a->restitution.epsilon_max) == bits_of(b->restitution.epsilon_max));
+    ck_assert_int_eq(a->has_perturbation, b->has_perturbation);
+    if (a->has_perturbation) {
+        ck_assert_int_eq(a->perturbation_method, b->perturbation_method);
+        ck_assert_int_eq(a->perturbation_levels, b->perturbation_levels);
+        ck_assert_int_eq(a->perturbation_count, b->perturbation_count);
+        for (int i = 0; i < a->perturbation_count; ++i) {
+            ck_assert(bits_of(a->perturbation_points[i].x) == bits_of(b->perturbation_points[i].x));
+            ck_assert(bits_of(a->perturbation_points[i].y) == bits_of(b->perturbation_points[i].y));
+        }
+    }
+}
+
+static void assert_default_settings(const rugo_roughness_desc* r) {
+    rugo_roughness_desc d = rugo_default_roughness_desc();
+    ck_assert(r->seed == 0);
+    ck_assert(bits_of(r->q) == bits_of(RUGO_DEFAULT_Q));
+    ck_assert_int_eq(r->estimator, RUGO_ESTIMATOR_DETAIL);
+    ck_assert(r->friction.alpha == d.friction.alpha && r->friction.lambda_min == d.friction.lambda_min);
+    ck_assert(r->restitution.epsilon == d.restitution.epsilon &&
+              r->restitution.epsilon_max == d.restitution.epsilon_max);
+    ck_assert_int_eq(r->has_perturbation, 0);
+    ck_assert_ptr_null(r->perturbation_points);
+}
+
+START_TEST(roughness_defaults) {
+    rugo_roughness_desc d = rugo_default_roughness_desc();
+    ck_assert_int_eq(d.kind, RUGO_ROUGHNESS_PRESET);
+    ck_assert_int_eq(d.preset, RUGO_PRESET_TIPO_1);
+    ck_assert(d.seed == 0);
+    ck_assert(d.q == RUGO_DEFAULT_Q);
+    ck_assert_int_eq(d.estimator, RUGO_ESTIMATOR_DETAIL);
+    rugo_friction_map fm = rugo_default_friction_map();
+    rugo_restitution rs = rugo_default_restitution();
+    ck_assert(d.friction.alpha == fm.alpha && d.friction.lambda_min == fm.lambda_min);
+    ck_assert(d.restitution.epsilon == rs.epsilon && d.restitution.epsilon_max == rs.epsilon_max);
+    ck_assert_ptr_null(d.tolerances);
+    ck_assert_int_eq(d.has_perturbation, 0);
+    /* A shape without roughness says so. */
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    const char* t = "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]]}";
+    ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_OK);
+    ck_assert_int_eq(desc.has_roughness, 0);
+    rugo_shape_desc_free(&desc);
+}
+END_TEST
+
+START_TEST(roughness_parse_valid) {
+    /* Every preset, with the defaults for everything else. */
+    for (int p = 0; p < RUGO_PRESET_COUNT; ++p) {
+        char body[64];
+        snprintf(body, sizeof body, "\"preset\": \"%s\"", rugo_preset_name((rugo_tolerance_preset)p));
+        rugo_shape_desc d = parse_rough_ok(body);
+        ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_PRESET);
+        ck_assert_int_eq(d.roughness.preset, p);
+        ck_assert_ptr_null(d.roughness.tolerances);
+        assert_default_settings(&d.roughness);
+        rugo_shape_desc_free(&d);
+        ck_assert_int_eq(d.has_roughness, 0);
+    }
+    /* Per-segment values (zero and negative zero are tolerances too). */
+    rugo_shape_desc d = parse_rough_ok("\"tolerances\": [0.25, 0, -0, 1e-300]");
+    ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_TOLERANCES);
+    ck_assert_int_eq(d.roughness.tolerance_count, 4);
+    ck_assert(d.roughness.tolerances[0] == 0.25 && d.roughness.tolerances[3] == 1e-300);
+    ck_assert(bits_of(d.roughness.tolerances[2]) == bits_of(-0.0));
+    assert_default_settings(&d.roughness);
+    rugo_shape_desc_free(&d);
+    ck_assert_ptr_null(d.roughness.tolerances);
+    d = parse_rough_ok("\"constant\": 0.125");
+    ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_CONSTANT);
+    ck_assert(d.roughness.constant == 0.125);
+    rugo_shape_desc_free(&d);
+
+    /* Everything given; unknown members are ignored; members in any order. */
+    d = parse_rough_ok(
+        "\"note\": {\"x\": [null]}, \"seed\": 9007199254740992, \"q\": 1.96, \"estimator\": "
+        "\"coefficients\", \"friction\": {\"lambda_min\": 0.1, \"alpha\": 2, \"unit\": \"m\"}, "
+        "\"restitution\": {\"epsilon\": 0.3, \"epsilon_max\": 0.8}, \"perturbation\": "
+        "{\"method\": \"local\", \"levels\": 1, \"control_points\": [[0, 0], [0.5, 0], [1, 0], "
+        "[1, 0.5], [1, 1], [0.5, 1], [0, 1], [0, 0.5]]}, \"preset\": \"tipo_2\"");
+    const rugo_roughness_desc* r = &d.roughness;
+    ck_assert_int_eq(r->preset, RUGO_PRESET_TIPO_2);
+    ck_assert(r->seed == ((uint64_t)1 << 53));
+    ck_assert(r->q == 1.96);
+    ck_assert_int_eq(r->estimator, RUGO_ESTIMATOR_COEFFICIENTS);
+    ck_assert(r->friction.alpha == 2.0 && r->friction.lambda_min == 0.1);
+    ck_assert(r->restitution.epsilon == 0.3 && r->restitution.epsilon_max == 0.8);
+    ck_assert_int_eq(r->has_perturbation, 1);
+    ck_assert_int_eq(r->perturbation_method, RUGO_ROUGHEN_LOCAL);
+    ck_assert_int_eq(r->perturbation_levels, 1);
+    ck_assert_int_eq(r->perturbation_count, 8);
+    ck_assert(r->perturbation_points[3].x == 1.0 && r->perturbation_points[3].y == 0.5);
+    rugo_shape_desc_free(&d);
+    ck_assert_ptr_null(d.roughness.perturbation_points);
+
+    /* Partial sub-objects keep the other defaults; seeds in digits of any length up to 2^53. */
+    d = parse_rough_ok(
+        "\"constant\": 0, \"seed\": 12345678901234, \"friction\": {\"alpha\": 3}, "
+        "\"restitution\": {\"epsilon_max\": 1}, \"estimator\": \"detail\", \"perturbation\": "
+        "{\"method\": \"wavelet\", \"levels\": 2.0, \"control_points\": [" /* 16 points */
+        "[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],"
+        "[0,0]]}");
+    ck_assert(d.roughness.seed == 12345678901234ull);
+    ck_assert(d.roughness.friction.alpha == 3.0);
+    ck_assert(d.roughness.friction.lambda_min == rugo_default_friction_map().lambda_min);
+    ck_assert(d.roughness.restitution.epsilon == rugo_default_restitution().epsilon);
+    ck_assert(d.roughness.restitution.epsilon_max == 1.0);
+    ck_assert_int_eq(d.roughness.perturbation_method, RUGO_ROUGHEN_WAVELET);
+    ck_assert_int_eq(d.roughness.perturbation_levels, 2);
+    ck_assert_int_eq(d.roughness.perturbation_count, 16);
+    rugo_shape_desc_free(&d);
+    d = parse_rough_ok("\"preset\": \"tipo_1\", \"seed\": 0, \"q\": 1e-300");
+    ck_assert(d.roughness.seed == 0 && d.roughness.q == 1e-300);
+    rugo_shape_desc_free(&d);
+
+    /* No control points: an empty list of tolerances matches. */
+    rugo_parse_error err;
+    const char* e = "{\"control_points\": [], \"roughness\": {\"tolerances\": []}}";
+    ck_assert_int_eq(shape_parse_n(e, strlen(e), &d, &err), RUGO_OK);
+    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert_int_eq(d.roughness.tolerance_count, 0);
+    rugo_shape_desc_free(&d);
+
+    /* A custom allocator holds the points, the tolerances and the perturbation, and frees them. */
+    budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {budget_alloc, budget_free, &ctx};
+    char buf[1024];
+    rough_text("\"tolerances\": [1, 2, 3, 4], \"perturbation\": {\"method\": \"local\", \"levels\": 1, "
+               "\"control_points\": [[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]}",
+               buf, sizeof buf);
+    ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), &a, &d, &err), RUGO_OK);
+    ck_assert_int_eq(ctx.live, 3);
+    rugo_shape_desc_free(&d);
+    ck_assert_int_eq(ctx.live, 0);
+
+    /* The sample files */
+    size_t length = 0;
+    char* text = read_data("star32_tipo5.json", &length);
+    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &d, &err), RUGO_OK);
+    ck_assert_int_eq(d.count, 32);
+    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert_int_eq(d.roughness.preset, RUGO_PRESET_TIPO_5);
+    ck_assert(d.roughness.seed == 7 && d.roughness.friction.alpha == 1.5 &&
+              d.roughness.restitution.epsilon == 0.4);
+    rugo_shape_desc_free(&d);
+    rugo_text_free(NULL, text);
+    text = read_data("square8_cw_tolerances.json", &length);
+    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &d, &err), RUGO_OK);
+    ck_assert_int_eq(d.count, 8);
+    ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_TOLERANCES);
+    ck_assert(d.roughness.tolerances[7] == 0.8 && d.roughness.seed == 42);
+    rugo_shape_desc_free(&d);
+    rugo_text_free(NULL, text);
+}
+END_TEST
+
+START_TEST(roughness_parse_errors) {
+    char buf[1024];
+    /* The member itself */
+    snprintf(buf, sizeof buf, "{%s, \"roughness\": null}", SQUARE4);
+    expect_shape_fail(buf, RUGO_ERR_BAD_FIELD, "roughness", "found null");
+    snprintf(buf, sizeof buf, "{%s, \"roughness\": [\"tipo_1\"]}", SQUARE4);
+    expect_shape_fail(buf, RUGO_ERR_BAD_FIELD, "roughness", "found an array");
+    snprintf(buf, sizeof buf, "{%s, \"roughness\": \"tipo_1\"}", SQUARE4);
+    expect_shape_fail(buf, RUGO_ERR_BAD_FIELD, "roughness", "found a string");
+    snprintf(buf, sizeof buf, "{%s, \"roughness\": {\"constant\": 1}, \"roughness\": {\"constant\": 1}}",
+             SQUARE4);
+    expect_shape_fail(buf, RUGO_ERR_BAD_FIELD, "roughness", "appears 2 times");
+    /* Exactly one source of tolerances */
+    expect_rough_fail("", RUGO_ERR_BAD_FIELD, "roughness", "needs one of");
+    expect_rough_fail("\"seed\": 3", RUGO_ERR_BAD_FIELD, "roughness", "needs one of");
+    expect_rough_fail("\"preset\": \"tipo_1\", \"constant\": 1", RUGO_ERR_BAD_FIELD, "roughness",
+                      "found \"preset\" and \"constant\"");
+    expect_rough_fail("\"tolerances\": [1, 1, 1, 1], \"preset\": \"tipo_1\"", RUGO_ERR_BAD_FIELD, "roughness",
+                      "only one of");
+    expect_rough_fail("\"preset\": \"tipo_1\", \"tolerances\": [1, 1, 1, 1], \"constant\": 1",
+                      RUGO_ERR_BAD_FIELD, "roughness", "only one of");
+    /* preset */
+    expect_rough_fail("\"preset\": \"tipo_4\"", RUGO_ERR_BAD_FIELD, "roughness.preset",
+                      "unknown preset \"tipo_4\" (expected one of tipo_1, tipo_2, tipo_3, tipo_5)");
+    expect_rough_fail("\"preset\": \"TIPO_1\"", RUGO_ERR_BAD_FIELD, "roughness.preset", NULL);
+    expect_rough_fail("\"preset\": \"tipo_1\\u0000\"", RUGO_ERR_BAD_FIELD, "roughness.preset", "tipo_1\\x00");
+    expect_rough_fail("\"preset\": 1", RUGO_ERR_BAD_FIELD, "roughness.preset", "found a number");
+    expect_rough_fail("\"preset\": null", RUGO_ERR_BAD_FIELD, "roughness.preset", "found null");
+    expect_rough_fail("\"preset\": \"tipo_1\", \"preset\": \"tipo_1\"", RUGO_ERR_BAD_FIELD,
+                      "roughness.preset", "appears 2 times");
+    /* tolerances */
+    expect_rough_fail("\"tolerances\": 0.5", RUGO_ERR_BAD_FIELD, "roughness.tolerances", "found a number");
+    expect_rough_fail("\"tolerances\": [1, 1, 1]", RUGO_ERR_BAD_FIELD, "roughness.tolerances",
+                      "3 tolerances for 4 control points");
+    expect_rough_fail("\"tolerances\": [1, 1, 1, 1, 1]", RUGO_ERR_BAD_FIELD, "roughness.tolerances",
+                      "5 tolerances");
+    expect_rough_fail("\"tolerances\": []", RUGO_ERR_BAD_FIELD, "roughness.tolerances", "0 tolerances");
+    expect_rough_fail("\"tolerances\": [1, 1, \"1\", 1]", RUGO_ERR_BAD_FIELD, "roughness.tolerances[2]",
+                      "found a string");
+    expect_rough_fail("\"tolerances\": [1, [1], 1, 1]", RUGO_ERR_BAD_FIELD, "roughness.tolerances[1]",
+                      "array");
+    expect_rough_fail("\"tolerances\": [1, -0.5, 1, 1]", RUGO_ERR_NEGATIVE_TOLERANCE,
+                      "roughness.tolerances[1]", "-0.5");
+    expect_rough_fail("\"tolerances\": [1, 1, 1, -4.9406564584124654e-324]", RUGO_ERR_NEGATIVE_TOLERANCE,
+                      "roughness.tolerances[3]", NULL);
+    expect_rough_fail("\"tolerances\": [1, 1e999, 1, 1]", RUGO_ERR_NOT_FINITE, "roughness.tolerances[1]",
+                      NULL);
+    /* constant */
+    expect_rough_fail("\"constant\": -1", RUGO_ERR_NEGATIVE_TOLERANCE, "roughness.constant", NULL);
+    expect_rough_fail("\"constant\": \"0.25\"", RUGO_ERR_BAD_FIELD, "roughness.constant", "found a string");
+    expect_rough_fail("\"constant\": -1e400", RUGO_ERR_NOT_FINITE, "roughness.constant", NULL);
+    expect_rough_fail("\"constant\": true", RUGO_ERR_BAD_FIELD, "roughness.constant", "boolean");
+    /* seed: an integer in digits, 0..2^53 */
+    expect_rough_fail("\"constant\": 1, \"seed\": -1", RUGO_ERR_BAD_FIELD, "roughness.seed", "non-negative");
+    expect_rough_fail("\"constant\": 1, \"seed\": -0", RUGO_ERR_BAD_FIELD, "roughness.seed", NULL);
+    expect_rough_fail("\"constant\": 1, \"seed\": 1.5", RUGO_ERR_BAD_FIELD, "roughness.seed", "fraction");
+    expect_rough_fail("\"constant\": 1, \"seed\": 1.0", RUGO_ERR_BAD_FIELD, "roughness.seed", NULL);
+    expect_rough_fail("\"constant\": 1, \"seed\": 1e3", RUGO_ERR_BAD_FIELD, "roughness.seed", "exponent");
+    expect_rough_fail("\"constant\": 1, \"seed\": 1E3", RUGO_ERR_BAD_FIELD, "roughness.seed", NULL);
+    expect_rough_fail("\"constant\": 1, \"seed\": 9007199254740993", RUGO_ERR_BAD_FIELD, "roughness.seed",
+                      "exceeds 2^53");
+    expect_rough_fail("\"constant\": 1, \"seed\": 18446744073709551616", RUGO_ERR_BAD_FIELD, "roughness.seed",
+                      "exceeds");
+    expect_rough_fail("\"constant\": 1, \"seed\": "
+                      "123456789012345678901234567890123456789012345678901234567890",
+                      RUGO_ERR_BAD_FIELD, "roughness.seed", "exceeds");
+    expect_rough_fail("\"constant\": 1, \"seed\": \"5\"", RUGO_ERR_BAD_FIELD, "roughness.seed",
+                      "found a string");
+    expect_rough_fail("\"constant\": 1, \"seed\": null", RUGO_ERR_BAD_FIELD, "roughness.seed", "found null");
+    expect_rough_fail("\"constant\": 1, \"seed\": 1, \"seed\": 1", RUGO_ERR_BAD_FIELD, "roughness.seed",
+                      "appears 2 times");
+    /* q */
+    expect_rough_fail("\"constant\": 1, \"q\": 0", RUGO_ERR_BAD_QUANTILE, "roughness.q", "> 0");
+    expect_rough_fail("\"constant\": 1, \"q\": -0", RUGO_ERR_BAD_QUANTILE, "roughness.q", NULL);
+    expect_rough_fail("\"constant\": 1, \"q\": -1.96", RUGO_ERR_BAD_QUANTILE, "roughness.q", NULL);
+    expect_rough_fail("\"constant\": 1, \"q\": \"0.95\"", RUGO_ERR_BAD_FIELD, "roughness.q",
+                      "found a string");
+    expect_rough_fail("\"constant\": 1, \"q\": 1e999", RUGO_ERR_NOT_FINITE, "roughness.q", NULL);
+    /* estimator */
+    expect_rough_fail("\"constant\": 1, \"estimator\": \"mean\"", RUGO_ERR_BAD_FIELD, "roughness.estimator",
+                      "unknown estimator \"mean\" (expected one of coefficients, detail)");
+    expect_rough_fail("\"constant\": 1, \"estimator\": 0", RUGO_ERR_BAD_FIELD, "roughness.estimator",
+                      "number");
+    /* friction */
+    expect_rough_fail("\"constant\": 1, \"friction\": [1, 0.04]", RUGO_ERR_BAD_FIELD, "roughness.friction",
+                      "found an array");
+    expect_rough_fail("\"constant\": 1, \"friction\": null", RUGO_ERR_BAD_FIELD, "roughness.friction",
+                      "null");
+    expect_rough_fail("\"constant\": 1, \"friction\": {\"alpha\": -1}", RUGO_ERR_BAD_ARGUMENT,
+                      "roughness.friction", "alpha -1");
+    expect_rough_fail("\"constant\": 1, \"friction\": {\"lambda_min\": -0.1}", RUGO_ERR_NEGATIVE_TOLERANCE,
+                      "roughness.friction", NULL);
+    expect_rough_fail("\"constant\": 1, \"friction\": {\"alpha\": \"1\"}", RUGO_ERR_BAD_FIELD,
+                      "roughness.friction.alpha", "found a string");
+    expect_rough_fail("\"constant\": 1, \"friction\": {\"alpha\": 1, \"alpha\": 1}", RUGO_ERR_BAD_FIELD,
+                      "roughness.friction.alpha", "appears 2 times");
+    expect_rough_fail("\"constant\": 1, \"friction\": {\"alpha\": 1e999}", RUGO_ERR_NOT_FINITE,
+                      "roughness.friction.alpha", NULL);
+    /* restitution */
+    expect_rough_fail("\"constant\": 1, \"restitution\": 0.5", RUGO_ERR_BAD_FIELD, "roughness.restitution",
+                      "found a number");
+    expect_rough_fail("\"constant\": 1, \"restitution\": {\"epsilon\": 1.5}", RUGO_ERR_BAD_ARGUMENT,
+                      "roughness.restitution", NULL);
+    expect_rough_fail("\"constant\": 1, \"restitution\": {\"epsilon_max\": -0.1}", RUGO_ERR_BAD_ARGUMENT,
+                      "roughness.restitution", NULL);
+    expect_rough_fail("\"constant\": 1, \"restitution\": {\"epsilon\": 0.95}", RUGO_ERR_EMPTY_RANGE,
+                      "roughness.restitution", "epsilon 0.94999999999999996");
+    expect_rough_fail("\"constant\": 1, \"restitution\": {\"epsilon\": 0.6, \"epsilon_max\": 0.5}",
+                      RUGO_ERR_EMPTY_RANGE, "roughness.restitution", NULL);
+    expect_rough_fail("\"constant\": 1, \"restitution\": {\"epsilon\": null}", RUGO_ERR_BAD_FIELD,
+                      "roughness.restitution.epsilon", "null");
+    /* perturbation */
+    static const char* const eight = "[[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]";
+    expect_rough_fail("\"constant\": 1, \"perturbation\": 1", RUGO_ERR_BAD_FIELD, "roughness.perturbation",
+                      "found a number");
+    expect_rough_fail("\"constant\": 1, \"perturbation\": {}", RUGO_ERR_BAD_FIELD,
+                      "roughness.perturbation.method", "missing field \"method\"");
+    char body[512];
+    snprintf(body, sizeof body,
+             "\"constant\": 1, \"perturbation\": {\"method\": \"fourier\", \"levels\": 1, "
+             "\"control_points\": %s}",
+             eight);
+    expect_rough_fail(body, RUGO_ERR_BAD_FIELD, "roughness.perturbation.method",
+                      "unknown method \"fourier\" (expected one of wavelet, local)");
+    snprintf(body, sizeof body,
+             "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"control_points\": %s}", eight);
+    expect_rough_fail(body, RUGO_ERR_BAD_FIELD, "roughness.perturbation.levels", "missing field \"levels\"");
+    static const char* const bad_levels[] = {"0", "-1", "21", "1.5", "\"1\"", "null", "1e999"};
+    for (size_t i = 0; i < sizeof bad_levels / sizeof bad_levels[0]; ++i) {
+        snprintf(
+            body, sizeof body,
+            "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": %s, \"control_points\": "
+            "%s}",
+            bad_levels[i], eight);
+        expect_rough_fail(body,
+                          strcmp(bad_levels[i], "1e999") == 0 ? RUGO_ERR_NOT_FINITE : RUGO_ERR_BAD_FIELD,
+                          "roughness.perturbation.levels", NULL);
+    }
+    expect_rough_fail("\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 1}",
+                      RUGO_ERR_BAD_FIELD, "roughness.perturbation.control_points",
+                      "missing field \"control_points\"");
+    expect_rough_fail(
+        "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 2, \"control_points\": "
+        "[[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]}",
+        RUGO_ERR_BAD_FIELD, "roughness.perturbation.control_points",
+        "8 control points; 2 levels above 4 control points need 16");
+    expect_rough_fail(
+        "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 1, \"control_points\": "
+        "[[0,0],[0,0],[0,0],[0],[0,0],[0,0],[0,0],[0,0]]}",
+        RUGO_ERR_BAD_FIELD, "roughness.perturbation.control_points[3]", "array of 1 element");
+    expect_rough_fail(
+        "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 1, \"control_points\": "
+        "[[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,1e999]]}",
+        RUGO_ERR_NOT_FINITE, "roughness.perturbation.control_points[7][1]", NULL);
+    expect_rough_fail(
+        "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 1, \"control_points\": "
+        "{}}",
+        RUGO_ERR_BAD_FIELD, "roughness.perturbation.control_points", "found an object");
+    snprintf(body, sizeof body,
+             "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"method\": \"local\", "
+             "\"levels\": 1, \"control_points\": %s}",
+             eight);
+    expect_rough_fail(body, RUGO_ERR_BAD_FIELD, "roughness.perturbation.method", "appears 2 times");
+    snprintf(body, sizeof body,
+             "\"constant\": 1, \"perturbation\": {\"method\": \"local\", \"levels\": 1, "
+             "\"control_points\": %s}, \"perturbation\": null",
+             eight);
+    expect_rough_fail(body, RUGO_ERR_BAD_FIELD, "roughness.perturbation", "appears 2 times");
+
+    /* Positions: line and column of the offending value. */
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    const char* t = "{\n  \"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]],\n  \"roughness\": {\n"
+                    "    \"tolerances\": [0.1, 0.2,\n                   -0.3, 0.4]\n  }\n}\n";
+    ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_str_eq(err.path, "roughness.tolerances[2]");
+    ck_assert_int_eq(err.line, 5);
+    ck_assert_int_eq(err.column, 20);
+    const char* t2 = "{\"control_points\": [],\n \"roughness\": {\"constant\": 0,\n \"seed\": 2.5}}";
+    ck_assert_int_eq(shape_parse_n(t2, strlen(t2), &desc, &err), RUGO_ERR_BAD_FIELD);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_int_eq(err.column, 10);
+    /* error may be NULL; nothing leaks on any error (the sanitizer build checks). */
+    rough_text("\"tolerances\": [1, 2, 3, 4], \"q\": 0", buf, sizeof buf);
+    ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), NULL, &desc, NULL), RUGO_ERR_BAD_QUANTILE);
+    ck_assert_int_eq(desc.has_roughness, 0);
+    ck_assert_ptr_null(desc.roughness.tolerances);
+}
+END_TEST
+
+/* A random valid roughness for n control points; arrays from malloc (free with free_random_roughness). */
+static rugo_roughness_desc random_roughness(test_rng* r, int n) {
+    rugo_roughness_desc d = rugo_default_roughness_desc();
+    d.kind = (rugo_roughness_kind)(test_rng_next(r) % RUGO_ROUGHNESS_KIND_COUNT);
+    d.preset = (rugo_tolerance_preset)(test_rng_next(r) % RUGO_PRESET_COUNT);
+    if (d.kind == RUGO_ROUGHNESS_TOLERANCES) {
+        d.tolerances = (rugo_real*)malloc(sizeof(rugo_real) * (size_t)(n > 0 ? n : 1));
+        for (int i = 0; i < n; ++i) {
+            double x = fabs(random_double(r));
+            d.tolerances[i] = (test_rng_next(r) % 8 == 0) ? -0.0 : x;
+        }
+        d.tolerance_count = n;
+    }
+    d.constant = fabs(random_double(r));
+    switch (test_rng_next(r) % 4) {
+    case 0:
+        d.seed = 0;
+        break;
+    case 1:
+        d.seed = RUGO_MAX_FILE_SEED;
+        break;
+    case 2:
+        d.seed = test_rng_next(r) % 1000;
+        break;
+    default:
+        d.seed = test_rng_next(r) % (RUGO_MAX_FILE_SEED + 1);
+        break;
+    }
+    do
+        d.q = fabs(random_double(r));
+    while (!(d.q > 0.0));
+    d.estimator = (test_rng_next(r) % 2) ? RUGO_ESTIMATOR_COEFFICIENTS : RUGO_ESTIMATOR_DETAIL;
+    d.friction.alpha = fabs(random_double(r));
+    d.friction.lambda_min = fabs(random_double(r));
+    double e1 = test_rng_uniform(r, 0.0, 1.0), e2 = test_rng_uniform(r, 0.0, 1.0);
+    d.restitution.epsilon = e1 < e2 ? e1 : e2;
+    d.restitution.epsilon_max = e1 < e2 ? e2 : e1;
+    if (test_rng_next(r) % 2 && n <= 16) {
+        d.has_perturbation = 1;
+        d.perturbation_method = (rugo_roughen_method)(test_rng_next(r) % 2);
+        d.perturbation_levels = 1 + (int)(test_rng_next(r) % 3);
+        d.perturbation_count = n << d.perturbation_levels;
+        d.perturbation_points = (rugo_vec2*)malloc(sizeof(rugo_vec2) * (size_t)(d.perturbation_count + 1));
+        for (int i = 0; i < d.perturbation_count; ++i)
+            d.perturbation_points[i] = rugo_v2(random_double(r), random_double(r));
+    }
+    return d;
+}
+
+static void free_random_roughness(rugo_roughness_desc* d) {
+    free(d->tolerances);
+    free(d->perturbation_points);
+}
+
+START_TEST(roughness_round_trip_bits) {
+    test_rng r = test_rng_seed(0x70ff);
+    for (int iter = 0; iter < 400; ++iter) {
+        int n = (int)(test_rng_next(&r) % 40);
+        rugo_vec2 pts[40];
+        for (int i = 0; i < n; ++i)
+            pts[i] = rugo_v2(random_double(&r), random_double(&r));
+        rugo_shape_desc desc = make_desc(pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT));
+        desc.has_roughness = 1;
+        desc.roughness = random_roughness(&r, n);
+        char* text = NULL;
+        size_t len = 0;
+        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
+        ck_assert_int_eq((int)strlen(text), (int)len);
+        rugo_shape_desc back;
+        rugo_parse_error err;
+        ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s: %s at %d:%d\n%s",
+                      err.path, err.message, err.line, err.column, text);
+        ck_assert_int_eq(back.count, n);
+        ck_assert_int_eq(back.has_roughness, 1);
+        for (int i = 0; i < n; ++i) {
+            ck_assert(bits_of(back.control_points[i].x) == bits_of(pts[i].x));
+            ck_assert(bits_of(back.control_points[i].y) == bits_of(pts[i].y));
+        }
+        assert_same_roughness(&desc.roughness, &back.roughness);
+        char* text2 = NULL;
+        size_t len2 = 0;
+        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2, &len2), RUGO_OK);
+        ck_assert_int_eq((int)len2, (int)len);
+        ck_assert(memcmp(text, text2, len) == 0);
+        rugo_text_free(NULL, text2);
+        rugo_shape_desc_free(&back);
+        rugo_text_free(NULL, text);
+        free_random_roughness(&desc.roughness);
+    }
+    /* The layout, once */
+    rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    rugo_real tol[4] = {0.25, 0.5, 0, 1};
+    rugo_vec2 pert[8] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5}, {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
+    rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
+    d.has_roughness = 1;
+    d.roughness = rugo_default_roughness_desc();
+    d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
+    d.roughness.tolerances = tol;
+    d.roughness.tolerance_count = 4;
+    d.roughness.seed = 42;
+    d.roughness.has_perturbation = 1;
+    d.roughness.perturbation_method = RUGO_ROUGHEN_LOCAL;
+    d.roughness.perturbation_levels = 1;
+    d.roughness.perturbation_points = pert;
+    d.roughness.perturbation_count = 8;
+    char* text = NULL;
+    size_t len = 0;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_str_eq(text,
+                     "{\n  \"control_points\": [\n    [0, 0],\n    [1, 0],\n    [1, 1],\n    [0, 1]\n  ],\n"
+                     "  \"filter\": \"cdf4.8\",\n  \"roughness\": {\n    \"tolerances\": [\n      0.25,\n"
+                     "      0.5,\n      0,\n      1\n    ],\n    \"seed\": 42,\n"
+                     "    \"q\": 0.94999999999999996,\n    \"estimator\": \"detail\",\n"
+                     "    \"friction\": {\"alpha\": 1, \"lambda_min\": 0.040000000000000001},\n"
+                     "    \"restitution\": {\"epsilon\": 0.5, \"epsilon_max\": 0.90000000000000002},\n"
+                     "    \"perturbation\": {\n      \"method\": \"local\",\n      \"levels\": 1,\n"
+                     "      \"control_points\": [\n        [0, 0],\n        [0.5, 0],\n        [1, 0],\n"
+                     "        [1, 0.5],\n        [1, 1],\n        [0.5, 1],\n        [0, 1],\n"
+                     "        [0, 0.5]\n      ]\n    }\n  }\n}\n");
+    rugo_text_free(NULL, text);
+    d.roughness.has_perturbation = 0;
+    d.roughness.kind = RUGO_ROUGHNESS_PRESET;
+    d.roughness.preset = RUGO_PRESET_TIPO_5;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_ptr_nonnull(
+        strstr(text, "  \"roughness\": {\n    \"preset\": \"tipo_5\",\n    \"seed\": 42,\n"));
+    ck_assert_ptr_null(strstr(text, "perturbation"));
+    rugo_text_free(NULL, text);
+    d.roughness.kind = RUGO_ROUGHNESS_CONSTANT;
+    d.roughness.constant = 0.125;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"constant\": 0.125,\n"));
+    rugo_text_free(NULL, text);
+    /* The sample file: read, write, read gives the same description. */
+    size_t length = 0;
+    char* sample = read_data("star32_tipo5.json", &length);
+    rugo_shape_desc a, b;
+    rugo_parse_error err;
+    ck_assert_int_eq(rugo_shape_desc_parse(sample, length, NULL, &a, &err), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_write(&a, NULL, &text, &len), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_parse(text, len, NULL, &b, &err), RUGO_OK);
+    assert_same_roughness(&a.roughness, &b.roughness);
+    rugo_shape_desc_free(&a);
+    rugo_shape_desc_free(&b);
+    rugo_text_free(NULL, text);
+    rugo_text_free(NULL, sample);
+}
+END_TEST
+
+START_TEST(roughness_write_errors) {
+    rugo_vec2 pts[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    rugo_real tol[4] = {1, 1, 1, 1};
+    rugo_vec2 pert[8] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}};
+    rugo_shape_desc d = make_desc(pts, 4, RUGO_FILTER_DEFAULT);
+    d.has_roughness = 1;
+    char* text = (char*)1;
+    size_t len = 5;
+    /* Each case: break one member of a valid description, expect the status, restore. */
+    struct {
+        rugo_status status;
+        int which;
+    } cases[] = {
+        {RUGO_ERR_BAD_ARGUMENT, 0},       {RUGO_ERR_BAD_ARGUMENT, 1},       {RUGO_ERR_BAD_ARGUMENT, 2},
+        {RUGO_ERR_NULL_ARGUMENT, 3},      {RUGO_ERR_NEGATIVE_TOLERANCE, 4}, {RUGO_ERR_NOT_FINITE, 5},
+        {RUGO_ERR_NEGATIVE_TOLERANCE, 6}, {RUGO_ERR_NOT_FINITE, 7},         {RUGO_ERR_BAD_ARGUMENT, 8},
+        {RUGO_ERR_BAD_QUANTILE, 9},       {RUGO_ERR_BAD_QUANTILE, 10},      {RUGO_ERR_BAD_QUANTILE, 11},
+        {RUGO_ERR_BAD_ARGUMENT, 12},      {RUGO_ERR_BAD_ARGUMENT, 13},      {RUGO_ERR_NEGATIVE_TOLERANCE, 14},
+        {RUGO_ERR_NOT_FINITE, 15},        {RUGO_ERR_EMPTY_RANGE, 16},       {RUGO_ERR_BAD_ARGUMENT, 17},
+        {RUGO_ERR_BAD_ARGUMENT, 18},      {RUGO_ERR_BAD_ARGUMENT, 19},      {RUGO_ERR_BAD_ARGUMENT, 20},
+        {RUGO_ERR_BAD_ARGUMENT, 21},      {RUGO_ERR_NULL_ARGUMENT, 22},     {RUGO_ERR_NOT_FINITE, 23},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        rugo_roughness_desc* r = &d.roughness;
+        *r = rugo_default_roughness_desc();
+        r->kind = RUGO_ROUGHNESS_TOLERANCES;
+        r->tolerances = tol;
+        r->tolerance_count = 4;
+        r->has_perturbation = 1;
+        r->perturbation_levels = 1;
+        r->perturbation_count = 8;
+        r->perturbation_points = pert;
+        for (int i = 0; i < 4; ++i)
+            tol[i] = 1.0;
+        pert[7] = rugo_v2(0, 0);
+        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+        rugo_text_free(NULL, text);
+        switch (cases[c].which) {
+        case 0:
+            r->kind = RUGO_ROUGHNESS_KIND_COUNT;
+            break;
+        case 1:
+            r->kind = RUGO_ROUGHNESS_PRESET;
+            r->preset = RUGO_PRESET_COUNT;
+            break;
+        case 2:
+            r->tolerance_count = 3;
+            break;
+        case 3:
+            r->tolerances = NULL;
+            break;
+        case 4:
+            tol[2] = -1e-9;
+            break;
+        case 5:
+            tol[1] = NAN;
+            break;
+        case 6:
+            r->kind = RUGO_ROUGHNESS_CONSTANT;
+            r->constant = -0.5;
+            break;
+        case 7:
+            r->kind = RUGO_ROUGHNESS_CONSTANT;
+            r->constant = INFINITY;
+            break;
+        case 8:
+            r->seed = RUGO_MAX_FILE_SEED + 1;
+            break;
+        case 9:
+            r->q = 0.0;
+            break;
+        case 10:
+            r->q = NAN;
+            break;
+        case 11:
+            r->q = INFINITY;
+            break;
+        case 12:
+            r->estimator = (rugo_tolerance_estimator)7;
+            break;
+        case 13:
+            r->friction.alpha = -1.0;
+            break;
+        case 14:
+            r->friction.lambda_min = -1.0;
+            break;
+        case 15:
+            r->friction.alpha = NAN;
+            break;
+        case 16:
+            r->restitution.epsilon = 0.95;
+            break;
+        case 17:
+            r->restitution.epsilon_max = 1.5;
+            break;
+        case 18:
+            r->perturbation_method = (rugo_roughen_method)2;
+            break;
+        case 19:
+            r->perturbation_levels = 0;
+            break;
+        case 20:
+            r->perturbation_levels = RUGO_MAX_PERTURBATION_LEVELS + 1;
+            break;
+        case 21:
+            r->perturbation_count = 7;
+            break;
+        case 22:
+            r->perturbation_points = NULL;
+            break;
+        default:
+            pert[7].y = -INFINITY;
+            break;
+        }
+        text = (char*)1;
+        len = 5;
+        rugo_status st = rugo_shape_desc_write(&d, NULL, &text, &len);
+        ck_assert_msg(st == cases[c].status, "case %d: status %d (%s), expected %d", cases[c].which, (int)st,
+                      rugo_status_string(st), (int)cases[c].status);
+        ck_assert_ptr_null(text);
+        ck_assert_int_eq((int)len, 0);
+        /* Without has_roughness the roughness is not looked at. */
+        d.has_roughness = 0;
+        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+        ck_assert_ptr_null(strstr(text, "roughness"));
+        rugo_text_free(NULL, text);
+        d.has_roughness = 1;
+    }
+}
+END_TEST
+
+START_TEST(roughness_write_size_limit) {
+    /* 2^20 long coordinates fit the reader's 64 MiB (shape_max_size_file_fits); 2^20 long tolerances on
+     * top do not, and the writer says so instead of writing a file nobody can read. */
+    int n = RUGO_MAX_CONTROL_POINTS;
+    rugo_vec2* pts = (rugo_vec2*)malloc(sizeof *pts * (size_t)n);
+    rugo_real* tol = (rugo_real*)malloc(sizeof *tol * (size_t)n);
+    ck_assert_ptr_nonnull(pts);
+    ck_assert_ptr_nonnull(tol);
+    for (int i = 0; i < n; ++i) {
+        pts[i] = rugo_v2(-2.2250738585072014e-308, -1.2345678901234567e-300);
+        tol[i] = 1.2345678901234567e-300;
+    }
+    rugo_shape_desc d = make_desc(pts, n, RUGO_FILTER_DEFAULT);
+    d.has_roughness = 1;
+    d.roughness = rugo_default_roughness_desc();
+    d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
+    d.roughness.tolerances = tol;
+    d.roughness.tolerance_count = n;
+    char* text = (char*)1;
+    size_t len = 5;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_ptr_null(text);
+    ck_assert_int_eq((int)len, 0);
+    /* A preset instead of the list fits. */
+    d.roughness.kind = RUGO_ROUGHNESS_PRESET;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_uint_le(len, RUGO_MAX_JSON_BYTES);
+    rugo_text_free(NULL, text);
+    free(tol);
+    free(pts);
+}
+END_TEST
+
+START_TEST(roughness_tolerances_resolve) {
+    rugo_roughness_desc r = rugo_default_roughness_desc();
+    rugo_real out[40], expect[40];
+    /* Presets go through rugo_tolerances_preset with the seed. */
+    for (int p = 0; p < RUGO_PRESET_COUNT; ++p) {
+        r.kind = RUGO_ROUGHNESS_PRESET;
+        r.preset = (rugo_tolerance_preset)p;
+        r.seed = 1234;
+        ck_assert_int_eq(rugo_roughness_tolerances(&r, 40, out), RUGO_OK);
+        ck_assert_int_eq(rugo_tolerances_preset(r.preset, 1234, 40, expect), RUGO_OK);
+        ck_assert(memcmp(out, expect, sizeof out) == 0);
+    }
+    r.preset = RUGO_PRESET_TIPO_3;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 8, out), RUGO_OK);
+    ck_assert(out[0] == 0.32 && out[1] == 0.24 && out[2] == 0.20 && out[3] == 0.24 && out[4] == 0.32);
+    /* tipo_2 depends on the seed, deterministically. */
+    r.preset = RUGO_PRESET_TIPO_2;
+    r.seed = 5;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 40, out), RUGO_OK);
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 40, expect), RUGO_OK);
+    ck_assert(memcmp(out, expect, sizeof out) == 0);
+    r.seed = 6;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 40, expect), RUGO_OK);
+    ck_assert(memcmp(out, expect, sizeof out) != 0);
+    /* Constant and list */
+    r.kind = RUGO_ROUGHNESS_CONSTANT;
+    r.constant = 0.75;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 5, out), RUGO_OK);
+    ck_assert(out[0] == 0.75 && out[4] == 0.75);
+    r.constant = -1.0;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 5, out), RUGO_ERR_NEGATIVE_TOLERANCE);
+    rugo_real list[4] = {0.1, 0.2, 0.3, 0.4};
+    r.kind = RUGO_ROUGHNESS_TOLERANCES;
+    r.tolerances = list;
+    r.tolerance_count = 4;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_OK);
+    ck_assert(memcmp(out, list, sizeof list) == 0);
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 5, out), RUGO_ERR_BAD_ARGUMENT);
+    list[1] = NAN;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_ERR_NOT_FINITE);
+    r.tolerances = NULL;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_ERR_NULL_ARGUMENT);
+    /* Arguments */
+    r.kind = RUGO_ROUGHNESS_KIND_COUNT;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_ERR_BAD_ARGUMENT);
+    r.kind = RUGO_ROUGHNESS_PRESET;
+    r.preset = RUGO_PRESET_COUNT;
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_ERR_BAD_ARGUMENT);
+    r.preset = RUGO_PRESET_TIPO_1;
+    ck_assert_int_eq(rugo_roughness_tolerances(NULL, 4, out), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 0, out), RUGO_ERR_TOO_FEW_POINTS);
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, RUGO_MAX_CONTROL_POINTS + 1, out),
+                     RUGO_ERR_TOO_MANY_POINTS);
+}
+END_TEST
+
+START_TEST(roughness_out_of_memory) {
+    char buf[1024];
+    rough_text("\"tolerances\": [1, 2, 3, 4], \"perturbation\": {\"method\": \"wavelet\", \"levels\": 1, "
+               "\"control_points\": [[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]}",
+               buf, sizeof buf);
+    for (long budget = 0;; ++budget) {
+        budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        rugo_shape_desc desc;
+        rugo_parse_error err;
+        rugo_status st = rugo_shape_desc_parse(buf, strlen(buf), &a, &desc, &err);
+        if (st == RUGO_OK) {
+            ck_assert_int_eq(ctx.live, 3);
+            rugo_shape_desc_free(&desc);
+            ck_assert_int_eq(ctx.live, 0);
+            break;
+        }
+        ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
+        ck_assert_int_eq(desc.has_roughness, 0);
+        ck_assert_ptr_null(desc.roughness.tolerances);
+        ck_assert_int_eq(ctx.live, 0);
+        ck_assert_int_lt(budget, 100);
+    }
 }
 END_TEST
 
@@ -1236,6 +2039,19 @@ static const char* const snippets[] = {
     "\"filter\": \"cdf4.2\",",
     "\"control_points\": ",
     "\"filter\": \"cdf4.9\",",
+    "\"roughness\": {\"preset\": \"tipo_3\"},",
+    "\"roughness\": {\"constant\": -1},",
+    "\"preset\": \"tipo_2\",",
+    "\"constant\": 0.5,",
+    "\"seed\": 9007199254740993,",
+    "\"seed\": 12,",
+    "\"q\": 0,",
+    "\"estimator\": \"coefficients\",",
+    "\"friction\": {\"alpha\": -1},",
+    "\"restitution\": {\"epsilon\": 0.95},",
+    "\"levels\": 2,",
+    "-0.25",
+    "-",
     "[1, 2],",
     "[1, 2, 3],",
     "0.5e+3",
@@ -1305,7 +2121,9 @@ static void check_shape_result(rugo_status st, const rugo_shape_desc* desc, cons
                                const char* input, size_t n) {
     ck_assert_msg(st == RUGO_OK || st == RUGO_ERR_PARSE || st == RUGO_ERR_BAD_FIELD ||
                       st == RUGO_ERR_NOT_FINITE || st == RUGO_ERR_BAD_FILTER ||
-                      st == RUGO_ERR_TOO_MANY_POINTS,
+                      st == RUGO_ERR_TOO_MANY_POINTS || st == RUGO_ERR_NEGATIVE_TOLERANCE ||
+                      st == RUGO_ERR_BAD_QUANTILE || st == RUGO_ERR_BAD_ARGUMENT ||
+                      st == RUGO_ERR_EMPTY_RANGE,
                   "status %d for input <%.*s>", (int)st, (int)n, input);
     ck_assert(str_nul_terminated(err->path, sizeof err->path));
     ck_assert(str_nul_terminated(err->message, sizeof err->message));
@@ -1314,8 +2132,19 @@ static void check_shape_result(rugo_status st, const rugo_shape_desc* desc, cons
         ck_assert((int)desc->filter >= 0 && desc->filter < RUGO_FILTER_COUNT);
         for (int i = 0; i < desc->count; ++i)
             ck_assert(isfinite(desc->control_points[i].x) && isfinite(desc->control_points[i].y));
+        if (desc->has_roughness) {
+            const rugo_roughness_desc* r = &desc->roughness;
+            ck_assert((int)r->kind >= 0 && r->kind < RUGO_ROUGHNESS_KIND_COUNT);
+            if (r->kind == RUGO_ROUGHNESS_TOLERANCES) ck_assert_int_eq(r->tolerance_count, desc->count);
+            ck_assert(r->seed <= RUGO_MAX_FILE_SEED);
+            ck_assert(r->q > 0.0);
+            ck_assert(!r->has_perturbation || r->perturbation_count == desc->count << r->perturbation_levels);
+        }
     } else {
         ck_assert_ptr_null(desc->control_points);
+        ck_assert_int_eq(desc->has_roughness, 0);
+        ck_assert_ptr_null(desc->roughness.tolerances);
+        ck_assert_ptr_null(desc->roughness.perturbation_points);
         ck_assert_msg(err->message[0] != '\0', "no message for input <%.*s>", (int)n, input);
         ck_assert_msg(err->line >= 1 && err->column >= 1, "no position for input <%.*s>", (int)n, input);
         /* The position is inside the text (or just past its end). */
@@ -1329,6 +2158,8 @@ static void check_shape_result(rugo_status st, const rugo_shape_desc* desc, cons
 START_TEST(fuzz_mutations) {
     size_t len_star = 0;
     char* star = read_data("star32.json", &len_star);
+    size_t len_rough = 0;
+    char* rough = read_data("star32_tipo5.json", &len_rough);
     const char* seeds[] = {
         star,
         "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]], \"filter\": \"cdf4.2\"}",
@@ -1336,16 +2167,28 @@ START_TEST(fuzz_mutations) {
         "{\"a\": [true, "
         "false, null]}}",
         "{\"points\": [[1, 2], [3, 4]], \"control_points\": [], \"filter\": \"cdf4.12\"}",
+        rough,
+        "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]], \"roughness\": {\"tolerances\": [0.1, 0.2, "
+        "0, 1e-3], "
+        "\"seed\": 7, \"q\": 1.96, \"estimator\": \"coefficients\", \"friction\": {\"alpha\": 2, "
+        "\"lambda_min\": "
+        "0.1}, \"restitution\": {\"epsilon\": 0.3, \"epsilon_max\": 0.8}, \"perturbation\": {\"method\": "
+        "\"local\", \"levels\": 1, \"control_points\": [[0, 0], [0.5, 0], [1, 0], [1, 0.5], [1, 1], [0.5, "
+        "1], [0, 1], "
+        "[0, 0.5]]}}}",
+        "{\"roughness\": {\"constant\": 0.25, \"seed\": 3}, \"control_points\": [[0, 0], [1, 0], [0, 1], [1, "
+        "1]]}",
     };
-    size_t seed_len[4];
-    for (int i = 0; i < 4; ++i)
+    enum { SEEDS = sizeof seeds / sizeof seeds[0] };
+    size_t seed_len[SEEDS];
+    for (int i = 0; i < SEEDS; ++i)
         seed_len[i] = strlen(seeds[i]);
     enum { CAP = 4096 };
     char work[CAP];
     test_rng r = test_rng_seed(0xf022);
     int counts[RUGO_STATUS_COUNT] = {0};
-    for (int iter = 0; iter < 30000; ++iter) {
-        int s = (int)(test_rng_next(&r) % 4);
+    for (int iter = 0; iter < 40000; ++iter) {
+        int s = (int)(test_rng_next(&r) % SEEDS);
         size_t n = seed_len[s] < CAP ? seed_len[s] : CAP;
         memcpy(work, seeds[s], n);
         n = mutate(&r, work, n, CAP);
@@ -1365,6 +2208,8 @@ START_TEST(fuzz_mutations) {
             ck_assert_int_eq(back.count, desc.count);
             ck_assert(desc.count == 0 || memcmp(back.control_points, desc.control_points,
                                                 sizeof(rugo_vec2) * (size_t)desc.count) == 0);
+            ck_assert_int_eq(back.has_roughness, desc.has_roughness);
+            if (desc.has_roughness) assert_same_roughness(&desc.roughness, &back.roughness);
             rugo_shape_desc_free(&back);
             rugo_text_free(NULL, text);
         } else if (iter % 16 == 0) {
@@ -1391,6 +2236,110 @@ START_TEST(fuzz_mutations) {
     ck_assert_int_gt(counts[RUGO_ERR_NOT_FINITE], 10);
     ck_assert_int_gt(counts[RUGO_ERR_BAD_FILTER], 10);
     rugo_text_free(NULL, star);
+    rugo_text_free(NULL, rough);
+}
+END_TEST
+
+/* Roughness objects assembled from random members — valid values, wrong types, out-of-range values,
+ * repeats — then sometimes mutated bytewise: the semantic checks get the traffic that byte mutations
+ * of whole files rarely reach. */
+START_TEST(fuzz_roughness_members) {
+    static const char* const sources[] = {"\"preset\": \"tipo_1\"",
+                                          "\"preset\": \"tipo_2\"",
+                                          "\"preset\": \"tipo_5\"",
+                                          "\"preset\": \"tipo_9\"",
+                                          "\"preset\": 3",
+                                          "\"tolerances\": [0.1, 0.2, 0.3, 0.4]",
+                                          "\"tolerances\": [0.1, -0.2, 0.3, 0.4]",
+                                          "\"tolerances\": [0.1, 0.2, 0.3]",
+                                          "\"tolerances\": [0, -0, 1e-300, 1e300]",
+                                          "\"tolerances\": \"x\"",
+                                          "\"constant\": 0.25",
+                                          "\"constant\": -0.25",
+                                          "\"constant\": 0",
+                                          "\"constant\": [1]"};
+    static const char* const others[] = {
+        "\"seed\": 0",
+        "\"seed\": 9007199254740992",
+        "\"seed\": 9007199254740993",
+        "\"seed\": 1.5",
+        "\"seed\": -3",
+        "\"seed\": 2e2",
+        "\"q\": 1.96",
+        "\"q\": 0",
+        "\"q\": -1",
+        "\"q\": \"1\"",
+        "\"estimator\": \"detail\"",
+        "\"estimator\": \"coefficients\"",
+        "\"estimator\": \"max\"",
+        "\"friction\": {\"alpha\": 2, \"lambda_min\": 0.1}",
+        "\"friction\": {\"alpha\": -2}",
+        "\"friction\": {\"lambda_min\": -1}",
+        "\"friction\": []",
+        "\"restitution\": {\"epsilon\": 0.2}",
+        "\"restitution\": {\"epsilon\": 0.95}",
+        "\"restitution\": {\"epsilon_max\": 2}",
+        "\"restitution\": {\"epsilon\": 0.7, \"epsilon_max\": 0.6}",
+        "\"restitution\": true",
+        "\"perturbation\": {\"method\": \"wavelet\", \"levels\": 1, \"control_points\": "
+        "[[0,0],[1,0],[2,0],[2,1],[2,2],[1,2],[0,2],[0,1]]}",
+        "\"perturbation\": {\"method\": \"local\", \"levels\": 2, \"control_points\": [[0,0],[1,0]]}",
+        "\"perturbation\": {\"method\": \"x\", \"levels\": 1, \"control_points\": []}",
+        "\"perturbation\": {\"levels\": 1}",
+        "\"unknown\": [1, {\"a\": null}]"};
+    enum { NS = sizeof sources / sizeof sources[0], NO = sizeof others / sizeof others[0], CAP = 2048 };
+    test_rng r = test_rng_seed(0xb0b);
+    int counts[RUGO_STATUS_COUNT] = {0};
+    char work[CAP];
+    for (int iter = 0; iter < 20000; ++iter) {
+        int n =
+            snprintf(work, CAP, "{\"control_points\": [[0, 0], [2, 0], [2, 2], [0, 2]], \"roughness\": {");
+        int members = (int)(test_rng_next(&r) % 5);
+        int first = 1;
+        /* Usually one source, sometimes none or two. */
+        int nsrc = (int)(test_rng_next(&r) % 8);
+        nsrc = nsrc == 0 ? 0 : (nsrc == 1 ? 2 : 1);
+        for (int k = 0; k < nsrc + members; ++k) {
+            const char* m = k < nsrc ? sources[test_rng_next(&r) % NS] : others[test_rng_next(&r) % NO];
+            n += snprintf(work + n, CAP - (size_t)n, "%s%s", first ? "" : ", ", m);
+            first = 0;
+        }
+        n += snprintf(work + n, CAP - (size_t)n, "}}");
+        ck_assert_int_lt(n, CAP);
+        size_t len = (size_t)n;
+        if (test_rng_next(&r) % 4 == 0) len = mutate(&r, work, len, CAP);
+        char* input = exact_copy(work, len);
+        rugo_shape_desc desc;
+        rugo_parse_error err;
+        rugo_status st = rugo_shape_desc_parse(input, len, NULL, &desc, &err);
+        check_shape_result(st, &desc, &err, input, len);
+        ++counts[st];
+        if (st == RUGO_OK) {
+            char* text = NULL;
+            size_t tl = 0;
+            ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &tl), RUGO_OK);
+            rugo_shape_desc back;
+            ck_assert_int_eq(rugo_shape_desc_parse(text, tl, NULL, &back, &err), RUGO_OK);
+            ck_assert_int_eq(back.has_roughness, desc.has_roughness);
+            if (desc.has_roughness) assert_same_roughness(&desc.roughness, &back.roughness);
+            rugo_shape_desc_free(&back);
+            rugo_text_free(NULL, text);
+        } else if (iter % 8 == 0) {
+            rugo_parse_error err2;
+            rugo_shape_desc d2;
+            ck_assert_int_eq(rugo_shape_desc_parse(input, len, NULL, &d2, &err2), st);
+            ck_assert(memcmp(&err, &err2, sizeof err) == 0);
+        }
+        rugo_shape_desc_free(&desc);
+        free(input);
+    }
+    ck_assert_int_gt(counts[RUGO_OK], 500);
+    ck_assert_int_gt(counts[RUGO_ERR_PARSE], 100);
+    ck_assert_int_gt(counts[RUGO_ERR_BAD_FIELD], 500);
+    ck_assert_int_gt(counts[RUGO_ERR_NEGATIVE_TOLERANCE], 100);
+    ck_assert_int_gt(counts[RUGO_ERR_BAD_QUANTILE], 100);
+    ck_assert_int_gt(counts[RUGO_ERR_BAD_ARGUMENT], 100);
+    ck_assert_int_gt(counts[RUGO_ERR_EMPTY_RANGE], 100);
 }
 END_TEST
 
@@ -1461,9 +2410,22 @@ int main(void) {
     tcase_add_test(shape, read_file_cases);
     suite_add_tcase(s, shape);
 
+    TCase* rough = tcase_create("roughness");
+    tcase_set_timeout(rough, 300);
+    tcase_add_test(rough, roughness_defaults);
+    tcase_add_test(rough, roughness_parse_valid);
+    tcase_add_test(rough, roughness_parse_errors);
+    tcase_add_test(rough, roughness_round_trip_bits);
+    tcase_add_test(rough, roughness_write_errors);
+    tcase_add_test(rough, roughness_write_size_limit);
+    tcase_add_test(rough, roughness_tolerances_resolve);
+    tcase_add_test(rough, roughness_out_of_memory);
+    suite_add_tcase(s, rough);
+
     TCase* fuzz = tcase_create("fuzz");
     tcase_set_timeout(fuzz, 600);
     tcase_add_test(fuzz, fuzz_mutations);
+    tcase_add_test(fuzz, fuzz_roughness_members);
     tcase_add_test(fuzz, fuzz_token_soup);
     suite_add_tcase(s, fuzz);
     return test_run_suite(s);

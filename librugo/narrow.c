@@ -1,0 +1,1445 @@
+/* Narrow phase between two cubic Bezier pieces (narrow.h; SPEC 8; DESIGN "Contact semantics").
+ *
+ * Frame. Everything runs in a local frame: the centroid of the 8 control points is subtracted (exact,
+ * by Sterbenz, for pieces far from the origin) and the result scaled by a power of two so that every
+ * coordinate lies in [-1, 1]. Tolerances are in that frame, i.e. relative to the pieces' size;
+ * results are mapped back at the end (parameters are frame-free; distances are exact rescalings).
+ *
+ * Subdivision. Both searches walk the parameter square depth first with a fixed stack of boxes
+ * (s0,s1,t0,t1). On each box the sub-pieces, their hodographs and second derivatives are extracted
+ * afresh from the original Bezier points (two de Casteljau splits; no round-off accumulates with
+ * depth); the piece with the larger control polygon is split. Limits: boxes narrower than 2^-26 in
+ * both parameters are leaves, at most BOX_BUDGET boxes per search (then overflow), at most
+ * NEWTON_MAX steps per Newton run, and a Newton run stops when it leaves its box's neighbourhood.
+ *
+ * Crossings, F = f(s) - g(t) = 0 (6.12). A box is dropped when
+ *   - the projections of the two control polygons on x, y, both chord normals and the line between
+ *     their centroids are disjoint (Bernstein coefficients of u·F of one strict sign), or
+ *   - Krawczyk's interval-Newton operator (Y = J(centre)^-1, J = [f' -g'] bounded by the hodographs'
+ *     control points) maps the box outside itself: no root.
+ * Uniqueness: cross(f'_i, g'_j) of one strict sign over all hodograph control points (two meetings
+ * P != Q would give, by Rolle on cross(f - P, Q - P) and on cross(g - P, Q - P), tangents of both
+ * parallel to Q - P). Then Newton from the centre; its root is accepted if its uncertainty ball
+ * (round-off residual / lower bound of |det J| over the box) lies in the box: a root certainly exists
+ * there, and a numerical zero next to a touching (whose ball reaches the touching) is not taken for
+ * a crossing. kind = the certified sign of cross(f', g'). Boxes of side <= 2^-20 whose tangents are
+ * not separated try the touching hypothesis: Newton on the (C, H) form below (well conditioned at a
+ * touching) and, at distance <= TAU_TOUCH, a touching root that resolves everything within
+ * R_FALLBACK. Leaves: Newton from the centre, best iterate, kept if |F| <= TAU_TOUCH. Uncertified
+ * roots get their kind from the side of g(t -+ delta) relative to f (left of f' = inside = +1).
+ *
+ * Stationary pairs, H1 = (f-g)·f' = 0, H2 = (f-g)·g' = 0 (6.14), with f != g. A box is dropped when
+ *   - the polygons' projections are farther apart than the cutoff;
+ *   - C = cross(f', g') keeps one strict sign (at a stationary pair with f != g both tangents are
+ *     normal to f - g, hence parallel; this removes transversal crossings and nearly parallel pieces);
+ *   - the Bernstein coefficients of H1 (degree 5 x 3), H2 (3 x 5) or of either row of adj(J) (H1, H2)
+ *     (J at the centre; degree 5 x 5; the rows remove the first-order dependence along a valley of
+ *     nearly equidistant curves) keep one strict sign;
+ *   - Krawczyk's operator excludes the box (system below).
+ * The system solved: (C, H2) where g' != 0 on the box, else (C, H1) where f' != 0, else (H1, H2). Same
+ * roots away from crossings (f' parallel to g' and (f-g)·g' = 0 give (f-g)·f' = 0), but the Jacobian
+ * of (H1, H2) has determinant ~ d dk at a near-touching (distance d, curvature difference dk) while
+ * that of (C, H) has ~ dk: it stays well conditioned down to touching curves. For (H1, H2):
+ *   J = [[ |f'|^2 + (f-g)·f'', -g'·f' ], [ g'·f', -|g'|^2 + (f-g)·g'' ]]  (= dH/d(s,t); J u = -H).
+ * Uniqueness: the interval Jacobian with rows at independent points of the box is non-singular (two
+ * roots would make both gradients normal to the segment joining them, mean value theorem). Then
+ * Newton and the same existence ball. Boxes of side <= 2^-18 that are still not certified (nearly
+ * degenerate pairs, e.g. almost touching curves) accept a Newton root inside the box and resolve
+ * everything within R_MERGE of it; leaves keep a Newton root whose residual is near round-off.
+ * Classification by the Hessian of D = |f-g|^2/2 ([[J11, J12], [J12, -J22]]): eigenvalues beyond
+ * round-off decide min / saddle / max; a semi-definite direction is probed along its eigenvector with
+ * the smallest step that changes D beyond round-off (rising both ways, or flat: minimum side;
+ * falling both ways: maximum side; else saddle). A pair at distance <= TAU_TOUCH is a minimum.
+ * Transversal crossings are not reported as stationary pairs; a touching (kind 0) crossing is always
+ * also a minimum, and a minimum at distance <= TAU_TOUCH always also a touching crossing.
+ *
+ * Degenerate input: a point-like piece (extent <= 1e-13 of the frame) reduces to the point query,
+ * with parameter 0 for the point piece; straight parallel pieces (cross(f', g') zero within
+ * round-off) get the two end pairs of the overlap of their ranges as minima (overflow only when they
+ * coincide: infinitely many crossings, reported as the two end pairs of kind 0); coincident curved
+ * pieces fill the root lists (or the box budget) and set overflow; the stationary search is then
+ * skipped (every pair on the common stretch is a touching). `fallback` counts the decisions taken
+ * without a uniqueness certificate: leaves, touchings, small-box acceptances, budget exhaustion.
+ * Non-finite input gives an empty result; a NaN or negative cutoff gives crossings only. */
+#include "narrow.h"
+
+#include "internal.h"
+#include "poly.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#define EPS DBL_EPSILON
+
+enum {
+    STACK_MAX = 128,   /* depth-first stack; depth <= 2 * 26 + 1 */
+    BOX_BUDGET = 6000, /* boxes per search */
+    NEWTON_MAX = 40,
+    TMP_CROSS = 32, /* working root lists (larger than the output arrays, to detect overflow) */
+    TMP_STAT = 64,
+    KIND_PROBE = 99 /* crossing kind still to be decided by probing */
+};
+
+#define H_MIN (1.0 / 67108864.0)  /* 2^-26: smallest box side in parameter */
+#define D_MIN (8.0 * EPS)         /* sub-pieces smaller than this cannot be told apart */
+#define TAU_F (32.0 * EPS)        /* round-off allowance on coordinates (local frame) */
+#define TAU_TOUCH (512.0 * EPS)   /* distance counted as zero: touching */
+#define SLACK 1e-12               /* a Newton root this far outside its box still counts as inside */
+#define DOM_SLACK 1e-10           /* roots this far outside [0,1] are clamped in */
+#define R_ROOT 1e-9               /* minimal parameter distance between distinct roots */
+#define R_FALLBACK 1e-6           /* merge radius around crossings found in leaves */
+#define H_ACC (1.0 / 262144.0)    /* 2^-18: uncertified stationary boxes this small accept a Newton root */
+#define R_MERGE 1e-5              /* ... and everything within this parameter distance of it */
+#define H_TOUCH (1.0 / 1048576.0) /* 2^-20: crossing boxes this small try the touching hypothesis */
+#define POINT_TOL 1e-13           /* a piece within this extent is a point */
+
+typedef struct box {
+    rugo_real s0, s1, t0, t1;
+} box;
+
+typedef struct root {
+    rugo_real s, t;
+    rugo_real radius; /* dedupe radius in parameter */
+    int kind;
+    int fallback;
+} root;
+
+typedef struct ctx {
+    rugo_vec2 f[4], g[4];     /* local frame */
+    rugo_vec2 df[3], dg[3];   /* hodographs (derivative in the global parameter) */
+    rugo_vec2 ddf[2], ddg[2]; /* second derivatives */
+    rugo_vec2 origin;
+    rugo_real scale;  /* caller point = origin + scale * local point */
+    rugo_real cutoff; /* local frame; negative: no stationary pairs */
+    int newton, fallback, overflow;
+    root cross[TMP_CROSS];
+    int ncross;
+    root stat[TMP_STAT];
+    int nstat;
+} ctx;
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Small helpers */
+
+/* max / min without the NaN handling of fmax / fmin (which are library calls): inputs are finite. */
+static rugo_real mx(rugo_real a, rugo_real b) { return a > b ? a : b; }
+static rugo_real mn(rugo_real a, rugo_real b) { return a < b ? a : b; }
+
+static rugo_vec2 lerp(rugo_vec2 a, rugo_vec2 b, rugo_real u) {
+    return rugo_v2((1.0 - u) * a.x + u * b.x, (1.0 - u) * a.y + u * b.y);
+}
+
+static rugo_real vmax(rugo_vec2 v) { return mx(fabs(v.x), fabs(v.y)); }
+
+/* Local frame: magnitudes are O(1), so the plain formula cannot overflow (hypot is much slower). */
+static rugo_real vlen(rugo_vec2 v) { return sqrt(v.x * v.x + v.y * v.y); }
+
+static int sgn(rugo_real v) { return (v > 0.0) - (v < 0.0); }
+
+/* de Casteljau evaluation, degree n <= 3. */
+static rugo_vec2 bez(const rugo_vec2* p, int n, rugo_real u) {
+    rugo_vec2 w[4];
+    for (int i = 0; i <= n; ++i)
+        w[i] = p[i];
+    for (int k = 1; k <= n; ++k)
+        for (int i = 0; i <= n - k; ++i)
+            w[i] = lerp(w[i], w[i + 1], u);
+    return w[0];
+}
+
+/* Bezier points of the restriction of p (degree n <= 3) to [a, b] within [0, 1]. */
+static void sub_bezier(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo_vec2* out) {
+    rugo_vec2 w[4], part[4];
+    for (int i = 0; i <= n; ++i)
+        w[i] = p[i];
+    if (b < 1.0) {
+        part[0] = w[0];
+        for (int k = 1; k <= n; ++k) {
+            for (int i = 0; i <= n - k; ++i)
+                w[i] = lerp(w[i], w[i + 1], b);
+            part[k] = w[0];
+        }
+        for (int i = 0; i <= n; ++i)
+            w[i] = part[i];
+    }
+    if (a > 0.0) {
+        rugo_real u = a / b;
+        part[n] = w[n];
+        for (int k = 1; k <= n; ++k) {
+            for (int i = 0; i <= n - k; ++i)
+                w[i] = lerp(w[i], w[i + 1], u);
+            part[n - k] = w[n - k];
+        }
+        for (int i = 0; i <= n; ++i)
+            w[i] = part[i];
+    }
+    for (int i = 0; i <= n; ++i)
+        out[i] = w[i];
+}
+
+/* Largest distance (max-norm) between control points: a size of the sub-piece. */
+static rugo_real poly_diam(const rugo_vec2* p, int n) {
+    rugo_real lox = p[0].x, hix = p[0].x, loy = p[0].y, hiy = p[0].y;
+    for (int i = 1; i <= n; ++i) {
+        lox = mn(lox, p[i].x);
+        hix = mx(hix, p[i].x);
+        loy = mn(loy, p[i].y);
+        hiy = mx(hiy, p[i].y);
+    }
+    return mx(hix - lox, hiy - loy);
+}
+
+/* Unit normal of the chord of a control polygon (or of its middle leg for a closed loop), or 0. */
+static rugo_vec2 chord_normal(const rugo_vec2* p) {
+    rugo_vec2 d = rugo_v2_sub(p[3], p[0]);
+    rugo_real l = vlen(d);
+    if (!(l > 0.25 * poly_diam(p, 3)) || !(l > 0.0)) {
+        d = rugo_v2_sub(p[2], p[1]);
+        l = vlen(d);
+        if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
+    }
+    return rugo_v2(-d.y / l, d.x / l);
+}
+
+/* Lower bound of the distance between the convex hulls of F and G (4 points each) from their
+ * projections on x, y, the two chord normals and the line between the polygons' centres. */
+static rugo_real hull_gap(const rugo_vec2 F[4], const rugo_vec2 G[4]) {
+    rugo_vec2 dir[5];
+    int nd = 0;
+    dir[nd++] = rugo_v2(1.0, 0.0);
+    dir[nd++] = rugo_v2(0.0, 1.0);
+    rugo_vec2 nf = chord_normal(F), ng = chord_normal(G);
+    if (nf.x != 0.0 || nf.y != 0.0) dir[nd++] = nf;
+    if (ng.x != 0.0 || ng.y != 0.0) dir[nd++] = ng;
+    rugo_vec2 cf =
+        rugo_v2(0.25 * (F[0].x + F[1].x + F[2].x + F[3].x), 0.25 * (F[0].y + F[1].y + F[2].y + F[3].y));
+    rugo_vec2 cg =
+        rugo_v2(0.25 * (G[0].x + G[1].x + G[2].x + G[3].x), 0.25 * (G[0].y + G[1].y + G[2].y + G[3].y));
+    rugo_vec2 dc = rugo_v2_sub(cf, cg);
+    rugo_real lc = vlen(dc);
+    if (lc > 0.0) dir[nd++] = rugo_v2(dc.x / lc, dc.y / lc);
+    rugo_real gap = -INFINITY;
+    for (int k = 0; k < nd; ++k) {
+        rugo_real flo = INFINITY, fhi = -INFINITY, glo = INFINITY, ghi = -INFINITY;
+        for (int i = 0; i < 4; ++i) {
+            rugo_real a = rugo_v2_dot(dir[k], F[i]), b = rugo_v2_dot(dir[k], G[i]);
+            flo = mn(flo, a);
+            fhi = mx(fhi, a);
+            glo = mn(glo, b);
+            ghi = mx(ghi, b);
+        }
+        gap = mx(gap, mx(flo - ghi, glo - fhi));
+    }
+    return gap;
+}
+
+/* +1 / -1 if every value is above tau / below -tau, else 0. */
+static int one_sign(const rugo_real* v, int n, rugo_real tau) {
+    int pos = 1, neg = 1;
+    for (int i = 0; i < n; ++i) {
+        pos &= v[i] > tau;
+        neg &= v[i] < -tau;
+    }
+    return pos ? 1 : (neg ? -1 : 0);
+}
+
+/* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
+ * (0 if not one-signed). */
+static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
+    rugo_real c[9], mf = 0.0, mg = 0.0, cmin = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        mf = mx(mf, vlen(dF[i]));
+        mg = mx(mg, vlen(dG[i]));
+        for (int j = 0; j < 3; ++j) {
+            c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
+            cmin = mn(cmin, fabs(c[3 * i + j]));
+        }
+    }
+    int sign = one_sign(c, 9, 16.0 * EPS * mf * mg);
+    /* Over the box |det J| = |cross(f', g')| >= cmin and |J| <= mf + mg, so a point with |F| <= 16 eps
+     * (computed residual plus evaluation error) has a root within 2 * 16 eps (mf + mg) / cmin. */
+    if (radius) *radius = sign ? 32.0 * EPS * (mf + mg) / cmin : INFINITY;
+    return sign;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Interval arithmetic (round-off is covered by explicit margins) */
+
+typedef struct ival {
+    rugo_real lo, hi;
+} ival;
+
+static ival iv(rugo_real lo, rugo_real hi) {
+    ival r;
+    r.lo = lo;
+    r.hi = hi;
+    return r;
+}
+static ival iv_add(ival a, ival b) { return iv(a.lo + b.lo, a.hi + b.hi); }
+static ival iv_neg(ival a) { return iv(-a.hi, -a.lo); }
+static ival iv_mul(ival a, ival b) {
+    rugo_real p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
+    return iv(mn(mn(p0, p1), mn(p2, p3)), mx(mx(p0, p1), mx(p2, p3)));
+}
+static ival iv_sq(ival a) {
+    rugo_real l = a.lo * a.lo, h = a.hi * a.hi;
+    if (a.lo <= 0.0 && a.hi >= 0.0) return iv(0.0, mx(l, h));
+    return iv(mn(l, h), mx(l, h));
+}
+static rugo_real iv_mag(ival a) { return mx(fabs(a.lo), fabs(a.hi)); }
+
+static ival iv_scale(rugo_real k, ival a) {
+    return k >= 0.0 ? iv(k * a.lo, k * a.hi) : iv(k * a.hi, k * a.lo);
+}
+
+/* Krawczyk's exclusion test (interval Newton). Every root in the box lies in
+ *   K = m - Y v(m) + (I - Y J(box)) (box - m),
+ * m the centre, v(m) the system there (round-off n), Y the inverse of the point Jacobian jc at m,
+ * J(box) the interval Jacobian with rows (a b) and (c d). Returns 1 if K misses the box. */
+static int krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4],
+                             ival a, ival b, ival c, ival d) {
+    rugo_real det = jc[0] * jc[3] - jc[1] * jc[2];
+    if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
+    rugo_real y11 = jc[3] / det, y12 = -jc[1] / det, y21 = -jc[2] / det, y22 = jc[0] / det;
+    if (!isfinite(y11) || !isfinite(y12) || !isfinite(y21) || !isfinite(y22)) return 0;
+    ival m11 = iv_add(iv(1.0, 1.0), iv_neg(iv_add(iv_scale(y11, a), iv_scale(y12, c))));
+    ival m12 = iv_neg(iv_add(iv_scale(y11, b), iv_scale(y12, d)));
+    ival m21 = iv_neg(iv_add(iv_scale(y21, a), iv_scale(y22, c)));
+    ival m22 = iv_add(iv(1.0, 1.0), iv_neg(iv_add(iv_scale(y21, b), iv_scale(y22, d))));
+    rugo_real rs = 0.5 * (bx.s1 - bx.s0), rt = 0.5 * (bx.t1 - bx.t0);
+    rugo_real ms = bx.s0 + rs, mt = bx.t0 + rt;
+    rugo_real ps = y11 * v[0] + y12 * v[1], pt = y21 * v[0] + y22 * v[1];
+    rugo_real jm = mx(mx(iv_mag(a), iv_mag(b)), mx(iv_mag(c), iv_mag(d)));
+    rugo_real ys = fabs(y11) + fabs(y12), yt = fabs(y21) + fabs(y22);
+    /* widths, with the round-off of v, of the products and of the centre */
+    rugo_real ws = iv_mag(m11) * rs + iv_mag(m12) * rt + fabs(y11) * n[0] + fabs(y12) * n[1] +
+                   16.0 * EPS * (fabs(y11 * v[0]) + fabs(y12 * v[1]) + ys * jm * (rs + rt) + 1.0);
+    rugo_real wt = iv_mag(m21) * rs + iv_mag(m22) * rt + fabs(y21) * n[0] + fabs(y22) * n[1] +
+                   16.0 * EPS * (fabs(y21 * v[0]) + fabs(y22 * v[1]) + yt * jm * (rs + rt) + 1.0);
+    rugo_real ks = ms - ps, kt = mt - pt;
+    if (!isfinite(ks) || !isfinite(kt) || !isfinite(ws) || !isfinite(wt)) return 0;
+    return ks - ws > bx.s1 || ks + ws < bx.s0 || kt - wt > bx.t1 || kt + wt < bx.t0;
+}
+
+/* Componentwise ranges of a control polygon (n + 1 points). */
+static void iv_range(const rugo_vec2* p, int n, ival* x, ival* y) {
+    *x = iv(p[0].x, p[0].x);
+    *y = iv(p[0].y, p[0].y);
+    for (int i = 1; i <= n; ++i) {
+        x->lo = mn(x->lo, p[i].x);
+        x->hi = mx(x->hi, p[i].x);
+        y->lo = mn(y->lo, p[i].y);
+        y->hi = mx(y->hi, p[i].y);
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Root lists */
+
+/* Adds a root unless one within the larger of the two radii exists (a Newton root replaces a leaf
+ * root). Returns 0 when the list is full (overflow). */
+static int add_root(root* list, int* n, int cap, rugo_real s, rugo_real t, rugo_real radius, int kind,
+                    int fb) {
+    for (int i = 0; i < *n; ++i) {
+        rugo_real r = mx(radius, list[i].radius);
+        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) {
+            if (list[i].fallback && !fb) {
+                list[i].s = s;
+                list[i].t = t;
+                list[i].radius = mx(radius, list[i].radius);
+                list[i].kind = kind;
+                list[i].fallback = 0;
+            }
+            return 1;
+        }
+    }
+    if (*n >= cap) return 0;
+    list[*n].s = s;
+    list[*n].t = t;
+    list[*n].radius = radius;
+    list[*n].kind = kind;
+    list[*n].fallback = fb;
+    ++*n;
+    return 1;
+}
+
+static int near_root(const root* list, int n, rugo_real s, rugo_real t, rugo_real r) {
+    for (int i = 0; i < n; ++i)
+        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) return 1;
+    return 0;
+}
+
+/* Whether the box lies within the merge radius of a root accepted without a certificate. */
+static int covered(const root* list, int n, box b) {
+    for (int i = 0; i < n; ++i) {
+        if (!list[i].fallback) continue;
+        rugo_real r = list[i].radius;
+        if (fabs(b.s0 - list[i].s) <= r && fabs(b.s1 - list[i].s) <= r && fabs(b.t0 - list[i].t) <= r &&
+            fabs(b.t1 - list[i].t) <= r)
+            return 1;
+    }
+    return 0;
+}
+
+/* Dedupe radius from a condition estimate (uncertainty of a root ~ eps * condition). */
+static rugo_real root_radius(rugo_real cond) {
+    rugo_real r = 64.0 * EPS * cond;
+    if (!(r > R_ROOT)) r = R_ROOT;
+    if (r > R_FALLBACK) r = R_FALLBACK;
+    return r;
+}
+
+/* Whether (s,t) lies in the box widened by SLACK (DOM_SLACK at the edges of the domain). */
+static int in_box(box b, rugo_real s, rugo_real t) {
+    rugo_real sl = b.s0 == 0.0 ? DOM_SLACK : SLACK, sh = b.s1 == 1.0 ? DOM_SLACK : SLACK;
+    rugo_real tl = b.t0 == 0.0 ? DOM_SLACK : SLACK, th = b.t1 == 1.0 ? DOM_SLACK : SLACK;
+    return s >= b.s0 - sl && s <= b.s1 + sh && t >= b.t0 - tl && t <= b.t1 + th;
+}
+
+/* Whether the ball (max-norm) of radius rho around (s,t) lies in the box widened as in_box. */
+static int in_box_ball(box b, rugo_real s, rugo_real t, rugo_real rho) {
+    return in_box(b, s - rho, t - rho) && in_box(b, s + rho, t + rho);
+}
+
+static int in_domain(rugo_real s, rugo_real t) {
+    return s >= -DOM_SLACK && s <= 1.0 + DOM_SLACK && t >= -DOM_SLACK && t <= 1.0 + DOM_SLACK;
+}
+
+static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Newton iterations */
+
+/* Whether (s,t) left the box lim widened by its own size on every side (lim may be NULL), or
+ * [-0.5, 1.5]^2: then Newton gives up. */
+static int wandered(const box* lim, rugo_real s, rugo_real t) {
+    if (!(s >= -0.5 && s <= 1.5 && t >= -0.5 && t <= 1.5)) return 1;
+    if (!lim) return 0;
+    rugo_real ws = lim->s1 - lim->s0, wt = lim->t1 - lim->t0;
+    return s < lim->s0 - ws || s > lim->s1 + ws || t < lim->t0 - wt || t > lim->t1 + wt;
+}
+
+/* Newton on F = f(s) - g(t) (6.12). Returns 1 if it converged (residual at round-off or a step at
+ * round-off); (s, t) is then the root. Otherwise (s, t) is the iterate with the smallest |F| and *res
+ * its residual (max-norm, local frame). */
+static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res) {
+    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
+    int conv = 0, tiny = 0;
+    for (int it = 0;; ++it) {
+        rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y));
+        rugo_real rr = vmax(r);
+        if (!(rr == rr)) break;
+        if (rr < bres) {
+            bres = rr;
+            bx = x;
+            by = y;
+        }
+        if (rr <= 4.0 * EPS || tiny) {
+            conv = 1;
+            break;
+        }
+        if (it >= NEWTON_MAX) break;
+        rugo_vec2 a = bez(c->df, 2, x), b = rugo_v2_scale(-1.0, bez(c->dg, 2, y));
+        rugo_real det = rugo_v2_cross(a, b);
+        if (!(fabs(det) > 0.0)) break;
+        rugo_vec2 m = rugo_v2_scale(-1.0, r);
+        rugo_real ds = rugo_v2_cross(m, b) / det, dt = rugo_v2_cross(a, m) / det;
+        if (!isfinite(ds) || !isfinite(dt)) break;
+        x += ds;
+        y += dt;
+        ++c->newton;
+        tiny = mx(fabs(ds), fabs(dt)) <= 4.0 * EPS;
+        if (wandered(lim, x, y)) break;
+    }
+    if (conv) {
+        *s = x;
+        *t = y;
+        *res = vmax(rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y)));
+    } else {
+        *s = bx;
+        *t = by;
+        *res = bres;
+    }
+    return conv;
+}
+
+/* The stationary system in one of three equivalent forms (away from crossings):
+ *   STAT_HH: (H1, H2)  (6.14);
+ *   STAT_CH2: (C, H2) with C = cross(f', g'), valid where g' != 0: f' parallel to g' and (f-g)·g' = 0
+ *            give (f-g)·f' = 0 too;
+ *   STAT_CH1: (C, H1), where f' != 0.
+ * At a near-touching (distance d, curvature difference dk) the Jacobian of (H1, H2) has determinant
+ * ~ d dk, that of (C, H) ~ dk: the second forms stay well conditioned down to touching curves, and
+ * they do not have the transversal crossings as roots. */
+enum { STAT_HH = 0, STAT_CH2 = 1, STAT_CH1 = 2 };
+
+/* Values at a parameter pair for the stationary system. */
+typedef struct pair_eval {
+    rugo_vec2 r, fp, gp, fpp, gpp; /* r = f - g */
+    rugo_real h1, h2, n1, n2;      /* H and its round-off level */
+    rugo_real j11, j12, j21, j22;  /* dH/d(s,t) */
+    rugo_real cc, nc, cs, ct;      /* C, its round-off level, dC/ds, dC/dt */
+} pair_eval;
+
+static pair_eval eval_pair(const ctx* c, rugo_real s, rugo_real t) {
+    pair_eval e;
+    e.r = rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t));
+    e.fp = bez(c->df, 2, s);
+    e.gp = bez(c->dg, 2, t);
+    e.fpp = bez(c->ddf, 1, s);
+    e.gpp = bez(c->ddg, 1, t);
+    e.h1 = rugo_v2_dot(e.r, e.fp);
+    e.h2 = rugo_v2_dot(e.r, e.gp);
+    rugo_real lr = vlen(e.r), lf = vlen(e.fp), lg = vlen(e.gp);
+    e.n1 = 16.0 * EPS * lf * (1.0 + lr);
+    e.n2 = 16.0 * EPS * lg * (1.0 + lr);
+    rugo_real fg = rugo_v2_dot(e.fp, e.gp);
+    e.j11 = rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.r, e.fpp);
+    e.j12 = -fg;
+    e.j21 = fg;
+    e.j22 = -rugo_v2_dot(e.gp, e.gp) + rugo_v2_dot(e.r, e.gpp);
+    e.cc = rugo_v2_cross(e.fp, e.gp);
+    e.nc = 16.0 * EPS * lf * lg;
+    e.cs = rugo_v2_cross(e.fpp, e.gp);
+    e.ct = rugo_v2_cross(e.fp, e.gpp);
+    return e;
+}
+
+/* The system of the given form at e: values a, b, their round-off levels na, nb, Jacobian rows. */
+static void stat_system(const pair_eval* e, int mode, rugo_real v[2], rugo_real n[2], rugo_real j[4]) {
+    if (mode == STAT_HH) {
+        v[0] = e->h1, v[1] = e->h2, n[0] = e->n1, n[1] = e->n2;
+        j[0] = e->j11, j[1] = e->j12, j[2] = e->j21, j[3] = e->j22;
+    } else {
+        v[0] = e->cc, n[0] = e->nc, j[0] = e->cs, j[1] = e->ct;
+        if (mode == STAT_CH2) {
+            v[1] = e->h2, n[1] = e->n2, j[2] = e->j21, j[3] = e->j22;
+        } else {
+            v[1] = e->h1, n[1] = e->n1, j[2] = e->j11, j[3] = e->j12;
+        }
+    }
+}
+
+/* Newton on the stationary system in the given form, J u = -H. Same contract as newton_cross; *res
+ * is the residual in units of its round-off level (0 when converged). */
+static int newton_stat(ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res) {
+    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
+    int conv = 0, tiny = 0;
+    for (int it = 0;; ++it) {
+        pair_eval e = eval_pair(c, x, y);
+        rugo_real v[2], n[2], j[4];
+        stat_system(&e, mode, v, n, j);
+        rugo_real rr = mx(fabs(v[0]) / mx(n[0], DBL_MIN), fabs(v[1]) / mx(n[1], DBL_MIN));
+        if (!(rr == rr)) break;
+        if (rr < bres) {
+            bres = rr;
+            bx = x;
+            by = y;
+        }
+        if (rr <= 1.0 || tiny) {
+            conv = 1;
+            break;
+        }
+        if (it >= NEWTON_MAX) break;
+        rugo_real det = j[0] * j[3] - j[1] * j[2];
+        if (!(fabs(det) > 0.0)) break;
+        rugo_real ds = -(v[0] * j[3] - v[1] * j[1]) / det;
+        rugo_real dt = -(j[0] * v[1] - j[2] * v[0]) / det;
+        if (!isfinite(ds) || !isfinite(dt)) break;
+        x += ds;
+        y += dt;
+        ++c->newton;
+        tiny = mx(fabs(ds), fabs(dt)) <= 4.0 * EPS;
+        if (wandered(lim, x, y)) break;
+    }
+    if (conv) {
+        *s = x;
+        *t = y;
+    } else {
+        *s = bx;
+        *t = by;
+    }
+    *res = conv ? 0.0 : bres;
+    return conv;
+}
+
+/* 1 if the hull of a hodograph's control points (3) keeps away from the origin. */
+static int hodograph_nonzero(const rugo_vec2 d[3]) {
+    rugo_real m = mx(mx(vlen(d[0]), vlen(d[1])), vlen(d[2]));
+    rugo_vec2 dirs[4] = {d[0], d[1], d[2], rugo_v2_add(d[0], d[2])};
+    for (int k = 0; k < 4; ++k) {
+        rugo_real l = vlen(dirs[k]);
+        if (!(l > 0.0)) continue;
+        rugo_real lo = INFINITY;
+        for (int i = 0; i < 3; ++i)
+            lo = mn(lo, rugo_v2_dot(dirs[k], d[i]) / l);
+        if (lo > 1e-9 * m) return 1;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Crossings */
+
+static int push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
+    if (*ns >= STACK_MAX) return 0;
+    st[*ns].s0 = s0;
+    st[*ns].s1 = s1;
+    st[*ns].t0 = t0;
+    st[*ns].t1 = t1;
+    ++*ns;
+    return 1;
+}
+
+/* Splits b into two halves on the stack (first half on top). Returns 0 if nothing can be split. */
+static int split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g) {
+    int can_s = b.s1 - b.s0 > H_MIN && diam_f > D_MIN;
+    int can_t = b.t1 - b.t0 > H_MIN && diam_g > D_MIN;
+    if (!can_s && !can_t) return 0;
+    if (can_s && (!can_t || diam_f >= diam_g)) {
+        rugo_real m = 0.5 * (b.s0 + b.s1);
+        push_box(st, ns, m, b.s1, b.t0, b.t1);
+        push_box(st, ns, b.s0, m, b.t0, b.t1);
+    } else {
+        rugo_real m = 0.5 * (b.t0 + b.t1);
+        push_box(st, ns, b.s0, b.s1, m, b.t1);
+        push_box(st, ns, b.s0, b.s1, b.t0, m);
+    }
+    return 1;
+}
+
+static void search_crossings(ctx* c) {
+    box st[STACK_MAX];
+    int ns = 0, boxes = 0;
+    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
+    while (ns > 0) {
+        box b = st[--ns];
+        if (covered(c->cross, c->ncross, b)) continue;
+        if (++boxes > BOX_BUDGET) {
+            c->overflow = 1;
+            ++c->fallback;
+            return;
+        }
+        rugo_vec2 F[4], G[4];
+        sub_bezier(c->f, 3, b.s0, b.s1, F);
+        sub_bezier(c->g, 3, b.t0, b.t1, G);
+        if (hull_gap(F, G) > TAU_F) continue;
+        rugo_real diam_f = poly_diam(F, 3), diam_g = poly_diam(G, 3);
+        rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
+        rugo_vec2 dF[3], dG[3];
+        sub_bezier(c->df, 2, b.s0, b.s1, dF);
+        sub_bezier(c->dg, 2, b.t0, b.t1, dG);
+        {
+            /* interval Newton: J = [f' -g'] over the box */
+            ival fpx, fpy, gpx, gpy;
+            iv_range(dF, 2, &fpx, &fpy);
+            iv_range(dG, 2, &gpx, &gpy);
+            rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, sc), bez(c->g, 3, tc));
+            rugo_vec2 fp = bez(c->df, 2, sc), gp = bez(c->dg, 2, tc);
+            rugo_real v[2] = {r.x, r.y}, n[2] = {8.0 * EPS, 8.0 * EPS};
+            rugo_real jc[4] = {fp.x, -gp.x, fp.y, -gp.y};
+            if (krawczyk_excludes(b, v, n, jc, fpx, iv_neg(gpx), fpy, iv_neg(gpy))) continue;
+        }
+        rugo_real rho;
+        int sign = cone_sign(dF, dG, &rho);
+        if (sign != 0) {
+            rugo_real s = sc, t = tc, res;
+            /* The root must be certain to exist in the box: its uncertainty ball inside the box (a
+             * numerical zero next to a touching has a ball as large as its distance to it). */
+            if (newton_cross(c, &b, &s, &t, &res) && in_box_ball(b, s, t, rho)) {
+                rugo_vec2 fp = bez(c->df, 2, s), gp = bez(c->dg, 2, t);
+                rugo_real cond = (rugo_v2_dot(fp, fp) + rugo_v2_dot(gp, gp)) / fabs(rugo_v2_cross(fp, gp));
+                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, root_radius(cond), sign, 0)) {
+                    c->overflow = 1;
+                    return;
+                }
+                continue;
+            }
+        }
+        if (sign == 0 && mx(b.s1 - b.s0, b.t1 - b.t0) <= H_TOUCH) {
+            /* Small, tangents not separated: maybe a touching. Its point is a well-conditioned root of
+             * (C, H) (stationary forms), which Newton finds; at distance ~0 it is recorded (kind by
+             * probing) and everything within R_FALLBACK of it is resolved. */
+            int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
+            rugo_real s = sc, t = tc, res;
+            if (newton_stat(c, mode, &b, &s, &t, &res) && in_domain(s, t) &&
+                vmax(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t))) <= TAU_TOUCH) {
+                ++c->fallback;
+                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
+                    c->overflow = 1;
+                    return;
+                }
+                if (covered(c->cross, c->ncross, b)) continue;
+            }
+        }
+        if (split_box(st, &ns, b, diam_f, diam_g)) continue;
+        /* A leaf: the root (if any) is tangential or degenerate. */
+        ++c->fallback;
+        if (near_root(c->cross, c->ncross, sc, tc, R_FALLBACK)) continue;
+        rugo_real s = sc, t = tc, res;
+        newton_cross(c, &b, &s, &t, &res);
+        if (res <= TAU_TOUCH && in_domain(s, t)) {
+            if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
+                c->overflow = 1;
+                return;
+            }
+        }
+    }
+}
+
+/* Unit tangent of f at s (from f'' then f''' where f' vanishes), or 0 for a point. */
+static rugo_vec2 tangent_f(const ctx* c, rugo_real s) {
+    rugo_vec2 d = bez(c->df, 2, s);
+    rugo_real scale = vmax(c->df[0]) + vmax(c->df[1]) + vmax(c->df[2]);
+    rugo_real l = vlen(d);
+    if (!(l > 1e-9 * scale)) {
+        d = bez(c->ddf, 1, s);
+        l = vlen(d);
+        if (!(l > 1e-9 * scale)) {
+            d = rugo_v2_sub(c->ddf[1], c->ddf[0]);
+            l = vlen(d);
+        }
+    }
+    if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
+    return rugo_v2(d.x / l, d.y / l);
+}
+
+/* Signed distance of p from f near parameter s (positive: left of f', the inside of a CCW curve),
+ * from a local projection of p on f. */
+static rugo_real side_of(ctx* c, rugo_real s, rugo_vec2 p) {
+    rugo_real x = s;
+    for (int it = 0; it < 16; ++it) {
+        rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, x), p), fp = bez(c->df, 2, x), fpp = bez(c->ddf, 1, x);
+        rugo_real num = rugo_v2_dot(r, fp), den = rugo_v2_dot(fp, fp) + rugo_v2_dot(r, fpp);
+        if (!(den > 0.0)) den = rugo_v2_dot(fp, fp);
+        if (!(den > 0.0)) break;
+        rugo_real step = -num / den;
+        if (step > 0.05) step = 0.05;
+        if (step < -0.05) step = -0.05;
+        x += step;
+        ++c->newton;
+        if (fabs(step) <= 4.0 * EPS) break;
+    }
+    return rugo_v2_cross(tangent_f(c, x), rugo_v2_sub(p, bez(c->f, 3, x)));
+}
+
+/* Kind of a (near-)tangential crossing: on which side of f does g lie just before and after t. */
+static int probe_crossing_kind(ctx* c, rugo_real s, rugo_real t) {
+    static const rugo_real delta[5] = {1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
+    for (int k = 0; k < 5; ++k) {
+        rugo_real before = side_of(c, s, bez(c->g, 3, t - delta[k]));
+        rugo_real after = side_of(c, s, bez(c->g, 3, t + delta[k]));
+        if (fabs(before) > 64.0 * EPS && fabs(after) > 64.0 * EPS) {
+            if (before < 0.0 && after > 0.0) return 1;
+            if (before > 0.0 && after < 0.0) return -1;
+            return 0;
+        }
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Stationary pairs */
+
+/* Interval bounds over the box of the Jacobian of the stationary system (form `mode`), rows (a b)
+ * and (c d). */
+static void stat_jacobian(int mode, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
+                          const rugo_vec2 dG[3], const rugo_vec2 ddF[2], const rugo_vec2 ddG[2], ival J[4]) {
+    ival fx, fy, gx, gy, fpx, fpy, gpx, gpy, fppx, fppy, gppx, gppy;
+    iv_range(F, 3, &fx, &fy);
+    iv_range(G, 3, &gx, &gy);
+    iv_range(dF, 2, &fpx, &fpy);
+    iv_range(dG, 2, &gpx, &gpy);
+    iv_range(ddF, 1, &fppx, &fppy);
+    iv_range(ddG, 1, &gppx, &gppy);
+    ival rx = iv_add(fx, iv_neg(gx)), ry = iv_add(fy, iv_neg(gy));
+    ival h1s = iv_add(iv_add(iv_sq(fpx), iv_sq(fpy)), iv_add(iv_mul(rx, fppx), iv_mul(ry, fppy)));
+    ival fg = iv_add(iv_mul(fpx, gpx), iv_mul(fpy, gpy));
+    ival h1t = iv_neg(fg), h2s = fg;
+    ival h2t = iv_add(iv_neg(iv_add(iv_sq(gpx), iv_sq(gpy))), iv_add(iv_mul(rx, gppx), iv_mul(ry, gppy)));
+    if (mode == STAT_HH) {
+        J[0] = h1s, J[1] = h1t, J[2] = h2s, J[3] = h2t;
+    } else {
+        J[0] = iv_add(iv_mul(fppx, gpy), iv_neg(iv_mul(fppy, gpx))); /* dC/ds = cross(f'', g') */
+        J[1] = iv_add(iv_mul(fpx, gppy), iv_neg(iv_mul(fpy, gppx))); /* dC/dt = cross(f', g'') */
+        if (mode == STAT_CH2)
+            J[2] = h2s, J[3] = h2t;
+        else
+            J[2] = h1s, J[3] = h1t;
+    }
+}
+
+/* 1 if the interval Jacobian is non-singular between any two points of the box (rows taken at
+ * independent points), so the box holds at most one root: two roots would give, by the mean value
+ * theorem on the segment between them, gradients of both equations normal to it. Also a lower bound
+ * of |det| and an upper bound of the entries, for the existence radius. */
+static int jacobian_regular(const ival J[4], rugo_real* detmin, rugo_real* jmax) {
+    ival det = iv_add(iv_mul(J[0], J[3]), iv_neg(iv_mul(J[1], J[2])));
+    rugo_real margin = 64.0 * EPS * (iv_mag(J[0]) * iv_mag(J[3]) + iv_mag(J[1]) * iv_mag(J[2]));
+    *detmin = mn(fabs(det.lo), fabs(det.hi));
+    *jmax = mx(mx(iv_mag(J[0]), iv_mag(J[1])), mx(iv_mag(J[2]), iv_mag(J[3])));
+    return det.lo > margin || det.hi < -margin;
+}
+
+/* W[i][k] = C(3,i) C(2,k) / C(5,i+k): the product of degree-3 and degree-2 Bernstein polynomials. */
+static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6, 0.6}, {0.1, 0.4, 1.0}};
+
+/* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. jc: the Jacobian
+ * of (H1, H2) at the box's centre, for the preconditioned tests. */
+static int stat_prune(const ctx* c, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
+                      const rugo_vec2 dG[3], const rugo_real jc[4]) {
+    if (hull_gap(F, G) > c->cutoff + TAU_F) return 1;
+    if (cone_sign(dF, dG, NULL) != 0) return 1;
+    rugo_vec2 D[4][4];
+    rugo_real md = 0.0, mf = 0.0, mg = 0.0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            D[i][j] = rugo_v2_sub(F[i], G[j]);
+            md = mx(md, vmax(D[i][j]));
+        }
+    for (int k = 0; k < 3; ++k) {
+        mf = mx(mf, vmax(dF[k]));
+        mg = mx(mg, vmax(dG[k]));
+    }
+    rugo_real h1[24], h2[24];
+    /* H1: index m (s, degree 5) * 4 + j (t, degree 3). */
+    for (int m = 0; m < 6; ++m)
+        for (int j = 0; j < 4; ++j) {
+            rugo_real v = 0.0;
+            for (int i = 0; i < 4; ++i) {
+                int k = m - i;
+                if (k >= 0 && k <= 2) v += W32[i][k] * rugo_v2_dot(D[i][j], dF[k]);
+            }
+            h1[4 * m + j] = v;
+        }
+    rugo_real tau1 = 32.0 * EPS * mf * (1.0 + md);
+    if (one_sign(h1, 24, tau1) != 0) return 1;
+    /* H2: index i (s, degree 3) * 6 + n (t, degree 5). */
+    for (int i = 0; i < 4; ++i)
+        for (int n = 0; n < 6; ++n) {
+            rugo_real v = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                int k = n - j;
+                if (k >= 0 && k <= 2) v += W32[j][k] * rugo_v2_dot(D[i][j], dG[k]);
+            }
+            h2[6 * i + n] = v;
+        }
+    rugo_real tau2 = 32.0 * EPS * mg * (1.0 + md);
+    if (one_sign(h2, 24, tau2) != 0) return 1;
+    /* Preconditioned: the rows of adj(J) (H1, H2), J the Jacobian at the centre, in the common degree
+     * (5, 5). Each is H1 or H2 with its first-order dependence on one parameter removed, so it keeps
+     * one sign on boxes that are far from a root only along a valley of nearly parallel curves, where
+     * H1 and H2 alone vanish all along. (Degree elevation by 2 is the product with 1 = sum B^2_k.) */
+    rugo_real e1[36], e2[36];
+    for (int m = 0; m < 6; ++m)
+        for (int n = 0; n < 6; ++n) {
+            rugo_real v1 = 0.0, v2 = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                int k = n - j;
+                if (k >= 0 && k <= 2) v1 += W32[j][k] * h1[4 * m + j];
+            }
+            for (int i = 0; i < 4; ++i) {
+                int k = m - i;
+                if (k >= 0 && k <= 2) v2 += W32[i][k] * h2[6 * i + n];
+            }
+            e1[6 * m + n] = v1;
+            e2[6 * m + n] = v2;
+        }
+    rugo_real p[36];
+    for (int r = 0; r < 2; ++r) {
+        rugo_real a = r == 0 ? jc[3] : -jc[2], b = r == 0 ? -jc[1] : jc[0];
+        for (int k = 0; k < 36; ++k)
+            p[k] = a * e1[k] + b * e2[k];
+        if (one_sign(p, 36, 2.0 * (fabs(a) * tau1 + fabs(b) * tau2)) != 0) return 1;
+    }
+    return 0;
+}
+
+static rugo_real stat_radius(const ctx* c, rugo_real s, rugo_real t) {
+    pair_eval e = eval_pair(c, s, t);
+    rugo_real det = fabs(e.j11 * e.j22 - e.j12 * e.j21);
+    rugo_real fro = e.j11 * e.j11 + e.j12 * e.j12 + e.j21 * e.j21 + e.j22 * e.j22;
+    return root_radius(det > 0.0 ? fro / det : INFINITY);
+}
+
+static void search_stationary(ctx* c) {
+    box st[STACK_MAX];
+    int ns = 0, boxes = 0;
+    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
+    while (ns > 0) {
+        box b = st[--ns];
+        if (covered(c->stat, c->nstat, b)) continue;
+        if (++boxes > BOX_BUDGET) {
+            c->overflow = 1;
+            ++c->fallback;
+            return;
+        }
+        rugo_vec2 F[4], G[4], dF[3], dG[3];
+        sub_bezier(c->f, 3, b.s0, b.s1, F);
+        sub_bezier(c->g, 3, b.t0, b.t1, G);
+        sub_bezier(c->df, 2, b.s0, b.s1, dF);
+        sub_bezier(c->dg, 2, b.t0, b.t1, dG);
+        rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
+        pair_eval ec = eval_pair(c, sc, tc);
+        rugo_real jhh[4] = {ec.j11, ec.j12, ec.j21, ec.j22};
+        if (stat_prune(c, F, G, dF, dG, jhh)) continue;
+        rugo_vec2 ddF[2], ddG[2];
+        sub_bezier(c->ddf, 1, b.s0, b.s1, ddF);
+        sub_bezier(c->ddg, 1, b.t0, b.t1, ddG);
+        int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
+        ival J[4];
+        stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
+        {
+            rugo_real v[2], n[2], jc[4];
+            stat_system(&ec, mode, v, n, jc);
+            if (krawczyk_excludes(b, v, n, jc, J[0], J[1], J[2], J[3])) continue;
+        }
+        rugo_real detmin, jmax;
+        if (jacobian_regular(J, &detmin, &jmax)) {
+            rugo_real s = sc, t = tc, res;
+            if (newton_stat(c, mode, &b, &s, &t, &res)) {
+                /* existence: |system| <= 2 n at the root and sigma_min(J) >= detmin / (2 jmax) */
+                pair_eval e = eval_pair(c, s, t);
+                rugo_real v[2], n[2], j[4];
+                stat_system(&e, mode, v, n, j);
+                rugo_real rho = 4.0 * mx(n[0], n[1]) * jmax / detmin;
+                /* (a root on a box edge, e.g. by symmetry, with a ball larger than SLACK: accept when
+                 * the ball is small against the box) */
+                if (in_box_ball(b, s, t, rho) ||
+                    (in_box(b, s, t) && rho <= 0.125 * mn(b.s1 - b.s0, b.t1 - b.t0))) {
+                    if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius(c, s, t), 0, 0)) {
+                        c->overflow = 1;
+                        return;
+                    }
+                    continue;
+                }
+            }
+        } else if (mx(b.s1 - b.s0, b.t1 - b.t0) <= H_ACC) {
+            /* Small but still not certified: a (nearly) degenerate stationary pair, e.g. curves almost
+             * touching, where the Hessian is nearly singular along a long valley. Accept the Newton
+             * root if it lies in the box, and consider everything within R_MERGE resolved. */
+            rugo_real s = sc, t = tc, res;
+            if (newton_stat(c, mode, &b, &s, &t, &res) && in_box(b, s, t)) {
+                ++c->fallback;
+                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                    c->overflow = 1;
+                    return;
+                }
+                continue;
+            }
+        }
+        if (split_box(st, &ns, b, poly_diam(F, 3), poly_diam(G, 3))) continue;
+        /* A leaf. */
+        ++c->fallback;
+        rugo_real s = sc, t = tc, res;
+        newton_stat(c, mode, &b, &s, &t, &res);
+        if (res <= 1024.0 && in_domain(s, t)) {
+            if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                c->overflow = 1;
+                return;
+            }
+        }
+    }
+}
+
+static rugo_real half_dist2(const ctx* c, rugo_real s, rugo_real t) {
+    rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t));
+    return 0.5 * rugo_v2_dot(r, r);
+}
+
+/* +1 if D rises both ways along v (or stays flat), -1 if it falls both ways, 0 otherwise; from the
+ * smallest step that changes D beyond its round-off. */
+static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v) {
+    static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
+    rugo_real d0 = half_dist2(c, s, t);
+    /* D = |r|^2/2 with |r| good to a few ulps of the O(1) coordinates */
+    rugo_real noise = 16.0 * EPS * (sqrt(2.0 * d0) + EPS);
+    for (int k = 0; k < 6; ++k) {
+        rugo_real dp = half_dist2(c, s + delta[k] * v.x, t + delta[k] * v.y) - d0;
+        rugo_real dm = half_dist2(c, s - delta[k] * v.x, t - delta[k] * v.y) - d0;
+        if (fabs(dp) > noise && fabs(dm) > noise) {
+            if (dp > 0.0 && dm > 0.0) return 1;
+            if (dp < 0.0 && dm < 0.0) return -1;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Minimum / saddle / maximum from the Hessian of D = |f-g|^2/2, whose entries are
+ * D_ss = J11, D_st = J12 = -f'·g', D_tt = -J22. */
+static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist) {
+    if (dist <= TAU_TOUCH) return RUGO__MINIMUM;
+    pair_eval e = eval_pair(c, s, t);
+    rugo_real a = e.j11, b = e.j12, d = -e.j22;
+    rugo_real scale =
+        rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.gp, e.gp) + vlen(e.r) * (vlen(e.fpp) + vlen(e.gpp));
+    rugo_real m = 0.5 * (a + d), q = hypot(0.5 * (a - d), b);
+    /* the entries are good to a few ulps of scale; so are the eigenvalues */
+    rugo_real l1 = m - q, l2 = m + q, tol = 1e3 * EPS * scale;
+    if (l1 > tol) return RUGO__MINIMUM;
+    if (l2 < -tol) return RUGO__MAXIMUM;
+    if (l1 < -tol && l2 > tol) return RUGO__SADDLE;
+    /* Semi-definite: decide the flat direction(s) by probing. Eigenvector of l1: (b, l1 - a) or
+     * (l1 - d, b), whichever is longer. */
+    rugo_vec2 v1 = rugo_v2(b, l1 - a), v1b = rugo_v2(l1 - d, b);
+    if (vlen(v1b) > vlen(v1)) v1 = v1b;
+    rugo_real lv = vlen(v1);
+    v1 = lv > 0.0 ? rugo_v2(v1.x / lv, v1.y / lv) : rugo_v2(1.0, 0.0);
+    rugo_vec2 v2 = rugo_v2_perp(v1);
+    int u1 = fabs(l1) <= tol ? probe_direction(c, s, t, v1) : sgn(l1);
+    int u2 = fabs(l2) <= tol ? probe_direction(c, s, t, v2) : sgn(l2);
+    if (u1 > 0 && u2 > 0) return RUGO__MINIMUM;
+    if (u1 < 0 && u2 < 0) return RUGO__MAXIMUM;
+    return RUGO__SADDLE;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Output */
+
+static void fill_point(const ctx* c, rugo_real s, rugo_real t, int kind, rugo__pair_point* p) {
+    rugo_vec2 a = bez(c->f, 3, s), b = bez(c->g, 3, t);
+    p->s = s;
+    p->t = t;
+    p->pa = rugo_v2_add(c->origin, rugo_v2_scale(c->scale, a));
+    p->pb = rugo_v2_add(c->origin, rugo_v2_scale(c->scale, b));
+    p->distance = c->scale * vlen(rugo_v2_sub(a, b));
+    p->kind = kind;
+}
+
+static void sort_roots(root* p, int n) {
+    for (int i = 1; i < n; ++i) {
+        root x = p[i];
+        int j = i - 1;
+        while (j >= 0 && (p[j].s > x.s || (p[j].s == x.s && p[j].t > x.t))) {
+            p[j + 1] = p[j];
+            --j;
+        }
+        p[j + 1] = x;
+    }
+}
+
+static void emit_crossing(const ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t, int kind) {
+    if (out->crossing_count >= RUGO__NARROW_MAX_CROSSINGS) {
+        out->overflow = 1;
+        return;
+    }
+    fill_point(c, s, t, kind, &out->crossings[out->crossing_count++]);
+}
+
+static void emit_stationary(const ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t, int kind) {
+    if (out->stationary_count >= RUGO__NARROW_MAX_STATIONARY) {
+        out->overflow = 1;
+        return;
+    }
+    fill_point(c, s, t, kind, &out->stationary[out->stationary_count++]);
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* The point query in a local frame: a[] are the Bezier points of f - c (already scaled). Writes
+ * parameters, local distances and kinds; returns the count (<= 6). */
+
+static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, rugo_real* d_out,
+                      int* k_out) {
+    /* f(s) - c = A0 + A1 s + A2 s^2 + A3 s^3 */
+    rugo_vec2 A0 = a[0];
+    rugo_vec2 A1 = rugo_v2_scale(3.0, rugo_v2_sub(a[1], a[0]));
+    rugo_vec2 A2 = rugo_v2_scale(3.0, rugo_v2_add(rugo_v2_sub(a[2], rugo_v2_scale(2.0, a[1])), a[0]));
+    rugo_vec2 A3 =
+        rugo_v2_sub(rugo_v2_add(rugo_v2_sub(a[3], rugo_v2_scale(3.0, a[2])), rugo_v2_scale(3.0, a[1])), a[0]);
+    rugo_real p[6];
+    p[0] = rugo_v2_dot(A0, A1);
+    p[1] = 2.0 * rugo_v2_dot(A0, A2) + rugo_v2_dot(A1, A1);
+    p[2] = 3.0 * rugo_v2_dot(A0, A3) + 3.0 * rugo_v2_dot(A1, A2);
+    p[3] = 4.0 * rugo_v2_dot(A1, A3) + 2.0 * rugo_v2_dot(A2, A2);
+    p[4] = 5.0 * rugo_v2_dot(A2, A3);
+    p[5] = 3.0 * rugo_v2_dot(A3, A3);
+    rugo_real sa = vlen(A0) + vlen(A1) + vlen(A2) + vlen(A3);
+    rugo_real sd = vlen(A1) + 2.0 * vlen(A2) + 3.0 * vlen(A3);
+    rugo_real roots[RUGO__POLY_MAX_ROOTS];
+    int n = rugo__poly_roots(p, 5, 0.0, 1.0, 16.0 * EPS * sa * sd, roots);
+    int count = 0;
+    if (n == RUGO__POLY_ALL) {
+        /* f is a point (or f - c vanishes): every s is stationary; report s = 0. */
+        rugo_real d = vlen(A0);
+        if (d <= cutoff) {
+            s_out[0] = 0.0;
+            d_out[0] = d;
+            k_out[0] = RUGO__MINIMUM;
+            count = 1;
+        }
+        return count;
+    }
+    for (int i = 0; i < n && count < 6; ++i) {
+        rugo_real s = roots[i];
+        rugo_vec2 r = bez(a, 3, s);
+        rugo_real d = vlen(r);
+        if (!(d <= cutoff)) continue;
+        rugo_vec2 fp = rugo_v2_add(
+            A1, rugo_v2_scale(s, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0 * s, A3))));
+        rugo_vec2 fpp = rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(6.0 * s, A3));
+        rugo_real second = rugo_v2_dot(fp, fp) + rugo_v2_dot(r, fpp);
+        rugo_real scale = rugo_v2_dot(fp, fp) + d * vlen(fpp);
+        int kind;
+        if (d <= TAU_TOUCH || second > 1e3 * EPS * scale) {
+            kind = RUGO__MINIMUM;
+        } else if (second < -1e3 * EPS * scale) {
+            kind = RUGO__MAXIMUM;
+        } else {
+            /* Degenerate: compare the distance a little to both sides (smallest telling step). */
+            static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
+            kind = RUGO__MINIMUM;
+            rugo_real d0 = rugo_v2_dot(r, r);
+            for (int k = 0; k < 6; ++k) {
+                rugo_vec2 rp = bez(a, 3, s + delta[k]), rm = bez(a, 3, s - delta[k]);
+                rugo_real up = rugo_v2_dot(rp, rp) - d0, um = rugo_v2_dot(rm, rm) - d0;
+                rugo_real noise = 32.0 * EPS * sa * (d + EPS * sa);
+                if (fabs(up) > noise && fabs(um) > noise) {
+                    kind = up > 0.0 && um > 0.0 ? RUGO__MINIMUM
+                                                : (up < 0.0 && um < 0.0 ? RUGO__MAXIMUM : RUGO__SADDLE);
+                    break;
+                }
+            }
+        }
+        s_out[count] = s;
+        d_out[count] = d;
+        k_out[count] = kind;
+        ++count;
+    }
+    return count;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Degenerate pieces */
+
+static rugo_real piece_extent(const rugo_vec2 p[4]) {
+    rugo_real e = 0.0;
+    for (int i = 1; i < 4; ++i)
+        e = mx(e, vmax(rugo_v2_sub(p[i], p[0])));
+    return e;
+}
+
+/* One piece (index `which`: 0 = f, 1 = g) is a point: the point query against the other. */
+static void point_piece_path(ctx* c, int which, rugo__narrow_result* out) {
+    const rugo_vec2* curve = which == 0 ? c->g : c->f;
+    rugo_vec2 pt = which == 0 ? c->f[0] : c->g[0];
+    rugo_vec2 a[4];
+    for (int i = 0; i < 4; ++i)
+        a[i] = rugo_v2_sub(curve[i], pt);
+    rugo_real ps[6], pd[6];
+    int pk[6];
+    rugo_real cutoff = c->cutoff >= TAU_TOUCH ? c->cutoff : TAU_TOUCH;
+    int n = point_core(a, cutoff, ps, pd, pk);
+    for (int i = 0; i < n; ++i) {
+        rugo_real s = which == 0 ? 0.0 : ps[i], t = which == 0 ? ps[i] : 0.0;
+        if (pd[i] <= TAU_TOUCH) emit_crossing(c, out, s, t, 0);
+        if (c->cutoff >= 0.0 && pd[i] <= c->cutoff) emit_stationary(c, out, s, t, pk[i]);
+    }
+}
+
+/* Parameters in [0,1] where the scalar cubic with Bezier coefficients b[] takes the value x; the
+ * first one, or the end whose value is nearest if round-off put x just outside the range. */
+static rugo_real solve_cubic_value(const rugo_real b[4], rugo_real x) {
+    rugo_real q[4];
+    q[0] = b[0] - x;
+    q[1] = 3.0 * (b[1] - b[0]);
+    q[2] = 3.0 * (b[2] - 2.0 * b[1] + b[0]);
+    q[3] = b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0];
+    rugo_real roots[RUGO__POLY_MAX_ROOTS];
+    rugo_real tol = 8.0 * EPS * (fabs(b[0]) + fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(x));
+    int n = rugo__poly_roots(q, 3, 0.0, 1.0, tol, roots);
+    if (n > 0) return roots[0];
+    return fabs(b[0] - x) <= fabs(b[3] - x) ? 0.0 : 1.0;
+}
+
+/* Range of a scalar cubic (Bezier coefficients) over [0,1]. */
+static void cubic_range(const rugo_real b[4], rugo_real* lo, rugo_real* hi) {
+    rugo_real d[3];
+    d[0] = 3.0 * (b[1] - b[0]);
+    d[1] = 6.0 * (b[2] - 2.0 * b[1] + b[0]);
+    d[2] = 3.0 * (b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0]);
+    rugo_real roots[RUGO__POLY_MAX_ROOTS];
+    int n = rugo__poly_roots(d, 2, 0.0, 1.0, 0.0, roots);
+    *lo = mn(b[0], b[3]);
+    *hi = mx(b[0], b[3]);
+    for (int i = 0; i < n; ++i) {
+        rugo_real u = roots[i], v = 1.0 - u;
+        rugo_real val = v * v * v * b[0] + 3.0 * v * v * u * b[1] + 3.0 * v * u * u * b[2] + u * u * u * b[3];
+        *lo = mn(*lo, val);
+        *hi = mx(*hi, val);
+    }
+}
+
+/* Straight parallel pieces: the pairs at both ends of the overlap of their ranges along the common
+ * line (a continuum of stationary pairs in between; infinitely many crossings if they coincide). */
+static void parallel_path(ctx* c, rugo__narrow_result* out) {
+    const rugo_vec2* p = piece_extent(c->f) >= piece_extent(c->g) ? c->f : c->g;
+    rugo_vec2 u = rugo_v2(1.0, 0.0);
+    rugo_real best = -1.0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+            rugo_vec2 d = rugo_v2_sub(p[j], p[i]);
+            rugo_real l = vlen(d);
+            if (l > best) {
+                best = l;
+                u = rugo_v2(d.x / l, d.y / l);
+            }
+        }
+    rugo_real a[4], b[4];
+    for (int i = 0; i < 4; ++i) {
+        a[i] = rugo_v2_dot(u, c->f[i]);
+        b[i] = rugo_v2_dot(u, c->g[i]);
+    }
+    rugo_real alo, ahi, blo, bhi;
+    cubic_range(a, &alo, &ahi);
+    cubic_range(b, &blo, &bhi);
+    rugo_real lo = mx(alo, blo), hi = mn(ahi, bhi);
+    if (lo > hi + TAU_F) return; /* side by side without overlap: no stationary pair, no crossing */
+    if (hi < lo) lo = hi = 0.5 * (lo + hi);
+    rugo_real ends[2] = {lo, hi};
+    int nend = hi - lo > TAU_F ? 2 : 1;
+    rugo_real ss[2], ts[2], dmax = 0.0;
+    for (int k = 0; k < nend; ++k) {
+        ss[k] = solve_cubic_value(a, ends[k]);
+        ts[k] = solve_cubic_value(b, ends[k]);
+        dmax = mx(dmax, vlen(rugo_v2_sub(bez(c->f, 3, ss[k]), bez(c->g, 3, ts[k]))));
+    }
+    if (dmax <= TAU_TOUCH) {
+        if (nend == 2) out->overflow = 1; /* coincident: infinitely many crossings */
+        for (int k = 0; k < nend; ++k)
+            emit_crossing(c, out, ss[k], ts[k], 0);
+    }
+    if (c->cutoff >= 0.0 && dmax <= c->cutoff)
+        for (int k = 0; k < nend; ++k)
+            emit_stationary(c, out, ss[k], ts[k], RUGO__MINIMUM);
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Driver */
+
+/* The general case on a prepared context. */
+static void solve(ctx* c, rugo__narrow_result* out) {
+    rugo_real mf = 0.0, mg = 0.0, cmax = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        mf = mx(mf, vmax(c->df[i]));
+        mg = mx(mg, vmax(c->dg[i]));
+        for (int j = 0; j < 3; ++j)
+            cmax = mx(cmax, fabs(rugo_v2_cross(c->df[i], c->dg[j])));
+    }
+    if (piece_extent(c->g) <= POINT_TOL) {
+        point_piece_path(c, 1, out);
+        return;
+    }
+    if (piece_extent(c->f) <= POINT_TOL) {
+        point_piece_path(c, 0, out);
+        return;
+    }
+    if (cmax <= 1024.0 * EPS * mf * mg) {
+        parallel_path(c, out);
+        return;
+    }
+
+    search_crossings(c);
+    /* Classify the leaf roots by probing; certified roots carry the sign of their cone. */
+    for (int i = 0; i < c->ncross; ++i)
+        if (c->cross[i].kind == KIND_PROBE)
+            c->cross[i].kind = probe_crossing_kind(c, c->cross[i].s, c->cross[i].t);
+
+    /* Crossings beyond count mean (nearly) coincident curves: every pair on the common stretch is a
+     * touching, so the stationary search would only fill up with them; the touching crossings below
+     * stand for them. */
+    if (c->cutoff >= 0.0 && !c->overflow) search_stationary(c);
+
+    /* Touching crossings are minima too. */
+    for (int i = 0; i < c->ncross; ++i) {
+        if (c->cross[i].kind != 0) continue;
+        int found = 0;
+        for (int k = 0; k < c->nstat && !found; ++k) {
+            rugo_real r = mx(R_FALLBACK, c->stat[k].radius);
+            found = fabs(c->stat[k].s - c->cross[i].s) <= r && fabs(c->stat[k].t - c->cross[i].t) <= r;
+            if (found) {
+                /* keep the better-resolved point of the two: the one with the smaller distance */
+                rugo_real dc = half_dist2(c, c->cross[i].s, c->cross[i].t);
+                rugo_real ds = half_dist2(c, c->stat[k].s, c->stat[k].t);
+                if (dc < ds) {
+                    c->stat[k].s = c->cross[i].s;
+                    c->stat[k].t = c->cross[i].t;
+                }
+            }
+        }
+        if (!found && c->cutoff >= 0.0) {
+            if (c->nstat < TMP_STAT) {
+                c->stat[c->nstat].s = c->cross[i].s;
+                c->stat[c->nstat].t = c->cross[i].t;
+                c->stat[c->nstat].radius = R_FALLBACK;
+                c->stat[c->nstat].kind = 0;
+                c->stat[c->nstat].fallback = 1;
+                ++c->nstat;
+            } else {
+                c->overflow = 1;
+            }
+        }
+    }
+
+    /* Stationary pairs: distance, kind; drop transversal crossings; minima at distance ~0 are
+     * touching crossings. */
+    int ncross_found = c->ncross;
+    for (int k = 0; k < c->nstat; ++k) {
+        rugo_real s = clamp01(c->stat[k].s), t = clamp01(c->stat[k].t);
+        c->stat[k].s = s;
+        c->stat[k].t = t;
+        rugo_real dist = vlen(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t)));
+        c->stat[k].kind = -1; /* dropped */
+        if (!(dist <= c->cutoff)) continue;
+        if (dist <= TAU_TOUCH) {
+            int match = -1;
+            for (int i = 0; i < ncross_found && match < 0; ++i) {
+                rugo_real r = mx(R_FALLBACK, c->cross[i].radius);
+                if (fabs(c->cross[i].s - s) <= r && fabs(c->cross[i].t - t) <= r) match = i;
+            }
+            if (match >= 0 && c->cross[match].kind != 0) continue;
+            if (match < 0 && !add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, 0, 1))
+                c->overflow = 1;
+        }
+        c->stat[k].kind = classify_stat(c, s, t, dist);
+    }
+
+    sort_roots(c->cross, c->ncross);
+    for (int i = 0; i < c->ncross; ++i)
+        emit_crossing(c, out, clamp01(c->cross[i].s), clamp01(c->cross[i].t), c->cross[i].kind);
+    sort_roots(c->stat, c->nstat);
+    for (int k = 0; k < c->nstat; ++k)
+        if (c->stat[k].kind >= 0) emit_stationary(c, out, c->stat[k].s, c->stat[k].t, c->stat[k].kind);
+}
+
+static void clear_result(rugo__narrow_result* out) { memset(out, 0, sizeof *out); }
+
+/* Sets up the local frame from the 8 points (p: caller's frame) and runs the solver. */
+static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_vec2 q0, rugo_vec2 q1,
+                rugo_real cutoff, rugo__narrow_result* out) {
+    clear_result(out);
+    rugo_vec2 pts[8];
+    for (int i = 0; i < 4; ++i)
+        pts[i] = f[i];
+    if (g_is_line) {
+        pts[4] = q0;
+        pts[5] = q1;
+        pts[6] = q0;
+        pts[7] = q1;
+    } else {
+        for (int i = 0; i < 4; ++i)
+            pts[4 + i] = g[i];
+    }
+    for (int i = 0; i < 8; ++i)
+        if (!rugo__v2_finite(pts[i])) return;
+    ctx c;
+    memset(&c, 0, sizeof c);
+    rugo_real ox = 0.0, oy = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        ox += 0.125 * pts[i].x;
+        oy += 0.125 * pts[i].y;
+    }
+    c.origin = rugo_v2(ox, oy);
+    rugo_real ext = 0.0;
+    for (int i = 0; i < 8; ++i)
+        ext = mx(ext, vmax(rugo_v2_sub(pts[i], c.origin)));
+    if (!isfinite(ext)) return;
+    if (ext == 0.0) {
+        /* Both pieces are the same single point. */
+        c.scale = 1.0;
+        for (int i = 0; i < 4; ++i)
+            c.f[i] = c.g[i] = rugo_v2(0.0, 0.0);
+        c.cutoff = cutoff >= 0.0 ? 0.0 : -1.0;
+        emit_crossing(&c, out, 0.0, 0.0, 0);
+        if (cutoff >= 0.0) emit_stationary(&c, out, 0.0, 0.0, RUGO__MINIMUM);
+        return;
+    }
+    int e;
+    frexp(ext, &e);
+    c.scale = ldexp(1.0, e);
+    rugo_real inv = ldexp(1.0, -e);
+    for (int i = 0; i < 4; ++i)
+        c.f[i] = rugo_v2_scale(inv, rugo_v2_sub(f[i], c.origin));
+    if (g_is_line) {
+        rugo_vec2 a = rugo_v2_scale(inv, rugo_v2_sub(q0, c.origin)),
+                  b = rugo_v2_scale(inv, rugo_v2_sub(q1, c.origin));
+        c.g[0] = a;
+        c.g[1] = lerp(a, b, 1.0 / 3.0);
+        c.g[2] = lerp(a, b, 2.0 / 3.0);
+        c.g[3] = b;
+    } else {
+        for (int i = 0; i < 4; ++i)
+            c.g[i] = rugo_v2_scale(inv, rugo_v2_sub(g[i], c.origin));
+    }
+    for (int i = 0; i < 3; ++i) {
+        c.df[i] = rugo_v2_scale(3.0, rugo_v2_sub(c.f[i + 1], c.f[i]));
+        c.dg[i] = rugo_v2_scale(3.0, rugo_v2_sub(c.g[i + 1], c.g[i]));
+    }
+    for (int i = 0; i < 2; ++i) {
+        c.ddf[i] = rugo_v2_scale(2.0, rugo_v2_sub(c.df[i + 1], c.df[i]));
+        c.ddg[i] = rugo_v2_scale(2.0, rugo_v2_sub(c.dg[i + 1], c.dg[i]));
+    }
+    c.cutoff = cutoff >= 0.0 ? cutoff * inv : -1.0; /* NaN: no stationary pairs */
+    solve(&c, out);
+    out->newton_iterations = c.newton;
+    out->fallback = c.fallback;
+    if (c.overflow) out->overflow = 1;
+}
+
+void rugo__narrow_pieces(const rugo_vec2 f[4], const rugo_vec2 g[4], rugo_real cutoff,
+                         rugo__narrow_result* out) {
+    RUGO_ASSERT(f && g && out);
+    if (!out) return;
+    if (!f || !g) {
+        clear_result(out);
+        return;
+    }
+    run(f, g, 0, rugo_v2(0.0, 0.0), rugo_v2(0.0, 0.0), cutoff, out);
+}
+
+void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff,
+                       rugo__narrow_result* out) {
+    RUGO_ASSERT(f && out);
+    if (!out) return;
+    if (!f) {
+        clear_result(out);
+        return;
+    }
+    run(f, NULL, 1, q0, q1, cutoff, out);
+}
+
+int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo__pair_point out[6]) {
+    RUGO_ASSERT(f && out);
+    if (!f || !out) return 0;
+    if (!rugo__v2_finite(c) || !(cutoff >= 0.0)) return 0;
+    for (int i = 0; i < 4; ++i)
+        if (!rugo__v2_finite(f[i])) return 0;
+    /* Local frame: relative to c, scaled by a power of two. */
+    rugo_real ext = 0.0;
+    for (int i = 0; i < 4; ++i)
+        ext = mx(ext, vmax(rugo_v2_sub(f[i], c)));
+    if (!isfinite(ext)) return 0;
+    rugo_real scale = 1.0, inv = 1.0;
+    if (ext > 0.0) {
+        int e;
+        frexp(ext, &e);
+        scale = ldexp(1.0, e);
+        inv = ldexp(1.0, -e);
+    }
+    rugo_vec2 a[4];
+    for (int i = 0; i < 4; ++i)
+        a[i] = rugo_v2_scale(inv, rugo_v2_sub(f[i], c));
+    rugo_real ps[6], pd[6];
+    int pk[6];
+    int n = point_core(a, cutoff * inv, ps, pd, pk);
+    for (int i = 0; i < n; ++i) {
+        out[i].s = ps[i];
+        out[i].t = 0.0;
+        out[i].pa = rugo_v2_add(c, rugo_v2_scale(scale, bez(a, 3, ps[i])));
+        out[i].pb = c;
+        out[i].distance = scale * pd[i];
+        out[i].kind = pk[i];
+    }
+    return n;
+}

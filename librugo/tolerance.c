@@ -148,6 +148,11 @@ static rugo_real finest_bound(const rugo_real* lambda, int count, int segment, r
     return best + 256.0 * DBL_EPSILON * scale;
 }
 
+rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum) {
+    if (lambda == NULL || count < 1) return NAN;
+    return finest_bound(lambda, count, rugo__wrap(segment, count), minimum);
+}
+
 /* ---- estimators -------------------------------------------------------------------------------- */
 
 static rugo_real estimate_coefficients(const rugo_vec2* local, int n, int k, int neighbours) {

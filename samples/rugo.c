@@ -768,6 +768,124 @@ done:
     return rc;
 }
 
+/* "X,Y,THETA" (THETA in radians). */
+static int parse_pose(const char* s, rugo_transform* out) {
+    char buf[256];
+    size_t n = strlen(s);
+    if (n >= sizeof buf) return -1;
+    memcpy(buf, s, n + 1);
+    char* last = strrchr(buf, ',');
+    if (last == NULL) return -1;
+    *last = '\0';
+    rugo_vec2 xy;
+    double theta;
+    if (parse_pair(buf, &xy) != 0 || parse_real(last + 1, &theta) != 0) return -1;
+    *out = rugo_make_transform(xy.x, xy.y, theta);
+    return 0;
+}
+
+/* Builds the immutable shape (pyramid, tolerances, tree, mass) of a shape file. */
+static int make_shape(const char* path, const rugo_shape_desc* desc, rugo_shape** out) {
+    *out = NULL;
+    rugo_roughness_desc r = roughness_of(desc);
+    rugo_real* tol = NULL;
+    int rc = finest_tolerances(path, desc->has_roughness ? &desc->roughness : NULL, desc->count, 0, &tol);
+    if (rc) return rc;
+    rugo_shape_def def = rugo_default_shape_def();
+    def.points = desc->control_points;
+    def.count = desc->count;
+    def.filter = desc->filter;
+    def.tolerances = tol; /* in the file's numbering: the shape renumbers with its points */
+    def.q = r.q;
+    def.estimator = r.estimator;
+    def.friction = r.friction;
+    def.restitution = r.restitution;
+    rugo_contour_problem pr;
+    rugo_status st = rugo_shape_create(&def, out, &pr);
+    free(tol);
+    if (st != RUGO_OK) {
+        report_problem(path, st, &pr);
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+static void print_vec(const char* name, rugo_vec2 v) { printf("\"%s\": [%.17g, %.17g]", name, v.x, v.y); }
+
+static int cmd_contacts(int argc, char** argv) {
+    static const char* const vals[] = {"--pose-a", "--pose-b", "--level", "--tolerance", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 2) return usage_error("expects two shape files A.json B.json%s", "");
+    const char *pa = opt(&a, "--pose-a", NULL), *pb = opt(&a, "--pose-b", NULL), *lv = opt(&a, "--level", NULL),
+               *tv = opt(&a, "--tolerance", NULL);
+    rugo_transform xa = rugo_identity_transform(), xb = rugo_identity_transform();
+    if (pa && parse_pose(pa, &xa) != 0) return usage_error("--pose-a must be X,Y,THETA, got '%s'", pa);
+    if (pb && parse_pose(pb, &xb) != 0) return usage_error("--pose-b must be X,Y,THETA, got '%s'", pb);
+    rugo_contact_query q = rugo_default_contact_query();
+    if (lv && parse_int(lv, -30, 30, &q.level) != 0) return usage_error("--level must be an integer, got '%s'", lv);
+    if (tv && (parse_real(tv, &q.tolerance) != 0 || q.tolerance < 0.0))
+        return usage_error("--tolerance must be a number >= 0, got '%s'", tv);
+    rugo_shape_desc da, db;
+    if ((rc = load_shape(a.positional[0], &da))) return rc;
+    if ((rc = load_shape(a.positional[1], &db))) {
+        rugo_shape_desc_free(&da);
+        return rc;
+    }
+    rugo_shape *sa = NULL, *sb = NULL;
+    rugo_collide_context* ctx = NULL;
+    rugo_contact* contacts = NULL;
+    if ((rc = make_shape(a.positional[0], &da, &sa)) || (rc = make_shape(a.positional[1], &db, &sb))) goto done;
+    rugo_status st = rugo_collide_context_create(NULL, &ctx);
+    int capacity = 64, count = 0;
+    rugo_contact_state state = RUGO_STATE_APART;
+    rugo_query_stats stats;
+    for (int attempt = 0; st == RUGO_OK && attempt < 2; ++attempt) {
+        free(contacts);
+        contacts = malloc(sizeof *contacts * (size_t)capacity);
+        if (contacts == NULL) {
+            st = RUGO_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        st = rugo_collide_shapes(ctx, sa, xa, sb, xb, &q, contacts, capacity, &count, &state, &stats);
+        if (st != RUGO_OK || stats.contacts_found <= capacity) break;
+        capacity = stats.contacts_found; /* every contact, not a truncated list */
+    }
+    if (st != RUGO_OK) {
+        rc = fail("contacts", st);
+        goto done;
+    }
+    printf("{\"state\": \"%s\", \"contacts\": [", rugo_contact_state_name(state));
+    for (int i = 0; i < count; ++i) {
+        const rugo_contact* c = &contacts[i];
+        printf("%s\n  {", i ? "," : "");
+        print_vec("point_a", c->point_a);
+        printf(", ");
+        print_vec("point_b", c->point_b);
+        printf(", ");
+        print_vec("normal", c->normal);
+        printf(", \"separation\": %.17g, \"segment_a\": %d, \"segment_b\": %d, \"t_a\": %.17g, \"t_b\": %.17g, "
+               "\"tolerance\": %.17g, \"friction\": %.17g, \"tolerance_a\": %.17g, \"tolerance_b\": %.17g, "
+               "\"restitution\": %.17g, \"level_a\": %d, \"level_b\": %d, \"region\": %d, \"id\": \"%016llx\"}",
+               c->separation, c->segment_a, c->segment_b, c->t_a, c->t_b, c->tolerance_a + c->tolerance_b,
+               c->friction, c->tolerance_a, c->tolerance_b, c->restitution, c->level_a, c->level_b, c->region,
+               (unsigned long long)c->id);
+    }
+    printf("%s], \"stats\": {\"box_tests\": %ld, \"segment_pairs\": %ld, \"newton_iterations\": %ld, "
+           "\"fallbacks\": %ld}, \"reversed_a\": %s, \"reversed_b\": %s}\n",
+           count ? "\n" : "", stats.box_tests, stats.segment_pairs, stats.newton_iterations, stats.fallbacks,
+           rugo_shape_was_reversed(sa) ? "true" : "false", rugo_shape_was_reversed(sb) ? "true" : "false");
+done:
+    free(contacts);
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(sa);
+    rugo_shape_destroy(sb);
+    rugo_shape_desc_free(&da);
+    rugo_shape_desc_free(&db);
+    return rc;
+}
+
 /* One side of the tolerance band: the curve offset by sign * λ(t) along its outward normal, as a thin
  * closed line (the contour is counter-clockwise, tol in its numbering). */
 static void svg_band(svg_canvas* svg, rugo_contour c, const rugo_real* tol, int per_segment, double sign) {
@@ -914,6 +1032,9 @@ static void usage(FILE* f) {
         "  tolerances SHAPE.json [--estimator detail|coefficients] [--at SEGMENT,T]\n"
         "                                       tolerance of every segment at every level, or tolerance,\n"
         "                                       friction and restitution at one point\n"
+        "  contacts A.json B.json [--pose-a X,Y,THETA] [--pose-b X,Y,THETA] [--level L] [--tolerance LAMBDA]\n"
+        "                                       contact points between the placed shapes (THETA in radians;\n"
+        "                                       L: 0 finest, -1, -2 coarser; LAMBDA: constant band for both)\n"
         "  help                                 this text\n"
         "Output is JSON on stdout (or the -o file); errors go to stderr with exit status 1 (bad input)\n"
         "or 2 (bad command line). See docs/cli.md.\n");
@@ -930,7 +1051,7 @@ int main(int argc, char** argv) {
         int (*run)(int, char**);
     } commands[] = {{"info", cmd_info},       {"decompose", cmd_decompose},
                     {"refine", cmd_refine},   {"deform", cmd_deform},
-                    {"fit", cmd_fit},         {"render", cmd_render},
+                    {"fit", cmd_fit},         {"render", cmd_render}, {"contacts", cmd_contacts},
                     {"roughen", cmd_roughen}, {"tolerances", cmd_tolerances}};
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 2, argv + 2);

@@ -944,12 +944,34 @@ START_TEST(restitution_in_band) {
 }
 END_TEST
 
+/* The public bound of λ(t) on a segment is never below a dense sweep of λ(t) and is tight. */
+START_TEST(bound_on_segment_certified) {
+    enum { N = 64 };
+    double lam[N];
+    test_rng r = test_rng_seed(77);
+    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.0, 1.0) < 0.3 ? 0.65 : 0.04;
+    for (int k = -N; k < 2 * N; ++k) {
+        double b = rugo_tolerance_bound_on_segment(lam, N, k, 0.0), top = 0.0;
+        for (int i = 0; i <= 1000; ++i) {
+            double v = rugo_tolerance_at(lam, N, k, i / 1000.0, 0.0);
+            if (!(v <= top)) top = v;
+        }
+        ck_assert_msg(b >= top, "segment %d: bound %.17g below sampled %.17g", k, b, top);
+        ck_assert_msg(b <= top * 1.05 + 1e-15, "segment %d: bound %.6g not tight vs %.6g", k, b, top);
+    }
+    ck_assert(isnan(rugo_tolerance_bound_on_segment(NULL, N, 0, 0.0)));
+    ck_assert(isnan(rugo_tolerance_bound_on_segment(lam, 0, 0, 0.0)));
+    ck_assert(rugo_tolerance_bound_on_segment(lam, N, 3, 2.0) >= 2.0); /* never below the minimum */
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("tolerance");
     TCase* tl = tcase_create("lambda_at");
     tcase_add_test(tl, defaults);
     tcase_add_test(tl, tolerance_at_continuous_and_exact_at_midpoints);
     tcase_add_test(tl, tolerance_at_clamp);
+    tcase_add_test(tl, bound_on_segment_certified);
     suite_add_tcase(s, tl);
     TCase* tc = tcase_create("create");
     tcase_set_timeout(tc, 120);

@@ -10,6 +10,8 @@
 #include "rugo/rough.h"
 #include "rugo/tolerance.h"
 #include "rugo/mobb.h"
+#include "rugo/shape.h"
+#include "rugo/collide.h"
 #include "rugo/shape_file.h"
 
 #endif

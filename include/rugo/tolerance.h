@@ -79,6 +79,11 @@ rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tole
  * wrap; t in [0, 1]. NaN for NULL lambda or count < 1; a NaN λ stays NaN (the clamp does not hide it). */
 rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rugo_real t, rugo_real minimum);
 
+/* A certified upper bound of λ(t) over segment `segment` (t in [0, 1]) for the interpolation of
+ * rugo_tolerance_at, never below `minimum`: the largest Bernstein coefficient of the two cubic
+ * pieces plus a round-off pad. Within ~1.5% of the true maximum. NaN for NULL lambda or count < 1. */
+rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum);
+
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
 /* μ(λ) = 0 if λ <= λ_min, α (λ - λ_min) otherwise (5.6). The thesis uses α = 1 (its tolerances lie in

@@ -1,0 +1,129 @@
+/* librugo — contacts between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2).
+ *
+ * Semantics (docs/contacts.md has the full statement):
+ *  - Normal points from A to B; separation s = (point_b - point_a)·normal is the signed distance
+ *    between the true curves of the query's level: positive apart, negative inside.
+ *  - The state is INTERSECTING if the curves cross; then there is one contact per overlap region
+ *    (the region inside both): its deepest pair of points (a stationary pair of the distance, 6.14,
+ *    whose connecting vector is normal to both curves), with negative separation, and the normal the
+ *    direction that separates the bodies fastest.
+ *  - Otherwise the state is CONTACT if some local minimum of the distance between the curves is within
+ *    the summed tolerance λ_A(t_A) + λ_B(t_B) (6.15) — one contact per such local minimum — and APART
+ *    if none is.
+ *  - A point with t = 1 belongs to the next segment: no duplicate contacts at joints.
+ *  - Contacts carry λ at both points, the mixed friction μ and restitution ε of the two surfaces
+ *    there, and an id that stays the same while the contact persists (warm starting).
+ *  - INTERSECTING also covers one body lying wholly inside the other (contact: the shortest way out).
+ *  - Primitive contacts carry the shape's own friction and restitution, unmixed.
+ * Nothing is missed: the narrow phase certifies apart/contact/crossing with Bezier-hull subdivision
+ * when Newton does not converge. Queries allocate only when a context grows (it never shrinks).
+ * A NULL query means rugo_default_contact_query(); capacity 0 with NULL stats returns the state only.
+ * Rotations in transforms are assumed unit (only finiteness is checked). */
+#ifndef RUGO_COLLIDE_H
+#define RUGO_COLLIDE_H
+
+#include "rugo/base.h"
+#include "rugo/mobb.h"
+#include "rugo/shape.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rugo_contact_state {
+    RUGO_STATE_APART = 0,
+    RUGO_STATE_CONTACT = 1,
+    RUGO_STATE_INTERSECTING = 2
+} rugo_contact_state;
+
+/* "apart", "contact", "intersecting". */
+const char* rugo_contact_state_name(rugo_contact_state s);
+
+typedef struct rugo_contact {
+    rugo_vec2 point_a, point_b; /* world points on the curves */
+    rugo_vec2 normal;           /* unit, from A to B */
+    rugo_real separation;       /* (point_b - point_a)·normal; negative = penetration */
+    int segment_a, segment_b;   /* segment indices at the query's level of each shape (-1: primitive) */
+    rugo_real t_a, t_b;         /* parameters in [0, 1) (t_b = 0 for primitives) */
+    int level_a, level_b;       /* the level of each shape used (0 for primitives) */
+    rugo_real tolerance_a, tolerance_b; /* λ(t) at the points (the override if the query gives one) */
+    rugo_real friction;         /* mixed μ of the two surfaces at the points */
+    rugo_real restitution;      /* mixed base restitution ε of the two surfaces */
+    int region;                 /* contact region index (overlap region or local minimum), from 0 */
+    uint64_t id;                /* stable while the contact persists */
+} rugo_contact;
+
+typedef struct rugo_query_stats {
+    long box_tests;         /* OBB overlap tests in the tree traversal */
+    long segment_pairs;     /* segment pairs given to the narrow phase */
+    long newton_iterations; /* total Newton iterations */
+    long fallbacks;         /* pairs decided by subdivision because Newton did not settle */
+    int contacts_found;     /* before truncation to the caller's capacity */
+} rugo_query_stats;
+
+typedef struct rugo_contact_query {
+    /* Level of detail: 0 = the finest level of each shape, -1 = one level coarser, ... (clamped at
+     * each shape's coarsest level); a positive value is an absolute level (clamped to each shape's
+     * range). Coarse levels use their coarse segments with their accumulated tolerances λ^j. */
+    int level;
+    /* < 0 (default): use the shapes' tolerances; >= 0: both shapes get this constant band instead. */
+    rugo_real tolerance;
+    rugo_mix_rule friction_mix;    /* default RUGO_MIX_MAX (thesis) */
+    rugo_mix_rule restitution_mix; /* default RUGO_MIX_MIN (thesis) */
+    int cookie;
+} rugo_contact_query;
+
+rugo_contact_query rugo_default_contact_query(void);
+
+/* Reusable scratch for queries (node stacks, pair lists). One per thread. */
+typedef struct rugo_collide_context rugo_collide_context;
+rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out);
+void rugo_collide_context_destroy(rugo_collide_context* ctx);
+
+/* Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
+ * first within each region, regions in a stable order), the number written to *count, the state to
+ * *state; stats may be NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (query cookie, capacity < 0),
+ * NOT_FINITE (a transform), OUT_OF_MEMORY (the context could not grow). */
+rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats);
+
+/* A shape against Box2D-like primitives (B, smooth, tolerance 0, in world coordinates): a circle, a
+ * segment with radius (a capsule; radius 0 is an edge), a convex polygon of 3..8 counter-clockwise
+ * vertices with radius (Box2D's polygon skin). Same outputs and errors; BAD_ARGUMENT also for a
+ * negative radius or a polygon that is not convex and counter-clockwise. */
+rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
+                                rugo_real radius, const rugo_contact_query* query, rugo_contact* contacts,
+                                int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats);
+rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
+                                 rugo_vec2 p2, rugo_real radius, const rugo_contact_query* query,
+                                 rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                 rugo_query_stats* stats);
+rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 const rugo_vec2* vertices, int vertex_count, rugo_real radius,
+                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity, int* count,
+                                 rugo_contact_state* state, rugo_query_stats* stats);
+
+/* Tree against tree (SPEC 7): the node pairs whose boxes overlap, descending the taller subtree
+ * (both when equally tall) and stopping at level_a / level_b (absolute levels, clamped to each
+ * tree). Writes at most capacity pairs; *count = number found (may exceed capacity);
+ * *box_tests = OBB tests done. */
+typedef struct rugo_node_pair {
+    int k_a, k_b; /* node indices at the stop levels */
+} rugo_node_pair;
+rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa, int level_a,
+                            const rugo_mobb_tree* b, rugo_transform xb, int level_b, rugo_node_pair* pairs,
+                            int capacity, int* count, long* box_tests);
+
+/* Manifold reduction: keeps at most k contacts per region (k >= 1): the deepest, then repeatedly the
+ * one farthest from those kept. Order is preserved otherwise. Returns the new count. */
+int rugo_reduce_manifold(rugo_contact* contacts, int count, int k);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,66 @@
+/* librugo — the rough curved shape: everything a body needs, built once and immutable.
+ *
+ * A rugo_shape owns the wavelet pyramid of its contour (levels J_min..J), the tolerances λ and hard
+ * bounds β of every level, the MOBBtree, the exact mass properties (unit density) and the surface's
+ * friction map and restitution. Once created it never changes, so one shape can be shared by many
+ * bodies and threads; all queries on it are re-entrant. Everything is in the shape's local frame;
+ * bodies place it with a rugo_transform. */
+#ifndef RUGO_SHAPE_H
+#define RUGO_SHAPE_H
+
+#include "rugo/base.h"
+#include "rugo/contour.h"
+#include "rugo/mobb.h"
+#include "rugo/multires.h"
+#include "rugo/tolerance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rugo_shape rugo_shape;
+
+typedef struct rugo_shape_def {
+    const rugo_vec2* points; /* 2^J control points, either orientation (normalised to CCW) */
+    int count;
+    rugo_filter filter;      /* default RUGO_FILTER_DEFAULT */
+    int coarsest_level;      /* J_min >= 2; 0 = as coarse as possible (2) */
+    const rugo_real* tolerances; /* λ per finest segment of the INPUT order (count values); NULL = smooth */
+    rugo_real q;             /* default RUGO_DEFAULT_Q */
+    rugo_tolerance_estimator estimator; /* default RUGO_ESTIMATOR_DETAIL */
+    rugo_friction_map friction;         /* default rugo_default_friction_map() */
+    rugo_restitution restitution;       /* default rugo_default_restitution() */
+    rugo_box_method box_method;         /* default RUGO_BOXES_MULTIRES */
+    int check_self_intersection;        /* default 1 */
+    rugo_allocator allocator;
+    int cookie;
+} rugo_shape_def;
+
+rugo_shape_def rugo_default_shape_def(void);
+
+/* Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
+ * Errors: those of rugo_pyramid_create, rugo_tolerances_create, rugo_mobb_tree_create,
+ * rugo_friction_map_check and rugo_restitution_check. problem may be NULL. */
+rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem);
+void rugo_shape_destroy(rugo_shape* shape);
+
+int rugo_shape_finest_level(const rugo_shape* s);
+int rugo_shape_coarsest_level(const rugo_shape* s);
+/* The curve of a level (a view valid for the shape's lifetime); BAD_LEVEL outside [J_min, J]. */
+rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out);
+rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out);
+const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
+const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s);
+rugo_mass_properties rugo_shape_mass(const rugo_shape* s);
+rugo_friction_map rugo_shape_friction_map(const rugo_shape* s);
+rugo_restitution rugo_shape_restitution(const rugo_shape* s);
+/* 1 if any finest tolerance is > 0. */
+int rugo_shape_is_rough(const rugo_shape* s);
+/* 1 if the input was clockwise and was reversed (segment j of the input is segment n-2-j here). */
+int rugo_shape_was_reversed(const rugo_shape* s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

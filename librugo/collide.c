@@ -1,0 +1,2177 @@
+/* Contacts between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2; DESIGN "Contact
+ * semantics"). docs/contacts.md states the semantics; this comment says how they are computed.
+ *
+ * Frame. Everything is computed in A's local frame: B's boxes and pieces are moved there by the
+ * relative transform xa^-1 xb (exact up to one rounding per coordinate even when both poses are far
+ * from the origin), and every narrow-phase call gets its two pieces shifted so that A's piece starts
+ * at the origin. Separations and normals are computed there and only the final points and normals
+ * are moved to world coordinates.
+ *
+ * Shape against shape:
+ *  1. Tree traversal (SPEC 7) from the two roots down to the query's levels, B's boxes moved into A's
+ *     frame. Boxes are grown by the band the query can use beyond what the boxes hold (an override
+ *     tolerance, or the excess of λ(t) over λ^j_k at coarse levels, see shape.c), so that no pair of
+ *     segments within the band is pruned.
+ *  2. First narrow pass on every surviving segment pair, cutoff = the bounds of λ(t) on both segments
+ *     (or twice the override): all crossings, and all stationary pairs within the band.
+ *  3. Results in global parameters; a point found by two segment pairs (a joint: t = 1 belongs to the
+ *     next segment; or a point-like segment) is kept once.
+ *  4. Crossings (kind != 0) => INTERSECTING. Overlap regions are traced as the boundary of A ∩ B:
+ *     sorted along A and along B, each crossing starts an arc of A inside B or an arc of B inside A
+ *     (from the crossing's orientation; if those are inconsistent, e.g. an odd count after a
+ *     near-tangent crossing, from containment tests of arc midpoints), and following those arcs from
+ *     crossing to crossing closes each region. A second narrow pass over the segments of each region,
+ *     cutoff = the region's size, finds the stationary pairs (pa on an A-arc of the region, pb on a
+ *     B-arc of it) whose connecting vector is normal to both curves and points out of A at pa and into
+ *     B at pb — penetration pairs, typically saddles of the distance; the one with the largest
+ *     distance is the region's contact. Pairs of segments whose tangent cones cannot be anti-parallel
+ *     are skipped (a penetration pair has anti-parallel tangents). If a region has no such pair
+ *     (tiny or degenerate overlaps), the point of its arcs farthest from the other curve (samples +
+ *     closest point) is used instead. Local minima within the band outside every region are reported
+ *     too, as their own regions.
+ *  5. No crossing, but one curve inside the other (a point of one inside the other): INTERSECTING,
+ *     one contact: the closest pair of the two curves gives the way out (the outer curve's outward
+ *     normal there); the inner body's support point against that normal gives the depth.
+ *  6. Otherwise each local minimum of the distance within λ_A(t_A) + λ_B(t_B), with the two curves
+ *     facing each other, is a contact (CONTACT), or none (APART).
+ *
+ * Primitives (B = a convex core K — a point, a segment or a polygon — grown by a radius R) follow the
+ * same plan with B's boundary made of straight edges (offset by R) and vertex arcs (radius R); the
+ * narrow phase runs the piece against each edge (rugo__narrow_line) and each vertex
+ * (rugo__narrow_point), crossings with vertex arcs are bracketed between the stationary points of
+ * the distance to the vertex. An edge (a segment with R = 0) has no inside: each piece of it inside A
+ * gets one contact at its point deepest inside A (sampled, refined by golden section). */
+#include "rugo/collide.h"
+
+#include "internal.h"
+#include "shape_internal.h"
+#include "narrow.h"
+#include "poly.h"
+
+#include <float.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* "RUGQ": catches queries that did not come from rugo_default_contact_query. */
+#define QUERY_COOKIE 0x52554751
+
+
+/* Relative tolerances (times the larger shape's size). */
+#define SAME_POINT 1e-9         /* two results closer than this are the same point */
+#define NORMAL_FROM_POINTS 1e-7 /* below this distance the normal comes from A's curve, not pb - pa */
+#define CUTOFF_PAD 1e-12        /* pad of narrow-phase cutoffs: round-off must not hide a contact */
+#define FALLBACK_SAMPLES 16     /* samples per segment of a region's arcs when no penetration pair exists */
+#define EDGE_SAMPLES 32         /* samples of an edge piece inside A */
+
+#define PI_VALUE 3.14159265358979323846
+
+/* ---------------------------------------------------------------------------------------------------
+ * Context: growable scratch. */
+
+typedef struct buffer {
+    void* data;
+    size_t cap; /* elements */
+} buffer;
+
+typedef struct tnode {
+    int la, ka, lb, kb; /* level -1: the root */
+} tnode;
+
+/* A crossing or a stationary pair found by the narrow phase, in global parameters. */
+typedef struct hit {
+    int sa, sb;       /* segment of A, segment of B (primitives: feature of B's boundary) */
+    rugo_real ta, tb; /* in [0, 1) */
+    rugo_real ua, ub; /* sa + ta, sb + tb */
+    rugo_vec2 pa, pb; /* A's frame */
+    rugo_vec2 nb;     /* primitives: B's outward normal at pb (zero: a corner, use its cone) */
+    rugo_real distance;
+    int kind;
+    int src;        /* the narrow call that found it */
+    int vertex;     /* primitives: the vertex of a corner candidate, else -1 */
+    int dead;       /* removed as a duplicate */
+    int coincident; /* found by a narrow call whose pieces coincide (infinitely many roots) */
+} hit;
+
+typedef struct seginfo {
+    int k;
+    rugo_vec2 b[4];   /* Bezier points in A's frame */
+    rugo_vec2 lo, hi; /* their bounds */
+    rugo_vec2 cone;   /* unit centre of the tangent directions */
+    rugo_real half;   /* half-angle of the tangent cone (>= pi: unknown) */
+} seginfo;
+
+struct rugo_collide_context {
+    rugo_allocator al;
+    buffer stack; /* tnode */
+    buffer pairs; /* rugo_node_pair */
+    buffer xs;    /* hit: crossings */
+    buffer ss;    /* hit: stationary pairs of the first pass */
+    buffer ss2;   /* hit: stationary pairs of later passes */
+    buffer ints;  /* int: region bookkeeping, 8 per crossing */
+    buffer marks; /* unsigned char: segment marks of A then B */
+    buffer segs;  /* seginfo: segments of one region */
+    buffer out;   /* rugo_contact: contacts before truncation */
+};
+
+static int reserve(rugo_collide_context* c, buffer* b, size_t need, size_t elem) {
+    if (need <= b->cap) return 1;
+    size_t n = b->cap ? b->cap : 64;
+    while (n < need) {
+        if (n > ((size_t)-1) / 4 / elem) return 0;
+        n *= 2;
+    }
+    void* p = rugo__alloc_array(&c->al, n, elem);
+    if (p == NULL) return 0;
+    if (b->data != NULL) {
+        memcpy(p, b->data, b->cap * elem);
+        rugo__free(&c->al, b->data);
+    }
+    b->data = p;
+    b->cap = n;
+    return 1;
+}
+
+rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out) {
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *out = NULL;
+    rugo_allocator al = rugo__allocator_or_default(allocator);
+    rugo_collide_context* c = (rugo_collide_context*)rugo__alloc_array(&al, 1, sizeof(rugo_collide_context));
+    if (c == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    memset(c, 0, sizeof *c);
+    c->al = al;
+    *out = c;
+    return RUGO_OK;
+}
+
+void rugo_collide_context_destroy(rugo_collide_context* c) {
+    if (c == NULL) return;
+    buffer* all[] = {&c->stack, &c->pairs, &c->xs, &c->ss, &c->ss2, &c->ints, &c->marks, &c->segs, &c->out};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
+        rugo__free(&c->al, all[i]->data);
+    rugo_allocator al = c->al;
+    rugo__free(&al, c);
+}
+
+rugo_contact_query rugo_default_contact_query(void) {
+    rugo_contact_query q;
+    memset(&q, 0, sizeof q);
+    q.level = 0;
+    q.tolerance = -1.0;
+    q.friction_mix = RUGO_MIX_MAX;
+    q.restitution_mix = RUGO_MIX_MIN;
+    q.cookie = QUERY_COOKIE;
+    return q;
+}
+
+const char* rugo_contact_state_name(rugo_contact_state s) {
+    switch (s) {
+    case RUGO_STATE_APART:
+        return "apart";
+    case RUGO_STATE_CONTACT:
+        return "contact";
+    case RUGO_STATE_INTERSECTING:
+        return "intersecting";
+    default:
+        return "unknown";
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Small geometry. */
+
+static rugo_vec2 lerp2(rugo_vec2 a, rugo_vec2 b, rugo_real t) {
+    return rugo_v2(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+}
+
+static rugo_vec2 bez_point(const rugo_vec2 b[4], rugo_real t) {
+    const rugo_real s = 1.0 - t;
+    const rugo_real w0 = s * s * s, w1 = 3.0 * s * s * t, w2 = 3.0 * s * t * t, w3 = t * t * t;
+    return rugo_v2(w0 * b[0].x + w1 * b[1].x + w2 * b[2].x + w3 * b[3].x,
+                   w0 * b[0].y + w1 * b[1].y + w2 * b[2].y + w3 * b[3].y);
+}
+
+static rugo_real v2_len(rugo_vec2 v) { return rugo__v2_length(v); }
+
+static rugo_vec2 v2_unit(rugo_vec2 v) {
+    const rugo_real l = v2_len(v);
+    return l > 0.0 ? rugo_v2(v.x / l, v.y / l) : rugo_v2(0.0, 0.0);
+}
+
+static rugo_transform relative_transform(rugo_transform xa, rugo_transform xb) {
+    rugo_transform r;
+    r.q.c = xa.q.c * xb.q.c + xa.q.s * xb.q.s;
+    r.q.s = xa.q.c * xb.q.s - xa.q.s * xb.q.c;
+    r.p = rugo_inv_rotate(xa.q, rugo_v2_sub(xb.p, xa.p));
+    return r;
+}
+
+static int transform_finite(rugo_transform t) {
+    return isfinite(t.p.x) && isfinite(t.p.y) && isfinite(t.q.c) && isfinite(t.q.s);
+}
+
+static rugo_real box_size(const rugo_obb* b) { return b ? 2.0 * hypot(b->half[0], b->half[1]) : 0.0; }
+
+static rugo_obb grow_box(rugo_obb b, rugo_real d) {
+    b.half[0] += d;
+    b.half[1] += d;
+    return b;
+}
+
+static void bez_bounds(const rugo_vec2 b[4], rugo_vec2* lo, rugo_vec2* hi) {
+    *lo = *hi = b[0];
+    for (int i = 1; i < 4; ++i) {
+        lo->x = fmin(lo->x, b[i].x);
+        lo->y = fmin(lo->y, b[i].y);
+        hi->x = fmax(hi->x, b[i].x);
+        hi->y = fmax(hi->y, b[i].y);
+    }
+}
+
+/* The cone of tangent directions of a Bezier piece: the hodograph's control points span it. */
+static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* half) {
+    rugo_vec2 u[3];
+    int m = 0;
+    rugo_real size = 0.0;
+    for (int i = 0; i < 3; ++i)
+        size = fmax(size, v2_len(rugo_v2_sub(b[i + 1], b[i])));
+    rugo_vec2 sum = rugo_v2(0.0, 0.0);
+    for (int i = 0; i < 3; ++i) {
+        rugo_vec2 d = rugo_v2_sub(b[i + 1], b[i]);
+        if (v2_len(d) > 1e-9 * size) {
+            u[m] = v2_unit(d);
+            sum = rugo_v2_add(sum, u[m]);
+            ++m;
+        }
+    }
+    *centre = rugo_v2(1.0, 0.0);
+    *half = 4.0; /* > pi: no information */
+    if (m == 0 || v2_len(sum) < 1e-6) return;
+    *centre = v2_unit(sum);
+    rugo_real h = 0.0;
+    for (int i = 0; i < m; ++i) {
+        rugo_real c = rugo_v2_dot(*centre, u[i]);
+        c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
+        h = fmax(h, acos(c));
+    }
+    *half = h;
+}
+
+/* Size of the curve around segment seg (its control points and a few neighbours): chords shorter
+ * than a tiny fraction of it are round-off, not directions. */
+static rugo_real local_extent(rugo_contour c, int seg) {
+    const rugo_vec2 o = c.points[rugo__wrap(seg, c.count)];
+    rugo_real e = 0.0;
+    for (int i = seg - 4; i <= seg + 5; ++i)
+        e = fmax(e, v2_len(rugo_v2_sub(c.points[rugo__wrap(i, c.count)], o)));
+    return e;
+}
+
+/* Outward normal of a counter-clockwise curve at (seg, t). Where the speed vanishes (coincident
+ * control points: a sharp corner, or a segment shrunk to a point) the normal is that of a chord
+ * across the spot, i.e. the middle of the corner's normal cone. */
+static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
+    rugo_vec2 v, w, r;
+    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
+    const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_real scale = v2_len(v) + v2_len(w) + v2_len(r);
+    const rugo_real len = v2_len(d);
+    if (len > 1e-9 * scale && len > 0.0) return rugo_v2(d.y / len, -d.x / len);
+    const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, tiny = 1e-8 * local_extent(c, seg);
+    for (rugo_real h = 1e-4; h < (rugo_real)c.count; h *= 2.0) {
+        const rugo_vec2 p1 = rugo_contour_point_at(c, u + h);
+        const rugo_vec2 p0 = rugo_contour_point_at(c, u - h + (rugo_real)c.count);
+        const rugo_vec2 ch = rugo_v2_sub(p1, p0);
+        const rugo_real l = v2_len(ch);
+        if (l > tiny && l > 0.0) return rugo_v2(ch.y / l, -ch.x / l);
+    }
+    return rugo_contour_normal(c, seg, t);
+}
+
+/* At a zero-speed point of the curve (a sharp corner made by coincident control points), the normals
+ * of the curve just before and just after it (one-sided chords); 0 at a regular point. */
+static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in, rugo_vec2* n_out) {
+    rugo_vec2 v, w, r;
+    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
+    const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_real scale = v2_len(v) + v2_len(w) + v2_len(r);
+    if (v2_len(d) > 1e-9 * scale && v2_len(d) > 0.0) return 0;
+    const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, n = (rugo_real)c.count;
+    const rugo_vec2 p = rugo_contour_point_at(c, u);
+    const rugo_real tiny = 1e-8 * local_extent(c, seg);
+    int got = 0;
+    /* Chords long enough to be directions (1e-8 of the local size) yet short: the flank's tangent
+     * to ~1e-4 where the corner's neighbours are cubic ramps. */
+    for (int side = 0; side < 2; ++side)
+        for (rugo_real h = 1e-4; h < n; h *= 2.0) {
+            const rugo_vec2 q = rugo_contour_point_at(c, side ? u + h : u - h + n);
+            const rugo_vec2 ch = side ? rugo_v2_sub(q, p) : rugo_v2_sub(p, q);
+            const rugo_real l = v2_len(ch);
+            if (l > tiny && l > 0.0) {
+                *(side ? n_out : n_in) = rugo_v2(ch.y / l, -ch.x / l);
+                ++got;
+                break;
+            }
+        }
+    return got == 2;
+}
+
+/* Does direction d (from the curve's point toward the other body) leave the curve on its outward
+ * side? At a regular point: d·n >= 0. At a corner: d must lie in the corner's normal cone (a local
+ * minimum of the distance cannot sit at a corner otherwise: one of its flanks comes closer); a reflex
+ * corner has no such direction. rot turns the curve's frame into the query's. */
+static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_rot rot) {
+    rugo_vec2 a, b;
+    if (!corner_normals(c, seg, t, &a, &b))
+        return rugo_v2_dot(rugo_rotate(rot, curve_normal(c, seg, t)), d) >= 0.0;
+    a = rugo_rotate(rot, a);
+    b = rugo_rotate(rot, b);
+    const rugo_real turn = rugo_v2_cross(a, b), tol = 1e-9 * v2_len(d);
+    if (turn < -1e-12) return 0;                                                    /* reflex */
+    if (turn <= 1e-12) return rugo_v2_dot(a, d) >= 0.0 && rugo_v2_dot(b, d) >= 0.0; /* no turn */
+    return rugo_v2_cross(a, d) >= -tol && rugo_v2_cross(d, b) >= -tol;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Levels, bands, surfaces. */
+
+typedef struct side {
+    const rugo_shape* shape;
+    const rugo_mobb_tree* tree;
+    rugo_contour curve; /* level curve, local frame */
+    int level, n, jmin;
+    const rugo_real* lambda; /* total λ of the level */
+    const rugo_real* band;   /* upper bounds of λ(t) per segment */
+    rugo_real slack;         /* growth of the boxes */
+} side;
+
+static int resolve_level(const rugo_shape* s, int level) {
+    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
+    int l = level <= 0 ? J + level : level;
+    if (level <= 0 && level < -(J - Jmin)) l = Jmin; /* avoid overflow of J + level */
+    if (l < Jmin) l = Jmin;
+    if (l > J) l = J;
+    return l;
+}
+
+static void side_init(side* s, const rugo_shape* shape, int level, rugo_real override) {
+    s->shape = shape;
+    s->tree = rugo_shape_tree(shape);
+    s->level = resolve_level(shape, level);
+    s->jmin = rugo_shape_coarsest_level(shape);
+    rugo_shape_level(shape, s->level, &s->curve);
+    s->n = s->curve.count;
+    rugo_tolerance_level tl;
+    rugo_shape_tolerance_level(shape, s->level, &tl);
+    s->lambda = tl.total;
+    s->band = rugo__shape_band_bounds(shape, s->level);
+    s->slack = override >= 0.0 ? override : rugo__shape_band_excess(shape, s->level);
+}
+
+static rugo_real side_lambda(const side* s, int seg, rugo_real t, rugo_real override) {
+    if (override >= 0.0) return override;
+    return rugo_tolerance_at(s->lambda, s->n, seg, t, 0.0);
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Tree traversal (SPEC 7). */
+
+typedef struct tside {
+    const rugo_mobb_tree* tree; /* NULL: a single fixed box (a primitive) */
+    int jmin, stop;
+    rugo_real slack;
+    rugo_obb box;
+} tside;
+
+static int theight(const tside* s, int l) {
+    if (s->tree == NULL) return 0;
+    return l < 0 ? s->stop - s->jmin + 1 : s->stop - l;
+}
+
+static void tchildren(const tside* s, int l, int k, int* cl, int* k0, int* nk) {
+    if (l < 0) {
+        *cl = s->jmin;
+        *k0 = 0;
+        *nk = 1 << s->jmin;
+    } else {
+        *cl = l + 1;
+        *k0 = 2 * k;
+        *nk = 2;
+    }
+}
+
+static rugo_obb tbox(const tside* s, int l, int k, int moved, rugo_transform rel) {
+    if (s->tree == NULL) return s->box;
+    const rugo_obb* b = l < 0 ? rugo_mobb_tree_root(s->tree) : rugo_mobb_tree_node(s->tree, l, k);
+    rugo_obb r = moved ? rugo_obb_transform(rel, b) : *b;
+    return s->slack > 0.0 ? grow_box(r, s->slack) : r;
+}
+
+/* Node pairs at the stop levels whose boxes overlap, into ctx->pairs; B's boxes are moved by rel. */
+static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tside* B, rugo_transform rel,
+                            long* tests, size_t* count) {
+    size_t top = 0, found = 0;
+    long n_tests = 0;
+    if (!reserve(ctx, &ctx->stack, 64, sizeof(tnode))) return RUGO_ERR_OUT_OF_MEMORY;
+    tnode* st = (tnode*)ctx->stack.data;
+    st[top].la = -1;
+    st[top].ka = 0;
+    st[top].lb = -1;
+    st[top].kb = 0;
+    ++top;
+    while (top > 0) {
+        tnode t = st[--top];
+        rugo_obb ba = tbox(A, t.la, t.ka, 0, rel), bb = tbox(B, t.lb, t.kb, 1, rel);
+        ++n_tests;
+        if (!rugo_obb_overlap(&ba, &bb)) continue;
+        const int ha = theight(A, t.la), hb = theight(B, t.lb);
+        if (ha == 0 && hb == 0) {
+            if (!reserve(ctx, &ctx->pairs, found + 1, sizeof(rugo_node_pair))) return RUGO_ERR_OUT_OF_MEMORY;
+            rugo_node_pair* p = (rugo_node_pair*)ctx->pairs.data;
+            p[found].k_a = t.ka;
+            p[found].k_b = t.kb;
+            ++found;
+            continue;
+        }
+        int cla = t.la, ka0 = t.ka, nka = 1, clb = t.lb, kb0 = t.kb, nkb = 1;
+        if (ha >= hb) tchildren(A, t.la, t.ka, &cla, &ka0, &nka);
+        if (hb >= ha) tchildren(B, t.lb, t.kb, &clb, &kb0, &nkb);
+        if (!reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(tnode)))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        st = (tnode*)ctx->stack.data;
+        /* Pushed in reverse so that pairs come out in increasing order. */
+        for (int i = nka - 1; i >= 0; --i)
+            for (int j = nkb - 1; j >= 0; --j) {
+                st[top].la = cla;
+                st[top].ka = ka0 + i;
+                st[top].lb = clb;
+                st[top].kb = kb0 + j;
+                ++top;
+            }
+    }
+    *tests += n_tests;
+    *count = found;
+    return RUGO_OK;
+}
+
+rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
+                            int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
+                            rugo_node_pair* pairs, int capacity, int* count, long* box_tests) {
+    if (count != NULL) *count = 0;
+    if (box_tests != NULL) *box_tests = 0;
+    if (ctx == NULL || a == NULL || b == NULL || count == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
+    if (capacity > 0 && pairs == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (!transform_finite(xa) || !transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    tside A, B;
+    memset(&A, 0, sizeof A);
+    memset(&B, 0, sizeof B);
+    A.tree = a;
+    A.jmin = rugo_mobb_tree_coarsest_level(a);
+    A.stop = level_a < A.jmin
+                 ? A.jmin
+                 : (level_a > rugo_mobb_tree_finest_level(a) ? rugo_mobb_tree_finest_level(a) : level_a);
+    B.tree = b;
+    B.jmin = rugo_mobb_tree_coarsest_level(b);
+    B.stop = level_b < B.jmin
+                 ? B.jmin
+                 : (level_b > rugo_mobb_tree_finest_level(b) ? rugo_mobb_tree_finest_level(b) : level_b);
+    long tests = 0;
+    size_t n = 0;
+    rugo_status st = traverse(ctx, &A, &B, relative_transform(xa, xb), &tests, &n);
+    if (st != RUGO_OK) return st;
+    const rugo_node_pair* p = (const rugo_node_pair*)ctx->pairs.data;
+    for (size_t i = 0; i < n && i < (size_t)capacity; ++i)
+        pairs[i] = p[i];
+    *count = n > (size_t)INT32_MAX ? INT32_MAX : (int)n;
+    if (box_tests != NULL) *box_tests = tests;
+    return RUGO_OK;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Hits: recording, global parameters, duplicates. */
+
+static int push_hit(rugo_collide_context* ctx, buffer* b, size_t* n, const hit* h) {
+    if (!reserve(ctx, b, *n + 1, sizeof(hit))) return 0;
+    ((hit*)b->data)[(*n)++] = *h;
+    return 1;
+}
+
+/* Segment and parameter with t = 1 moved to the next segment. */
+static void normalise(int* seg, rugo_real* t, int n) {
+    if (!(*t > 0.0)) *t = 0.0;
+    if (*t >= 1.0) {
+        *seg += 1;
+        *t = 0.0;
+    }
+    *seg = rugo__wrap(*seg, n);
+}
+
+static int hit_cmp(const void* pa, const void* pb) {
+    const hit* a = (const hit*)pa;
+    const hit* b = (const hit*)pb;
+    if (a->ua != b->ua) return a->ua < b->ua ? -1 : 1;
+    if (a->ub != b->ub) return a->ub < b->ub ? -1 : 1;
+    if (a->src != b->src) return a->src < b->src ? -1 : 1;
+    if (a->kind != b->kind) return a->kind < b->kind ? -1 : 1;
+    return 0;
+}
+
+/* Sorts by A's parameter and marks as dead every hit that repeats an earlier one found by another
+ * narrow call (same points within `eps`, A parameters within one segment, cyclically). A crossing
+ * beats a touching; for stationary pairs a minimum beats other kinds: at a joint next to a point-like
+ * segment or a zero-speed corner, the pieces that only reach the point at an end of their domain
+ * cannot classify it, the piece that holds it can. */
+static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stationary) {
+    if (n == 0) return;
+    qsort(h, n, sizeof(hit), hit_cmp);
+    for (size_t i = 0; i < n; ++i) {
+        if (h[i].dead) continue;
+        for (size_t jj = 1; jj < n; ++jj) {
+            const size_t j = (i + jj) % n;
+            rugo_real du = h[j].ua - h[i].ua;
+            if (du < 0.0) du += period_a;
+            if (du > 3.0 + 1e-9) break; /* a point-like segment or two may lie between duplicates */
+            /* One call reports distinct roots, except stationary points spread over a zero-speed plateau
+             * (a corner made by coincident control points): those merge by position too. */
+            if (h[j].dead || (h[j].src == h[i].src && !stationary)) continue;
+            int same =
+                v2_len(rugo_v2_sub(h[j].pa, h[i].pa)) <= eps && v2_len(rugo_v2_sub(h[j].pb, h[i].pb)) <= eps;
+            /* Flat minima (straight or nearly straight pieces facing each other) are located only to
+             * ~sqrt(eps) at joints; at the same distance to round-off, points that close are one. */
+            if (!same && stationary && fabs(h[j].distance - h[i].distance) <= 1e-3 * eps)
+                same = v2_len(rugo_v2_sub(h[j].pa, h[i].pa)) <= 1e3 * eps &&
+                       v2_len(rugo_v2_sub(h[j].pb, h[i].pb)) <= 1e3 * eps;
+            if (same) {
+                h[i].coincident |= h[j].coincident;
+                if (stationary) {
+                    if (h[j].kind == RUGO__MINIMUM) h[i].kind = RUGO__MINIMUM;
+                } else if (h[i].kind == 0 && h[j].kind != 0) {
+                    h[i].kind = h[j].kind;
+                }
+                h[j].dead = 1;
+            }
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Overlap regions: the boundary of A ∩ B traced through the crossings. */
+
+typedef struct region_io {
+    void* user;
+    rugo_real period_a, period_b;
+    rugo_vec2 (*point_a)(void* user, rugo_real u); /* A's frame */
+    rugo_vec2 (*point_b)(void* user, rugo_real w);
+    int (*inside_b)(void* user, rugo_vec2 p);
+    int (*inside_a)(void* user, rugo_vec2 p);
+} region_io;
+
+typedef struct regions {
+    int m;        /* crossings */
+    const hit* x; /* sorted by ua */
+    int* order_b; /* crossing indices sorted by ub */
+    int* pos_b;   /* rank of each crossing in order_b */
+    int* a_in;    /* A's arc from crossing i to the next along A lies inside B */
+    int* b_in;    /* B's arc from crossing i to the next along B lies inside A */
+    int* reg_a;   /* region of A's arc i, or -1 */
+    int* reg_b;   /* region of B's arc i, or -1 */
+    int count;    /* regions */
+    rugo_real period_a, period_b;
+} regions;
+
+static int next_a(const regions* r, int i) { return (i + 1) % r->m; }
+static int next_b(const regions* r, int i) { return r->order_b[(r->pos_b[i] + 1) % r->m]; }
+
+static rugo_real arc_length(rugo_real from, rugo_real to, rugo_real period, int single) {
+    rugo_real d = to - from;
+    while (d < 0.0)
+        d += period;
+    if (single || d == 0.0) d = period;
+    return d;
+}
+
+static rugo_real wrap_param(rugo_real u, rugo_real period) {
+    rugo_real r = fmod(u, period);
+    if (r < 0.0) r += period;
+    if (r >= period) r = 0.0;
+    return r;
+}
+
+/* Index of the arc (of A if which == 0, of B otherwise) holding parameter u. */
+static int arc_of(const regions* r, rugo_real u, int which) {
+    int lo = 0, hi = r->m - 1, best = -1;
+    while (lo <= hi) { /* last rank whose start <= u */
+        const int mid = (lo + hi) / 2;
+        const rugo_real start = which == 0 ? r->x[mid].ua : r->x[r->order_b[mid]].ub;
+        if (start <= u) {
+            best = mid;
+            lo = mid + 1;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    if (best < 0) best = r->m - 1; /* before the first crossing: the arc that wraps around */
+    return which == 0 ? best : r->order_b[best];
+}
+
+/* Region of a pair (ua on A, ub on B) if both lie on arcs of the same region, else -1. */
+static int region_of_pair(const regions* r, rugo_real ua, rugo_real ub) {
+    if (r->m == 0) return -1;
+    const int ra = r->reg_a[arc_of(r, ua, 0)], rb = r->reg_b[arc_of(r, ub, 1)];
+    return ra >= 0 && ra == rb ? ra : -1;
+}
+
+/* Region touching a point of A or B (either arc), for filtering minima. */
+static int in_any_region(const regions* r, rugo_real ua, rugo_real ub) {
+    if (r->m == 0) return 0;
+    return r->reg_a[arc_of(r, ua, 0)] >= 0 || r->reg_b[arc_of(r, ub, 1)] >= 0;
+}
+
+static void sort_order_b(regions* r) {
+    /* Insertion sort by (ub, index): m is small, and this keeps the order deterministic without a
+     * global comparator context. */
+    for (int i = 0; i < r->m; ++i)
+        r->order_b[i] = i;
+    for (int i = 1; i < r->m; ++i) {
+        const int v = r->order_b[i];
+        int j = i - 1;
+        while (j >= 0 && (r->x[r->order_b[j]].ub > r->x[v].ub ||
+                          (r->x[r->order_b[j]].ub == r->x[v].ub && r->order_b[j] > v))) {
+            r->order_b[j + 1] = r->order_b[j];
+            --j;
+        }
+        r->order_b[j + 1] = v;
+    }
+    for (int i = 0; i < r->m; ++i)
+        r->pos_b[r->order_b[i]] = i;
+}
+
+static int kinds_consistent(const regions* r) {
+    if (r->m % 2 != 0) return 0;
+    for (int i = 0; i < r->m; ++i) {
+        if (r->a_in[i] == r->b_in[i]) return 0;
+        if (r->a_in[i] == r->a_in[next_a(r, i)]) return 0;
+        if (r->b_in[i] == r->b_in[next_b(r, i)]) return 0;
+    }
+    return 1;
+}
+
+/* Builds the regions of the m crossings x (sorted by ua; ctx->ints must hold 6 m ints). */
+static void build_regions(regions* r, const hit* x, int m, int* ints, const region_io* io) {
+    r->m = m;
+    r->x = x;
+    r->order_b = ints;
+    r->pos_b = ints + m;
+    r->a_in = ints + 2 * m;
+    r->b_in = ints + 3 * m;
+    r->reg_a = ints + 4 * m;
+    r->reg_b = ints + 5 * m;
+    r->count = 0;
+    r->period_a = io->period_a;
+    r->period_b = io->period_b;
+    if (m == 0) return;
+    sort_order_b(r);
+    for (int i = 0; i < m; ++i) {
+        r->a_in[i] = x[i].kind < 0;
+        r->b_in[i] = x[i].kind > 0;
+        r->reg_a[i] = r->reg_b[i] = -1;
+    }
+    if (!kinds_consistent(r)) {
+        /* Orientation of some crossing not trustworthy (near-tangent, or a crossing lost to a
+         * duplicate): decide each arc by a containment test of its midpoint. */
+        for (int i = 0; i < m; ++i) {
+            const int j = next_a(r, i);
+            const rugo_real la = arc_length(x[i].ua, x[j].ua, io->period_a, m == 1);
+            r->a_in[i] =
+                io->inside_b(io->user, io->point_a(io->user, wrap_param(x[i].ua + 0.5 * la, io->period_a)));
+            const int k = next_b(r, i);
+            const rugo_real lb = arc_length(x[i].ub, x[k].ub, io->period_b, m == 1);
+            r->b_in[i] =
+                io->inside_a(io->user, io->point_b(io->user, wrap_param(x[i].ub + 0.5 * lb, io->period_b)));
+        }
+    }
+    for (int pass = 0; pass < 2; ++pass)
+        for (int i = 0; i < m; ++i) {
+            /* Regions start from A's arcs; B's arcs no A-arc reached (inconsistent data) start their own. */
+            const int start_ok =
+                pass == 0 ? (r->a_in[i] && r->reg_a[i] < 0) : (r->b_in[i] && r->reg_b[i] < 0);
+            if (!start_ok) continue;
+            const int reg = r->count++;
+            int cur = i, use_a = pass == 0;
+            for (int steps = 0; steps < 2 * m + 2; ++steps) {
+                if (use_a && r->a_in[cur] && r->reg_a[cur] < 0) {
+                    r->reg_a[cur] = reg;
+                    cur = next_a(r, cur);
+                } else if (r->b_in[cur] && r->reg_b[cur] < 0) {
+                    r->reg_b[cur] = reg;
+                    cur = next_b(r, cur);
+                } else if (r->a_in[cur] && r->reg_a[cur] < 0) {
+                    r->reg_a[cur] = reg;
+                    cur = next_a(r, cur);
+                } else {
+                    break;
+                }
+                use_a = 1;
+            }
+        }
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Contacts: filling, ordering, output. */
+
+typedef struct out_ctx {
+    rugo_collide_context* ctx;
+    size_t n;
+    rugo_transform xa;
+    const rugo_contact_query* q;
+    const side* A;
+    const side* B; /* NULL for primitives */
+    rugo_real override;
+} out_ctx;
+
+static uint64_t make_id(int level_a, int level_b, int seg_a, int seg_b, int type, int index) {
+    return ((uint64_t)(level_a & 31) << 59) | ((uint64_t)(level_b & 31) << 54) |
+           ((uint64_t)(seg_a & 0xFFFFF) << 34) | ((uint64_t)(seg_b & 0xFFFFF) << 14) |
+           ((uint64_t)(type & 3) << 12) | (uint64_t)(index & 0xFFF);
+}
+
+/* Adds a contact from a pair in A's frame: n unit from A to B. id_b: B's segment, or the primitive's
+ * feature, for the id. */
+static int emit(out_ctx* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
+                rugo_vec2 n, int region, int type, int index, int id_b) {
+    if (!reserve(o->ctx, &o->ctx->out, o->n + 1, sizeof(rugo_contact))) return 0;
+    rugo_contact* c = (rugo_contact*)o->ctx->out.data + o->n++;
+    memset(c, 0, sizeof *c);
+    c->point_a = rugo_transform_point(o->xa, pa);
+    c->point_b = rugo_transform_point(o->xa, pb);
+    c->normal = rugo_rotate(o->xa.q, n);
+    c->separation = rugo_v2_dot(rugo_v2_sub(pb, pa), n);
+    c->segment_a = sa;
+    c->t_a = ta;
+    c->level_a = o->A->level;
+    c->tolerance_a = side_lambda(o->A, sa, ta, o->override);
+    rugo_friction_map fa = rugo_shape_friction_map(o->A->shape);
+    rugo_restitution ra = rugo_shape_restitution(o->A->shape);
+    const rugo_real mu_a = rugo_friction(&fa, c->tolerance_a);
+    if (o->B != NULL) {
+        c->segment_b = sb;
+        c->t_b = tb;
+        c->level_b = o->B->level;
+        c->tolerance_b = side_lambda(o->B, sb, tb, o->override);
+        rugo_friction_map fb = rugo_shape_friction_map(o->B->shape);
+        rugo_restitution rb = rugo_shape_restitution(o->B->shape);
+        c->friction = rugo_mix(o->q->friction_mix, mu_a, rugo_friction(&fb, c->tolerance_b));
+        c->restitution = rugo_mix(o->q->restitution_mix, ra.epsilon, rb.epsilon);
+    } else {
+        /* A primitive has no surface of its own: the shape's values, for the caller to mix. */
+        c->segment_b = -1;
+        c->t_b = 0.0;
+        c->level_b = 0;
+        c->tolerance_b = o->override >= 0.0 ? o->override : 0.0;
+        c->friction = mu_a;
+        c->restitution = ra.epsilon;
+    }
+    c->region = region;
+    c->id = make_id(c->level_a, c->level_b, sa, id_b, type, index);
+    return 1;
+}
+
+static int contact_cmp(const void* pa, const void* pb) {
+    const rugo_contact* a = (const rugo_contact*)pa;
+    const rugo_contact* b = (const rugo_contact*)pb;
+    if (a->region != b->region) return a->region < b->region ? -1 : 1;
+    if (a->separation != b->separation) return a->separation < b->separation ? -1 : 1;
+    if (a->id != b->id) return a->id < b->id ? -1 : 1;
+    return 0;
+}
+
+static void finish(out_ctx* o, rugo_contact* contacts, int capacity, int* count, rugo_query_stats* stats) {
+    rugo_contact* all = (rugo_contact*)o->ctx->out.data;
+    if (o->n > 1) qsort(all, o->n, sizeof(rugo_contact), contact_cmp);
+    size_t w = o->n < (size_t)capacity ? o->n : (size_t)capacity;
+    for (size_t i = 0; i < w; ++i)
+        contacts[i] = all[i];
+    *count = (int)w;
+    if (stats != NULL) stats->contacts_found = o->n > (size_t)INT32_MAX ? INT32_MAX : (int)o->n;
+}
+
+static rugo_status check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity) {
+    if (q->cookie != QUERY_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
+    if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
+    if (capacity > 0 && contacts == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (!isfinite(q->tolerance)) return RUGO_ERR_NOT_FINITE;
+    if ((unsigned)q->friction_mix > (unsigned)RUGO_MIX_GEOMETRIC ||
+        (unsigned)q->restitution_mix > (unsigned)RUGO_MIX_GEOMETRIC)
+        return RUGO_ERR_BAD_ARGUMENT;
+    return RUGO_OK;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Shape against shape. */
+
+typedef struct pair_geo {
+    const side* A;
+    const side* B;
+    rugo_transform rel; /* B's frame -> A's frame */
+    rugo_real scale;
+    rugo_query_stats* stats;
+    int src;
+    int coincident; /* some pieces coincide */
+} pair_geo;
+
+static void piece_b(const pair_geo* g, int k, rugo_vec2 out[4]) {
+    rugo_vec2 q[4];
+    rugo_contour_bezier(g->B->curve, k, q);
+    for (int i = 0; i < 4; ++i)
+        out[i] = rugo_transform_point(g->rel, q[i]);
+}
+
+static rugo_vec2 normal_a(const pair_geo* g, int seg, rugo_real t) {
+    return curve_normal(g->A->curve, seg, t);
+}
+static rugo_vec2 normal_b(const pair_geo* g, int seg, rugo_real t) {
+    return rugo_rotate(g->rel.q, curve_normal(g->B->curve, seg, t));
+}
+
+/* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. */
+static int run_pair(rugo_collide_context* ctx, pair_geo* g, int ka, const rugo_vec2 f[4], int kb,
+                    const rugo_vec2 gb[4], rugo_real cutoff, buffer* xs, size_t* nx, buffer* ss, size_t* ns) {
+    const rugo_vec2 o = f[0];
+    rugo_vec2 fl[4], gl[4];
+    for (int i = 0; i < 4; ++i) {
+        fl[i] = rugo_v2_sub(f[i], o);
+        gl[i] = rugo_v2_sub(gb[i], o);
+    }
+    rugo__narrow_result r;
+    rugo__narrow_pieces(fl, gl, cutoff, &r);
+    const int src = g->src++;
+    if (g->stats != NULL) {
+        g->stats->segment_pairs += 1;
+        g->stats->newton_iterations += r.newton_iterations;
+        g->stats->fallbacks += r.fallback > 0;
+    }
+    if (r.overflow) g->coincident = 1;
+    for (int pass = 0; pass < 2; ++pass) {
+        const int cnt = pass == 0 ? r.crossing_count : r.stationary_count;
+        const rugo__pair_point* pp = pass == 0 ? r.crossings : r.stationary;
+        buffer* dst = pass == 0 ? xs : ss;
+        size_t* nd = pass == 0 ? nx : ns;
+        if (dst == NULL) continue;
+        for (int i = 0; i < cnt; ++i) {
+            hit h;
+            memset(&h, 0, sizeof h);
+            h.sa = ka;
+            h.ta = pp[i].s;
+            h.sb = kb;
+            h.tb = pp[i].t;
+            normalise(&h.sa, &h.ta, g->A->n);
+            normalise(&h.sb, &h.tb, g->B->n);
+            h.ua = (rugo_real)h.sa + h.ta;
+            h.ub = (rugo_real)h.sb + h.tb;
+            h.pa = rugo_v2_add(pp[i].pa, o);
+            h.pb = rugo_v2_add(pp[i].pb, o);
+            h.distance = pp[i].distance;
+            h.kind = pp[i].kind;
+            h.src = src;
+            h.vertex = -1;
+            h.coincident = r.overflow;
+            if (!push_hit(ctx, dst, nd, &h)) return 0;
+        }
+    }
+    return 1;
+}
+
+/* Region geometry callbacks for two shapes. */
+static rugo_vec2 sh_point_a(void* u, rugo_real t) {
+    const pair_geo* g = (const pair_geo*)u;
+    return rugo_contour_point_at(g->A->curve, t);
+}
+static rugo_vec2 sh_point_b(void* u, rugo_real t) {
+    const pair_geo* g = (const pair_geo*)u;
+    return rugo_transform_point(g->rel, rugo_contour_point_at(g->B->curve, t));
+}
+static int sh_inside_b(void* u, rugo_vec2 p) {
+    const pair_geo* g = (const pair_geo*)u;
+    return rugo_contour_contains(g->B->curve, rugo_inv_transform_point(g->rel, p));
+}
+static int sh_inside_a(void* u, rugo_vec2 p) {
+    const pair_geo* g = (const pair_geo*)u;
+    return rugo_contour_contains(g->A->curve, p);
+}
+
+/* Extreme point of a curve (A's frame pieces from `piece`) along direction d: the point maximising
+ * p·d (sign = +1) or minimising it (sign = -1). Exact: ends and roots of the derivative. */
+static rugo_vec2 support_point(const pair_geo* g, int of_b, rugo_vec2 d, int sign, int* seg_out,
+                               rugo_real* t_out) {
+    const side* s = of_b ? g->B : g->A;
+    rugo_real best = -HUGE_VAL;
+    rugo_vec2 best_p = rugo_v2(0.0, 0.0);
+    int best_k = 0;
+    rugo_real best_t = 0.0;
+    for (int k = 0; k < s->n; ++k) {
+        rugo_vec2 b[4];
+        if (of_b)
+            piece_b(g, k, b);
+        else
+            rugo_contour_bezier(s->curve, k, b);
+        rugo_real v[4];
+        for (int i = 0; i < 4; ++i)
+            v[i] = (rugo_real)sign * rugo_v2_dot(b[i], d);
+        if (fmax(fmax(v[0], v[1]), fmax(v[2], v[3])) <= best) continue;
+        /* derivative of the Bernstein cubic: 3[(v1-v0) B0 + (v2-v1) B1 + (v3-v2) B2], in power form */
+        const rugo_real d0 = v[1] - v[0], d1 = v[2] - v[1], d2 = v[3] - v[2];
+        rugo_real c[3] = {d0, 2.0 * (d1 - d0), d0 - 2.0 * d1 + d2};
+        rugo_real roots[RUGO__POLY_MAX_ROOTS];
+        int nr = rugo__poly_roots(c, 2, 0.0, 1.0, 0.0, roots);
+        rugo_real ts[RUGO__POLY_MAX_ROOTS + 2];
+        int nt = 0;
+        ts[nt++] = 0.0;
+        for (int i = 0; i < nr && nr > 0; ++i)
+            ts[nt++] = roots[i];
+        ts[nt++] = 1.0 - DBL_EPSILON; /* t = 1 is the next segment's start */
+        for (int i = 0; i < nt; ++i) {
+            rugo_vec2 p = bez_point(b, ts[i]);
+            const rugo_real val = (rugo_real)sign * rugo_v2_dot(p, d);
+            if (val > best) {
+                best = val;
+                best_p = p;
+                best_k = k;
+                best_t = ts[i];
+            }
+        }
+    }
+    *seg_out = best_k;
+    *t_out = best_t;
+    return best_p;
+}
+
+/* Closest pair of the two curves (a MINIMUM of the distance), searching pairs within `bound`. */
+static rugo_status closest_pair(rugo_collide_context* ctx, pair_geo* g, const tside* ta, const tside* tb,
+                                rugo_real bound, hit* best, int* found) {
+    tside A = *ta, B = *tb;
+    A.slack = 0.5 * bound;
+    B.slack = 0.5 * bound;
+    size_t np = 0;
+    long tests = 0;
+    rugo_status st = traverse(ctx, &A, &B, g->rel, &tests, &np);
+    if (g->stats) g->stats->box_tests += tests;
+    if (st != RUGO_OK) return st;
+    *found = 0;
+    size_t ns = 0;
+    for (size_t i = 0; i < np; ++i) {
+        const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
+        rugo_vec2 f[4], h[4];
+        rugo_contour_bezier(g->A->curve, p.k_a, f);
+        piece_b(g, p.k_b, h);
+        ns = 0;
+        if (!run_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
+                      NULL, &ctx->ss2, &ns))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        const hit* hs = (const hit*)ctx->ss2.data;
+        for (size_t j = 0; j < ns; ++j)
+            if (hs[j].kind == RUGO__MINIMUM && (!*found || hs[j].distance < best->distance)) {
+                *best = hs[j];
+                *found = 1;
+            }
+    }
+    return RUGO_OK;
+}
+
+/* One curve inside the other without crossing: the way out through the closest pair. */
+static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, const tside* ta,
+                                       const tside* tb, int b_inside_a, out_ctx* o) {
+    /* An upper bound of the smallest distance: from one point of the inner curve to the outer. */
+    hit best;
+    memset(&best, 0, sizeof best);
+    int found = 0;
+    rugo_vec2 p0;
+    rugo_curve_point cp;
+    if (b_inside_a) {
+        p0 = sh_point_b(g, 0.0);
+        cp = rugo_contour_closest_point(g->A->curve, p0);
+    } else {
+        p0 = sh_point_a(g, 0.0);
+        cp = rugo_contour_closest_point(g->B->curve, rugo_inv_transform_point(g->rel, p0));
+    }
+    rugo_status st = closest_pair(ctx, g, ta, tb, cp.distance, &best, &found);
+    if (st != RUGO_OK) return st;
+    if (!found) { /* cannot happen with exact arithmetic; keep the point found above */
+        if (b_inside_a) {
+            best.sa = cp.segment;
+            best.ta = cp.t;
+            best.pa = cp.point;
+            best.sb = 0;
+            best.tb = 0.0;
+            best.pb = p0;
+        } else {
+            best.sa = 0;
+            best.ta = 0.0;
+            best.pa = p0;
+            best.sb = cp.segment;
+            best.tb = cp.t;
+            best.pb = rugo_transform_point(g->rel, cp.point);
+        }
+    }
+    rugo_vec2 n;
+    int seg;
+    rugo_real t;
+    if (b_inside_a) {
+        /* B leaves A through A's curve at pa: along A's outward normal there. */
+        n = normal_a(g, best.sa, best.ta);
+        rugo_vec2 pb = support_point(g, 1, n, -1, &seg, &t);
+        if (!emit(o, best.sa, best.ta, seg, t, best.pa, pb, n, 0, 2, 0, seg)) return RUGO_ERR_OUT_OF_MEMORY;
+    } else {
+        /* A leaves B through B's curve at pb, along B's outward normal m; B moves along n = -m. */
+        const rugo_vec2 m = normal_b(g, best.sb, best.tb);
+        n = rugo_v2_scale(-1.0, m);
+        rugo_vec2 pa = support_point(g, 0, n, +1, &seg, &t);
+        if (!emit(o, seg, t, best.sb, best.tb, pa, best.pb, n, 0, 2, 0, best.sb))
+            return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    return RUGO_OK;
+}
+
+/* Normal of a non-penetrating pair: from the points when they are far enough apart to give a
+ * direction to ~1e-9, else A's outward normal (exact at a stationary pair). */
+static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
+    rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
+    const rugo_real len = v2_len(d);
+    if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
+    rugo_vec2 na = normal_a(g, h->sa, h->ta);
+    if (len > 0.0 && rugo_v2_dot(na, d) < 0.0) na = rugo_v2_scale(-1.0, na);
+    return na;
+}
+
+/* Facing test of a minimum: B lies on A's outward side at pa and A on B's outward side at pb (at
+ * corners: within their normal cones). */
+static int facing(const pair_geo* g, const hit* h) {
+    rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
+    if (v2_len(d) <= SAME_POINT * g->scale) return 1;
+    rugo_rot id;
+    id.c = 1.0;
+    id.s = 0.0;
+    return faces_outward(g->A->curve, h->sa, h->ta, d, id) &&
+           faces_outward(g->B->curve, h->sb, h->tb, rugo_v2_scale(-1.0, d), g->rel.q);
+}
+
+/* Minima within the band (not inside a region if regs != NULL), each its own region from `first`. */
+static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, const regions* regs, int first,
+                               rugo_real override) {
+    int region = first;
+    for (size_t i = 0; i < ns; ++i) {
+        const hit* h = &hs[i];
+        if (h->dead || h->kind != RUGO__MINIMUM) continue;
+        if (regs != NULL && regs->m > 0) {
+            if (h->distance <= SAME_POINT * g->scale) continue; /* a crossing point */
+            if (in_any_region(regs, h->ua, h->ub)) continue;
+        }
+        const rugo_real band =
+            side_lambda(g->A, h->sa, h->ta, override) + side_lambda(g->B, h->sb, h->tb, override);
+        if (!(h->distance <= band)) continue;
+        if (!facing(g, h)) continue;
+        /* Index within its segment pair: minima of one pair are sorted by A's parameter already. */
+        int index = 0;
+        for (size_t j = 0; j < i; ++j)
+            if (!hs[j].dead && hs[j].kind == RUGO__MINIMUM && hs[j].sa == h->sa && hs[j].sb == h->sb) ++index;
+        if (!emit(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, pair_normal(g, h), region++, 0, index, h->sb))
+            return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    return RUGO_OK;
+}
+
+/* Segments under the arcs of region reg (which = 0: A's, 1: B's), appended to ctx->segs. */
+static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const regions* r, int reg,
+                            int which, unsigned char* mark, size_t* nseg) {
+    const side* s = which == 0 ? g->A : g->B;
+    for (int i = 0; i < r->m; ++i) {
+        if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
+        const int j = which == 0 ? next_a(r, i) : next_b(r, i);
+        const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub, u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
+        const rugo_real len = arc_length(u0, u1, (rugo_real)s->n, r->m == 1);
+        const int k0 = (int)floor(u0);
+        const int k1 = (int)floor(u0 + len);
+        for (int k = k0; k <= k1 && k - k0 < s->n; ++k) {
+            const int kk = rugo__wrap(k, s->n);
+            if (mark[kk]) continue;
+            mark[kk] = 1;
+            if (!reserve(ctx, &ctx->segs, *nseg + 1, sizeof(seginfo))) return 0;
+            seginfo* si = (seginfo*)ctx->segs.data + (*nseg)++;
+            si->k = kk;
+            if (which == 0)
+                rugo_contour_bezier(s->curve, kk, si->b);
+            else
+                piece_b(g, kk, si->b);
+            bez_bounds(si->b, &si->lo, &si->hi);
+            tangent_cone(si->b, &si->cone, &si->half);
+        }
+    }
+    return 1;
+}
+
+/* Deepest penetration pair of region reg; 0 if none. */
+static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const regions* r, int reg,
+                                  out_ctx* o) {
+    const size_t na = (size_t)g->A->n, nb = (size_t)g->B->n;
+    if (!reserve(ctx, &ctx->marks, na + nb, 1)) return RUGO_ERR_OUT_OF_MEMORY;
+    unsigned char* marks = (unsigned char*)ctx->marks.data;
+    memset(marks, 0, na + nb);
+    size_t nseg = 0;
+    if (!collect_segments(ctx, g, r, reg, 0, marks, &nseg)) return RUGO_ERR_OUT_OF_MEMORY;
+    const size_t n_a = nseg;
+    if (!collect_segments(ctx, g, r, reg, 1, marks + na, &nseg)) return RUGO_ERR_OUT_OF_MEMORY;
+    seginfo* segs = (seginfo*)ctx->segs.data;
+    rugo_vec2 lo = segs[0].lo, hi = segs[0].hi;
+    for (size_t i = 1; i < nseg; ++i) {
+        lo = rugo_v2(fmin(lo.x, segs[i].lo.x), fmin(lo.y, segs[i].lo.y));
+        hi = rugo_v2(fmax(hi.x, segs[i].hi.x), fmax(hi.y, segs[i].hi.y));
+    }
+    const rugo_real cutoff = v2_len(rugo_v2_sub(hi, lo)) * (1.0 + 1e-9) + CUTOFF_PAD * g->scale;
+
+    hit best;
+    int have = 0;
+    memset(&best, 0, sizeof best);
+    for (size_t i = 0; i < n_a; ++i)
+        for (size_t j = n_a; j < nseg; ++j) {
+            const seginfo* sa = &segs[i];
+            const seginfo* sb = &segs[j];
+            /* A penetration pair has anti-parallel tangents: skip pieces whose cones exclude it. */
+            if (sa->half < PI_VALUE && sb->half < PI_VALUE) {
+                rugo_real c = -rugo_v2_dot(sa->cone, sb->cone);
+                c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
+                if (acos(c) > sa->half + sb->half + 1e-9) continue;
+            }
+            size_t ns = 0;
+            if (!run_pair(ctx, g, sa->k, sa->b, sb->k, sb->b, cutoff, NULL, NULL, &ctx->ss2, &ns))
+                return RUGO_ERR_OUT_OF_MEMORY;
+            const hit* hs = (const hit*)ctx->ss2.data;
+            for (size_t k = 0; k < ns; ++k) {
+                const hit* h = &hs[k];
+                if (region_of_pair(r, h->ua, h->ub) != reg) continue;
+                rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
+                const rugo_real len = v2_len(d);
+                if (len <= SAME_POINT * g->scale) continue;
+                if (!(rugo_v2_dot(normal_a(g, h->sa, h->ta), d) > 0.0)) continue;
+                if (!(rugo_v2_dot(normal_b(g, h->sb, h->tb), d) < 0.0)) continue;
+                if (!have || len > best.distance || (len == best.distance && hit_cmp(h, &best) < 0)) {
+                    best = *h;
+                    best.distance = len;
+                    have = 1;
+                }
+            }
+        }
+    if (have) {
+        rugo_vec2 d = rugo_v2_sub(best.pa, best.pb);
+        if (!emit(o, best.sa, best.ta, best.sb, best.tb, best.pa, best.pb,
+                  rugo_v2_scale(1.0 / best.distance, d), reg, 1, 0, best.sb))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        return RUGO_OK;
+    }
+
+    /* Fallback: the point of the region's arcs farthest from the other curve. */
+    rugo_real far = -1.0;
+    rugo_vec2 fpa = r->x[0].pa, fpb = r->x[0].pa;
+    int fsa = r->x[0].sa, fsb = r->x[0].sb;
+    rugo_real fta = r->x[0].ta, ftb = r->x[0].tb;
+    for (int which = 0; which < 2; ++which)
+        for (int i = 0; i < r->m; ++i) {
+            if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
+            const int j = which == 0 ? next_a(r, i) : next_b(r, i);
+            const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub,
+                            u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
+            const rugo_real period = (rugo_real)(which == 0 ? g->A->n : g->B->n);
+            const rugo_real len = arc_length(u0, u1, period, r->m == 1);
+            const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
+            for (int s = 1; s < samples; ++s) {
+                const rugo_real u = wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
+                if (which == 0) {
+                    const rugo_vec2 p = sh_point_a(g, u);
+                    rugo_curve_point cp =
+                        rugo_contour_closest_point(g->B->curve, rugo_inv_transform_point(g->rel, p));
+                    if (cp.distance > far) {
+                        far = cp.distance;
+                        fpa = p;
+                        fpb = rugo_transform_point(g->rel, cp.point);
+                        fsa = (int)floor(u);
+                        fta = u - floor(u);
+                        fsb = cp.segment;
+                        ftb = cp.t;
+                    }
+                } else {
+                    const rugo_vec2 p = sh_point_b(g, u);
+                    rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, p);
+                    if (cp.distance > far) {
+                        far = cp.distance;
+                        fpb = p;
+                        fpa = cp.point;
+                        fsb = (int)floor(u);
+                        ftb = u - floor(u);
+                        fsa = cp.segment;
+                        fta = cp.t;
+                    }
+                }
+            }
+        }
+    normalise(&fsa, &fta, g->A->n);
+    normalise(&fsb, &ftb, g->B->n);
+    rugo_vec2 d = rugo_v2_sub(fpa, fpb);
+    rugo_vec2 n = v2_len(d) > SAME_POINT * g->scale ? v2_unit(d) : normal_a(g, fsa, fta);
+    if (!emit(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
+    return RUGO_OK;
+}
+
+rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats) {
+    if (count != NULL) *count = 0;
+    if (state != NULL) *state = RUGO_STATE_APART;
+    if (stats != NULL) memset(stats, 0, sizeof *stats);
+    if (ctx == NULL || a == NULL || b == NULL || count == NULL || state == NULL)
+        return RUGO_ERR_NULL_ARGUMENT;
+    rugo_contact_query defq = rugo_default_contact_query();
+    const rugo_contact_query* q = query != NULL ? query : &defq;
+    rugo_status st = check_query(q, contacts, capacity);
+    if (st != RUGO_OK) return st;
+    if (!transform_finite(xa) || !transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
+
+    side A, B;
+    side_init(&A, a, q->level, override);
+    side_init(&B, b, q->level, override);
+    pair_geo g;
+    memset(&g, 0, sizeof g);
+    g.A = &A;
+    g.B = &B;
+    g.rel = relative_transform(xa, xb);
+    g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), box_size(rugo_mobb_tree_root(B.tree)));
+    g.stats = stats;
+    out_ctx o;
+    memset(&o, 0, sizeof o);
+    o.ctx = ctx;
+    o.xa = xa;
+    o.q = q;
+    o.A = &A;
+    o.B = &B;
+    o.override = override;
+
+    tside ta, tb;
+    memset(&ta, 0, sizeof ta);
+    memset(&tb, 0, sizeof tb);
+    ta.tree = A.tree;
+    ta.jmin = A.jmin;
+    ta.stop = A.level;
+    ta.slack = A.slack;
+    tb.tree = B.tree;
+    tb.jmin = B.jmin;
+    tb.stop = B.level;
+    tb.slack = B.slack;
+    size_t np = 0;
+    long tests = 0;
+    st = traverse(ctx, &ta, &tb, g.rel, &tests, &np);
+    if (stats != NULL) stats->box_tests += tests;
+    if (st != RUGO_OK) return st;
+
+    /* First pass: crossings and stationary pairs within the band. */
+    size_t nx = 0, ns = 0;
+    for (size_t i = 0; i < np; ++i) {
+        const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
+        rugo_vec2 f[4], h[4];
+        rugo_contour_bezier(A.curve, p.k_a, f);
+        piece_b(&g, p.k_b, h);
+        const rugo_real cut = override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b];
+        if (!run_pair(ctx, &g, p.k_a, f, p.k_b, h, cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g.scale, &ctx->xs,
+                      &nx, &ctx->ss, &ns))
+            return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    hit* xs = (hit*)ctx->xs.data;
+    hit* hs = (hit*)ctx->ss.data;
+    const rugo_real eps = SAME_POINT * g.scale;
+    dedupe(xs, nx, (rugo_real)A.n, eps, 0);
+    dedupe(hs, ns, (rugo_real)A.n, eps, 1);
+
+    /* Where pieces coincide the curves run together: their "crossings" (and the tangential meetings
+     * next to them that the adjacent pieces report as crossings) are no crossing. */
+    if (g.coincident)
+        for (size_t i = 0; i < nx; ++i) {
+            if (xs[i].dead || xs[i].coincident) continue;
+            for (size_t j = 0; j < nx + ns && !xs[i].coincident; ++j) {
+                const hit* oh = j < nx ? &xs[j] : &hs[j - nx];
+                if (oh->dead || !oh->coincident) continue;
+                xs[i].coincident = v2_len(rugo_v2_sub(oh->pa, xs[i].pa)) <= 1e-6 * g.scale;
+            }
+        }
+    /* Crossings that only touch are zero-distance minima, and so are the coincident points. */
+    size_t m = 0;
+    for (size_t i = 0; i < nx; ++i) {
+        if (xs[i].dead) continue;
+        if (xs[i].kind != 0 && !xs[i].coincident) {
+            xs[m++] = xs[i];
+            continue;
+        }
+        int dup = 0;
+        for (size_t j = 0; j < ns && !dup; ++j)
+            dup = !hs[j].dead && v2_len(rugo_v2_sub(hs[j].pa, xs[i].pa)) <= eps &&
+                  v2_len(rugo_v2_sub(hs[j].pb, xs[i].pb)) <= eps;
+        if (!dup) {
+            hit t = xs[i];
+            t.kind = RUGO__MINIMUM;
+            t.distance = v2_len(rugo_v2_sub(t.pb, t.pa));
+            if (!push_hit(ctx, &ctx->ss, &ns, &t)) return RUGO_ERR_OUT_OF_MEMORY;
+            xs = (hit*)ctx->xs.data;
+            hs = (hit*)ctx->ss.data;
+        }
+    }
+    if (ns > 1) qsort(hs, ns, sizeof(hit), hit_cmp);
+
+    if (m > 0) {
+        *state = RUGO_STATE_INTERSECTING;
+        if (!reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
+        region_io io;
+        io.user = &g;
+        io.period_a = (rugo_real)A.n;
+        io.period_b = (rugo_real)B.n;
+        io.point_a = sh_point_a;
+        io.point_b = sh_point_b;
+        io.inside_b = sh_inside_b;
+        io.inside_a = sh_inside_a;
+        regions r;
+        build_regions(&r, (const hit*)ctx->xs.data, (int)m, (int*)ctx->ints.data, &io);
+        /* A caller that only asks for the state (no room for contacts, no statistics) is done. */
+        if (capacity == 0 && stats == NULL) r.count = 0;
+        for (int reg = 0; reg < r.count; ++reg) {
+            st = region_contact(ctx, &g, &r, reg, &o);
+            if (st != RUGO_OK) return st;
+        }
+        /* Local minima within the band away from every overlap region are contacts too. */
+        st = emit_minima(&o, &g, (hit*)ctx->ss.data, ns, &r, r.count, override);
+        if (st != RUGO_OK) return st;
+    } else {
+        /* One curve inside the other? Cheap rejections first: a point outside the other's root box. */
+        int b_in_a = 0, a_in_b = 0;
+        const rugo_vec2 pb0 = sh_point_b(&g, 0.0), pa0 = sh_point_a(&g, 0.0);
+        if (!g.coincident && rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
+            b_in_a = rugo_contour_contains(A.curve, pb0);
+        if (!b_in_a && !g.coincident) {
+            const rugo_vec2 pa0b = rugo_inv_transform_point(g.rel, pa0);
+            if (rugo_obb_contains(rugo_mobb_tree_root(B.tree), pa0b, 0.0))
+                a_in_b = rugo_contour_contains(B.curve, pa0b);
+        }
+        if (b_in_a || a_in_b) {
+            *state = RUGO_STATE_INTERSECTING;
+            if (capacity > 0 || stats != NULL) {
+                st = containment_contact(ctx, &g, &ta, &tb, b_in_a, &o);
+                if (st != RUGO_OK) return st;
+            }
+        } else {
+            st = emit_minima(&o, &g, hs, ns, NULL, 0, override);
+            if (st != RUGO_OK) return st;
+            *state = o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
+        }
+    }
+    finish(&o, contacts, capacity, count, stats);
+    return RUGO_OK;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Primitives: B = convex core K (a point, a segment, a convex polygon) grown by a radius R. */
+
+typedef struct prim {
+    int V;             /* 1 circle, 2 segment (capsule), 3..8 polygon */
+    rugo_vec2 v[8];    /* A's frame */
+    rugo_vec2 m[8];    /* outward unit normal of edge i (v_i -> v_{i+1}) */
+    rugo_real arc0[8]; /* vertex arc i: directions from angle arc0 over span (from m_{i-1} to m_i) */
+    rugo_real span[8];
+    rugo_real R;
+    rugo_real
+        period; /* of the boundary parameter: 1 (circle) or 2V (arc i = [2i, 2i+1), edge i = [2i+1, 2i+2)) */
+    rugo_vec2 lo, hi; /* bounds of B */
+} prim;
+
+typedef struct prim_geo {
+    const side* A;
+    const prim* P;
+    rugo_real scale;
+    rugo_query_stats* stats;
+    int src;
+} prim_geo;
+
+static rugo_real point_segment(rugo_vec2 p, rugo_vec2 a, rugo_vec2 b, rugo_vec2* foot) {
+    rugo_vec2 d = rugo_v2_sub(b, a);
+    const rugo_real dd = rugo_v2_dot(d, d);
+    rugo_real t = dd > 0.0 ? rugo_v2_dot(rugo_v2_sub(p, a), d) / dd : 0.0;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    *foot = lerp2(a, b, t);
+    return v2_len(rugo_v2_sub(p, *foot));
+}
+
+/* Signed distance to B (negative inside); optionally the nearest boundary point and its normal. */
+static rugo_real prim_sd(const prim* P, rugo_vec2 p, rugo_vec2* q, rugo_vec2* nq) {
+    rugo_vec2 foot = P->v[0];
+    rugo_real dk;
+    if (P->V == 1) {
+        dk = v2_len(rugo_v2_sub(p, foot));
+    } else if (P->V == 2) {
+        dk = point_segment(p, P->v[0], P->v[1], &foot);
+    } else {
+        rugo_real s = -HUGE_VAL;
+        int e = 0;
+        for (int i = 0; i < P->V; ++i) {
+            const rugo_real si = rugo_v2_dot(P->m[i], rugo_v2_sub(p, P->v[i]));
+            if (si > s) {
+                s = si;
+                e = i;
+            }
+        }
+        if (s <= 0.0) { /* inside the core: the nearest edge */
+            if (q != NULL) *q = rugo_v2_add(p, rugo_v2_scale(P->R - s, P->m[e]));
+            if (nq != NULL) *nq = P->m[e];
+            return s - P->R;
+        }
+        dk = HUGE_VAL;
+        for (int i = 0; i < P->V; ++i) {
+            rugo_vec2 f;
+            const rugo_real d = point_segment(p, P->v[i], P->v[(i + 1) % P->V], &f);
+            if (d < dk) {
+                dk = d;
+                foot = f;
+            }
+        }
+    }
+    if (q != NULL || nq != NULL) {
+        rugo_vec2 u = dk > 0.0 ? rugo_v2_scale(1.0 / dk, rugo_v2_sub(p, foot)) : rugo_v2(1.0, 0.0);
+        if (q != NULL) *q = rugo_v2_add(foot, rugo_v2_scale(P->R, u));
+        if (nq != NULL) *nq = u;
+    }
+    return dk - P->R;
+}
+
+static rugo_real angle_of(rugo_vec2 u) {
+    rugo_real a = atan2(u.y, u.x);
+    return a < 0.0 ? a + 2.0 * PI_VALUE : a;
+}
+
+/* Boundary parameter of the point of vertex arc i in direction u, or -1 if u is outside the arc. */
+static rugo_real arc_param(const prim* P, int i, rugo_vec2 u) {
+    if (P->V == 1) return wrap_param(angle_of(u) / (2.0 * PI_VALUE), 1.0);
+    rugo_real th = angle_of(u) - P->arc0[i];
+    while (th < 0.0)
+        th += 2.0 * PI_VALUE;
+    while (th >= 2.0 * PI_VALUE)
+        th -= 2.0 * PI_VALUE;
+    if (th > P->span[i] + 1e-12) {
+        if (th > 2.0 * PI_VALUE - 1e-12) return 2.0 * (rugo_real)i; /* just before the arc's start */
+        return -1.0;
+    }
+    return 2.0 * (rugo_real)i + (P->span[i] > 0.0 ? fmin(th / P->span[i], 1.0 - DBL_EPSILON) : 0.0);
+}
+
+/* Is direction u within the normal cone of corner i (between m_{i-1} and m_i)? */
+static int in_cone(const prim* P, int i, rugo_vec2 u) {
+    if (P->V == 1) return 1;
+    const rugo_vec2 a = P->m[rugo__wrap(i - 1, P->V)], b = P->m[i];
+    return rugo_v2_cross(a, u) >= -1e-9 && rugo_v2_cross(u, b) >= -1e-9;
+}
+
+static rugo_vec2 prim_point(const prim* P, rugo_real w) {
+    if (P->V == 1) {
+        const rugo_real th = 2.0 * PI_VALUE * w;
+        return rugo_v2(P->v[0].x + P->R * cos(th), P->v[0].y + P->R * sin(th));
+    }
+    const int f = (int)floor(w);
+    const rugo_real t = w - floor(w);
+    const int i = rugo__wrap(f / 2, P->V);
+    if (f % 2 == 1) {
+        const rugo_vec2 off = rugo_v2_scale(P->R, P->m[i]);
+        return lerp2(rugo_v2_add(P->v[i], off), rugo_v2_add(P->v[(i + 1) % P->V], off), t);
+    }
+    const rugo_real th = P->arc0[i] + t * P->span[i];
+    return rugo_v2(P->v[i].x + P->R * cos(th), P->v[i].y + P->R * sin(th));
+}
+
+static rugo_vec2 pr_point_a(void* u, rugo_real t) {
+    return rugo_contour_point_at(((const prim_geo*)u)->A->curve, t);
+}
+static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const prim_geo*)u)->P, w); }
+static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const prim_geo*)u)->P, p, NULL, NULL) < 0.0; }
+static int pr_inside_a(void* u, rugo_vec2 p) {
+    return rugo_contour_contains(((const prim_geo*)u)->A->curve, p);
+}
+
+static rugo_real rho_minus_r(const rugo_vec2 fl[4], rugo_vec2 vl, rugo_real R, rugo_real s) {
+    return v2_len(rugo_v2_sub(bez_point(fl, s), vl)) - R;
+}
+
+static void fill_a(hit* h, int ka, rugo_real s, const prim_geo* g) {
+    h->sa = ka;
+    h->ta = s;
+    normalise(&h->sa, &h->ta, g->A->n);
+    h->ua = (rugo_real)h->sa + h->ta;
+}
+
+static void fill_b(hit* h, rugo_real w, const prim* P) {
+    w = wrap_param(w, P->period);
+    h->ub = w;
+    h->sb = (int)floor(w);
+    h->tb = w - floor(w);
+}
+
+/* The narrow phase of A's segment ka against every feature of B: crossings into xs (if not NULL) and
+ * every stationary pair (with B's normal or corner) into ss. */
+static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* xs, size_t* nx, buffer* ss,
+                        size_t* ns) {
+    const prim* P = g->P;
+    rugo_vec2 f[4], fl[4];
+    rugo_contour_bezier(g->A->curve, ka, f);
+    const rugo_vec2 o = f[0];
+    for (int i = 0; i < 4; ++i)
+        fl[i] = rugo_v2_sub(f[i], o);
+    rugo_vec2 flo, fhi;
+    bez_bounds(f, &flo, &fhi);
+    const rugo_real reach = v2_len(rugo_v2_sub(rugo_v2(fmax(fhi.x, P->hi.x), fmax(fhi.y, P->hi.y)),
+                                               rugo_v2(fmin(flo.x, P->lo.x), fmin(flo.y, P->lo.y)))) *
+                                (1.0 + 1e-9) +
+                            CUTOFF_PAD * g->scale;
+    /* Edges (offset by R along their normals). A segment with R = 0 is one edge seen from both sides. */
+    const int edges = P->V == 1 ? 0 : (P->V == 2 && P->R == 0.0 ? 1 : P->V);
+    for (int e = 0; e < edges; ++e) {
+        const rugo_vec2 off = rugo_v2_scale(P->R, P->m[e]);
+        const rugo_vec2 q0 = rugo_v2_add(P->v[e], off), q1 = rugo_v2_add(P->v[(e + 1) % P->V], off);
+        rugo__narrow_result r;
+        rugo__narrow_line(fl, rugo_v2_sub(q0, o), rugo_v2_sub(q1, o), reach, &r);
+        const int src = g->src++;
+        if (g->stats != NULL) {
+            g->stats->segment_pairs += 1;
+            g->stats->newton_iterations += r.newton_iterations;
+            g->stats->fallbacks += r.fallback > 0;
+        }
+        for (int pass = 0; pass < 2; ++pass) {
+            const int cnt = pass == 0 ? r.crossing_count : r.stationary_count;
+            const rugo__pair_point* pp = pass == 0 ? r.crossings : r.stationary;
+            if (pass == 0 && xs == NULL) continue;
+            for (int i = 0; i < cnt; ++i) {
+                hit h;
+                memset(&h, 0, sizeof h);
+                fill_a(&h, ka, pp[i].s, g);
+                fill_b(&h, 2.0 * (rugo_real)e + 1.0 + pp[i].t, P);
+                h.pa = rugo_v2_add(pp[i].pa, o);
+                h.pb = rugo_v2_add(pp[i].pb, o);
+                h.nb = P->m[e];
+                h.distance = pp[i].distance;
+                h.kind = pp[i].kind;
+                h.src = src;
+                h.vertex = -1;
+                if (!push_hit(ctx, pass == 0 ? xs : ss, pass == 0 ? nx : ns, &h)) return 0;
+            }
+        }
+    }
+    /* Vertices: stationary points of the distance to the vertex, and crossings of its arc. */
+    for (int vi = 0; vi < P->V; ++vi) {
+        const rugo_vec2 vl = rugo_v2_sub(P->v[vi], o);
+        rugo__pair_point pp[6];
+        const int cnt = rugo__narrow_point(fl, vl, HUGE_VAL, pp);
+        const int src = g->src++;
+        if (g->stats != NULL) g->stats->segment_pairs += 1;
+        rugo_real brk[8];
+        int nb = 0;
+        brk[nb++] = 0.0;
+        for (int i = 0; i < cnt; ++i) {
+            const rugo_vec2 pa = rugo_v2_add(pp[i].pa, o);
+            const rugo_vec2 d = rugo_v2_sub(pa, P->v[vi]);
+            const rugo_real rho = v2_len(d);
+            if (pp[i].s > 0.0 && pp[i].s < 1.0) brk[nb++] = pp[i].s;
+            hit h;
+            memset(&h, 0, sizeof h);
+            fill_a(&h, ka, pp[i].s, g);
+            h.pa = pa;
+            h.src = src;
+            h.kind = pp[i].kind;
+            if (P->R == 0.0) {
+                if (P->V == 2 && P->R == 0.0 && !(rho > 0.0)) continue;
+                fill_b(&h, P->V == 1 ? 0.0 : 2.0 * (rugo_real)vi, P);
+                h.pb = P->v[vi];
+                h.nb = rugo_v2(0.0, 0.0);
+                h.vertex = vi;
+                h.distance = rho;
+                if (!push_hit(ctx, ss, ns, &h)) return 0;
+                continue;
+            }
+            if (!(rho > 0.0)) continue; /* the vertex itself on A: its arc's crossings cover it */
+            const rugo_vec2 u = rugo_v2_scale(1.0 / rho, d);
+            for (int side_ = 0; side_ < 2; ++side_) { /* near point of the arc, far point */
+                const rugo_vec2 nb_ = side_ == 0 ? u : rugo_v2_scale(-1.0, u);
+                const rugo_real w = arc_param(P, vi, nb_);
+                if (w < 0.0) continue;
+                hit k = h;
+                fill_b(&k, w, P);
+                k.pb = rugo_v2_add(P->v[vi], rugo_v2_scale(P->R, nb_));
+                k.nb = nb_;
+                k.vertex = -1;
+                k.distance = v2_len(rugo_v2_sub(k.pb, k.pa));
+                if (side_ == 1) k.kind = RUGO__SADDLE; /* never a minimum of the distance to B */
+                if (!push_hit(ctx, ss, ns, &k)) return 0;
+            }
+        }
+        if (xs == NULL || !(P->R > 0.0)) continue;
+        /* Crossings of the arc: |f - v| - R changes sign between consecutive stationary points. */
+        brk[nb++] = 1.0;
+        for (int i = 1; i < nb; ++i) /* sort the few breakpoints */
+            for (int j = i; j > 0 && brk[j] < brk[j - 1]; --j) {
+                const rugo_real t = brk[j];
+                brk[j] = brk[j - 1];
+                brk[j - 1] = t;
+            }
+        for (int i = 0; i + 1 < nb; ++i) {
+            rugo_real s0 = brk[i], s1 = brk[i + 1];
+            if (!(s1 > s0)) continue;
+            /* End values from the unshifted end points, which neighbouring segments share. */
+            const rugo_real g0 =
+                s0 == 0.0 ? v2_len(rugo_v2_sub(f[0], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s0);
+            const rugo_real g1 =
+                s1 == 1.0 ? v2_len(rugo_v2_sub(f[3], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s1);
+            if ((g0 > 0.0) == (g1 > 0.0)) continue;
+            const int entering = g0 > 0.0;
+            for (int it = 0; it < 200 && s1 - s0 > 4.0 * DBL_EPSILON; ++it) {
+                const rugo_real sm = 0.5 * (s0 + s1);
+                if ((rho_minus_r(fl, vl, P->R, sm) > 0.0) == entering)
+                    s0 = sm;
+                else
+                    s1 = sm;
+            }
+            const rugo_real s = 0.5 * (s0 + s1);
+            const rugo_vec2 p = rugo_v2_add(bez_point(fl, s), o);
+            const rugo_vec2 d = rugo_v2_sub(p, P->v[vi]);
+            const rugo_real w = arc_param(P, vi, v2_unit(d));
+            if (w < 0.0) continue; /* crosses the circle outside this vertex's arc */
+            hit h;
+            memset(&h, 0, sizeof h);
+            fill_a(&h, ka, s, g);
+            fill_b(&h, w, P);
+            h.pa = p;
+            h.pb = p;
+            h.nb = v2_unit(d);
+            h.kind = entering ? -1 : 1;
+            h.src = src;
+            h.vertex = -1;
+            if (!push_hit(ctx, xs, nx, &h)) return 0;
+        }
+    }
+    return 1;
+}
+
+/* B's side of a pair: is n (from A to B) compatible with B's outward normal at pb? */
+static int b_side_ok(const prim* P, const hit* h, rugo_vec2 n) {
+    if (h->vertex >= 0) return in_cone(P, h->vertex, rugo_v2_scale(-1.0, n));
+    if (P->V == 2 && P->R == 0.0) return 1; /* an edge faces both ways */
+    return rugo_v2_dot(h->nb, n) < 0.0;
+}
+
+static rugo_vec2 prim_support(const prim* P, rugo_vec2 dir) { /* point of B maximising p·dir */
+    int best = 0;
+    for (int i = 1; i < P->V; ++i)
+        if (rugo_v2_dot(P->v[i], dir) > rugo_v2_dot(P->v[best], dir)) best = i;
+    return rugo_v2_add(P->v[best], rugo_v2_scale(P->R, dir));
+}
+
+/* A's extreme point along dir (largest p·dir). */
+static rugo_vec2 curve_support(const side* A, rugo_vec2 dir, int* seg, rugo_real* t) {
+    pair_geo g;
+    memset(&g, 0, sizeof g);
+    g.A = A;
+    g.B = A;
+    return support_point(&g, 0, dir, +1, seg, t);
+}
+
+static int prim_emit(out_ctx* o, const hit* h, rugo_vec2 pa, rugo_vec2 pb, rugo_vec2 n, int region, int type,
+                     int index) {
+    int feature = h->sb;
+    return emit(o, h->sa, h->ta, -1, 0.0, pa, pb, n, region, type, index, 0xFFF00 | (feature & 0xFF));
+}
+
+/* An edge (segment, R = 0) crossing A: each piece of it inside A gets its deepest point. */
+static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit* xs, size_t m, out_ctx* o) {
+    const prim* P = g->P;
+    rugo_real ts[64];
+    size_t nt = 0;
+    /* Edge parameters of the crossings, sorted (feature 1 = the edge: w - 1). */
+    if (!reserve(ctx, &ctx->marks, (m + 2) * sizeof(rugo_real), 1)) return RUGO_ERR_OUT_OF_MEMORY;
+    rugo_real* t = m + 2 <= 64 ? ts : (rugo_real*)ctx->marks.data;
+    t[nt++] = 0.0;
+    for (size_t i = 0; i < m; ++i)
+        t[nt++] = fmin(fmax(xs[i].ub - 1.0, 0.0), 1.0);
+    t[nt++] = 1.0;
+    for (size_t i = 1; i < nt; ++i)
+        for (size_t j = i; j > 0 && t[j] < t[j - 1]; --j) {
+            const rugo_real x = t[j];
+            t[j] = t[j - 1];
+            t[j - 1] = x;
+        }
+    int region = 0;
+    for (size_t i = 0; i + 1 < nt; ++i) {
+        const rugo_real t0 = t[i], t1 = t[i + 1];
+        if (!(t1 > t0)) continue;
+        if (!rugo_contour_contains(g->A->curve, lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
+        /* Depth along the piece: distance to A's curve, largest where the piece is deepest. */
+        rugo_real best = -1.0, bt = t0;
+        rugo_curve_point bcp;
+        memset(&bcp, 0, sizeof bcp);
+        for (int s = 0; s <= EDGE_SAMPLES; ++s) {
+            const rugo_real tt = t0 + (t1 - t0) * (rugo_real)s / (rugo_real)EDGE_SAMPLES;
+            rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], tt));
+            if (cp.distance > best) {
+                best = cp.distance;
+                bt = tt;
+                bcp = cp;
+            }
+        }
+        /* Golden section around the best sample. */
+        const rugo_real h = (t1 - t0) / (rugo_real)EDGE_SAMPLES;
+        rugo_real lo = fmax(t0, bt - h), hi = fmin(t1, bt + h);
+        const rugo_real gr = 0.6180339887498949;
+        for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
+            const rugo_real x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+            const rugo_real d1 =
+                rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], x1)).distance;
+            const rugo_real d2 =
+                rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], x2)).distance;
+            if (d1 >= d2)
+                hi = x2;
+            else
+                lo = x1;
+        }
+        const rugo_real tm = 0.5 * (lo + hi);
+        rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], tm));
+        if (cp.distance >= best) {
+            bcp = cp;
+            bt = tm;
+        }
+        const rugo_vec2 pb = lerp2(P->v[0], P->v[1], bt);
+        rugo_vec2 d = rugo_v2_sub(bcp.point, pb);
+        rugo_vec2 n =
+            v2_len(d) > SAME_POINT * g->scale ? v2_unit(d) : curve_normal(g->A->curve, bcp.segment, bcp.t);
+        if (!emit(o, bcp.segment, bcp.t, -1, 0.0, bcp.point, pb, n, region, 1, 0, 0xFFF00 | region))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        ++region;
+    }
+    return RUGO_OK;
+}
+
+static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, prim* P,
+                                const rugo_contact_query* query, rugo_contact* contacts, int capacity,
+                                int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+    rugo_contact_query defq = rugo_default_contact_query();
+    const rugo_contact_query* q = query != NULL ? query : &defq;
+    rugo_status st = check_query(q, contacts, capacity);
+    if (st != RUGO_OK) return st;
+    if (!transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
+    const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
+
+    /* Into A's frame. */
+    for (int i = 0; i < P->V; ++i)
+        P->v[i] = rugo_inv_transform_point(xa, P->v[i]);
+    if (P->V >= 2) {
+        for (int i = 0; i < P->V; ++i) {
+            const rugo_vec2 d = rugo_v2_sub(P->v[(i + 1) % P->V], P->v[i]);
+            P->m[i] = v2_unit(rugo_v2(d.y, -d.x));
+        }
+        for (int i = 0; i < P->V; ++i) {
+            const rugo_vec2 a0 = P->m[rugo__wrap(i - 1, P->V)], a1 = P->m[i];
+            P->arc0[i] = angle_of(a0);
+            rugo_real sp = angle_of(a1) - P->arc0[i];
+            while (sp < 0.0)
+                sp += 2.0 * PI_VALUE;
+            if (sp >= 2.0 * PI_VALUE - 1e-15) sp = 0.0;
+            P->span[i] = sp;
+        }
+        P->period = 2.0 * (rugo_real)P->V;
+    } else {
+        P->period = 1.0;
+    }
+    P->lo = P->hi = P->v[0];
+    for (int i = 1; i < P->V; ++i) {
+        P->lo = rugo_v2(fmin(P->lo.x, P->v[i].x), fmin(P->lo.y, P->v[i].y));
+        P->hi = rugo_v2(fmax(P->hi.x, P->v[i].x), fmax(P->hi.y, P->v[i].y));
+    }
+    P->lo = rugo_v2(P->lo.x - P->R, P->lo.y - P->R);
+    P->hi = rugo_v2(P->hi.x + P->R, P->hi.y + P->R);
+
+    side A;
+    side_init(&A, a, q->level, override);
+    prim_geo g;
+    memset(&g, 0, sizeof g);
+    g.A = &A;
+    g.P = P;
+    g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), v2_len(rugo_v2_sub(P->hi, P->lo)));
+    g.stats = stats;
+    out_ctx o;
+    memset(&o, 0, sizeof o);
+    o.ctx = ctx;
+    o.xa = xa;
+    o.q = q;
+    o.A = &A;
+    o.B = NULL;
+    o.override = override;
+    const int is_edge = P->V == 2 && P->R == 0.0;
+
+    tside ta, tb;
+    memset(&ta, 0, sizeof ta);
+    memset(&tb, 0, sizeof tb);
+    ta.tree = A.tree;
+    ta.jmin = A.jmin;
+    ta.stop = A.level;
+    ta.slack = A.slack;
+    tb.tree = NULL;
+    tb.box.center = rugo_v2(0.5 * (P->lo.x + P->hi.x), 0.5 * (P->lo.y + P->hi.y));
+    tb.box.axis[0] = rugo_v2(1.0, 0.0);
+    tb.box.axis[1] = rugo_v2(0.0, 1.0);
+    tb.box.half[0] = 0.5 * (P->hi.x - P->lo.x) + (override >= 0.0 ? override : 0.0) + CUTOFF_PAD * g.scale;
+    tb.box.half[1] = 0.5 * (P->hi.y - P->lo.y) + (override >= 0.0 ? override : 0.0) + CUTOFF_PAD * g.scale;
+    size_t np = 0;
+    long tests = 0;
+    rugo_transform ident = rugo_identity_transform();
+    st = traverse(ctx, &ta, &tb, ident, &tests, &np);
+    if (stats != NULL) stats->box_tests += tests;
+    if (st != RUGO_OK) return st;
+
+    size_t nx = 0, ns = 0;
+    for (size_t i = 0; i < np; ++i) {
+        const int ka = ((const rugo_node_pair*)ctx->pairs.data)[i].k_a;
+        if (!prim_segment(ctx, &g, ka, &ctx->xs, &nx, &ctx->ss, &ns)) return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    const rugo_real eps = SAME_POINT * g.scale;
+    hit* xs = (hit*)ctx->xs.data;
+    hit* hs = (hit*)ctx->ss.data;
+    dedupe(xs, nx, (rugo_real)A.n, eps, 0);
+    dedupe(hs, ns, (rugo_real)A.n, eps, 1);
+    size_t m = 0;
+    for (size_t i = 0; i < nx; ++i)
+        if (!xs[i].dead && xs[i].kind != 0) xs[m++] = xs[i];
+
+    const int want = capacity > 0 || stats != NULL; /* else only the state is asked for */
+    if (m > 0 && is_edge) {
+        *state = RUGO_STATE_INTERSECTING;
+        if (want) {
+            st = edge_pieces(ctx, &g, xs, m, &o);
+            if (st != RUGO_OK) return st;
+        }
+    } else if (m > 0) {
+        *state = RUGO_STATE_INTERSECTING;
+        if (!reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
+        region_io io;
+        io.user = &g;
+        io.period_a = (rugo_real)A.n;
+        io.period_b = P->period;
+        io.point_a = pr_point_a;
+        io.point_b = pr_point_b;
+        io.inside_b = pr_inside_b;
+        io.inside_a = pr_inside_a;
+        regions r;
+        build_regions(&r, xs, (int)m, (int*)ctx->ints.data, &io);
+        if (!want) r.count = 0;
+        for (int reg = 0; reg < r.count; ++reg) {
+            const hit* best = NULL;
+            rugo_real depth = -1.0;
+            for (size_t i = 0; i < ns; ++i) {
+                const hit* h = &hs[i];
+                if (h->dead || region_of_pair(&r, h->ua, h->ub) != reg) continue;
+                const rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
+                const rugo_real len = v2_len(d);
+                if (len <= eps) continue;
+                const rugo_vec2 n = rugo_v2_scale(1.0 / len, d);
+                if (!(rugo_v2_dot(curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
+                if (!b_side_ok(P, h, n)) continue;
+                if (len > depth || (len == depth && hit_cmp(h, best) < 0)) {
+                    depth = len;
+                    best = h;
+                }
+            }
+            if (best != NULL) {
+                const rugo_vec2 n = rugo_v2_scale(1.0 / depth, rugo_v2_sub(best->pa, best->pb));
+                if (!prim_emit(&o, best, best->pa, best->pb, n, reg, 1, 0)) return RUGO_ERR_OUT_OF_MEMORY;
+                continue;
+            }
+            /* Fallback: the sampled point of the region's arcs farthest from the other boundary. */
+            rugo_real far = -1.0;
+            rugo_vec2 fpa = r.x[0].pa, fpb = r.x[0].pa;
+            int fsa = r.x[0].sa;
+            rugo_real fta = r.x[0].ta;
+            for (int which = 0; which < 2; ++which)
+                for (int i = 0; i < r.m; ++i) {
+                    if ((which == 0 ? r.reg_a[i] : r.reg_b[i]) != reg) continue;
+                    const int j = which == 0 ? next_a(&r, i) : next_b(&r, i);
+                    const rugo_real u0 = which == 0 ? r.x[i].ua : r.x[i].ub,
+                                    u1 = which == 0 ? r.x[j].ua : r.x[j].ub;
+                    const rugo_real period = which == 0 ? (rugo_real)A.n : P->period;
+                    const rugo_real len = arc_length(u0, u1, period, r.m == 1);
+                    const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
+                    for (int s = 1; s < samples; ++s) {
+                        const rugo_real u = wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
+                        if (which == 0) {
+                            const rugo_vec2 p = rugo_contour_point_at(A.curve, u);
+                            rugo_vec2 qb;
+                            const rugo_real sd = prim_sd(P, p, &qb, NULL);
+                            if (-sd > far) {
+                                far = -sd;
+                                fpa = p;
+                                fpb = qb;
+                                fsa = (int)floor(u);
+                                fta = u - floor(u);
+                            }
+                        } else {
+                            const rugo_vec2 p = prim_point(P, u);
+                            rugo_curve_point cp = rugo_contour_closest_point(A.curve, p);
+                            if (cp.distance > far) {
+                                far = cp.distance;
+                                fpb = p;
+                                fpa = cp.point;
+                                fsa = cp.segment;
+                                fta = cp.t;
+                            }
+                        }
+                    }
+                }
+            normalise(&fsa, &fta, A.n);
+            const rugo_vec2 d = rugo_v2_sub(fpa, fpb);
+            const rugo_vec2 n = v2_len(d) > eps ? v2_unit(d) : curve_normal(A.curve, fsa, fta);
+            if (!emit(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
+                return RUGO_ERR_OUT_OF_MEMORY;
+        }
+        /* Minima within the band outside the regions. */
+        int region = r.count;
+        for (size_t i = 0; i < ns; ++i) {
+            const hit* h = &hs[i];
+            if (h->dead || h->kind != RUGO__MINIMUM || h->distance <= eps) continue;
+            if (in_any_region(&r, h->ua, h->ub)) continue;
+            const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
+            const rugo_real band =
+                side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0);
+            if (!(h->distance <= band)) continue;
+            const rugo_vec2 n = v2_unit(d);
+            if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
+            if (prim_sd(P, h->pa, NULL, NULL) < 0.0) continue;
+            if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
+        }
+    } else {
+        /* No crossing: B inside A, A inside B, or apart / in contact. */
+        const rugo_vec2 pb0 = is_edge ? P->v[0] : prim_point(P, 0.0);
+        int b_in_a = 0, a_in_b = 0;
+        if (rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
+            b_in_a = rugo_contour_contains(A.curve, pb0);
+        if (!b_in_a && !is_edge && P->R + (P->V >= 3 ? 1.0 : 0.0) > 0.0)
+            a_in_b = prim_sd(P, rugo_contour_point_at(A.curve, 0.0), NULL, NULL) < 0.0;
+        if (b_in_a && !want) {
+            *state = RUGO_STATE_INTERSECTING;
+        } else if (b_in_a) {
+            *state = RUGO_STATE_INTERSECTING;
+            /* Closest pair of A's curve and B's boundary, searched within the distance from one
+             * point of B to A. */
+            rugo_curve_point cp = rugo_contour_closest_point(A.curve, pb0);
+            tside tb2 = tb;
+            tb2.box = grow_box(tb.box, cp.distance * (1.0 + 1e-9) + CUTOFF_PAD * g.scale);
+            size_t np2 = 0;
+            long tests2 = 0;
+            st = traverse(ctx, &ta, &tb2, ident, &tests2, &np2);
+            if (stats != NULL) stats->box_tests += tests2;
+            if (st != RUGO_OK) return st;
+            size_t n2 = 0;
+            for (size_t i = 0; i < np2; ++i) {
+                const int ka = ((const rugo_node_pair*)ctx->pairs.data)[i].k_a;
+                if (!prim_segment(ctx, &g, ka, NULL, NULL, &ctx->ss2, &n2)) return RUGO_ERR_OUT_OF_MEMORY;
+            }
+            const hit* h2 = (const hit*)ctx->ss2.data;
+            hit best;
+            memset(&best, 0, sizeof best);
+            best.sa = cp.segment;
+            best.ta = cp.t;
+            best.pa = cp.point;
+            best.pb = pb0;
+            best.distance = cp.distance;
+            for (size_t i = 0; i < n2; ++i)
+                if (h2[i].kind == RUGO__MINIMUM && h2[i].distance < best.distance) best = h2[i];
+            const rugo_vec2 n = curve_normal(A.curve, best.sa, best.ta);
+            const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
+            if (!emit(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))
+                return RUGO_ERR_OUT_OF_MEMORY;
+        } else if (a_in_b) {
+            *state = RUGO_STATE_INTERSECTING;
+            /* A leaves B through B's boundary where they are closest. */
+            const hit* best = NULL;
+            for (size_t i = 0; i < ns; ++i) {
+                const hit* h = &hs[i];
+                if (h->dead || h->vertex >= 0) continue;
+                if (best == NULL || h->distance < best->distance) best = h;
+            }
+            rugo_vec2 pb, mb;
+            if (best != NULL) {
+                pb = best->pb;
+                mb = best->nb;
+            } else {
+                prim_sd(P, rugo_contour_point_at(A.curve, 0.0), &pb, &mb);
+            }
+            const rugo_vec2 n = rugo_v2_scale(-1.0, mb);
+            int seg;
+            rugo_real t;
+            const rugo_vec2 pa = curve_support(&A, n, &seg, &t);
+            if (!emit(&o, seg, t, -1, 0.0, pa, pb, n, 0, 2, 0, 0xFFF00)) return RUGO_ERR_OUT_OF_MEMORY;
+        } else {
+            int region = 0;
+            for (size_t i = 0; i < ns; ++i) {
+                const hit* h = &hs[i];
+                if (h->dead || h->kind != RUGO__MINIMUM) continue;
+                const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
+                const rugo_real len = v2_len(d);
+                const rugo_real band =
+                    side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0);
+                if (!(len <= band)) continue;
+                const rugo_vec2 na = curve_normal(A.curve, h->sa, h->ta);
+                rugo_vec2 n;
+                if (len > NORMAL_FROM_POINTS * g.scale) {
+                    n = rugo_v2_scale(1.0 / len, d);
+                    if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
+                } else {
+                    n = na;
+                }
+                if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
+            }
+            *state = o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
+        }
+    }
+    finish(&o, contacts, capacity, count, stats);
+    return RUGO_OK;
+}
+
+static rugo_status prim_common_checks(rugo_collide_context* ctx, const rugo_shape* a, int* count,
+                                      rugo_contact_state* state, rugo_query_stats* stats) {
+    if (count != NULL) *count = 0;
+    if (state != NULL) *state = RUGO_STATE_APART;
+    if (stats != NULL) memset(stats, 0, sizeof *stats);
+    if (ctx == NULL || a == NULL || count == NULL || state == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    return RUGO_OK;
+}
+
+rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                rugo_vec2 center, rugo_real radius, const rugo_contact_query* query,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats) {
+    rugo_status st = prim_common_checks(ctx, a, count, state, stats);
+    if (st != RUGO_OK) return st;
+    if (!rugo__v2_finite(center) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
+    if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    prim P;
+    memset(&P, 0, sizeof P);
+    P.V = 1;
+    P.v[0] = center;
+    P.R = radius;
+    return collide_prim(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
+}
+
+rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 rugo_vec2 p1, rugo_vec2 p2, rugo_real radius,
+                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
+                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+    rugo_status st = prim_common_checks(ctx, a, count, state, stats);
+    if (st != RUGO_OK) return st;
+    if (!rugo__v2_finite(p1) || !rugo__v2_finite(p2) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
+    if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    prim P;
+    memset(&P, 0, sizeof P);
+    P.R = radius;
+    P.v[0] = p1;
+    P.v[1] = p2;
+    /* A segment of zero length is a circle (or a point). */
+    P.V = (p1.x == p2.x && p1.y == p2.y) ? 1 : 2;
+    return collide_prim(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
+}
+
+rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 const rugo_vec2* vertices, int vertex_count, rugo_real radius,
+                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
+                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+    rugo_status st = prim_common_checks(ctx, a, count, state, stats);
+    if (st != RUGO_OK) return st;
+    if (vertices == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (vertex_count < 3 || vertex_count > 8) return RUGO_ERR_BAD_ARGUMENT;
+    for (int i = 0; i < vertex_count; ++i)
+        if (!rugo__v2_finite(vertices[i])) return RUGO_ERR_NOT_FINITE;
+    if (!isfinite(radius)) return RUGO_ERR_NOT_FINITE;
+    if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    /* Convex and counter-clockwise: every turn strictly left, total turning one revolution. */
+    rugo_real size = 0.0, turning = 0.0;
+    for (int i = 0; i < vertex_count; ++i)
+        size = fmax(size, v2_len(rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i])));
+    if (!(size > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
+    for (int i = 0; i < vertex_count; ++i) {
+        const rugo_vec2 e0 = rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i]);
+        const rugo_vec2 e1 = rugo_v2_sub(vertices[(i + 2) % vertex_count], vertices[(i + 1) % vertex_count]);
+        if (!(v2_len(e0) > 1e-12 * size)) return RUGO_ERR_BAD_ARGUMENT;
+        if (!(rugo_v2_cross(e0, e1) > 1e-12 * size * size)) return RUGO_ERR_BAD_ARGUMENT;
+        turning += atan2(rugo_v2_cross(e0, e1), rugo_v2_dot(e0, e1));
+    }
+    if (fabs(turning - 2.0 * PI_VALUE) > 1e-6) return RUGO_ERR_BAD_ARGUMENT;
+    prim P;
+    memset(&P, 0, sizeof P);
+    P.V = vertex_count;
+    for (int i = 0; i < vertex_count; ++i)
+        P.v[i] = vertices[i];
+    P.R = radius;
+    return collide_prim(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Manifold reduction. */
+
+int rugo_reduce_manifold(rugo_contact* contacts, int count, int k) {
+    if (contacts == NULL || count <= 0) return 0;
+    if (k < 1) k = 1;
+    /* Kept contacts are marked in place by region -> -1 - region (undone at the end), so that nothing
+     * is allocated; this needs the non-negative regions the queries produce. */
+    for (int i = 0; i < count; ++i)
+        if (contacts[i].region < 0) return count;
+    for (int s = 0; s < count; ++s) {
+        const int region = contacts[s].region;
+        if (region < 0) continue; /* a kept contact of a region already done */
+        int first = 1;
+        for (int p = 0; p < s && first; ++p)
+            first = contacts[p].region != region && contacts[p].region != -1 - region;
+        if (!first) continue;
+        int members = 0, deepest = s;
+        for (int i = s; i < count; ++i)
+            if (contacts[i].region == region) {
+                ++members;
+                if (contacts[i].separation < contacts[deepest].separation) deepest = i;
+            }
+        if (members <= k) {
+            for (int i = s; i < count; ++i)
+                if (contacts[i].region == region) contacts[i].region = -1 - region;
+            continue;
+        }
+        contacts[deepest].region = -1 - region;
+        for (int kept = 1; kept < k; ++kept) {
+            int pick = -1;
+            rugo_real best = -1.0;
+            for (int i = s; i < count; ++i) {
+                if (contacts[i].region != region) continue;
+                const rugo_vec2 ci = lerp2(contacts[i].point_a, contacts[i].point_b, 0.5);
+                rugo_real dmin = HUGE_VAL;
+                for (int j = s; j < count; ++j)
+                    if (contacts[j].region == -1 - region)
+                        dmin = fmin(dmin, v2_len(rugo_v2_sub(
+                                              ci, lerp2(contacts[j].point_a, contacts[j].point_b, 0.5))));
+                if (dmin > best) {
+                    best = dmin;
+                    pick = i;
+                }
+            }
+            if (pick < 0) break;
+            contacts[pick].region = -1 - region;
+        }
+    }
+    int w = 0;
+    for (int i = 0; i < count; ++i)
+        if (contacts[i].region < 0) {
+            contacts[w] = contacts[i];
+            contacts[w].region = -1 - contacts[w].region;
+            ++w;
+        }
+    return w;
+}

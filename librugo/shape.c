@@ -1,0 +1,223 @@
+/* The rough curved shape: pyramid + tolerances + MOBBtree + mass properties + surface, built once.
+ *
+ * Besides what shape.h exposes, a shape keeps for the contact queries (collide.c) an upper bound of
+ * the tolerance λ(t) over every segment of every level (rugo_tolerance_bound_on_segment), and per level the
+ * largest amount by which that bound exceeds the segment's own λ^j_k. The boxes of level j hold the coarse
+ * segment thickened by λ^j_k (mobb.h), but λ(t) interpolates between neighbours (SPEC 6.3) and can exceed
+ * λ^j_k inside the segment; queries stopped at a coarse level grow the boxes by that excess so that they
+ * never miss a contact within the band. At the finest level the boxes hold β^J >= max λ(t): no excess. */
+#include "rugo/shape.h"
+
+#include "internal.h"
+#include "shape_internal.h"
+
+#include <string.h>
+
+/* "RUGS": catches defs that did not come from rugo_default_shape_def. */
+#define SHAPE_DEF_COOKIE 0x52554753
+
+
+struct rugo_shape {
+    rugo_allocator allocator;
+    rugo_pyramid* pyramid;
+    rugo_tolerances* tolerances;
+    rugo_mobb_tree* tree;
+    rugo_mass_properties mass;
+    rugo_friction_map friction;
+    rugo_restitution restitution;
+    int finest, coarsest;
+    int rough;
+    int reversed;
+    rugo_real* band_bound; /* level j at offset 2^j - 2^J_min, 2^j values */
+    rugo_real band_excess[31];
+};
+
+rugo_shape_def rugo_default_shape_def(void) {
+    rugo_shape_def d;
+    memset(&d, 0, sizeof d);
+    d.points = NULL;
+    d.count = 0;
+    d.filter = RUGO_FILTER_DEFAULT;
+    d.coarsest_level = 0;
+    d.tolerances = NULL;
+    d.q = RUGO_DEFAULT_Q;
+    d.estimator = RUGO_ESTIMATOR_DETAIL;
+    d.friction = rugo_default_friction_map();
+    d.restitution = rugo_default_restitution();
+    d.box_method = RUGO_BOXES_MULTIRES;
+    d.check_self_intersection = 1;
+    d.cookie = SHAPE_DEF_COOKIE;
+    return d;
+}
+
+static rugo_status check_surface(const rugo_shape_def* def) {
+    rugo_status st = rugo_friction_map_check(&def->friction);
+    if (st != RUGO_OK) return st;
+    return rugo_restitution_check(&def->restitution);
+}
+
+void rugo_shape_destroy(rugo_shape* s) {
+    if (s == NULL) return;
+    rugo_allocator al = s->allocator;
+    rugo_mobb_tree_destroy(s->tree);
+    rugo_tolerances_destroy(s->tolerances);
+    rugo_pyramid_destroy(s->pyramid);
+    rugo__free(&al, s->band_bound);
+    rugo__free(&al, s);
+}
+
+rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem) {
+    if (out != NULL) *out = NULL;
+    if (def == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (def->cookie != SHAPE_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
+    rugo_status st = check_surface(def);
+    if (st != RUGO_OK) return st;
+
+    rugo_allocator al = rugo__allocator_or_default(&def->allocator);
+    rugo_shape* s = (rugo_shape*)rugo__alloc_array(&al, 1, sizeof(rugo_shape));
+    if (s == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    memset(s, 0, sizeof *s);
+    s->allocator = al;
+    s->friction = def->friction;
+    s->restitution = def->restitution;
+
+    rugo_pyramid_def pd = rugo_default_pyramid_def();
+    pd.points = def->points;
+    pd.count = def->count;
+    pd.filter = def->filter;
+    pd.coarsest_level = def->coarsest_level;
+    pd.check_self_intersection = def->check_self_intersection;
+    pd.allocator = al;
+    st = rugo_pyramid_create(&pd, &s->pyramid, problem);
+    if (st != RUGO_OK) {
+        rugo_shape_destroy(s);
+        return st;
+    }
+    s->finest = rugo_pyramid_finest_level(s->pyramid);
+    s->coarsest = rugo_pyramid_coarsest_level(s->pyramid);
+    s->reversed = rugo_pyramid_was_reversed(s->pyramid);
+    const int n = 1 << s->finest;
+
+    /* λ per finest segment in the pyramid's (counter-clockwise) order: a reversed input maps its
+     * segment j to segment n-2-j. Zeros for a smooth shape. */
+    rugo_real* lambda = (rugo_real*)rugo__alloc_array(&al, (size_t)n, sizeof(rugo_real));
+    if (lambda == NULL) {
+        rugo_shape_destroy(s);
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    for (int j = 0; j < n; ++j) {
+        const rugo_real v = def->tolerances != NULL ? def->tolerances[j] : 0.0;
+        lambda[s->reversed ? rugo__wrap(n - 2 - j, n) : j] = v;
+    }
+    rugo_tolerance_def td = rugo_default_tolerance_def();
+    td.pyramid = s->pyramid;
+    td.finest = lambda;
+    td.count = n;
+    td.q = def->q;
+    td.estimator = def->estimator;
+    td.allocator = al;
+    st = rugo_tolerances_create(&td, &s->tolerances);
+    if (st == RUGO_OK)
+        for (int j = 0; j < n; ++j)
+            s->rough |= lambda[j] > 0.0;
+    rugo__free(&al, lambda);
+    if (st != RUGO_OK) {
+        rugo_shape_destroy(s);
+        return st;
+    }
+
+    rugo_mobb_tree_def md = rugo_default_mobb_tree_def();
+    md.pyramid = s->pyramid;
+    md.tolerances = s->tolerances;
+    md.method = def->box_method;
+    md.allocator = al;
+    st = rugo_mobb_tree_create(&md, &s->tree);
+    if (st != RUGO_OK) {
+        rugo_shape_destroy(s);
+        return st;
+    }
+
+    rugo_contour fine;
+    rugo_pyramid_level(s->pyramid, s->finest, &fine);
+    s->mass = rugo_contour_mass_properties(fine);
+
+    const size_t per = ((size_t)1 << (s->finest + 1)) - ((size_t)1 << s->coarsest);
+    s->band_bound = (rugo_real*)rugo__alloc_array(&al, per, sizeof(rugo_real));
+    if (s->band_bound == NULL) {
+        rugo_shape_destroy(s);
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    for (int j = s->coarsest; j <= s->finest; ++j) {
+        rugo_tolerance_level tl;
+        rugo_tolerances_level(s->tolerances, j, &tl);
+        rugo_real* bb = s->band_bound + (((size_t)1 << j) - ((size_t)1 << s->coarsest));
+        rugo_real excess = 0.0;
+        for (int k = 0; k < tl.count; ++k) {
+            bb[k] = rugo_tolerance_bound_on_segment(tl.total, tl.count, k, 0.0);
+            if (bb[k] - tl.total[k] > excess) excess = bb[k] - tl.total[k];
+        }
+        s->band_excess[j] = j == s->finest ? 0.0 : excess;
+    }
+    *out = s;
+    return RUGO_OK;
+}
+
+int rugo_shape_finest_level(const rugo_shape* s) { return s ? s->finest : -1; }
+int rugo_shape_coarsest_level(const rugo_shape* s) { return s ? s->coarsest : -1; }
+
+rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out) {
+    if (s == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    return rugo_pyramid_level(s->pyramid, level, out);
+}
+
+rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out) {
+    if (s == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    return rugo_tolerances_level(s->tolerances, level, out);
+}
+
+const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s) { return s ? s->tree : NULL; }
+const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s) { return s ? s->pyramid : NULL; }
+
+rugo_mass_properties rugo_shape_mass(const rugo_shape* s) {
+    if (s == NULL) {
+        rugo_mass_properties m;
+        m.area = NAN;
+        m.centroid = rugo_v2(NAN, NAN);
+        m.inertia = NAN;
+        return m;
+    }
+    return s->mass;
+}
+
+rugo_friction_map rugo_shape_friction_map(const rugo_shape* s) {
+    if (s == NULL) {
+        rugo_friction_map m;
+        m.alpha = NAN;
+        m.lambda_min = NAN;
+        return m;
+    }
+    return s->friction;
+}
+
+rugo_restitution rugo_shape_restitution(const rugo_shape* s) {
+    if (s == NULL) {
+        rugo_restitution r;
+        r.epsilon = NAN;
+        r.epsilon_max = NAN;
+        return r;
+    }
+    return s->restitution;
+}
+
+int rugo_shape_is_rough(const rugo_shape* s) { return s ? s->rough : 0; }
+int rugo_shape_was_reversed(const rugo_shape* s) { return s ? s->reversed : 0; }
+
+const rugo_real* rugo__shape_band_bounds(const rugo_shape* s, int level) {
+    if (s == NULL || level < s->coarsest || level > s->finest) return NULL;
+    return s->band_bound + (((size_t)1 << level) - ((size_t)1 << s->coarsest));
+}
+
+rugo_real rugo__shape_band_excess(const rugo_shape* s, int level) {
+    if (s == NULL || level < s->coarsest || level > s->finest) return 0.0;
+    return s->band_excess[level];
+}

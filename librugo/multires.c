@@ -194,7 +194,7 @@ rugo_status rugo_pyramid_create(const rugo_pyramid_def* def, rugo_pyramid** out,
     }
     if (def == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (def->cookie != PYRAMID_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
-    if ((int)def->filter < 0 || (int)def->filter >= (int)RUGO_FILTER_COUNT) return RUGO_ERR_BAD_FILTER;
+    if (rugo_filter_name(def->filter) == NULL) return RUGO_ERR_BAD_FILTER; /* the wavelet module decides */
     int flags = RUGO_CHECK_POWER_OF_TWO | (def->check_self_intersection ? RUGO_CHECK_SELF_INTERSECTION : 0);
     rugo_status st = rugo_contour_check(def->points, def->count, flags, problem, &def->allocator);
     if (st != RUGO_OK) return st;

@@ -160,6 +160,16 @@ static void report_problem(const char* path, rugo_status st, const rugo_contour_
     fprintf(stderr, "\n");
 }
 
+/* Validates a loaded outline; on failure reports it (naming the crossing segments or the bad point)
+ * and returns EXIT_INPUT. The caller still owns and frees desc. */
+static int check_outline(const char* path, const rugo_shape_desc* desc, int flags) {
+    rugo_contour_problem pr;
+    rugo_status st = rugo_contour_check(desc->control_points, desc->count, flags, &pr, NULL);
+    if (st == RUGO_OK) return 0;
+    report_problem(path, st, &pr);
+    return EXIT_INPUT;
+}
+
 static int build_pyramid(const char* path, const rugo_shape_desc* desc, rugo_filter filter, int coarsest,
                          rugo_pyramid** out) {
     rugo_pyramid_def def = rugo_default_pyramid_def();
@@ -306,12 +316,9 @@ static int cmd_info(int argc, char** argv) {
     if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
-    rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
-    if (st != RUGO_OK) {
-        report_problem(a.positional[0], st, &pr);
+    if ((rc = check_outline(a.positional[0], &desc, RUGO_CHECK_SELF_INTERSECTION))) {
         rugo_shape_desc_free(&desc);
-        return EXIT_INPUT;
+        return rc;
     }
     rugo_contour_orient_ccw(desc.control_points, desc.count);
     rugo_contour c = {desc.control_points, desc.count};
@@ -704,14 +711,7 @@ static int cmd_tolerances(int argc, char** argv) {
     if (at) {
         /* A point query needs only the finest tolerances: any count, the file's own numbering (the
          * interpolation is symmetric, so the reversed curve gives the same value at the same point). */
-        rugo_contour_problem pr;
-        rugo_status st =
-            rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
-        if (st != RUGO_OK) {
-            report_problem(path, st, &pr);
-            rc = EXIT_INPUT;
-            goto done;
-        }
+        if ((rc = check_outline(path, &desc, RUGO_CHECK_SELF_INTERSECTION))) goto done;
         int seg = (int)st_pair.x;
         if (seg >= desc.count) {
             fprintf(stderr, "rugo tolerances: --at segment must be below the control point count %d\n",
@@ -920,12 +920,9 @@ static int cmd_render(int argc, char** argv) {
     if (sv && parse_int(sv, 1, 256, &samples) != 0) return usage_error("--samples must be 1..256, got '%s'", sv);
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
-    rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
-    if (st != RUGO_OK) {
-        report_problem(a.positional[0], st, &pr);
+    if ((rc = check_outline(a.positional[0], &desc, RUGO_CHECK_SELF_INTERSECTION))) {
         rugo_shape_desc_free(&desc);
-        return EXIT_INPUT;
+        return rc;
     }
     int reversed = rugo_contour_orient_ccw(desc.control_points, desc.count);
     rugo_real* tol = NULL;

@@ -26,6 +26,14 @@ const char* rugo_status_string(rugo_status status) {
     case RUGO_ERR_NEGATIVE_TOLERANCE: return "negative tolerance";
     case RUGO_ERR_EMPTY_RANGE: return "empty range (lower end above upper end)";
     case RUGO_ERR_BAD_QUANTILE: return "band factor q must be > 0";
+    case RUGO_ERR_WORLD_LOCKED: return "world is locked (inside a step or callback)";
+    case RUGO_ERR_NOT_ATTACHED: return "body has no rough shape attached";
+    case RUGO_ERR_ALREADY_ATTACHED: return "body already has a rough shape attached";
+    case RUGO_ERR_BAD_FORMAT: return "not a baked shape file, or a field out of range";
+    case RUGO_ERR_BAD_VERSION: return "unsupported baked file version";
+    case RUGO_ERR_CHECKSUM: return "checksum mismatch (corrupted data)";
+    case RUGO_ERR_TRUNCATED: return "data shorter than its header says (truncated)";
+    case RUGO_ERR_TOO_LARGE: return "input beyond the size limit";
     case RUGO_STATUS_COUNT: break;
     }
     return "unknown status";

@@ -48,6 +48,14 @@ typedef enum rugo_status {
     RUGO_ERR_NEGATIVE_TOLERANCE = 18, /* a tolerance (roughness band) below zero */
     RUGO_ERR_EMPTY_RANGE = 19,      /* a range whose lower end exceeds its upper end (e.g. λ_min > λ_max) */
     RUGO_ERR_BAD_QUANTILE = 20,     /* the band factor q of λ = q σ is not > 0 */
+    RUGO_ERR_WORLD_LOCKED = 21,     /* the physics world is inside a step or callback; retry after the step */
+    RUGO_ERR_NOT_ATTACHED = 22,     /* the body has no rough shape attached */
+    RUGO_ERR_ALREADY_ATTACHED = 23, /* the body already has a rough shape attached */
+    RUGO_ERR_BAD_FORMAT = 24,       /* not a baked shape file (wrong magic) or a field out of range */
+    RUGO_ERR_BAD_VERSION = 25,      /* a baked file of a version this library does not read */
+    RUGO_ERR_CHECKSUM = 26,         /* a baked file whose checksum does not match (corrupted) */
+    RUGO_ERR_TRUNCATED = 27,        /* a file or buffer shorter than its header says */
+    RUGO_ERR_TOO_LARGE = 28,        /* an input beyond the documented size limit */
     RUGO_STATUS_COUNT
 } rugo_status;
 

@@ -13,5 +13,6 @@
 #include "rugo/shape.h"
 #include "rugo/collide.h"
 #include "rugo/shape_file.h"
+#include "rugo/world.h"
 
 #endif

@@ -1,0 +1,2 @@
+/* Placeholder: being written. */
+typedef int rugo__placeholder_impulse;

@@ -194,6 +194,7 @@ rugo_friction_map rugo_shape_friction_map(const rugo_shape* s) {
         rugo_friction_map m;
         m.alpha = NAN;
         m.lambda_min = NAN;
+        m.base = NAN;
         return m;
     }
     return s->friction;

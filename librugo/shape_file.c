@@ -460,18 +460,19 @@ static rugo_status read_friction(const rctx* c, const rugo_json_value* obj, rugo
     const rugo_json_value* v = NULL;
     rugo_status s = member(c, obj, "roughness", "friction", &v);
     if (s != RUGO_OK || v == NULL) return s;
-    s = want_type(c, v, RUGO_JSON_OBJECT, "roughness.friction", "an object {\"alpha\", \"lambda_min\"}");
+    s = want_type(c, v, RUGO_JSON_OBJECT, "roughness.friction", "an object {\"alpha\", \"lambda_min\", \"base\"}");
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "alpha", &r->friction.alpha);
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "lambda_min", &r->friction.lambda_min);
+    if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "base", &r->friction.base);
     if (s != RUGO_OK) return s;
     s = rugo_friction_map_check(&r->friction);
     if (s != RUGO_OK) {
         set_path(c->e, "roughness.friction");
         return field_error(
             c->e, s, c->text, c->length, v,
-            "invalid friction map (alpha %.17g, lambda_min %.17g): %s; alpha and lambda_min must be "
-            ">= 0",
-            r->friction.alpha, r->friction.lambda_min, rugo_status_string(s));
+            "invalid friction map (alpha %.17g, lambda_min %.17g, base %.17g): %s; alpha, lambda_min "
+            "and base must be >= 0",
+            r->friction.alpha, r->friction.lambda_min, r->friction.base, rugo_status_string(s));
     }
     return RUGO_OK;
 }
@@ -673,6 +674,8 @@ static void write_roughness(rugo_json_writer* w, const rugo_roughness_desc* r) {
     rugo_json_number(w, r->friction.alpha);
     rugo_json_key(w, "lambda_min");
     rugo_json_number(w, r->friction.lambda_min);
+    rugo_json_key(w, "base");
+    rugo_json_number(w, r->friction.base);
     rugo_json_end_object(w);
     rugo_json_key(w, "restitution");
     rugo_json_begin_object(w, RUGO_JSON_INLINE);

@@ -381,21 +381,22 @@ rugo_friction_map rugo_default_friction_map(void) {
     rugo_friction_map m;
     m.alpha = 1.0;
     m.lambda_min = 0.04;
+    m.base = 0.0;
     return m;
 }
 
 rugo_status rugo_friction_map_check(const rugo_friction_map* m) {
     if (m == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!isfinite(m->alpha) || !isfinite(m->lambda_min)) return RUGO_ERR_NOT_FINITE;
-    if (m->alpha < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    if (!isfinite(m->alpha) || !isfinite(m->lambda_min) || !isfinite(m->base)) return RUGO_ERR_NOT_FINITE;
+    if (m->alpha < 0.0 || m->base < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if (m->lambda_min < 0.0) return RUGO_ERR_NEGATIVE_TOLERANCE;
     return RUGO_OK;
 }
 
 rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda) {
     if (m == NULL) return NAN;
-    if (lambda <= m->lambda_min) return 0.0; /* (5.6); NaN falls through to NaN */
-    return m->alpha * (lambda - m->lambda_min);
+    if (lambda <= m->lambda_min) return m->base; /* (5.6); NaN falls through to NaN */
+    return m->base + m->alpha * (lambda - m->lambda_min);
 }
 
 rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
@@ -409,6 +410,7 @@ rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, 
     if (!isfinite(alpha)) return RUGO_ERR_NOT_FINITE; /* a range so narrow that α overflows */
     out->alpha = alpha;
     out->lambda_min = lambda_min;
+    out->base = 0.0;
     return RUGO_OK;
 }
 

@@ -1167,6 +1167,7 @@ static void assert_same_roughness(const rugo_roughness_desc* a, const rugo_rough
     ck_assert_int_eq(a->estimator, b->estimator);
     ck_assert(bits_of(a->friction.alpha) == bits_of(b->friction.alpha));
     ck_assert(bits_of(a->friction.lambda_min) == bits_of(b->friction.lambda_min));
+    ck_assert(bits_of(a->friction.base) == bits_of(b->friction.base));
     ck_assert(bits_of(a->restitution.epsilon) == bits_of(b->restitution.epsilon));
     ck_assert(bits_of(a->restitution.epsilon_max) == bits_of(b->restitution.epsilon_max));
     ck_assert_int_eq(a->has_perturbation, b->has_perturbation);
@@ -1246,7 +1247,7 @@ START_TEST(roughness_parse_valid) {
     /* Everything given; unknown members are ignored; members in any order. */
     d = parse_rough_ok(
         "\"note\": {\"x\": [null]}, \"seed\": 9007199254740992, \"q\": 1.96, \"estimator\": "
-        "\"coefficients\", \"friction\": {\"lambda_min\": 0.1, \"alpha\": 2, \"unit\": \"m\"}, "
+        "\"coefficients\", \"friction\": {\"lambda_min\": 0.1, \"alpha\": 2, \"base\": 0.25, \"unit\": \"m\"}, "
         "\"restitution\": {\"epsilon\": 0.3, \"epsilon_max\": 0.8}, \"perturbation\": "
         "{\"method\": \"local\", \"levels\": 1, \"control_points\": [[0, 0], [0.5, 0], [1, 0], "
         "[1, 0.5], [1, 1], [0.5, 1], [0, 1], [0, 0.5]]}, \"preset\": \"tipo_2\"");
@@ -1255,7 +1256,7 @@ START_TEST(roughness_parse_valid) {
     ck_assert(r->seed == ((uint64_t)1 << 53));
     ck_assert(r->q == 1.96);
     ck_assert_int_eq(r->estimator, RUGO_ESTIMATOR_COEFFICIENTS);
-    ck_assert(r->friction.alpha == 2.0 && r->friction.lambda_min == 0.1);
+    ck_assert(r->friction.alpha == 2.0 && r->friction.lambda_min == 0.1 && r->friction.base == 0.25);
     ck_assert(r->restitution.epsilon == 0.3 && r->restitution.epsilon_max == 0.8);
     ck_assert_int_eq(r->has_perturbation, 1);
     ck_assert_int_eq(r->perturbation_method, RUGO_ROUGHEN_LOCAL);
@@ -1629,7 +1630,7 @@ START_TEST(roughness_round_trip_bits) {
                      "  \"filter\": \"cdf4.8\",\n  \"roughness\": {\n    \"tolerances\": [\n      0.25,\n"
                      "      0.5,\n      0,\n      1\n    ],\n    \"seed\": 42,\n"
                      "    \"q\": 0.94999999999999996,\n    \"estimator\": \"detail\",\n"
-                     "    \"friction\": {\"alpha\": 1, \"lambda_min\": 0.040000000000000001},\n"
+                     "    \"friction\": {\"alpha\": 1, \"lambda_min\": 0.040000000000000001, \"base\": 0},\n"
                      "    \"restitution\": {\"epsilon\": 0.5, \"epsilon_max\": 0.90000000000000002},\n"
                      "    \"perturbation\": {\n      \"method\": \"local\",\n      \"levels\": 1,\n"
                      "      \"control_points\": [\n        [0, 0],\n        [0.5, 0],\n        [1, 0],\n"

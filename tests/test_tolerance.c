@@ -856,6 +856,19 @@ START_TEST(friction_map) {
     b = m;
     b.lambda_min = -0.1;
     ck_assert_int_eq(rugo_friction_map_check(&b), RUGO_ERR_NEGATIVE_TOLERANCE);
+    b = m;
+    b.base = -0.1;
+    ck_assert_int_eq(rugo_friction_map_check(&b), RUGO_ERR_BAD_ARGUMENT);
+    b.base = NAN;
+    ck_assert_int_eq(rugo_friction_map_check(&b), RUGO_ERR_NOT_FINITE);
+    /* base: a smooth surface's μ, added everywhere; α = 0 makes μ constant (an ordinary material) */
+    b = rugo_default_friction_map();
+    b.base = 0.3;
+    ck_assert(rugo_friction(&b, 0.0) == 0.3);
+    ck_assert_near(rugo_friction(&b, 0.54), 0.8, 1e-15);
+    b.alpha = 0.0;
+    ck_assert(rugo_friction(&b, 0.0) == 0.3 && rugo_friction(&b, 0.9) == 0.3);
+    ck_assert_int_eq(rugo_friction_map_check(&b), RUGO_OK);
 }
 END_TEST
 

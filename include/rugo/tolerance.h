@@ -86,16 +86,18 @@ rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, in
 
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
-/* μ(λ) = 0 if λ <= λ_min, α (λ - λ_min) otherwise (5.6). The thesis uses α = 1 (its tolerances lie in
- * [0, 1]) and λ_min = the tolerance of a smooth surface; the defaults are α = 1, λ_min = 0.04 (the
- * smooth segments of the thesis' tipo_5). α has units of 1/length: calibrate it to your scale. */
+/* μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise: the thesis' (5.6) with base = 0. The
+ * thesis uses α = 1 (its tolerances lie in [0, 1]) and λ_min = the tolerance of a smooth surface; the
+ * defaults are α = 1, λ_min = 0.04 (the smooth segments of the thesis' tipo_5), base = 0. α has units of
+ * 1/length: calibrate it to your scale. α = 0 gives a constant μ = base (an ordinary material). */
 typedef struct rugo_friction_map {
     rugo_real alpha;
     rugo_real lambda_min;
+    rugo_real base; /* μ of a smooth surface (λ <= λ_min); >= 0 */
 } rugo_friction_map;
 
 rugo_friction_map rugo_default_friction_map(void);
-/* NOT_FINITE, BAD_ARGUMENT (alpha < 0), NEGATIVE_TOLERANCE (lambda_min < 0). */
+/* NOT_FINITE, BAD_ARGUMENT (alpha < 0 or base < 0), NEGATIVE_TOLERANCE (lambda_min < 0). */
 rugo_status rugo_friction_map_check(const rugo_friction_map* m);
 rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
 /* Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max

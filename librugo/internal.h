@@ -5,6 +5,8 @@
 #include "rugo/base.h"
 
 #include <math.h>
+#include <stdint.h> /* rugo__decode_f64_le */
+#include <string.h>
 
 /* Internal invariants: on in debug and test builds (RUGO_ENABLE_ASSERT), off in release builds.
  * Never used for outside input, which gets a status instead. */
@@ -44,5 +46,17 @@ static inline int rugo__is_power_of_two(int n) { return n > 0 && (n & (n - 1)) =
 static inline int rugo__v2_finite(rugo_vec2 v) { return isfinite(v.x) && isfinite(v.y); }
 
 static inline rugo_real rugo__v2_length(rugo_vec2 v) { return hypot(v.x, v.y); }
+
+/* Little-endian binary64 (the baked format, docs/baked.md) into doubles, whatever the host's byte
+ * order: 8 bytes assembled by shifts into a uint64, then its bit pattern. Compilers turn the shifts
+ * into one load on little-endian hosts, so this is a plain copy there. */
+static inline void rugo__decode_f64_le(double* dst, const unsigned char* src, size_t count) {
+    for (size_t i = 0; i < count; ++i, src += 8) {
+        const uint64_t bits = (uint64_t)src[0] | ((uint64_t)src[1] << 8) | ((uint64_t)src[2] << 16) |
+                              ((uint64_t)src[3] << 24) | ((uint64_t)src[4] << 32) | ((uint64_t)src[5] << 40) |
+                              ((uint64_t)src[6] << 48) | ((uint64_t)src[7] << 56);
+        memcpy(dst + i, &bits, sizeof bits);
+    }
+}
 
 #endif

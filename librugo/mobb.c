@@ -15,8 +15,10 @@
 #include "rugo/mobb.h"
 
 #include "internal.h"
+#include "shape_internal.h" /* rugo__mobb_tree_from_nodes */
 
 #include <float.h>
+#include <stddef.h> /* offsetof */
 #include <string.h>
 
 /* "RUGM": catches defs that did not come from rugo_default_mobb_tree_def. */
@@ -524,4 +526,40 @@ rugo_real rugo_mobb_tree_level_area(const rugo_mobb_tree* tree, int level) {
     rugo_real sum = 0.0;
     for (size_t k = 0; k < m; ++k) sum += rugo_obb_area(&nodes[k]);
     return sum;
+}
+
+/* ---- internal (baked shapes): a tree from stored boxes (shape_internal.h) ------------------------- */
+
+/* Stored boxes are decoded as 8 doubles each straight into the node array, in rugo_obb's member order. */
+#define RUGO__OBB_IS_EIGHT_DOUBLES \
+    (sizeof(rugo_obb) == 8 * sizeof(double) && offsetof(rugo_obb, axis) == 16 && offsetof(rugo_obb, half) == 48)
+typedef char rugo__obb_is_eight_doubles[RUGO__OBB_IS_EIGHT_DOUBLES ? 1 : -1];
+
+rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method method,
+                                       const unsigned char* nodes, const rugo_obb* root,
+                                       const rugo_allocator* allocator, rugo_mobb_tree** out) {
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *out = NULL;
+    if (nodes == NULL || root == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (coarsest < 2 || finest < coarsest || finest > 30 || (1 << finest) > RUGO_MAX_CONTROL_POINTS)
+        return RUGO_ERR_BAD_LEVEL;
+    if (method != RUGO_BOXES_MULTIRES && method != RUGO_BOXES_OF_BOXES) return RUGO_ERR_BAD_ARGUMENT;
+    rugo_allocator alloc = rugo__allocator_or_default(allocator);
+    const size_t count = level_offset(finest + 1, coarsest);
+    rugo_mobb_tree* tree = (rugo_mobb_tree*)rugo__alloc_array(&alloc, 1, sizeof *tree);
+    if (tree == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    memset(tree, 0, sizeof *tree);
+    tree->allocator = alloc;
+    tree->finest = finest;
+    tree->coarsest = coarsest;
+    tree->method = method;
+    tree->nodes = (rugo_obb*)rugo__alloc_array(&alloc, count, sizeof *tree->nodes);
+    if (tree->nodes == NULL) {
+        rugo__free(&alloc, tree);
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    rugo__decode_f64_le((double*)(void*)tree->nodes, nodes, 8 * count);
+    tree->root = *root;
+    *out = tree;
+    return RUGO_OK;
 }

@@ -9,6 +9,7 @@
 #include "rugo/multires.h"
 
 #include "internal.h"
+#include "shape_internal.h" /* rugo__pyramid_from_levels */
 
 #include <string.h>
 
@@ -394,4 +395,99 @@ rugo_status rugo_pyramid_set_finest(rugo_pyramid* p, const rugo_vec2* points, in
     st = commit_finest(p, p->buf_a, p->buf_b);
     if (st == RUGO_OK) p->reversed = reversed;
     return st;
+}
+
+/* ---- internal (baked shapes): a pyramid from stored levels, without analysis ---------------------- */
+
+/* Stored levels are decoded as arrays of doubles straight into the vec2 arrays. */
+typedef char rugo__vec2_is_two_doubles[sizeof(rugo_vec2) == 2 * sizeof(double) ? 1 : -1];
+
+/* The O(n) outline check of rugo__pyramid_from_levels (shape_internal.h). The signed area of a closed
+ * uniform cubic B-spline is exactly Σ_i (49/144 c1_i + 7/90 c2_i + 1/720 c3_i) with
+ * cd_i = cross(P_i - P_0, P_{i+d} - P_0) (1/2 ∮ cross(f, f') with the basis integrated in closed
+ * form), summed with Neumaier's compensation like rugo_contour_signed_area. The joints
+ * f(j, 0) = (P_{j-1} + 4 P_j + P_{j+1}) / 6 bound the curve's box from inside. */
+static rugo_status outline_check(const rugo_vec2* p, size_t n) {
+    const rugo_vec2 o = p[0];
+    rugo_real s = 0.0, c = 0.0;
+    rugo_real lox = HUGE_VAL, loy = HUGE_VAL, hix = -HUGE_VAL, hiy = -HUGE_VAL;
+    rugo_vec2 prev = rugo_v2_sub(p[n - 1], o);
+    rugo_vec2 d0 = rugo_v2(0.0, 0.0), d1 = rugo_v2_sub(p[1], o), d2 = rugo_v2_sub(p[2], o);
+    for (size_t i = 0; i < n; ++i) {
+        const rugo_vec2 d3 = rugo_v2_sub(p[(i + 3) & (n - 1)], o); /* n is a power of two */
+        const rugo_real x = (49.0 / 144.0) * rugo_v2_cross(d0, d1) + (7.0 / 90.0) * rugo_v2_cross(d0, d2) +
+                            (1.0 / 720.0) * rugo_v2_cross(d0, d3);
+        const rugo_real t = s + x;
+        c += fabs(s) >= fabs(x) ? (s - t) + x : (x - t) + s;
+        s = t;
+        const rugo_real jx = (prev.x + 4.0 * d0.x + d1.x) / 6.0, jy = (prev.y + 4.0 * d0.y + d1.y) / 6.0;
+        lox = fmin(lox, jx);
+        hix = fmax(hix, jx);
+        loy = fmin(loy, jy);
+        hiy = fmax(hiy, jy);
+        prev = d0;
+        d0 = d1;
+        d1 = d2;
+        d2 = d3;
+    }
+    const rugo_real area = s + c;
+    const rugo_real diag2 = (hix - lox) * (hix - lox) + (hiy - loy) * (hiy - loy);
+    if (!isfinite(area) || !isfinite(diag2)) return RUGO_ERR_NOT_FINITE;
+    if (!(fabs(area) > 1e-13 * diag2)) return RUGO_ERR_ZERO_AREA;
+    return area > 0.0 ? RUGO_OK : RUGO_ERR_BAD_ARGUMENT; /* clockwise */
+}
+
+rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
+                                      const unsigned char* points, const unsigned char* world,
+                                      const unsigned char* local, const rugo_allocator* allocator,
+                                      rugo_pyramid** out) {
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *out = NULL;
+    if (points == NULL || (finest > coarsest && (world == NULL || local == NULL)))
+        return RUGO_ERR_NULL_ARGUMENT;
+    if (rugo_filter_name(filter) == NULL) return RUGO_ERR_BAD_FILTER;
+    if (coarsest < 2 || finest < coarsest || finest > 30 || (1 << finest) > RUGO_MAX_CONTROL_POINTS)
+        return RUGO_ERR_BAD_LEVEL;
+    rugo_allocator al = rugo__allocator_or_default(allocator);
+    rugo_pyramid* p = (rugo_pyramid*)rugo__alloc_array(&al, 1, sizeof(rugo_pyramid));
+    if (p == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    memset(p, 0, sizeof *p);
+    const size_t n = (size_t)1 << finest, lo = LEVEL_OFFSET(coarsest);
+    /* rugo_pyramid_create's layout: points 2n, world n, local n, delta 2n, buf_a n, buf_b n, buf_d n/2. */
+    p->block = (rugo_vec2*)rugo__alloc_array(&al, 8 * n + n / 2, sizeof(rugo_vec2));
+    if (p->block == NULL) {
+        rugo__free(&al, p);
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    p->allocator = al;
+    p->filter = filter;
+    p->finest = finest;
+    p->coarsest = coarsest;
+    p->count = (int)n;
+    p->reversed = reversed != 0;
+    p->check_flags = RUGO_CHECK_POWER_OF_TWO | RUGO_CHECK_SELF_INTERSECTION; /* edits: as a default build */
+    p->points = p->block;
+    p->world = p->points + 2 * n;
+    p->local = p->world + n;
+    p->delta = p->local + n;
+    p->buf_a = p->delta + 2 * n;
+    p->buf_b = p->buf_a + n;
+    p->buf_d = p->buf_b + n;
+    /* Zero the levels below J_min, as the public constructor leaves them; decode the stored levels in
+     * place. The edit buffers (delta, buf_a, buf_b, buf_d) stay as allocated: every edit writes what
+     * it reads there first (clear_deltas, apply_edit, commit_finest), and untouched they cost no
+     * page faults. */
+    memset(p->points, 0, lo * sizeof(rugo_vec2));
+    rugo__decode_f64_le((double*)(void*)(p->points + lo), points, 2 * (2 * n - lo));
+    memset(p->world, 0, lo * sizeof(rugo_vec2));
+    if (finest > coarsest) rugo__decode_f64_le((double*)(void*)(p->world + lo), world, 2 * (n - lo));
+    memset(p->local, 0, lo * sizeof(rugo_vec2));
+    if (finest > coarsest) rugo__decode_f64_le((double*)(void*)(p->local + lo), local, 2 * (n - lo));
+    const rugo_status st = outline_check(level_points(p, finest), n);
+    if (st != RUGO_OK) {
+        rugo_pyramid_destroy(p);
+        return st;
+    }
+    *out = p;
+    return RUGO_OK;
 }

@@ -30,6 +30,10 @@ struct rugo_shape {
     int reversed;
     rugo_real* band_bound; /* level j at offset 2^j - 2^J_min, 2^j values */
     rugo_real band_excess[31];
+    /* A shape loaded from parts (baked.c) keeps λ and β here instead of in a rugo_tolerances, whose
+     * constructor would recompute them: own, total, bound, each laid out like band_bound, then the
+     * band bounds themselves (band_bound points there: one allocation). */
+    rugo_real* tol_block;
 };
 
 rugo_shape_def rugo_default_shape_def(void) {
@@ -62,7 +66,10 @@ void rugo_shape_destroy(rugo_shape* s) {
     rugo_mobb_tree_destroy(s->tree);
     rugo_tolerances_destroy(s->tolerances);
     rugo_pyramid_destroy(s->pyramid);
-    rugo__free(&al, s->band_bound);
+    if (s->tol_block == NULL)
+        rugo__free(&al, s->band_bound);
+    else
+        rugo__free(&al, s->tol_block); /* holds band_bound too */
     rugo__free(&al, s);
 }
 
@@ -172,7 +179,16 @@ rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out) 
 
 rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out) {
     if (s == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    return rugo_tolerances_level(s->tolerances, level, out);
+    if (s->tol_block == NULL) return rugo_tolerances_level(s->tolerances, level, out);
+    if (level < s->coarsest || level > s->finest) return RUGO_ERR_BAD_LEVEL;
+    const size_t per = ((size_t)1 << (s->finest + 1)) - ((size_t)1 << s->coarsest);
+    const size_t o = ((size_t)1 << level) - ((size_t)1 << s->coarsest);
+    out->level = level;
+    out->count = 1 << level;
+    out->own = s->tol_block + o;
+    out->total = s->tol_block + per + o;
+    out->bound = s->tol_block + 2 * per + o;
+    return RUGO_OK;
 }
 
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s) { return s ? s->tree : NULL; }
@@ -221,4 +237,60 @@ const rugo_real* rugo__shape_band_bounds(const rugo_shape* s, int level) {
 rugo_real rugo__shape_band_excess(const rugo_shape* s, int level) {
     if (s == NULL || level < s->coarsest || level > s->finest) return 0.0;
     return s->band_excess[level];
+}
+
+/* ---- from parts (baked shapes) ------------------------------------------------------------------
+ * The pyramid and the tree come from their internal constructors from stored data (multires.c,
+ * mobb.c: copies, no analysis, no build); λ and β need no object: they live in tol_block. Every
+ * array is decoded once, from the file's bytes into its final place, and the stored values make the
+ * loaded shape bit-identical to the baked one on any host. The caller (baked.c) has validated every
+ * value; the pyramid's constructor checks the outline. */
+
+rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_shape** out) {
+    if (out != NULL) *out = NULL;
+    if (parts == NULL || out == NULL || parts->points == NULL || parts->tolerances == NULL ||
+        parts->band_bound == NULL || parts->band_excess == NULL || parts->nodes == NULL ||
+        (parts->finest > parts->coarsest && (parts->world == NULL || parts->local == NULL)))
+        return RUGO_ERR_NULL_ARGUMENT;
+    const int J = parts->finest, Jmin = parts->coarsest;
+    if (Jmin < 2 || J < Jmin || J > 30 || (1 << J) > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_LEVEL;
+    rugo_status st = rugo_friction_map_check(&parts->friction);
+    if (st == RUGO_OK) st = rugo_restitution_check(&parts->restitution);
+    if (st != RUGO_OK) return st;
+
+    rugo_allocator al = rugo__allocator_or_default(&parts->allocator);
+    rugo_shape* s = (rugo_shape*)rugo__alloc_array(&al, 1, sizeof(rugo_shape));
+    if (s == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    memset(s, 0, sizeof *s);
+    s->allocator = al;
+    s->friction = parts->friction;
+    s->restitution = parts->restitution;
+    s->mass = parts->mass;
+    s->finest = J;
+    s->coarsest = Jmin;
+    s->rough = parts->rough != 0;
+    s->reversed = parts->reversed != 0;
+
+    const size_t per = ((size_t)1 << (J + 1)) - ((size_t)1 << Jmin); /* entries of levels Jmin..J */
+    st = rugo__pyramid_from_levels(parts->filter, J, Jmin, parts->reversed, parts->points, parts->world,
+                                   parts->local, &al, &s->pyramid);
+    if (st == RUGO_OK)
+        st = rugo__mobb_tree_from_nodes(J, Jmin, parts->box_method, parts->nodes, &parts->root, &al, &s->tree);
+    if (st == RUGO_OK) {
+        /* own, total, bound and the band bounds: one block of 4 per, freed through tol_block. */
+        s->tol_block = (rugo_real*)rugo__alloc_array(&al, 4 * per, sizeof(rugo_real));
+        if (s->tol_block == NULL) st = RUGO_ERR_OUT_OF_MEMORY;
+    }
+    if (st != RUGO_OK) {
+        rugo_shape_destroy(s);
+        return st;
+    }
+    rugo__decode_f64_le(s->tol_block, parts->tolerances, 3 * per);
+    s->band_bound = s->tol_block + 3 * per;
+    rugo__decode_f64_le(s->band_bound, parts->band_bound, per);
+    rugo_real excess[31];
+    rugo__decode_f64_le(excess, parts->band_excess, (size_t)(J - Jmin + 1));
+    for (int j = Jmin; j <= J; ++j) s->band_excess[j] = excess[j - Jmin];
+    *out = s;
+    return RUGO_OK;
 }

@@ -10,4 +10,54 @@ const rugo_real* rugo__shape_band_bounds(const rugo_shape* s, int level);
  * contact inside the band is pruned. */
 rugo_real rugo__shape_band_excess(const rugo_shape* s, int level);
 
+/* Everything a shape holds, as flat arrays (levels J_min..J concatenated, coarsest first: level j
+ * at offset 2^j - 2^J_min), in the baked encoding: little-endian binary64, decoded straight into the
+ * shape's own memory (rugo__decode_f64_le). Used by the baked-file loader, which has validated every
+ * value (finite, bounded, signs, boxes) before calling; the byte pointers need no alignment. */
+typedef struct rugo__shape_parts {
+    int finest, coarsest;
+    rugo_filter filter;
+    rugo_box_method box_method;
+    int rough, reversed;
+    rugo_mass_properties mass;
+    rugo_friction_map friction;
+    rugo_restitution restitution;
+    const unsigned char* points;      /* control points C^j (x, y): 2^(J+1) - 2^J_min */
+    const unsigned char* world;       /* details D^j, j < J: 2^J - 2^J_min (NULL when J = J_min) */
+    const unsigned char* local;       /* the same in local frames */
+    const unsigned char* tolerances;  /* own, then total λ, then bound β: 3 (2^(J+1) - 2^J_min) */
+    const unsigned char* band_bound;  /* 2^(J+1) - 2^J_min */
+    const unsigned char* band_excess; /* J - J_min + 1 */
+    const unsigned char* nodes;       /* tree nodes, 8 values each (rugo_obb order): 2^(J+1) - 2^J_min */
+    rugo_obb root;
+    rugo_allocator allocator;
+} rugo__shape_parts;
+
+/* A shape from stored parts, without recomputing them (values are decoded once, into the pyramid,
+ * the tree and the shape). Checks levels and the surface; the pyramid constructor below checks the
+ * outline. Errors: NULL_ARGUMENT, BAD_LEVEL, the surface's, OUT_OF_MEMORY, the outline's. */
+rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_shape** out);
+
+/* ---- internal constructors from stored data (multires.c, mobb.c), for rugo__shape_create_from_parts.
+ * They copy instead of analysing or building; the caller must have validated every value. */
+
+/* A pyramid holding the stored levels (points: levels J_min..J; world, local: levels J_min..J-1; both
+ * encoded as in rugo__shape_parts), without the analysis. Validates the decoded finest level with an
+ * O(n) outline check: exact signed area of the closed B-spline in closed form, finite (NOT_FINITE),
+ * positive (BAD_ARGUMENT when clockwise) and above 1e-13 times the squared diagonal of the joints'
+ * bounds (ZERO_AREA; rugo_contour_check demands 1e-12 of the curve's bounds, which contain the
+ * joints, so every outline a build accepts passes). No crossing test. `reversed` is what
+ * rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL, OUT_OF_MEMORY. */
+rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
+                                      const unsigned char* points, const unsigned char* world,
+                                      const unsigned char* local, const rugo_allocator* allocator,
+                                      rugo_pyramid** out);
+
+/* A tree holding the stored boxes (2^(J+1) - 2^J_min nodes encoded as in rugo__shape_parts, level by
+ * level from the coarsest) and root, without building it. BAD_LEVEL, BAD_ARGUMENT (unknown method),
+ * OUT_OF_MEMORY. */
+rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method method,
+                                       const unsigned char* nodes, const rugo_obb* root,
+                                       const rugo_allocator* allocator, rugo_mobb_tree** out);
+
 #endif

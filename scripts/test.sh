@@ -1,6 +1,7 @@
 #!/bin/sh
 # Every test: set up what is missing, then build and run the whole suite twice — a normal build with
-# warnings as errors, and an AddressSanitizer + UndefinedBehaviorSanitizer build.
+# warnings as errors, and an AddressSanitizer + UndefinedBehaviorSanitizer build — and finally a short
+# libFuzzer run of each fuzz target (clang; docs/fuzzing.md has the long-run command).
 set -eu
 cd "$(dirname "$0")/.."
 sh scripts/setup.sh
@@ -16,4 +17,6 @@ for variant in normal sanitize; do
     cmake --build "$dir" -j "$jobs"
     (cd "$dir" && ctest --output-on-failure -j "$jobs") || status=1
 done
+echo "=== fuzz (short run) ==="
+sh scripts/fuzz.sh 15 || status=1
 exit $status

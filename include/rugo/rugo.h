@@ -13,6 +13,7 @@
 #include "rugo/shape.h"
 #include "rugo/collide.h"
 #include "rugo/shape_file.h"
+#include "rugo/baked.h"
 #include "rugo/world.h"
 
 #endif

@@ -1,0 +1,42 @@
+#!/bin/sh
+# Builds librugo's libFuzzer targets with clang in build-fuzz/ and runs each for a bounded time.
+#   scripts/fuzz.sh               each target for 20 s
+#   scripts/fuzz.sh 300           each target for 300 s
+#   scripts/fuzz.sh -runs=100000  each target for 100000 inputs
+#   scripts/fuzz.sh 20 fuzz_baked only the named targets
+# New inputs go to build-fuzz/corpus/<target> (the checked-in seeds in fuzz/corpus/<target> are only
+# read); a crash leaves build-fuzz/artifacts/<target>-crash-* and makes this script fail.
+# Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), RUGO_FUZZ_JOBS (default 2).
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${RUGO_FUZZ_BUILD:-$root/build-fuzz}
+limit=${1:-20}
+[ $# -gt 0 ] && shift
+targets=${*:-fuzz_shape_json fuzz_baked fuzz_contacts}
+case $limit in
+    -runs=*) budget=$limit ;;
+    *[!0-9]*|''|0) echo "usage: $0 [SECONDS | -runs=N] [TARGET...]" >&2; exit 2 ;;
+    *) budget=-max_total_time=$limit ;;
+esac
+cc=${CC:-clang}
+command -v "$cc" >/dev/null 2>&1 || { echo "fuzz: $cc not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
+
+cmake -S "$root/fuzz" -B "$build" -DCMAKE_C_COMPILER="$cc" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build" -j "${RUGO_FUZZ_JOBS:-2}" --target $targets
+
+status=0
+for t in $targets; do
+    mkdir -p "$build/corpus/$t" "$build/artifacts"
+    echo "fuzz: $t ($budget)"
+    # -max_len: the seeds are small; larger inputs mostly cost time. -timeout: a hang is a finding.
+    if ! "$build/$t" "$build/corpus/$t" "$root/fuzz/corpus/$t" "$budget" -max_len=16384 -timeout=20 \
+        -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" \
+        >"$build/$t.log" 2>&1; then
+        echo "fuzz: $t FAILED; see $build/$t.log and $build/artifacts/" >&2
+        tail -n 40 "$build/$t.log" >&2
+        status=1
+    else
+        grep -E "^stat::number_of_executed_units|^stat::new_units_added" "$build/$t.log" | sed "s/^/fuzz: $t /"
+    fi
+done
+exit $status

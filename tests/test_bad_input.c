@@ -1,0 +1,201 @@
+/* docs/bad_input.md as tests: every row of the bad-input table, with the status it must get. Rows
+ * that another suite covers in depth are checked here once more by their representative input. */
+#include "rugo/rugo.h"
+#include "test_util.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Parses text and, if it parses, builds the shape (with its roughness): the first failing status. */
+static rugo_status json_to_shape(const char* text) {
+    rugo_shape_desc d;
+    rugo_parse_error e;
+    rugo_status st = rugo_shape_desc_parse(text, strlen(text), NULL, &d, &e);
+    if (st != RUGO_OK) {
+        ck_assert(e.message[0] != '\0'); /* every parse failure says why */
+        return st;
+    }
+    rugo_real* lam = NULL;
+    rugo_shape_def def = rugo_default_shape_def();
+    def.points = d.control_points;
+    def.count = d.count;
+    def.filter = d.filter;
+    if (d.has_roughness && d.count > 0) {
+        lam = (rugo_real*)malloc(sizeof *lam * (size_t)d.count);
+        st = rugo_roughness_tolerances(&d.roughness, d.count, lam);
+        def.tolerances = lam;
+        def.q = d.roughness.q;
+        def.friction = d.roughness.friction;
+        def.restitution = d.roughness.restitution;
+    }
+    rugo_shape* s = NULL;
+    if (st == RUGO_OK) st = rugo_shape_create(&def, &s, NULL);
+    rugo_shape_destroy(s);
+    free(lam);
+    rugo_shape_desc_free(&d);
+    return st;
+}
+
+typedef struct row {
+    const char* what;
+    const char* json;
+    rugo_status expect;
+} row;
+
+#define SQ "[[0,0],[1,0],[1,1],[0,1]]"
+static const row ROWS[] = {
+    {"empty text", "", RUGO_ERR_PARSE},
+    {"syntax error", "{\"control_points\": [[0,0] [1,0]]}", RUGO_ERR_PARSE},
+    {"trailing garbage", "{\"control_points\": " SQ "} x", RUGO_ERR_PARSE},
+    {"unterminated string", "{\"control_points", RUGO_ERR_PARSE},
+    {"not an object", "[1, 2]", RUGO_ERR_BAD_FIELD},
+    {"missing control_points", "{\"points\": " SQ "}", RUGO_ERR_BAD_FIELD},
+    {"point of wrong type", "{\"control_points\": [[0,0],[1,\"x\"],[1,1],[0,1]]}", RUGO_ERR_BAD_FIELD},
+    {"point with three numbers", "{\"control_points\": [[0,0,0],[1,0],[1,1],[0,1]]}", RUGO_ERR_BAD_FIELD},
+    {"duplicate member", "{\"control_points\": " SQ ", \"control_points\": " SQ "}", RUGO_ERR_BAD_FIELD},
+    {"NaN literal", "{\"control_points\": [[0,0],[NaN,0],[1,1],[0,1]]}", RUGO_ERR_PARSE},
+    {"number overflowing to infinity", "{\"control_points\": [[0,0],[1e999,0],[1,1],[0,1]]}", RUGO_ERR_NOT_FINITE},
+    {"coordinates whose area overflows", "{\"control_points\": [[0,0],[1e300,0],[1e300,1e300],[0,1e300]]}", RUGO_ERR_NOT_FINITE},
+    {"unknown filter", "{\"control_points\": " SQ ", \"filter\": \"haar\"}", RUGO_ERR_BAD_FILTER},
+    {"too few points", "{\"control_points\": [[0,0],[1,0],[0,1]]}", RUGO_ERR_TOO_FEW_POINTS},
+    {"empty point list (parses as NULL, 0)", "{\"control_points\": []}", RUGO_ERR_NULL_ARGUMENT},
+    {"count not a power of two", "{\"control_points\": [[0,0],[1,0],[2,1],[1,2],[0,1],[-1,1]]}", RUGO_ERR_NOT_POWER_OF_TWO},
+    {"zero area (collinear)", "{\"control_points\": [[0,0],[1,1],[2,2],[3,3]]}", RUGO_ERR_ZERO_AREA},
+    {"zero area (coincident)", "{\"control_points\": [[1,1],[1,1],[1,1],[1,1]]}", RUGO_ERR_ZERO_AREA},
+    {"self-intersecting outline",
+     "{\"control_points\": [[1,0],[0.92388,0.353553],[0.707107,0.5],[0.382683,0.353553],[0,0],[-0.191342,-0.176777],"
+     "[-0.353553,-0.25],[-0.46194,-0.176777],[-0.5,0],[-0.46194,0.176777],[-0.353553,0.25],[-0.191342,0.176777],"
+     "[0,0],[0.382683,-0.353553],[0.707107,-0.5],[0.92388,-0.353553]]}",
+     RUGO_ERR_SELF_INTERSECTING},
+    {"negative tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": -0.1}}", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"tolerance list of wrong length", "{\"control_points\": " SQ ", \"roughness\": {\"tolerances\": [0.1]}}", RUGO_ERR_BAD_FIELD},
+    {"q not positive", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"q\": 0}}", RUGO_ERR_BAD_QUANTILE},
+    {"friction alpha negative", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"friction\": {\"alpha\": -1}}}", RUGO_ERR_BAD_ARGUMENT},
+    {"restitution above 1", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 2}}}", RUGO_ERR_BAD_ARGUMENT},
+    {"restitution range empty", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 0.9, \"epsilon_max\": 0.5}}}", RUGO_ERR_EMPTY_RANGE},
+    {"seed beyond 2^53", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_2\", \"seed\": 9007199254740993}}", RUGO_ERR_BAD_FIELD},
+    {"unknown preset", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_9\"}}", RUGO_ERR_BAD_FIELD},
+};
+
+START_TEST(json_rows) {
+    for (size_t i = 0; i < sizeof ROWS / sizeof ROWS[0]; ++i) {
+        rugo_status st = json_to_shape(ROWS[i].json);
+        ck_assert_msg(st == ROWS[i].expect, "%s: got %d (%s), expected %d (%s)", ROWS[i].what, st,
+                      rugo_status_string(st), ROWS[i].expect, rugo_status_string(ROWS[i].expect));
+        ck_assert(strlen(rugo_status_string(st)) > 0);
+    }
+}
+END_TEST
+
+START_TEST(huge_counts) {
+    /* More control points than RUGO_MAX_CONTROL_POINTS: refused before any allocation of that size. */
+    rugo_shape_def def = rugo_default_shape_def();
+    rugo_vec2 p[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    def.points = p;
+    def.count = RUGO_MAX_CONTROL_POINTS * 2;
+    rugo_shape* s = NULL;
+    ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_ERR_TOO_MANY_POINTS);
+    def.count = -4;
+    ck_assert_int_ne(rugo_shape_create(&def, &s, NULL), RUGO_OK);
+    ck_assert_ptr_null(s);
+    /* Nesting deeper than 64 is a parse error, not a stack overflow. */
+    char deep[200];
+    memset(deep, '[', 150);
+    deep[150] = '\0';
+    rugo_shape_desc d;
+    ck_assert_int_eq(rugo_shape_desc_parse(deep, 150, NULL, &d, NULL), RUGO_ERR_PARSE);
+}
+END_TEST
+
+START_TEST(parameters_out_of_range) {
+    rugo_vec2 p[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    rugo_shape_def def = rugo_default_shape_def();
+    def.points = p;
+    def.count = 4;
+    rugo_shape* s = NULL;
+    def.coarsest_level = 5; /* beyond the finest level 2 */
+    ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_ERR_BAD_LEVEL);
+    def = rugo_default_shape_def();
+    def.points = p;
+    def.count = 4;
+    def.filter = RUGO_FILTER_COUNT;
+    ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_ERR_BAD_FILTER);
+    rugo_shape_def raw;
+    memset(&raw, 0, sizeof raw); /* not from rugo_default_shape_def */
+    raw.points = p;
+    raw.count = 4;
+    ck_assert_int_eq(rugo_shape_create(&raw, &s, NULL), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_create(NULL, &s, NULL), RUGO_ERR_NULL_ARGUMENT);
+    def = rugo_default_shape_def();
+    def.points = p;
+    def.count = 4;
+    ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_OK);
+    rugo_collide_context* ctx = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &ctx), RUGO_OK);
+    rugo_contact c[4];
+    int n = 0;
+    rugo_contact_state state;
+    rugo_transform bad = rugo_make_transform(NAN, 0, 0);
+    ck_assert_int_eq(rugo_collide_shapes(ctx, s, bad, s, rugo_identity_transform(), NULL, c, 4, &n, &state, NULL),
+                     RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), NULL, c, -1,
+                                         &n, &state, NULL),
+                     RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_collide_circle(ctx, s, rugo_identity_transform(), rugo_v2(0, 0), -1.0, NULL, c, 4, &n, &state, NULL),
+                     RUGO_ERR_BAD_ARGUMENT);
+    rugo_contact_query q = rugo_default_contact_query();
+    q.margin = -1.0;
+    ck_assert_int_eq(rugo_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), &q, c, 4, &n,
+                                         &state, NULL),
+                     RUGO_ERR_BAD_ARGUMENT);
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(s);
+}
+END_TEST
+
+/* Baked rows: one representative each (test_baked covers every length, bit and field). */
+START_TEST(baked_rows) {
+    rugo_vec2 p[8] = {{1, 0}, {0.7, 0.7}, {0, 1}, {-0.7, 0.7}, {-1, 0}, {-0.7, -0.7}, {0, -1}, {0.7, -0.7}};
+    rugo_shape_def def = rugo_default_shape_def();
+    def.points = p;
+    def.count = 8;
+    rugo_shape* s = NULL;
+    ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_OK);
+    size_t size = 0, w = 0;
+    rugo_shape_bake_size(s, &size);
+    unsigned char* b = (unsigned char*)malloc(size);
+    unsigned char* c = (unsigned char*)malloc(size);
+    ck_assert_int_eq(rugo_shape_bake(s, b, size, &w), RUGO_OK);
+    rugo_shape* t = NULL;
+    rugo_baked_error e;
+    ck_assert_int_eq(rugo_shape_load_baked(b, 100, NULL, &t, &e), RUGO_ERR_TRUNCATED);
+    memcpy(c, b, size);
+    c[200] ^= 4;
+    ck_assert_int_eq(rugo_shape_load_baked(c, size, NULL, &t, &e), RUGO_ERR_CHECKSUM);
+    memcpy(c, b, size);
+    c[8] = 7;
+    ck_assert_int_eq(rugo_shape_load_baked(c, size, NULL, &t, &e), RUGO_ERR_BAD_VERSION);
+    memcpy(c, b, size);
+    c[0] = 'X';
+    ck_assert_int_eq(rugo_shape_load_baked(c, size, NULL, &t, &e), RUGO_ERR_BAD_FORMAT);
+    memcpy(c, b, size);
+    c[23] = 0x7f; /* payload size beyond the limit */
+    ck_assert_int_eq(rugo_shape_load_baked(c, size, NULL, &t, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_ptr_null(t);
+    free(b);
+    free(c);
+    rugo_shape_destroy(s);
+}
+END_TEST
+
+int main(void) {
+    Suite* s = suite_create("bad_input");
+    TCase* tc = tcase_create("table");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, json_rows);
+    tcase_add_test(tc, huge_counts);
+    tcase_add_test(tc, parameters_out_of_range);
+    tcase_add_test(tc, baked_rows);
+    suite_add_tcase(s, tc);
+    return test_run_suite(s);
+}

@@ -800,7 +800,8 @@ static rugo_status check_query(const rugo_contact_query* q, rugo_contact* contac
     if (q->cookie != QUERY_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
     if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
     if (capacity > 0 && contacts == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!isfinite(q->tolerance)) return RUGO_ERR_NOT_FINITE;
+    if (!isfinite(q->tolerance) || !isfinite(q->margin)) return RUGO_ERR_NOT_FINITE;
+    if (q->margin < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if ((unsigned)q->friction_mix > (unsigned)RUGO_MIX_GEOMETRIC ||
         (unsigned)q->restitution_mix > (unsigned)RUGO_MIX_GEOMETRIC)
         return RUGO_ERR_BAD_ARGUMENT;
@@ -818,6 +819,7 @@ typedef struct pair_geo {
     rugo_query_stats* stats;
     int src;
     int coincident; /* some pieces coincide */
+    rugo_real margin; /* query margin: minima up to band + margin count */
 } pair_geo;
 
 static void piece_b(const pair_geo* g, int k, rugo_vec2 out[4]) {
@@ -1067,7 +1069,7 @@ static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, cons
             if (in_any_region(regs, h->ua, h->ub)) continue;
         }
         const rugo_real band =
-            side_lambda(g->A, h->sa, h->ta, override) + side_lambda(g->B, h->sb, h->tb, override);
+            side_lambda(g->A, h->sa, h->ta, override) + side_lambda(g->B, h->sb, h->tb, override) + g->margin;
         if (!(h->distance <= band)) continue;
         if (!facing(g, h)) continue;
         /* Index within its segment pair: minima of one pair are sorted by A's parameter already. */
@@ -1246,6 +1248,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     g.rel = relative_transform(xa, xb);
     g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), box_size(rugo_mobb_tree_root(B.tree)));
     g.stats = stats;
+    g.margin = q->margin;
     out_ctx o;
     memset(&o, 0, sizeof o);
     o.ctx = ctx;
@@ -1261,11 +1264,12 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     ta.tree = A.tree;
     ta.jmin = A.jmin;
     ta.stop = A.level;
-    ta.slack = A.slack;
+    /* The margin is split between the two sides: boxes within margin of each other then overlap. */
+    ta.slack = A.slack + 0.5 * q->margin;
     tb.tree = B.tree;
     tb.jmin = B.jmin;
     tb.stop = B.level;
-    tb.slack = B.slack;
+    tb.slack = B.slack + 0.5 * q->margin;
     size_t np = 0;
     long tests = 0;
     st = traverse(ctx, &ta, &tb, g.rel, &tests, &np);
@@ -1279,7 +1283,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         rugo_vec2 f[4], h[4];
         rugo_contour_bezier(A.curve, p.k_a, f);
         piece_b(&g, p.k_b, h);
-        const rugo_real cut = override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b];
+        const rugo_real cut = (override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b]) + q->margin;
         if (!run_pair(ctx, &g, p.k_a, f, p.k_b, h, cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g.scale, &ctx->xs,
                       &nx, &ctx->ss, &ns))
             return RUGO_ERR_OUT_OF_MEMORY;
@@ -1824,8 +1828,8 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     tb.box.center = rugo_v2(0.5 * (P->lo.x + P->hi.x), 0.5 * (P->lo.y + P->hi.y));
     tb.box.axis[0] = rugo_v2(1.0, 0.0);
     tb.box.axis[1] = rugo_v2(0.0, 1.0);
-    tb.box.half[0] = 0.5 * (P->hi.x - P->lo.x) + (override >= 0.0 ? override : 0.0) + CUTOFF_PAD * g.scale;
-    tb.box.half[1] = 0.5 * (P->hi.y - P->lo.y) + (override >= 0.0 ? override : 0.0) + CUTOFF_PAD * g.scale;
+    tb.box.half[0] = 0.5 * (P->hi.x - P->lo.x) + (override >= 0.0 ? override : 0.0) + q->margin + CUTOFF_PAD * g.scale;
+    tb.box.half[1] = 0.5 * (P->hi.y - P->lo.y) + (override >= 0.0 ? override : 0.0) + q->margin + CUTOFF_PAD * g.scale;
     size_t np = 0;
     long tests = 0;
     rugo_transform ident = rugo_identity_transform();
@@ -1944,7 +1948,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             if (in_any_region(&r, h->ua, h->ub)) continue;
             const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
             const rugo_real band =
-                side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0);
+                side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
             if (!(h->distance <= band)) continue;
             const rugo_vec2 n = v2_unit(d);
             if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
@@ -2021,7 +2025,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
                 const rugo_real len = v2_len(d);
                 const rugo_real band =
-                    side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0);
+                    side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
                 if (!(len <= band)) continue;
                 const rugo_vec2 na = curve_normal(A.curve, h->sa, h->ta);
                 rugo_vec2 n;

@@ -2305,6 +2305,116 @@ START_TEST(test_shape_bad_inputs_and_leaks) {
 }
 END_TEST
 
+
+/* ---- query margin (speculative contacts, used by the Box2D bridge) ------------------------------ */
+
+/* margin m: every local minimum of the distance within λ_A + λ_B + m, facing, is reported (against the
+ * brute-force reference); margin 0 changes nothing; contacts within the band are bit-identical with and
+ * without a margin; NOT_FINITE / BAD_ARGUMENT for bad margins. */
+START_TEST(test_query_margin) {
+    build_shapes();
+    rugo_collide_context* ctx = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &ctx), RUGO_OK);
+    enum { CAP = 256 };
+    static rugo_contact c0[CAP], c1[CAP], cm[CAP];
+    static refres R;
+    test_rng r = test_rng_seed(909);
+    long required = 0, missed = 0, spurious = 0, extra = 0;
+    for (int k = 0; k < 300; ++k) {
+        const tshape* A = &g_shapes[k % N_SHAPES];
+        const tshape* B = &g_shapes[(k / N_SHAPES) % N_SHAPES];
+        const double size = fmax(A->size, B->size), margin = 0.05 * size;
+        rugo_transform xa, xb;
+        random_poses(&r, A, B, 0, -1.0, ctx, &xa, &xb);
+        rugo_contact_query q = rugo_default_contact_query();
+        int n0 = 0, n1 = 0, nm = 0;
+        rugo_contact_state s0, s1, sm;
+        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c0, CAP, &n0, &s0, NULL), RUGO_OK);
+        q.margin = 0.0;
+        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c1, CAP, &n1, &s1, NULL), RUGO_OK);
+        ck_assert_int_eq(n0, n1);
+        ck_assert_int_eq(s0, s1);
+        ck_assert(memcmp(c0, c1, (size_t)n0 * sizeof(rugo_contact)) == 0);
+        q.margin = margin;
+        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, cm, CAP, &nm, &sm, NULL), RUGO_OK);
+        if (s0 == RUGO_STATE_INTERSECTING) {
+            ck_assert_int_eq(sm, RUGO_STATE_INTERSECTING);
+            continue;
+        }
+        /* Every margin-0 contact is among the margin contacts, with the same values. */
+        for (int i = 0; i < n0; ++i) {
+            int found = 0;
+            for (int j = 0; j < nm && !found; ++j)
+                found = c0[i].id == cm[j].id && c0[i].separation == cm[j].separation &&
+                        c0[i].point_a.x == cm[j].point_a.x && c0[i].point_b.y == cm[j].point_b.y;
+            ck_assert_msg(found, "margin lost a contact");
+        }
+        extra += nm - n0;
+        for (int j = 0; j < nm; ++j)
+            ck_assert(cm[j].separation <= cm[j].tolerance_a + cm[j].tolerance_b + margin * (1 + 1e-9));
+        /* Against the reference: minima within band + margin, facing. */
+        curve ca = {A->fine.points, A->fine.count, xa}, cb = {B->fine.points, B->fine.count, xb};
+        reference(&ca, &cb, 1.3 * (A->max_lambda + B->max_lambda) + margin * 1.3 + 1e-12, size, 1, &R);
+        if (R.crossing || R.contained || R.newton_fail > 0 || R.crossing_doubt) continue;
+        for (int m = 0; m < R.nmin; ++m) {
+            const refmin* mm = &R.m[m];
+            double band = lambda_at(A, mm->ua, -1.0) + lambda_at(B, mm->ub, -1.0) + margin;
+            if (fabs(mm->dist - band) <= 1e-9 * size || mm->dist > band) continue;
+            rugo_vec2 d = rugo_v2_sub(mm->pb, mm->pa);
+            if (mm->dist > 1e-9 * size) {
+                rugo_vec2 na = ref_normal(&ca, mm->ua), nb = ref_normal(&cb, mm->ub);
+                double fa = rugo_v2_dot(d, na) / mm->dist, fb = rugo_v2_dot(d, nb) / mm->dist;
+                if (fabs(fa) < 1e-6 || fabs(fb) < 1e-6 || fa < 0 || fb > 0) continue;
+            }
+            ++required;
+            int found = 0;
+            for (int i = 0; i < nm && !found; ++i)
+                found = hypot(cm[i].point_a.x - mm->pa.x, cm[i].point_a.y - mm->pa.y) <= 1e-4 * size &&
+                        fabs(cm[i].separation - mm->dist) <= 1e-9 * size;
+            missed += !found;
+        }
+        for (int i = 0; i < nm; ++i) {
+            int found = 0;
+            for (int m = 0; m < R.nmin && !found; ++m)
+                found = hypot(cm[i].point_a.x - R.m[m].pa.x, cm[i].point_a.y - R.m[m].pa.y) <= 1e-4 * size;
+            spurious += !found;
+        }
+    }
+    printf("margin: %ld minima required by the reference, %ld missed, %ld spurious; %ld contacts beyond the band\n",
+           required, missed, spurious, extra);
+    ck_assert_int_eq(missed, 0);
+    ck_assert_int_eq(spurious, 0);
+    ck_assert(extra > 0);
+    /* Bad margins. */
+    rugo_contact_query q = rugo_default_contact_query();
+    int n;
+    rugo_contact_state st;
+    q.margin = -1e-3;
+    ck_assert_int_eq(rugo_collide_shapes(ctx, g_shapes[0].s, rugo_identity_transform(), g_shapes[1].s,
+                                         rugo_make_transform(5, 0, 0), &q, c0, CAP, &n, &st, NULL),
+                     RUGO_ERR_BAD_ARGUMENT);
+    q.margin = NAN;
+    ck_assert_int_eq(rugo_collide_circle(ctx, g_shapes[0].s, rugo_identity_transform(), rugo_v2(5, 0), 1.0, &q, c0,
+                                         CAP, &n, &st, NULL),
+                     RUGO_ERR_NOT_FINITE);
+    /* Primitives: a circle just beyond the band is reported with the margin only. */
+    const tshape* A = &g_shapes[0];
+    rugo_transform xa = rugo_identity_transform();
+    q = rugo_default_contact_query();
+    q.tolerance = 0.0;
+    rugo_vec2 far = rugo_v2(A->radius * 3.0, 0.0);
+    rugo_curve_point cp = rugo_contour_closest_point(A->fine, far);
+    const double radius = cp.distance - 0.01 * A->size; /* gap 1% of the size */
+    ck_assert_int_eq(rugo_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
+    ck_assert_int_eq(n, 0);
+    q.margin = 0.02 * A->size;
+    ck_assert_int_eq(rugo_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
+    ck_assert_int_ge(n, 1);
+    ck_assert(fabs(c0[0].separation - 0.01 * A->size) <= 1e-9 * A->size);
+    rugo_collide_context_destroy(ctx);
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("collide");
     TCase* tsh = tcase_create("shape");
@@ -2339,6 +2449,7 @@ int main(void) {
     tcase_add_test(tm, test_context_and_truncation);
     tcase_add_test(tm, test_bad_inputs);
     tcase_add_test(tm, test_surface_values);
+    tcase_add_test(tm, test_query_margin);
     suite_add_tcase(s, tm);
     TCase* ta = tcase_create("acceptance");
     tcase_set_timeout(ta, 3600);

@@ -58,6 +58,9 @@ struct BridgeDef {
     // Contacts per proxy pair are reduced to Box2D's 2 manifold points (deepest, then farthest).
     // Friction of the contact: how the per-point μ of the (at most 2) points are combined.
     rugo_mix_rule pointFrictionMix = RUGO_MIX_MEAN;
+    // Box2D has no getter for the world's destruction listener: give the one you had set on the world
+    // here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
+    b2DestructionListener* destructionListener = nullptr;
 };
 
 struct RoughBodyDef {
@@ -166,6 +169,9 @@ public:
     BridgeStats GetStats() const;
     void ResetStats();
     b2World* GetWorld() const;
+    // The destruction listener the bridge chains to (b2World::SetDestructionListener would replace the
+    // bridge's own, which must stay installed so that destroyed rough bodies are forgotten).
+    void SetDestructionListener(b2DestructionListener* listener);
     // The world was destroyed before the bridge: forget it without touching it.
     void ReleaseWorld();
 

@@ -72,6 +72,10 @@ typedef struct rugo_contact_query {
     rugo_real tolerance;
     rugo_mix_rule friction_mix;    /* default RUGO_MIX_MAX (thesis) */
     rugo_mix_rule restitution_mix; /* default RUGO_MIX_MIN (thesis) */
+    /* >= 0, default 0: also report local minima of the distance within λ_A + λ_B + margin (speculative
+     * contacts for continuous collision, separation > band). The state is then CONTACT when such a
+     * minimum exists. Errors: NOT_FINITE, BAD_ARGUMENT (negative). */
+    rugo_real margin;
     int cookie;
 } rugo_contact_query;
 

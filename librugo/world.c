@@ -22,7 +22,7 @@
 #define WORLD_DEF_COOKIE 0x52554757 /* "RUGW" */
 #define BODY_DEF_COOKIE 0x52554742  /* "RUGB" */
 #define CONTACT_SWEEPS 4  /* enough for small stacks; each sweep after the first is usually empty */
-#define TOI_EVENTS 4      /* bisected contact events per step */
+#define TOI_EVENTS 8      /* bisected contact events per step */
 #define MAX_PAIR_CONTACTS 64
 #define MAX_BODIES (1 << 24)
 
@@ -54,6 +54,11 @@ typedef struct saved_body {
     rugo_real w;
 } saved_body;
 
+typedef struct pair_depth {
+    int a, b;
+    rugo_real depth;
+} pair_depth;
+
 typedef struct world_contact {
     int a, b;
     int group; /* index of the first contact of its group (same pair, similar normal) */
@@ -69,7 +74,8 @@ struct rugo_world {
     /* per body, capacity entries */
     pose* start;      /* poses at the start of a move */
     rugo_aabb* boxes;
-    rugo_real* depth0; /* deepest overlap of the body at the start of the step */
+    struct pair_depth* pair_depth0; /* deepest overlap of each pair at the start of the step, by (a, b) */
+    int pair_depth_count, pair_depth_capacity;
     saved_body* saved; /* the step's initial state, restored if the step fails */
     rugo_sweep_prune* sap;
     rugo_collide_context* ctx;
@@ -150,8 +156,8 @@ void rugo_world_destroy(rugo_world* w) {
     rugo__free(&a, w->bodies);
     rugo__free(&a, w->start);
     rugo__free(&a, w->boxes);
-    rugo__free(&a, w->depth0);
     rugo__free(&a, w->saved);
+    rugo__free(&a, w->pair_depth0);
     rugo__free(&a, w->scratch);
     rugo__free(&a, w->contacts);
     rugo__free(&a, w->records);
@@ -198,15 +204,14 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     if (root == NULL || !(mp.area > 0.0) || !(mp.inertia > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
 
     int need = w->count + 1;
-    int caps[5] = {w->capacity, w->capacity, w->capacity, w->capacity, w->capacity};
+    int caps[4] = {w->capacity, w->capacity, w->capacity, w->capacity};
     int ok = grow(&w->allocator, (void**)&w->bodies, &caps[0], w->count, need, sizeof *w->bodies) &&
              grow(&w->allocator, (void**)&w->start, &caps[1], w->count, need, sizeof *w->start) &&
              grow(&w->allocator, (void**)&w->boxes, &caps[2], w->count, need, sizeof *w->boxes) &&
-             grow(&w->allocator, (void**)&w->depth0, &caps[3], w->count, need, sizeof *w->depth0) &&
-             grow(&w->allocator, (void**)&w->saved, &caps[4], w->count, need, sizeof *w->saved);
+             grow(&w->allocator, (void**)&w->saved, &caps[3], w->count, need, sizeof *w->saved);
     /* Arrays grown before a failure keep their larger size; the capacity is the smallest of them. */
     w->capacity = caps[0];
-    for (int k = 1; k < 5; ++k)
+    for (int k = 1; k < 4; ++k)
         if (caps[k] < w->capacity) w->capacity = caps[k];
     if (!ok) return RUGO_ERR_OUT_OF_MEMORY;
 
@@ -455,17 +460,36 @@ static rugo_status gather(rugo_world* w) {
     return RUGO_OK;
 }
 
-static rugo_real pair_allowance(const rugo_world* w, int a, int b) {
-    rugo_real sa = w->bodies[a].size, sb = w->bodies[b].size;
-    rugo_real d0 = w->depth0[a] > w->depth0[b] ? w->depth0[a] : w->depth0[b];
-    return w->def.penetration_tolerance * (sa < sb ? sa : sb) + d0;
+/* The overlap a pair had at the start of the step (0 if none): binary search in w->pair_depth0. */
+static rugo_real pair_depth_at_start(const rugo_world* w, int a, int b) {
+    int lo = 0, hi = w->pair_depth_count - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2;
+        const pair_depth* p = &w->pair_depth0[mid];
+        if (p->a == a && p->b == b) return p->depth;
+        if (p->a < a || (p->a == a && p->b < b))
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return 0.0;
 }
 
-/* 1 if some contact of w->contacts overlaps deeper than its allowance. */
-static int penetrating(const rugo_world* w) {
+/* An overlap may deepen by frac × the tolerance beyond what this pair (not either body with some
+ * third body) already had at the start of the step. */
+static rugo_real pair_allowance(const rugo_world* w, int a, int b, rugo_real frac) {
+    rugo_real sa = w->bodies[a].size, sb = w->bodies[b].size;
+    return frac * w->def.penetration_tolerance * (sa < sb ? sa : sb) + pair_depth_at_start(w, a, b);
+}
+
+/* 1 if some contact of w->contacts overlaps deeper than frac × its allowance. The advance is found
+ * penetrating at frac = 1; the bisection then stops it where the overlap is within STOP_FRAC of the
+ * tolerance, so that impulses act on overlaps well inside it (not at its edge). */
+#define STOP_FRAC 0.5
+static int penetrating(const rugo_world* w, rugo_real frac) {
     for (int k = 0; k < w->contact_count; ++k) {
         const world_contact* c = &w->contacts[k];
-        if (-c->c.separation > pair_allowance(w, c->a, c->b)) return 1;
+        if (-c->c.separation > pair_allowance(w, c->a, c->b, frac)) return 1;
     }
     return 0;
 }
@@ -707,6 +731,55 @@ static int advance_samples(const rugo_world* w, rugo_real dt) {
     return k < 1 ? 1 : k;
 }
 
+/* Position projection of existing overlaps (docs/simulator.md, "Overlaps"): bisection only stops an
+ * overlap from deepening and impulses only act on approaching points, so an overlap left by a step
+ * (the TOI_EVENTS limit, several bodies pressed together, a body squeezed between two) would persist
+ * for ever, and the allowance built on it let it ratchet deeper step after step. Each group whose true
+ * curves overlap by more than PROJECT_SLOP × the tolerance allowance is translated apart along its
+ * separating normal by the overlap beyond the slop, split by inverse mass, at most PROJECT_CAP × the
+ * smaller body's size per pass. Only positions change: velocities (so kinetic energy) are untouched.
+ * Up to PROJECT_PASSES passes (Gauss-Seidel over the groups), re-gathering the contacts between. */
+#define PROJECT_PASSES 4
+#define PROJECT_SLOP 0.5
+#define PROJECT_CAP 0.05
+static rugo_status project_overlaps(rugo_world* w) {
+    for (int pass = 0; pass < PROJECT_PASSES; ++pass) {
+        group_contacts(w);
+        int moved = 0;
+        for (int g = 0; g < w->contact_count; ++g) {
+            const world_contact* lead = &w->contacts[g];
+            if (lead->group != g) continue;
+            body* A = &w->bodies[lead->a];
+            body* B = &w->bodies[lead->b];
+            rugo_real im = A->inv_mass + B->inv_mass;
+            if (!(im > 0.0)) continue;
+            rugo_real deepest = 0.0;
+            rugo_vec2 n = lead->c.normal;
+            for (int k = g; k < w->contact_count && w->contacts[k].a == lead->a && w->contacts[k].b == lead->b; ++k) {
+                if (w->contacts[k].group != g) continue;
+                if (-w->contacts[k].c.separation > deepest) {
+                    deepest = -w->contacts[k].c.separation;
+                    n = w->contacts[k].c.normal;
+                }
+            }
+            rugo_real smin = A->size < B->size ? A->size : B->size;
+            rugo_real slop = PROJECT_SLOP * w->def.penetration_tolerance * smin;
+            rugo_real push = deepest - slop;
+            if (!(push > 0.0)) continue;
+            if (push > PROJECT_CAP * smin) push = PROJECT_CAP * smin;
+            /* the normal points from A toward B */
+            A->xf.p = rugo_v2_sub(A->xf.p, rugo_v2_scale(push * A->inv_mass / im, n));
+            B->xf.p = rugo_v2_add(B->xf.p, rugo_v2_scale(push * B->inv_mass / im, n));
+            moved = 1;
+        }
+        if (!moved) break;
+        w->contacts_valid = 0;
+        rugo_status st = gather(w);
+        if (st != RUGO_OK) return st;
+    }
+    return RUGO_OK;
+}
+
 /* The part of the step after the gravity of symplectic Euler: contacts, advance, bisection. */
 static rugo_status step_contacts_and_move(rugo_world* w) {
     rugo_real h = w->def.time_step;
@@ -715,13 +788,27 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
         st = gather(w);
         if (st != RUGO_OK) return st;
     }
-    /* Overlaps that exist at the start are allowed to persist (not deepen): bisection cannot undo them. */
-    for (int i = 0; i < w->count; ++i) w->depth0[i] = 0.0;
+    st = project_overlaps(w);
+    if (st != RUGO_OK) return st;
+    /* Overlaps that remain at the start (after the projection) may persist, per pair, but not deepen
+     * beyond the tolerance: bisection cannot undo them. */
+    w->pair_depth_count = 0;
     for (int k = 0; k < w->contact_count; ++k) {
         const world_contact* c = &w->contacts[k];
         rugo_real d = -c->c.separation;
-        if (d > w->depth0[c->a]) w->depth0[c->a] = d;
-        if (d > w->depth0[c->b]) w->depth0[c->b] = d;
+        if (!(d > 0.0)) continue;
+        pair_depth* last = w->pair_depth_count > 0 ? &w->pair_depth0[w->pair_depth_count - 1] : NULL;
+        if (last != NULL && last->a == c->a && last->b == c->b) {
+            if (d > last->depth) last->depth = d;
+            continue;
+        }
+        if (!grow(&w->allocator, (void**)&w->pair_depth0, &w->pair_depth_capacity, w->pair_depth_count,
+                  w->pair_depth_count + 1, sizeof *w->pair_depth0))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        pair_depth* pd = &w->pair_depth0[w->pair_depth_count++];
+        pd->a = c->a;
+        pd->b = c->b;
+        pd->depth = d;
     }
     st = resolve(w);
     if (st != RUGO_OK) return st;
@@ -736,7 +823,7 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
             move_from_start(w, t);
             st = gather(w);
             if (st != RUGO_OK) return st;
-            if (penetrating(w)) {
+            if (penetrating(w, 1.0)) {
                 hit = 1;
                 hi = t;
                 break;
@@ -753,13 +840,19 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
             w->stats.unresolved = 1;
             break;
         }
+        if (lo > 0.0) { /* the last sample may be safe for the trigger but not for the stop */
+            move_from_start(w, lo);
+            st = gather(w);
+            if (st != RUGO_OK) return st;
+            if (penetrating(w, STOP_FRAC)) lo = 0.0;
+        }
         for (int k = 0; k < w->def.max_bisections; ++k) {
             rugo_real mid = 0.5 * (lo + hi);
             move_from_start(w, mid);
             st = gather(w);
             if (st != RUGO_OK) return st;
             w->stats.bisections++;
-            if (penetrating(w))
+            if (penetrating(w, STOP_FRAC))
                 hi = mid;
             else
                 lo = mid;

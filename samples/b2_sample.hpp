@@ -207,14 +207,8 @@ inline void AddContactMuPerBody(const Run& r, std::vector<double>* sum, std::vec
 // FNV-1a over the float bits of (x, y, angle) of every body, in creation order (as Box2D's own
 // determinism test hashes transforms).
 struct Fnv1a {
-    std::uint64_t h = 14695981039346656037ull;
-    void Bytes(const void* p, std::size_t n) {
-        const unsigned char* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < n; ++i) {
-            h ^= c[i];
-            h *= 1099511628211ull;
-        }
-    }
+    std::uint64_t h = SAMPLE_FNV_OFFSET;
+    void Bytes(const void* p, std::size_t n) { h = sample_fnv1a(h, p, n); }
     void Float(float f) {
         std::uint32_t u;
         std::memcpy(&u, &f, sizeof u);

@@ -8,6 +8,15 @@
 
 static int g_passed, g_failed;
 
+uint64_t sample_fnv1a(uint64_t h, const void* p, size_t n) {
+    const unsigned char* c = (const unsigned char*)p;
+    for (size_t i = 0; i < n; ++i) {
+        h ^= c[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
 int sample_expect_le(const char* name, double value, double limit) {
     int ok = value <= limit && !isnan(value);
     printf("%s %s: %.6g <= %.3g\n", ok ? "PASS" : "FAIL", name, value, limit);

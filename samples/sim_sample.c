@@ -15,14 +15,6 @@ static int abs_level(const rugo_shape* sh, int rel) {
     return j;
 }
 
-uint64_t sim_fnv1a(uint64_t h, const void* p, size_t n) {
-    const unsigned char* c = (const unsigned char*)p;
-    for (size_t i = 0; i < n; ++i) {
-        h ^= c[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
 
 static void hash_transforms(sim_run* r) {
     for (int i = 0; i < r->sc->body_count; ++i) {
@@ -32,14 +24,14 @@ static void hash_transforms(sim_run* r) {
         v[1] = b.transform.p.y;
         v[2] = b.transform.q.c;
         v[3] = b.transform.q.s;
-        r->hash = sim_fnv1a(r->hash, v, sizeof v); /* the doubles' bits, in memory order */
+        r->hash = sample_fnv1a(r->hash, v, sizeof v); /* the doubles' bits, in memory order */
     }
 }
 
 int sim_build(sim_run* r, const scene* s, const rugo_world_def* def) {
     memset(r, 0, sizeof *r);
     r->sc = s;
-    r->hash = SIM_FNV_OFFSET;
+    r->hash = SAMPLE_FNV_OFFSET;
     rugo_world_def wd = def ? *def : rugo_default_world_def();
     wd.gravity = s->gravity;
     wd.time_step = s->time_step;

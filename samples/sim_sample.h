@@ -61,9 +61,6 @@ double sim_micro_growth_bound(const sim_run* r);
 /* Lowest point of the body's curve at its contact level (world y). */
 double sim_lowest_point(const sim_run* r, int i);
 
-/* FNV-1a 64. */
-uint64_t sim_fnv1a(uint64_t h, const void* p, size_t n);
-#define SIM_FNV_OFFSET 14695981039346656037ull
 
 /* Every body at its current transform: its curve at the contact level, the band's outer offset dashed
  * when show_band, and the contact points of the last step as dots. 0 on success. */

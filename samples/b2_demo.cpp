@@ -5,6 +5,10 @@
 //                           trajectory.csv, frames/*.svg and final.svg; prints a summary.
 //   b2_demo --hash-only     runs the scene twice in this process and checks that the FNV-1a hashes of
 //                           all body transforms over the whole run are identical (determinism).
+//   b2_demo --hash-only --expect-hash HEX
+//                           and that they equal HEX: the test registration pins the hash, in the normal
+//                           and the sanitizer build alike, so the bits are the same across processes
+//                           and builds, not only within one process.
 //
 // Checks (each printed with its value): nothing leaves the container or falls through the floor; no
 // true-curve penetration beyond the bands + 2 b2_linearSlop; total mechanical energy never grows beyond
@@ -154,11 +158,17 @@ bool RunDemo(const scene& s, const std::string& dir, bool write, Result* out) {
 
 int main(int argc, char** argv) {
     bool hashOnly = false;
+    const char* expectHash = nullptr;
     std::string dir = "out/b2_demo";
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--hash-only") == 0)
             hashOnly = true;
-        else
+        else if (std::strcmp(argv[i], "--expect-hash") == 0 && i + 1 < argc)
+            expectHash = argv[++i];
+        else if (argv[i][0] == '-') {
+            std::fprintf(stderr, "usage: %s [DIR] [--hash-only] [--expect-hash HEX]\n", argv[0]);
+            return 2;
+        } else
             dir = argv[i];
     }
     static scene s;
@@ -172,6 +182,13 @@ int main(int argc, char** argv) {
         std::printf("hash run 1: %016" PRIx64 "\nhash run 2: %016" PRIx64 "\n", a.hash, b.hash);
         sample_expect("both runs completed", ok);
         sample_expect("determinism: identical FNV-1a hashes of all transforms over two runs", ok && a.hash == b.hash);
+        if (expectHash != nullptr) {
+            char got[17];
+            std::snprintf(got, sizeof got, "%016" PRIx64, a.hash);
+            std::printf("pinned hash %s, this run %s\n", expectHash, got);
+            sample_expect("determinism: the hash equals the pinned one (same bits across processes and builds)",
+                          std::strcmp(got, expectHash) == 0);
+        }
         scene_destroy(&s);
         return sample_finish();
     }

@@ -226,7 +226,10 @@ END_TEST
 
 /* ---- rest: bodies at rest on a rough block stay there ------------------------------------------ */
 
-static void rest_scene(rugo_integrator integ, double* creep, double* drop, double* spin) {
+/* creep, drop, spin: largest drift of the centres, sink and block tilt over 10 s; mean_vy: the vertical
+ * velocity the bodies REPORT, averaged over the last 5 s and the three bodies (a resting body that
+ * micro-collides in its band reports up and down velocities; their mean should be 0). */
+static void rest_scene(rugo_integrator integ, double* creep, double* drop, double* spin, double* mean_vy) {
     surface rough = {0.004, 0.6, 0.5, 0.9};
     rugo_shape* floor = make_block(20.0, 1.0, rough);
     rugo_shape* blk = make_block(0.6, 0.3, rough);
@@ -241,11 +244,12 @@ static void rest_scene(rugo_integrator integ, double* creep, double* drop, doubl
     ids[2] = add(w, disc, RUGO_BODY_DYNAMIC, 0.0, disc_radius(0.2, 32) + 0.004, 0.0, rugo_v2(0, 0), 0.0);
     rugo_vec2 c0[3];
     for (int i = 0; i < 3; ++i) c0[i] = state(w, ids[i]).center;
-    *creep = *drop = *spin = 0.0;
+    *creep = *drop = *spin = *mean_vy = 0.0;
     for (int step = 0; step < 600; ++step) { /* 10 s */
         ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
         for (int i = 0; i < 3; ++i) {
             rugo_body_state s = state(w, ids[i]);
+            if (step >= 300) *mean_vy += s.linear_velocity.y / (300.0 * 3.0);
             double dx = fabs(s.center.x - c0[i].x), dy = c0[i].y - s.center.y;
             double a = fabs(atan2(s.transform.q.s, s.transform.q.c));
             if (dx > *creep) *creep = dx;
@@ -260,15 +264,130 @@ static void rest_scene(rugo_integrator integ, double* creep, double* drop, doubl
 }
 
 START_TEST(test_rest) {
-    double creep, drop, spin;
-    rest_scene(RUGO_INTEGRATE_SYMPLECTIC_EULER, &creep, &drop, &spin);
-    fprintf(stderr, "rest 10 s, symplectic: creep %.3e m, largest sink %.3e m, block tilt %.3e rad\n", creep, drop, spin);
+    double creep, drop, spin, vy;
+    rest_scene(RUGO_INTEGRATE_SYMPLECTIC_EULER, &creep, &drop, &spin, &vy);
+    fprintf(stderr, "rest 10 s, symplectic: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported v_y %.3e m/s\n",
+            creep, drop, spin, vy);
     /* acceptance: no creep beyond 1 mm; they stay within their bands (8 mm) and upright */
     ck_assert_msg(creep <= 1e-3, "creep %g", creep);
     ck_assert_msg(drop <= 0.008, "sank %g", drop);
     ck_assert_msg(spin <= 0.01, "tilt %g", spin);
-    rest_scene(RUGO_INTEGRATE_EXPLICIT_EULER, &creep, &drop, &spin);
-    fprintf(stderr, "rest 10 s, explicit: creep %.3e m, largest sink %.3e m, block tilt %.3e rad\n", creep, drop, spin);
+    /* At rest the reported velocities average to zero: each is the velocity the body moved with. */
+    ck_assert_msg(fabs(vy) <= 1e-4, "symplectic mean resting v_y %g", vy);
+    rest_scene(RUGO_INTEGRATE_EXPLICIT_EULER, &creep, &drop, &spin, &vy);
+    fprintf(stderr, "rest 10 s, explicit: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported v_y %.3e m/s\n",
+            creep, drop, spin, vy);
+    ck_assert_msg(creep <= 1e-3, "creep %g", creep);
+    ck_assert_msg(drop <= 0.008, "sank %g", drop);
+    /* Explicit Euler adds gravity after the move: a resting body reports g h downwards on average. */
+    ck_assert_msg(fabs(vy + 9.81 / 60.0) <= 0.01 * 9.81 / 60.0, "explicit mean resting v_y %g", vy);
+}
+END_TEST
+
+/* ---- integrators: energy of the reported state in free flight ----------------------------------- */
+
+/* Per unit mass, E = |v|²/2 + g y. Under constant gravity each step changes it by exactly -g²h²/2
+ * (symplectic: x moves with the new velocity) or +g²h²/2 (explicit: with the old one). Explicit Euler
+ * thus adds energy every step of flight (a bouncing elastic body climbs), symplectic takes it away:
+ * one reason the default is symplectic (docs/simulator.md, "Integrators"). */
+static double flight_energy_change(rugo_integrator integ, double h) {
+    surface sf = {0.0, 0.5, 0.5, 0.9};
+    rugo_shape* disc = make_disc(0.2, 16, sf);
+    rugo_world_def d = rugo_default_world_def();
+    d.integrator = integ;
+    d.time_step = h;
+    rugo_world* w = make_world(d);
+    int b = add(w, disc, RUGO_BODY_DYNAMIC, 0.0, 100.0, 0.0, rugo_v2(3.0, 5.0), 0.0);
+    rugo_body_state s = state(w, b);
+    const double e0 = 0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) + 9.81 * s.center.y;
+    const int steps = 120;
+    for (int i = 0; i < steps; ++i) ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
+    s = state(w, b);
+    const double e1 = 0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) + 9.81 * s.center.y;
+    rugo_world_destroy(w);
+    rugo_shape_destroy(disc);
+    return (e1 - e0) / steps;
+}
+
+START_TEST(test_integrators_flight_energy) {
+    const double h = 1.0 / 60.0, per_step = 0.5 * 9.81 * 9.81 * h * h;
+    const double sym = flight_energy_change(RUGO_INTEGRATE_SYMPLECTIC_EULER, h);
+    const double exp_ = flight_energy_change(RUGO_INTEGRATE_EXPLICIT_EULER, h);
+    fprintf(stderr, "free flight, energy change per step and unit mass: symplectic %.6e, explicit %.6e (g²h²/2 = %.6e) J/kg\n",
+            sym, exp_, per_step);
+    ck_assert_msg(fabs(sym + per_step) <= 1e-6 * per_step, "symplectic %g", sym);
+    ck_assert_msg(fabs(exp_ - per_step) <= 1e-6 * per_step, "explicit %g", exp_);
+}
+END_TEST
+
+/* ---- overlap projection: bodies created pressed into each other come apart and stay apart ------- */
+
+/* Deepest true-curve overlap (-separation) between two bodies at their current poses; 0 if apart. */
+static double overlap_of(const rugo_world* w, const rugo_shape* sa, int a, const rugo_shape* sb, int b) {
+    rugo_collide_context* ctx = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &ctx), RUGO_OK);
+    rugo_contact c[32];
+    int n = 0;
+    rugo_contact_state st = RUGO_STATE_APART;
+    rugo_contact_query q = rugo_default_contact_query();
+    ck_assert_int_eq(rugo_collide_shapes(ctx, sa, state(w, a).transform, sb, state(w, b).transform, &q, c, 32, &n, &st, NULL),
+                     RUGO_OK);
+    rugo_collide_context_destroy(ctx);
+    double deepest = 0.0;
+    for (int k = 0; k < n; ++k)
+        if (-c[k].separation > deepest) deepest = -c[k].separation;
+    return deepest;
+}
+
+/* A column of four blocks created 15 mm into each other on a floor, and a disc created 15 mm into the
+ * top corners of two static posts it rests between: bisection alone cannot undo an overlap that exists
+ * at the start of a step (before the position projection such overlaps persisted and ratcheted deeper).
+ * After 0.5 s every overlap must be within what a resting contact may keep: the penetration allowance,
+ * penetration tolerance x the smaller body's size (world.c: the half diagonal of its root box), never
+ * more again, and the column must stand. */
+START_TEST(test_pressed_together) {
+    surface sf = {0.002, 0.5, 0.2, 0.5};
+    rugo_shape* floor = make_block(6.0, 1.0, sf);
+    rugo_shape* blk = make_block(0.4, 0.2, sf);
+    rugo_shape* post = make_block(0.3, 0.4, sf);
+    rugo_shape* disc = make_disc(0.2, 32, sf);
+    rugo_world* w = make_world(rugo_default_world_def());
+    const int fl = add(w, floor, RUGO_BODY_STATIC, 0.0, -0.5, 0.0, rugo_v2(0, 0), 0.0);
+    int col[4];
+    for (int i = 0; i < 4; ++i) col[i] = add(w, blk, RUGO_BODY_DYNAMIC, -1.5, 0.1 + i * (0.2 - 0.015), 0.0, rugo_v2(0, 0), 0.0);
+    /* posts' inner top corners at (1.5 -+ 0.1, 0.4); the disc's centre r - 15 mm from both */
+    const double r = disc_radius(0.2, 32);
+    const int p0 = add(w, post, RUGO_BODY_STATIC, 1.5 - 0.1 - 0.15, 0.2, 0.0, rugo_v2(0, 0), 0.0);
+    const int p1 = add(w, post, RUGO_BODY_STATIC, 1.5 + 0.1 + 0.15, 0.2, 0.0, rugo_v2(0, 0), 0.0);
+    const int d = add(w, disc, RUGO_BODY_DYNAMIC, 1.5, 0.4 + sqrt((r - 0.015) * (r - 0.015) - 0.01), 0.0, rugo_v2(0, 0), 0.0);
+    const double allow_col = 0.01 * hypot(0.2 + 0.002, 0.1 + 0.002), allow_disc = 0.01 * sqrt(2.0) * (r + 0.002);
+    const double start_col = overlap_of(w, blk, col[0], blk, col[1]), start_disc = overlap_of(w, disc, d, post, p0);
+    double late_col = 0.0, late_disc = 0.0;
+    for (int step = 0; step < 120; ++step) {
+        ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
+        if (step < 30) continue;
+        for (int i = 0; i < 3; ++i) late_col = fmax(late_col, overlap_of(w, blk, col[i], blk, col[i + 1]));
+        late_col = fmax(late_col, overlap_of(w, floor, fl, blk, col[0]));
+        late_disc = fmax(late_disc, fmax(overlap_of(w, disc, d, post, p0), overlap_of(w, disc, d, post, p1)));
+    }
+    double drift = 0.0;
+    for (int i = 0; i < 4; ++i) drift = fmax(drift, fabs(state(w, col[i]).center.x + 1.5));
+    const rugo_body_state ds = state(w, d);
+    fprintf(stderr, "pressed together: column overlap %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f mm), "
+            "drift %.3e m; disc on two corners %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f mm), at x %.2e\n",
+            1e3 * start_col, 1e3 * late_col, 1e3 * allow_col, drift, 1e3 * start_disc, 1e3 * late_disc, 1e3 * allow_disc,
+            ds.center.x - 1.5);
+    ck_assert(start_col > 0.01 && start_disc > 0.01);
+    /* 1 % on the allowance: the sizes above are the root boxes' half diagonals up to the band's rounding */
+    ck_assert_msg(late_col <= 1.01 * allow_col, "column overlap %g > allowance %g", late_col, allow_col);
+    ck_assert_msg(late_disc <= 1.01 * allow_disc, "disc overlap %g > allowance %g", late_disc, allow_disc);
+    ck_assert_msg(drift <= 0.01, "column drifted %g m", drift);
+    ck_assert_msg(fabs(ds.center.x - 1.5) <= 0.01, "disc left the notch: x %g", ds.center.x);
+    rugo_world_destroy(w);
+    rugo_shape_destroy(floor);
+    rugo_shape_destroy(blk);
+    rugo_shape_destroy(post);
+    rugo_shape_destroy(disc);
 }
 END_TEST
 
@@ -515,7 +634,9 @@ static Suite* world_suite(void) {
     tcase_add_test(t, test_block_stops);
     tcase_add_test(t, test_disc_rolls);
     tcase_add_test(t, test_rest);
+    tcase_add_test(t, test_integrators_flight_energy);
     tcase_add_test(t, test_fast_body);
+    tcase_add_test(t, test_pressed_together);
     tcase_add_test(t, test_energy_elastic);
     suite_add_tcase(s, t);
     return s;

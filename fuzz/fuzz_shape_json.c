@@ -33,11 +33,15 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     def.filter = desc.filter;
     if (desc.has_roughness && desc.count >= 1 && desc.count <= RUGO_MAX_CONTROL_POINTS) {
         lambda = (rugo_real*)malloc((size_t)desc.count * sizeof(rugo_real));
-        if (lambda == NULL || rugo_roughness_tolerances(&desc.roughness, desc.count, lambda) != RUGO_OK) {
+        rugo_contour file_order = {desc.control_points, desc.count}; /* ranges and profiles need the curve */
+        if (lambda == NULL ||
+            rugo_roughness_tolerances_on_contour(&desc.roughness, file_order, NULL, lambda) != RUGO_OK) {
             free(lambda);
             rugo_shape_desc_free(&desc);
             return 0;
         }
+        for (int j = 0; j < desc.count; ++j)
+            FUZZ_CHECK(isfinite(lambda[j]) && lambda[j] >= 0.0);
         def.tolerances = lambda;
         def.q = desc.roughness.q;
         def.estimator = desc.roughness.estimator;

@@ -6,6 +6,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void clear_error(rugo_parse_error* e) {
@@ -219,10 +220,100 @@ rugo_roughness_desc rugo_default_roughness_desc(void) {
 static void free_roughness(const rugo_allocator* al, rugo_roughness_desc* r) {
     rugo__free(al, r->tolerances);
     rugo__free(al, r->perturbation_points);
+    rugo__free(al, r->ranges);
+    rugo__free(al, r->profile);
     r->tolerances = NULL;
     r->tolerance_count = 0;
     r->perturbation_points = NULL;
     r->perturbation_count = 0;
+    r->ranges = NULL;
+    r->range_count = 0;
+    r->profile = NULL;
+    r->profile_count = 0;
+}
+
+/* ---- arc-length ranges and profiles: the checks shared by the readers, the writer and the resampling.
+ * Each returns RUGO_OK or the status the JSON reader reports (BAD_FIELD for a value out of its range;
+ * the writer and the resampling turn that into BAD_ARGUMENT), with the offending member and a
+ * message. */
+
+/* Member of a range: 0 from, 1 to, 2 tolerance. */
+static rugo_status range_check(const rugo_roughness_range* g, int* member_index, char* msg, size_t size) {
+    const rugo_real v[3] = {g->from, g->to, g->tolerance};
+    static const char* const names[3] = {"from", "to", "tolerance"};
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(v[k])) {
+            *member_index = k;
+            snprintf(msg, size, "%s is not finite", names[k]);
+            return RUGO_ERR_NOT_FINITE;
+        }
+    for (int k = 0; k < 2; ++k)
+        if (!(v[k] >= 0.0 && v[k] <= 1.0)) {
+            *member_index = k;
+            snprintf(msg, size, "%s must be a fraction of the perimeter in [0, 1], found %.17g", names[k],
+                     v[k]);
+            return RUGO_ERR_BAD_FIELD;
+        }
+    if (g->from == g->to || (g->from == 1.0 && g->to == 0.0)) {
+        *member_index = -1;
+        snprintf(msg, size, "the range from %.17g to %.17g is empty (from 0 to 1 is the whole perimeter)",
+                 g->from, g->to);
+        return RUGO_ERR_BAD_FIELD;
+    }
+    rugo_status s = rugo_tolerances_check(&g->tolerance, 1, NULL);
+    if (s != RUGO_OK) {
+        *member_index = 2;
+        snprintf(msg, size, "invalid tolerance %.17g: %s", g->tolerance, rugo_status_string(s));
+    }
+    return s;
+}
+
+/* Sample `cur` of a profile after `prev` (NULL for the first); *column: 0 for s, 1 for λ. */
+static rugo_status sample_check(const rugo_profile_sample* prev, const rugo_profile_sample* cur, int* column,
+                                char* msg, size_t size) {
+    if (!isfinite(cur->s) || !isfinite(cur->tolerance)) {
+        *column = isfinite(cur->s) ? 1 : 0;
+        snprintf(msg, size, "%s is not finite", *column == 0 ? "s" : "the tolerance");
+        return RUGO_ERR_NOT_FINITE;
+    }
+    *column = 0;
+    if (!(cur->s >= 0.0 && cur->s <= 1.0)) {
+        snprintf(msg, size, "s must be a fraction of the perimeter in [0, 1], found %.17g", cur->s);
+        return RUGO_ERR_BAD_FIELD;
+    }
+    if (prev != NULL && !(cur->s > prev->s)) {
+        snprintf(msg, size, "s must increase strictly from sample to sample: %.17g follows %.17g", cur->s,
+                 prev->s);
+        return RUGO_ERR_BAD_FIELD;
+    }
+    *column = 1;
+    rugo_status s = rugo_tolerances_check(&cur->tolerance, 1, NULL);
+    if (s != RUGO_OK)
+        snprintf(msg, size, "invalid tolerance %.17g: %s", cur->tolerance, rugo_status_string(s));
+    return s;
+}
+
+/* The whole source of kind RANGES or PROFILE, for the writer and the resampling (statuses as
+ * documented there: BAD_ARGUMENT where the reader says BAD_FIELD). */
+static rugo_status arc_source_check(const rugo_roughness_desc* r) {
+    char msg[160];
+    int where = 0;
+    rugo_status s = RUGO_OK;
+    if (r->kind == RUGO_ROUGHNESS_RANGES) {
+        if (r->range_count < 0) return RUGO_ERR_BAD_ARGUMENT;
+        if (r->range_count > RUGO_MAX_ROUGHNESS_RANGES) return RUGO_ERR_TOO_MANY_POINTS;
+        if (r->range_count > 0 && r->ranges == NULL) return RUGO_ERR_NULL_ARGUMENT;
+        for (int i = 0; i < r->range_count && s == RUGO_OK; ++i)
+            s = range_check(&r->ranges[i], &where, msg, sizeof msg);
+        if (s == RUGO_OK) s = rugo_tolerances_check(&r->background, 1, NULL);
+    } else {
+        if (r->profile_count < 1) return RUGO_ERR_BAD_ARGUMENT;
+        if (r->profile_count > RUGO_MAX_PROFILE_SAMPLES) return RUGO_ERR_TOO_MANY_POINTS;
+        if (r->profile == NULL) return RUGO_ERR_NULL_ARGUMENT;
+        for (int i = 0; i < r->profile_count && s == RUGO_OK; ++i)
+            s = sample_check(i > 0 ? &r->profile[i - 1] : NULL, &r->profile[i], &where, msg, sizeof msg);
+    }
+    return s == RUGO_ERR_BAD_FIELD ? RUGO_ERR_BAD_ARGUMENT : s;
 }
 
 static const char* estimator_name(rugo_tolerance_estimator est) {
@@ -359,13 +450,137 @@ static rugo_status seed_value(const rctx* c, const rugo_json_value* v, uint64_t*
     return RUGO_OK;
 }
 
-/* The finest tolerances: exactly one of "preset", "tolerances", "constant". */
+/* "ranges": an array of {"from", "to", "tolerance"} objects (unknown members ignored). */
+static rugo_status read_ranges(const rctx* c, const rugo_json_value* arr, rugo_roughness_desc* r) {
+    rugo_status s = want_type(c, arr, RUGO_JSON_ARRAY, "roughness.ranges",
+                              "an array of {\"from\", \"to\", \"tolerance\"} objects");
+    if (s != RUGO_OK) return s;
+    if (arr->count > (uint32_t)RUGO_MAX_ROUGHNESS_RANGES) {
+        set_path(c->e, "roughness.ranges");
+        return field_error(c->e, RUGO_ERR_TOO_MANY_POINTS, c->text, c->length, arr,
+                           "%lu ranges; at most %d are allowed", (unsigned long)arr->count,
+                           RUGO_MAX_ROUGHNESS_RANGES);
+    }
+    int m = (int)arr->count;
+    rugo_roughness_range* g = NULL;
+    if (m > 0) {
+        g = (rugo_roughness_range*)rugo__alloc_array(c->al, (size_t)m, sizeof *g);
+        if (g == NULL)
+            return field_error(c->e, RUGO_ERR_OUT_OF_MEMORY, c->text, c->length, NULL, "out of memory");
+    }
+    static const char* const names[3] = {"from", "to", "tolerance"};
+    int i = 0;
+    for (const rugo_json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
+        char prefix[48];
+        snprintf(prefix, sizeof prefix, "roughness.ranges[%d]", i);
+        s = want_type(c, x, RUGO_JSON_OBJECT, prefix, "a range {\"from\", \"to\", \"tolerance\"}");
+        rugo_real v[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < 3 && s == RUGO_OK; ++k) {
+            const rugo_json_value* mv = NULL;
+            s = member(c, x, prefix, names[k], &mv);
+            if (s == RUGO_OK && mv == NULL) {
+                set_path(c->e, "%s.%s", prefix, names[k]);
+                s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, x, "missing field \"%s\"",
+                                names[k]);
+            }
+            if (s == RUGO_OK) s = number_member(c, x, prefix, names[k], &v[k]);
+        }
+        if (s != RUGO_OK) break;
+        g[i].from = v[0];
+        g[i].to = v[1];
+        g[i].tolerance = v[2];
+        char msg[160];
+        int which = -1;
+        s = range_check(&g[i], &which, msg, sizeof msg);
+        if (s != RUGO_OK) {
+            const rugo_json_value* at = x;
+            if (which >= 0) {
+                member(c, x, prefix, names[which], &at);
+                set_path(c->e, "%s.%s", prefix, names[which]);
+            } else {
+                set_path(c->e, "%s", prefix);
+            }
+            s = field_error(c->e, s, c->text, c->length, at, "%s", msg);
+        }
+    }
+    if (s != RUGO_OK) {
+        rugo__free(c->al, g);
+        return s;
+    }
+    r->kind = RUGO_ROUGHNESS_RANGES;
+    r->ranges = g;
+    r->range_count = m;
+    return RUGO_OK;
+}
+
+/* "profile": an array of [s, tolerance] pairs. */
+static rugo_status read_profile(const rctx* c, const rugo_json_value* arr, rugo_roughness_desc* r) {
+    rugo_status s =
+        want_type(c, arr, RUGO_JSON_ARRAY, "roughness.profile", "an array of [s, tolerance] pairs");
+    if (s != RUGO_OK) return s;
+    if (arr->count > (uint32_t)RUGO_MAX_PROFILE_SAMPLES) {
+        set_path(c->e, "roughness.profile");
+        return field_error(c->e, RUGO_ERR_TOO_MANY_POINTS, c->text, c->length, arr,
+                           "%lu samples; at most %d are allowed", (unsigned long)arr->count,
+                           RUGO_MAX_PROFILE_SAMPLES);
+    }
+    if (arr->count == 0) {
+        set_path(c->e, "roughness.profile");
+        return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, arr,
+                           "a profile needs at least one [s, tolerance] sample");
+    }
+    int m = (int)arr->count;
+    rugo_profile_sample* p = (rugo_profile_sample*)rugo__alloc_array(c->al, (size_t)m, sizeof *p);
+    if (p == NULL)
+        return field_error(c->e, RUGO_ERR_OUT_OF_MEMORY, c->text, c->length, NULL, "out of memory");
+    int i = 0;
+    for (const rugo_json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
+        if (x->type != RUGO_JSON_ARRAY || x->count != 2) {
+            set_path(c->e, "roughness.profile[%d]", i);
+            if (x->type != RUGO_JSON_ARRAY)
+                s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, x,
+                                "expected an [s, tolerance] pair, found %s", a_type(x->type));
+            else
+                s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, x,
+                                "expected an [s, tolerance] pair, found an array of %lu element%s",
+                                (unsigned long)x->count, x->count == 1 ? "" : "s");
+            break;
+        }
+        const rugo_json_value* e2[2] = {x->u.first, x->u.first->next};
+        for (int k = 0; k < 2 && s == RUGO_OK; ++k)
+            if (e2[k]->type != RUGO_JSON_NUMBER) {
+                set_path(c->e, "roughness.profile[%d][%d]", i, k);
+                s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, e2[k],
+                                "expected a number, found %s", a_type(e2[k]->type));
+            }
+        if (s != RUGO_OK) break;
+        p[i].s = e2[0]->u.number;
+        p[i].tolerance = e2[1]->u.number;
+        char msg[160];
+        int column = 0;
+        s = sample_check(i > 0 ? &p[i - 1] : NULL, &p[i], &column, msg, sizeof msg);
+        if (s != RUGO_OK) {
+            set_path(c->e, "roughness.profile[%d][%d]", i, column);
+            s = field_error(c->e, s, c->text, c->length, e2[column], "%s", msg);
+        }
+    }
+    if (s != RUGO_OK) {
+        rugo__free(c->al, p);
+        return s;
+    }
+    r->kind = RUGO_ROUGHNESS_PROFILE;
+    r->profile = p;
+    r->profile_count = m;
+    return RUGO_OK;
+}
+
+/* The finest tolerances: exactly one of "preset", "tolerances", "constant", "ranges", "profile". */
 static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* obj, int n,
                                          rugo_roughness_desc* r) {
-    static const char* const keys[3] = {"preset", "tolerances", "constant"};
-    const rugo_json_value* v[3];
+    static const char* const keys[5] = {"preset", "tolerances", "constant", "ranges", "profile"};
+    const rugo_json_value* v[5];
     int found = 0, first = -1, second = -1;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 5; ++k) {
         rugo_status s = member(c, obj, "roughness", keys[k], &v[k]);
         if (s != RUGO_OK) return s;
         if (v[k] != NULL) {
@@ -380,13 +595,15 @@ static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* o
         set_path(c->e, "roughness");
         if (found == 0)
             return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, obj,
-                               "roughness needs one of \"preset\", \"tolerances\" or \"constant\"");
-        return field_error(
-            c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, v[second],
-            "roughness takes only one of \"preset\", \"tolerances\" or \"constant\" (found \"%s\" "
-            "and \"%s\")",
-            keys[first], keys[second]);
+                               "roughness needs one of \"preset\", \"tolerances\", \"constant\", "
+                               "\"ranges\" or \"profile\"");
+        return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, v[second],
+                           "roughness takes only one of \"preset\", \"tolerances\", \"constant\", "
+                           "\"ranges\" or \"profile\" (found \"%s\" and \"%s\")",
+                           keys[first], keys[second]);
     }
+    if (first == 3) return read_ranges(c, v[3], r);
+    if (first == 4) return read_profile(c, v[4], r);
     if (first == 0) {
         const char* names[RUGO_PRESET_COUNT];
         for (int p = 0; p < RUGO_PRESET_COUNT; ++p) {
@@ -558,6 +775,15 @@ static rugo_status read_roughness(const rctx* c, const rugo_json_value* obj, int
     rugo_status s = want_type(c, obj, RUGO_JSON_OBJECT, "roughness", "a roughness object");
     if (s == RUGO_OK) s = read_tolerance_source(c, obj, n, r);
     const rugo_json_value* v = NULL;
+    if (s == RUGO_OK && r->kind == RUGO_ROUGHNESS_RANGES) {
+        s = number_member(c, obj, "roughness", "background", &r->background);
+        if (s == RUGO_OK && (s = rugo_tolerances_check(&r->background, 1, NULL)) != RUGO_OK) {
+            member(c, obj, "roughness", "background", &v);
+            set_path(c->e, "roughness.background");
+            s = field_error(c->e, s, c->text, c->length, v, "invalid tolerance %.17g: %s", r->background,
+                            rugo_status_string(s));
+        }
+    }
     if (s == RUGO_OK) s = member(c, obj, "roughness", "seed", &v);
     if (s == RUGO_OK && v != NULL) s = seed_value(c, v, &r->seed);
     if (s == RUGO_OK) s = number_member(c, obj, "roughness", "q", &r->q);
@@ -596,6 +822,10 @@ static rugo_status check_roughness(const rugo_roughness_desc* r, int n) {
         if (r->tolerance_count != n) return RUGO_ERR_BAD_ARGUMENT;
         if (n > 0 && r->tolerances == NULL) return RUGO_ERR_NULL_ARGUMENT;
         if (n > 0) s = rugo_tolerances_check(r->tolerances, n, NULL);
+        break;
+    case RUGO_ROUGHNESS_RANGES:
+    case RUGO_ROUGHNESS_PROFILE:
+        s = arc_source_check(r);
         break;
     default:
         return RUGO_ERR_BAD_ARGUMENT;
@@ -642,6 +872,486 @@ rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, ru
     }
 }
 
+/* ---- resampling arc-length roughness onto the segments ---------------------------------------- */
+
+/* A range restricted to [0, 1]: a wrapping range gives two. */
+typedef struct range_piece {
+    rugo_real lo, hi, tolerance;
+} range_piece;
+
+static int piece_cmp(const void* pa, const void* pb) {
+    const range_piece* a = (const range_piece*)pa;
+    const range_piece* b = (const range_piece*)pb;
+    if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+    if (a->tolerance != b->tolerance) return a->tolerance < b->tolerance ? -1 : 1;
+    return 0;
+}
+
+/* Max-heap of piece indices keyed by tolerance. */
+static void heap_push(int* heap, int* size, int item, const range_piece* p) {
+    int i = (*size)++;
+    heap[i] = item;
+    while (i > 0) {
+        int parent = (i - 1) / 2;
+        if (!(p[heap[parent]].tolerance < p[heap[i]].tolerance)) break;
+        int t = heap[parent];
+        heap[parent] = heap[i];
+        heap[i] = t;
+        i = parent;
+    }
+}
+
+static void heap_pop(int* heap, int* size, const range_piece* p) {
+    heap[0] = heap[--*size];
+    int i = 0;
+    for (;;) {
+        int l = 2 * i + 1, r = l + 1, top = i;
+        if (l < *size && p[heap[top]].tolerance < p[heap[l]].tolerance) top = l;
+        if (r < *size && p[heap[top]].tolerance < p[heap[r]].tolerance) top = r;
+        if (top == i) break;
+        int t = heap[top];
+        heap[top] = heap[i];
+        heap[i] = t;
+        i = top;
+    }
+}
+
+/* out[j] holds the arc length of segment j on entry (total: their sum, > 0) and its tolerance on
+ * return. The segments' intervals, shrunk by the slack, move forward monotonically, so one sweep
+ * serves them all: pieces enter the heap when they start before the interval's end, and leave it
+ * (lazily, from the top) once they end before its start, which no later interval reaches again. */
+static rugo_status ranges_on_segments(const rugo_roughness_desc* r, const rugo_allocator* al, int n,
+                                      rugo_real total, rugo_real* out) {
+    int m = 0;
+    range_piece* piece = NULL;
+    range_piece* cover = NULL;
+    int* heap = NULL;
+    if (r->range_count > 0) {
+        size_t cap = (size_t)r->range_count * 2;
+        piece = (range_piece*)rugo__alloc_array(al, cap, sizeof *piece);
+        cover = (range_piece*)rugo__alloc_array(al, cap, sizeof *cover);
+        heap = (int*)rugo__alloc_array(al, cap, sizeof *heap);
+        if (piece == NULL || cover == NULL || heap == NULL) {
+            rugo__free(al, piece);
+            rugo__free(al, cover);
+            rugo__free(al, heap);
+            return RUGO_ERR_OUT_OF_MEMORY;
+        }
+        for (int i = 0; i < r->range_count; ++i) {
+            const rugo_roughness_range* g = &r->ranges[i];
+            if (g->from < g->to) {
+                piece[m].lo = g->from;
+                piece[m].hi = g->to;
+                piece[m++].tolerance = g->tolerance;
+            } else {
+                piece[m].lo = g->from;
+                piece[m].hi = 1.0;
+                piece[m++].tolerance = g->tolerance;
+                piece[m].lo = 0.0;
+                piece[m].hi = g->to;
+                piece[m++].tolerance = g->tolerance;
+            }
+        }
+        qsort(piece, (size_t)m, sizeof *piece, piece_cmp);
+    }
+    /* The union of the (closed) pieces as disjoint intervals in increasing order. */
+    int nc = 0;
+    for (int i = 0; i < m; ++i) {
+        if (nc > 0 && piece[i].lo <= cover[nc - 1].hi) {
+            if (piece[i].hi > cover[nc - 1].hi) cover[nc - 1].hi = piece[i].hi;
+        } else {
+            cover[nc++] = piece[i];
+        }
+    }
+    const rugo_real slack = RUGO_ROUGHNESS_RANGE_SLACK;
+    int next = 0, size = 0, cv = 0;
+    rugo_real before = 0.0; /* arc length before segment j */
+    for (int j = 0; j < n; ++j) {
+        rugo_real len = out[j];
+        rugo_real a = before / total;
+        before += len;
+        rugo_real b = j == n - 1 ? 1.0 : before / total;
+        rugo_real p, q;
+        if (b - a > 2.0 * slack) {
+            p = a + slack;
+            q = b - slack;
+        } else {
+            p = q = a + 0.5 * (b - a);
+        }
+        while (next < m && piece[next].lo <= q)
+            heap_push(heap, &size, next++, piece);
+        while (size > 0 && piece[heap[0]].hi < p)
+            heap_pop(heap, &size, piece);
+        while (cv < nc && cover[cv].hi < p)
+            ++cv;
+        int covered = cv < nc && cover[cv].lo <= p && cover[cv].hi >= q;
+        rugo_real lam = size > 0 ? piece[heap[0]].tolerance : r->background;
+        if (!covered && r->background > lam) lam = r->background;
+        out[j] = lam;
+    }
+    rugo__free(al, piece);
+    rugo__free(al, cover);
+    rugo__free(al, heap);
+    return RUGO_OK;
+}
+
+/* Entry k (0..K+1) of a profile's periodic extension: the last sample moved back by one period, the
+ * samples, the first sample moved on by one period. Abscissae never decrease with k. */
+static void profile_entry(const rugo_profile_sample* p, int K, int k, rugo_real* x, rugo_real* lam) {
+    if (k == 0) {
+        *x = p[K - 1].s - 1.0;
+        *lam = p[K - 1].tolerance;
+    } else if (k == K + 1) {
+        *x = p[0].s + 1.0;
+        *lam = p[0].tolerance;
+    } else {
+        *x = p[k - 1].s;
+        *lam = p[k - 1].tolerance;
+    }
+}
+
+/* λ at x, where entry k is the last one with abscissa <= x. */
+static rugo_real profile_value(const rugo_profile_sample* p, int K, int k, rugo_real x) {
+    rugo_real x0, l0, x1, l1;
+    profile_entry(p, K, k, &x0, &l0);
+    if (x == x0 || k == K + 1) return l0;
+    profile_entry(p, K, k + 1, &x1, &l1);
+    rugo_real v = l0 + (l1 - l0) * ((x - x0) / (x1 - x0));
+    /* Round-off must not leave the chord's range. */
+    rugo_real lo = l0 < l1 ? l0 : l1, hi = l0 < l1 ? l1 : l0;
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+
+/* As ranges_on_segments, for a profile: max of λ at both ends and at the samples between. */
+static void profile_on_segments(const rugo_roughness_desc* r, int n, rugo_real total, rugo_real* out) {
+    const rugo_profile_sample* p = r->profile;
+    const int K = r->profile_count;
+    int k = 0;
+    rugo_real before = 0.0;
+    for (int j = 0; j < n; ++j) {
+        rugo_real a = before / total;
+        before += out[j];
+        rugo_real b = j == n - 1 ? 1.0 : before / total;
+        rugo_real x, lam;
+        for (;;) { /* the last entry at or before a */
+            if (k + 1 > K + 1) break;
+            profile_entry(p, K, k + 1, &x, &lam);
+            if (!(x <= a)) break;
+            ++k;
+        }
+        rugo_real best = profile_value(p, K, k, a);
+        /* Two entries share an abscissa only at 0 or 1, when samples sit at both: take both. */
+        for (int i = k - 1; i >= 0; --i) {
+            profile_entry(p, K, i, &x, &lam);
+            if (x != a) break;
+            if (lam > best) best = lam;
+        }
+        int last = k;
+        for (int i = k + 1; i <= K + 1; ++i) {
+            profile_entry(p, K, i, &x, &lam);
+            if (!(x <= b)) break;
+            if (lam > best) best = lam;
+            last = i;
+        }
+        rugo_real end = profile_value(p, K, last, b);
+        out[j] = end > best ? end : best;
+    }
+}
+
+rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc, rugo_contour contour,
+                                                 const rugo_allocator* allocator, rugo_real* out) {
+    if (desc == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (desc->kind != RUGO_ROUGHNESS_RANGES && desc->kind != RUGO_ROUGHNESS_PROFILE)
+        return rugo_roughness_tolerances(desc, contour.count, out);
+    const int n = contour.count;
+    if (contour.points == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (n < 4) return RUGO_ERR_TOO_FEW_POINTS;
+    if (n > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_TOO_MANY_POINTS;
+    rugo_status s = arc_source_check(desc);
+    if (s != RUGO_OK) return s;
+    for (int i = 0; i < n; ++i)
+        if (!rugo__v2_finite(contour.points[i])) return RUGO_ERR_NOT_FINITE;
+    /* Lengths first, in a scratch array, so that out is untouched on error. */
+    rugo_allocator al = rugo__allocator_or_default(allocator);
+    rugo_real* len = (rugo_real*)rugo__alloc_array(&al, (size_t)n, sizeof *len);
+    if (len == NULL) return RUGO_ERR_OUT_OF_MEMORY;
+    rugo_real total = 0.0;
+    for (int j = 0; j < n; ++j) {
+        len[j] = rugo_contour_segment_length(contour, j);
+        total += len[j];
+    }
+    if (!isfinite(total))
+        s = RUGO_ERR_NOT_FINITE;
+    else if (!(total > 0.0))
+        s = RUGO_ERR_ZERO_AREA;
+    else if (desc->kind == RUGO_ROUGHNESS_RANGES)
+        s = ranges_on_segments(desc, &al, n, total, len);
+    else
+        profile_on_segments(desc, n, total, len);
+    if (s == RUGO_OK) memcpy(out, len, sizeof *out * (size_t)n);
+    rugo__free(&al, len);
+    return s;
+}
+
+/* ---- profiles from CSV text ------------------------------------------------------------------- */
+
+static int csv_space(char ch) { return ch == ' ' || ch == '\t'; }
+
+static int csv_lower(char ch) { return ch >= 'A' && ch <= 'Z' ? ch - 'A' + 'a' : ch; }
+
+/* 1 if f[0, n) is nan, inf or infinity (any case, optional sign). */
+static int csv_non_finite_word(const char* f, size_t n) {
+    static const char* const words[3] = {"nan", "inf", "infinity"};
+    if (n > 0 && (f[0] == '+' || f[0] == '-')) {
+        ++f;
+        --n;
+    }
+    for (int w = 0; w < 3; ++w) {
+        size_t len = strlen(words[w]);
+        if (len != n) continue;
+        size_t i = 0;
+        while (i < n && csv_lower(f[i]) == words[w][i])
+            ++i;
+        if (i == n) return 1;
+    }
+    return 0;
+}
+
+/* Rewrites a decimal number f[0, n) in JSON's grammar into buf (no '+', no leading zeros, digits on
+ * both sides of the point); returns its length, or 0 if f is not a number or too long. */
+static size_t csv_number_as_json(const char* f, size_t n, char* buf, size_t size) {
+    size_t i = 0, o = 0;
+    if (n + 4 > size) return 0;
+    if (i < n && (f[i] == '+' || f[i] == '-')) {
+        if (f[i] == '-') buf[o++] = '-';
+        ++i;
+    }
+    size_t int_start = i;
+    while (i < n && f[i] >= '0' && f[i] <= '9')
+        ++i;
+    size_t int_end = i, frac_start = i, frac_end = i;
+    int point = 0;
+    if (i < n && f[i] == '.') {
+        point = 1;
+        frac_start = ++i;
+        while (i < n && f[i] >= '0' && f[i] <= '9')
+            ++i;
+        frac_end = i;
+    }
+    if (int_end == int_start && frac_end == frac_start) return 0; /* no digit */
+    while (int_start + 1 < int_end && f[int_start] == '0')
+        ++int_start;
+    if (int_start == int_end)
+        buf[o++] = '0';
+    else
+        for (size_t k = int_start; k < int_end; ++k)
+            buf[o++] = f[k];
+    if (point && frac_end > frac_start) {
+        buf[o++] = '.';
+        for (size_t k = frac_start; k < frac_end; ++k)
+            buf[o++] = f[k];
+    }
+    if (i < n && (f[i] == 'e' || f[i] == 'E')) {
+        buf[o++] = 'e';
+        ++i;
+        if (i < n && (f[i] == '+' || f[i] == '-')) buf[o++] = f[i++];
+        size_t exp_start = i;
+        while (i < n && f[i] >= '0' && f[i] <= '9')
+            buf[o++] = f[i++];
+        if (i == exp_start) return 0;
+    }
+    if (i != n) return 0;
+    buf[o] = '\0';
+    return o;
+}
+
+/* One numeric field: RUGO_OK with *value, or PARSE / NOT_FINITE / OUT_OF_MEMORY with a message. The
+ * JSON reader converts it, so that CSV and JSON read the same text to the same bits. */
+static rugo_status csv_number(const char* f, size_t n, const rugo_allocator* al, double* value, char* msg,
+                              size_t size) {
+    char quoted[48];
+    rugo_json_quote_for_message(f, n, quoted, sizeof quoted);
+    if (n == 0) {
+        snprintf(msg, size, "empty field (expected a number)");
+        return RUGO_ERR_PARSE;
+    }
+    if (csv_non_finite_word(f, n)) {
+        snprintf(msg, size, "\"%s\" is not a finite number", quoted);
+        return RUGO_ERR_NOT_FINITE;
+    }
+    char buf[RUGO_JSON_MAX_NUMBER_CHARS + 8];
+    size_t len = csv_number_as_json(f, n, buf, sizeof buf);
+    if (len == 0) {
+        snprintf(msg, size, "expected a number, found \"%s\"", quoted);
+        return RUGO_ERR_PARSE;
+    }
+    rugo_json_doc doc;
+    rugo_json_error je;
+    rugo_status s = rugo_json_parse(buf, len, al, NULL, &doc, &je);
+    if (s == RUGO_OK && doc.root->type == RUGO_JSON_NUMBER) {
+        *value = doc.root->u.number;
+    } else if (s == RUGO_ERR_NOT_FINITE) {
+        snprintf(msg, size, "\"%s\" overflows to infinity", quoted);
+    } else if (s == RUGO_ERR_OUT_OF_MEMORY) {
+        snprintf(msg, size, "out of memory");
+    } else {
+        snprintf(msg, size, "expected a number, found \"%s\"", quoted);
+        s = RUGO_ERR_PARSE;
+    }
+    rugo_json_doc_free(&doc);
+    return s;
+}
+
+/* A CSV error at byte `offset` of the text (the caller sets the path). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 6, 7)))
+#endif
+static rugo_status
+csv_error(rugo_parse_error* e, rugo_status status, const char* text, size_t length, size_t offset,
+          const char* fmt, ...) {
+    if (e == NULL) return status;
+    rugo_json_locate(text, length, offset, &e->line, &e->column);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->message, sizeof e->message, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, const rugo_allocator* allocator,
+                                             rugo_profile_sample** samples, int* count,
+                                             rugo_parse_error* error) {
+    clear_error(error);
+    if (samples != NULL) *samples = NULL;
+    if (count != NULL) *count = 0;
+    if (text == NULL || samples == NULL || count == NULL) {
+        if (error != NULL) snprintf(error->message, sizeof error->message, "a required argument is NULL");
+        return RUGO_ERR_NULL_ARGUMENT;
+    }
+    if (length > RUGO_MAX_JSON_BYTES) {
+        if (error != NULL)
+            snprintf(error->message, sizeof error->message,
+                     "text of %lu bytes is larger than the limit of %lu", (unsigned long)length,
+                     (unsigned long)RUGO_MAX_JSON_BYTES);
+        return RUGO_ERR_PARSE;
+    }
+    rugo_allocator al = rugo__allocator_or_default(allocator);
+    rugo_profile_sample* p = NULL;
+    int m = 0, cap = 0;
+    int header_allowed = 1;
+    rugo_status s = RUGO_OK;
+    size_t pos = 0;
+    if (length >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB &&
+        (unsigned char)text[2] == 0xBF)
+        pos = 3;
+    while (pos < length && s == RUGO_OK) {
+        const char* nl = (const char*)memchr(text + pos, '\n', length - pos);
+        size_t end = nl != NULL ? (size_t)(nl - text) : length;
+        size_t next = nl != NULL ? end + 1 : length;
+        if (end > pos && text[end - 1] == '\r') --end;
+        size_t b = pos;
+        while (b < end && csv_space(text[b]))
+            ++b;
+        if (b == end || text[b] == '#') {
+            pos = next;
+            continue;
+        }
+        /* Fields: [start, stop) trimmed, at most 3 kept (a third means too many). */
+        size_t fs[3], fe[3];
+        int nf = 0;
+        size_t f = pos;
+        for (;;) {
+            const char* comma = (const char*)memchr(text + f, ',', end - f);
+            size_t stop = comma != NULL ? (size_t)(comma - text) : end;
+            if (nf < 3) {
+                size_t a0 = f, a1 = stop;
+                while (a0 < a1 && csv_space(text[a0]))
+                    ++a0;
+                while (a1 > a0 && csv_space(text[a1 - 1]))
+                    --a1;
+                fs[nf] = a0;
+                fe[nf] = a1;
+            }
+            ++nf;
+            if (comma == NULL) break;
+            f = stop + 1;
+        }
+        double v[2] = {0.0, 0.0};
+        char msg[160];
+        int is_header = 0;
+        if (header_allowed) { /* a first field that cannot start a number: "s", "\"s\"", "position" */
+            size_t n0 = fe[0] - fs[0];
+            char c0 = n0 > 0 ? text[fs[0]] : '0';
+            is_header = !((c0 >= '0' && c0 <= '9') || c0 == '+' || c0 == '-' || c0 == '.') &&
+                        !csv_non_finite_word(text + fs[0], n0);
+            header_allowed = 0;
+        }
+        if (nf != 2) {
+            s = csv_error(error, RUGO_ERR_PARSE, text, length, b,
+                          "%s has %d field%s; expected 2 (s, lambda) separated by a comma",
+                          is_header ? "the header" : "the line", nf, nf == 1 ? "" : "s");
+            if (!is_header) set_path(error, "profile[%d]", m);
+            break;
+        }
+        if (is_header) {
+            pos = next;
+            continue;
+        }
+        if (m >= RUGO_MAX_PROFILE_SAMPLES) {
+            s = csv_error(error, RUGO_ERR_TOO_MANY_POINTS, text, length, b, "more than %d samples",
+                          RUGO_MAX_PROFILE_SAMPLES);
+            break;
+        }
+        for (int k = 0; k < 2 && s == RUGO_OK; ++k) {
+            s = csv_number(text + fs[k], fe[k] - fs[k], &al, &v[k], msg, sizeof msg);
+            if (s != RUGO_OK) {
+                csv_error(error, s, text, length, fs[k], "%s", msg);
+                set_path(error, "profile[%d][%d]", m, k);
+            }
+        }
+        if (s != RUGO_OK) break;
+        if (m == cap) {
+            int ncap =
+                cap == 0 ? 64 : (cap > RUGO_MAX_PROFILE_SAMPLES / 2 ? RUGO_MAX_PROFILE_SAMPLES : cap * 2);
+            rugo_profile_sample* np = (rugo_profile_sample*)rugo__alloc_array(&al, (size_t)ncap, sizeof *np);
+            if (np == NULL) {
+                s = csv_error(error, RUGO_ERR_OUT_OF_MEMORY, text, length, b, "out of memory");
+                break;
+            }
+            if (m > 0) memcpy(np, p, sizeof *np * (size_t)m);
+            rugo__free(&al, p);
+            p = np;
+            cap = ncap;
+        }
+        p[m].s = v[0];
+        p[m].tolerance = v[1];
+        int column = 0;
+        s = sample_check(m > 0 ? &p[m - 1] : NULL, &p[m], &column, msg, sizeof msg);
+        if (s != RUGO_OK) {
+            csv_error(error, s, text, length, fs[column], "%s", msg);
+            set_path(error, "profile[%d][%d]", m, column);
+            break;
+        }
+        ++m;
+        pos = next;
+    }
+    if (s == RUGO_OK && m == 0)
+        s = csv_error(error, RUGO_ERR_BAD_FIELD, text, length, length,
+                      "no samples: a profile needs at least one line \"s,lambda\"");
+    if (s != RUGO_OK) {
+        rugo__free(&al, p);
+        return s;
+    }
+    *samples = p;
+    *count = m;
+    return RUGO_OK;
+}
+
+void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples) {
+    rugo__free(allocator, samples);
+}
+
 static void write_roughness(rugo_json_writer* w, const rugo_roughness_desc* r) {
     rugo_json_key(w, "roughness");
     rugo_json_begin_object(w, 0);
@@ -653,6 +1363,34 @@ static void write_roughness(rugo_json_writer* w, const rugo_roughness_desc* r) {
     case RUGO_ROUGHNESS_CONSTANT:
         rugo_json_key(w, "constant");
         rugo_json_number(w, r->constant);
+        break;
+    case RUGO_ROUGHNESS_RANGES:
+        rugo_json_key(w, "ranges");
+        rugo_json_begin_array(w, 0);
+        for (int i = 0; i < r->range_count; ++i) {
+            rugo_json_begin_object(w, RUGO_JSON_INLINE);
+            rugo_json_key(w, "from");
+            rugo_json_number(w, r->ranges[i].from);
+            rugo_json_key(w, "to");
+            rugo_json_number(w, r->ranges[i].to);
+            rugo_json_key(w, "tolerance");
+            rugo_json_number(w, r->ranges[i].tolerance);
+            rugo_json_end_object(w);
+        }
+        rugo_json_end_array(w);
+        rugo_json_key(w, "background");
+        rugo_json_number(w, r->background);
+        break;
+    case RUGO_ROUGHNESS_PROFILE:
+        rugo_json_key(w, "profile");
+        rugo_json_begin_array(w, 0);
+        for (int i = 0; i < r->profile_count; ++i) {
+            rugo_json_begin_array(w, RUGO_JSON_INLINE);
+            rugo_json_number(w, r->profile[i].s);
+            rugo_json_number(w, r->profile[i].tolerance);
+            rugo_json_end_array(w);
+        }
+        rugo_json_end_array(w);
         break;
     default:
         rugo_json_key(w, "tolerances");

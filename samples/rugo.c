@@ -321,18 +321,25 @@ static rugo_roughness_desc roughness_of(const rugo_shape_desc* d) {
 /* The tolerance of every finest segment (n values, malloc'd into *out) as `r` gives them, or 0 when r
  * is NULL (a shape without roughness is smooth). In the file's own segment numbering, or, when
  * `reversed`, in that of the reversed (counter-clockwise) points, where the file's segment j is
- * segment n-2-j. Returns 0 or EXIT_INPUT after a message. */
-static int finest_tolerances(const char* path, const rugo_roughness_desc* r, int n, int reversed,
-                             rugo_real** out) {
+ * segment n-2-j. `points` are the n control points in the numbering of the result (arc-length
+ * roughness is resolved on them, in the file's order). Returns 0 or EXIT_INPUT after a message. */
+static int finest_tolerances(const char* path, const rugo_roughness_desc* r, const rugo_vec2* points, int n,
+                             int reversed, rugo_real** out) {
     *out = NULL;
     rugo_real* in = calloc((size_t)n, sizeof *in);
     rugo_real* res = calloc((size_t)n, sizeof *res);
-    if (in == NULL || res == NULL) {
+    rugo_vec2* file_order = reversed ? malloc(sizeof *file_order * (size_t)n) : NULL;
+    if (in == NULL || res == NULL || (reversed && file_order == NULL)) {
         free(in);
         free(res);
+        free(file_order);
         return fail("tolerances", RUGO_ERR_OUT_OF_MEMORY);
     }
-    rugo_status st = r ? rugo_roughness_tolerances(r, n, in) : RUGO_OK;
+    for (int k = 0; reversed && k < n; ++k)
+        file_order[k] = points[n - 1 - k]; /* undo the reversal */
+    rugo_contour fc = {reversed ? file_order : points, n};
+    rugo_status st = r ? rugo_roughness_tolerances_on_contour(r, fc, NULL, in) : RUGO_OK;
+    free(file_order);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s: roughness: %s (status %d)\n", g_command, path, rugo_status_string(st),
                 (int)st);
@@ -351,7 +358,7 @@ static int finest_tolerances(const char* path, const rugo_roughness_desc* r, int
  * the input's, re-numbered if the points were reversed (a list then, since presets start at segment 0),
  * without the perturbation, which belonged to the old geometry. *tol receives an array to free. */
 static int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed,
-                             rugo_roughness_desc* out, rugo_real** tol) {
+                             const rugo_vec2* points, rugo_roughness_desc* out, rugo_real** tol) {
     *tol = NULL;
     *out = in->roughness;
     out->has_perturbation = 0;
@@ -359,7 +366,7 @@ static int carried_roughness(const char* path, const rugo_shape_desc* in, int re
     out->perturbation_count = 0;
     out->perturbation_levels = 0;
     if (!reversed || in->roughness.kind == RUGO_ROUGHNESS_CONSTANT) return 0;
-    int rc = finest_tolerances(path, &in->roughness, in->count, 1, tol);
+    int rc = finest_tolerances(path, &in->roughness, points, in->count, 1, tol);
     if (rc) return rc;
     out->kind = RUGO_ROUGHNESS_TOLERANCES;
     out->tolerances = *tol;
@@ -577,8 +584,8 @@ static int cmd_deform(int argc, char** argv) {
     rugo_real* carried = NULL;
     if (desc.has_roughness) {
         shape_out.has_roughness = 1;
-        rc = carried_roughness(a.positional[0], &desc, rugo_pyramid_was_reversed(p), &shape_out.roughness,
-                               &carried);
+        rc = carried_roughness(a.positional[0], &desc, rugo_pyramid_was_reversed(p), c.points,
+                               &shape_out.roughness, &carried);
     }
     if (rc == 0) rc = write_desc(opt(&a, "-o", NULL), &shape_out, extra);
     free(carried);
@@ -587,6 +594,205 @@ free_pyramid:
 done:
     rugo_shape_desc_free(&desc);
     return rc;
+}
+
+/* ---- import (docs/import.md) ------------------------------------------------------------------- */
+
+#ifdef RUGO_HAVE_FIT
+/* Prints a parse error with the file, line and column (when known), the field and the message. */
+static void report_parse_error(const char* file, rugo_status st, const rugo_parse_error* err) {
+    fprintf(stderr, "rugo %s: %s", g_command, file);
+    if (err->line > 0) fprintf(stderr, ":%d:%d", err->line, err->column);
+    fprintf(stderr, ": %s%s%s (status %d: %s)\n", err->path, err->path[0] ? ": " : "",
+            err->message[0] ? err->message : rugo_status_string(st), (int)st, rugo_status_string(st));
+}
+
+/* Reads a points file for `fit` and `import`: JSON {"points": [...]} or plain text, one "x,y" or "x y"
+ * per line (rugo_points_text_parse). Returns 0, or EXIT_INPUT after a message. */
+static int load_points(const char* path, rugo_vec2** pts, int* count) {
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_read_file(path, NULL, &text, &len);
+    if (st != RUGO_OK) return fail(path, st);
+    rugo_parse_error err;
+    st = rugo_points_text_parse(text, len, NULL, pts, count, &err);
+    rugo_text_free(NULL, text);
+    if (st != RUGO_OK) {
+        report_parse_error(path, st, &err);
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+/* A JSON string literal of s (quotes, backslashes and control characters escaped). */
+static void print_json_string(FILE* f, const char* s) {
+    fputc('"', f);
+    for (; *s; ++s) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+/* Writes a shape description to `path` atomically: into PATH.tmp next to it, renamed over PATH only
+ * when complete, so that a failure leaves PATH as it was. Returns 0 or EXIT_INPUT. */
+static int write_desc_atomic(const char* path, const rugo_shape_desc* d) {
+    const size_t n = strlen(path);
+    char* tmp = malloc(n + 5);
+    if (tmp == NULL) return fail("writing the shape", RUGO_ERR_OUT_OF_MEMORY);
+    memcpy(tmp, path, n);
+    memcpy(tmp + n, ".tmp", 5);
+    int rc = write_desc(tmp, d, NULL);
+    if (rc == 0 && rename(tmp, path) != 0) {
+        fprintf(stderr, "rugo %s: %s: cannot rename the temporary file over it\n", g_command, path);
+        rc = EXIT_INPUT;
+    }
+    if (rc != 0) (void)remove(tmp);
+    free(tmp);
+    return rc;
+}
+
+/* 1 if the text's first non-blank character (after a UTF-8 byte order mark) is '<': an SVG document. */
+static int looks_like_xml(const char* text, size_t len) {
+    size_t i = 0;
+    if (len >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB && (unsigned char)text[2] == 0xBF)
+        i = 3;
+    while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
+        ++i;
+    return i < len && text[i] == '<';
+}
+#endif
+
+static int cmd_import(int argc, char** argv) {
+#ifdef RUGO_HAVE_FIT
+    static const char* const vals[] = {"--path-id", "--control-points", "--tolerance", "--samples", "-o", NULL};
+    args a;
+    int rc = parse_args(argc, argv, vals, NULL, &a);
+    if (rc) return rc;
+    if (a.positional_count != 1) return usage_error("expects one SVG or points file%s", "");
+    const char *id = opt(&a, "--path-id", NULL), *nv = opt(&a, "--control-points", NULL),
+               *tv = opt(&a, "--tolerance", NULL), *mv = opt(&a, "--samples", NULL), *out = opt(&a, "-o", NULL);
+    if (out == NULL) return usage_error("needs -o OUT.json%s", "");
+    int n = 0, m = 0;
+    double tol = 0.0;
+    if (nv && (parse_int(nv, 4, RUGO_MAX_CONTROL_POINTS, &n) != 0 || (n & (n - 1)) != 0))
+        return usage_error("--control-points must be a power of two >= 4, got '%s'", nv);
+    if (tv && (parse_real(tv, &tol) != 0 || !(tol > 0.0)))
+        return usage_error("--tolerance must be a number > 0, got '%s'", tv);
+    if (nv && tv) return usage_error("--control-points and --tolerance exclude each other%s", "");
+    if (mv && parse_int(mv, 3, RUGO_MAX_CONTROL_POINTS, &m) != 0)
+        return usage_error("--samples must be an integer from 3 to 1048576, got '%s'", mv);
+    const char* file = a.positional[0];
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+    if (st != RUGO_OK) return fail(file, st);
+    const int svg = looks_like_xml(text, len);
+    if (!svg && id) {
+        rugo_text_free(NULL, text);
+        return usage_error("--path-id applies to SVG input; %s is a points file", file);
+    }
+    rugo_outline_samples s;
+    memset(&s, 0, sizeof s);
+    rugo_parse_error err;
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    /* SVG: the default sampling, raised to 8 samples per control point for large explicit counts. */
+    sd.sample_count = m ? m : (n > RUGO_DEFAULT_OUTLINE_SAMPLES / 8 ? (n > RUGO_MAX_CONTROL_POINTS / 8 ? RUGO_MAX_CONTROL_POINTS : 8 * n) : 0);
+    if (svg) {
+        st = rugo_svg_import_outline(text, len, id, &sd, &s, &err);
+        rugo_text_free(NULL, text);
+    } else {
+        /* A point list: its points are the samples, unless --samples resamples the polygon through them. */
+        rugo_vec2* pts = NULL;
+        int count = 0;
+        st = rugo_points_text_parse(text, len, NULL, &pts, &count, &err);
+        rugo_text_free(NULL, text);
+        rugo_path poly;
+        memset(&poly, 0, sizeof poly);
+        if (st == RUGO_OK) {
+            st = rugo_path_from_points(pts, count, NULL, &poly);
+            if (st != RUGO_OK) {
+                memset(&err, 0, sizeof err);
+                snprintf(err.message, sizeof err.message, "%d points do not make an outline", count);
+            }
+        }
+        if (st == RUGO_OK) {
+            sd.path = &poly;
+            sd.sample_count = m ? m : count;
+            st = rugo_outline_sample(&sd, &s, &err);
+        }
+        rugo_path_free(&poly);
+        rugo_points_free(NULL, pts);
+    }
+    if (st != RUGO_OK) {
+        report_parse_error(file, st, &err);
+        return EXIT_INPUT;
+    }
+    rugo_vec2 lo = s.points[0], hi = s.points[0];
+    for (int i = 1; i < s.count; ++i) {
+        lo.x = fmin(lo.x, s.points[i].x);
+        lo.y = fmin(lo.y, s.points[i].y);
+        hi.x = fmax(hi.x, s.points[i].x);
+        hi.y = fmax(hi.y, s.points[i].y);
+    }
+    if (!nv && !tv) tol = 1e-3 * hypot(hi.x - lo.x, hi.y - lo.y); /* 0.1% of the outline's size */
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    fd.samples = s.points;
+    fd.sample_count = s.count;
+    fd.control_count = n;
+    fd.tolerance = n ? 0.0 : tol;
+    rugo_outline_fit f;
+    st = rugo_fit_outline(&fd, &f);
+    if (st != RUGO_OK) {
+        rugo_outline_samples_free(&s);
+        return fail("fit", st);
+    }
+    rugo_shape_desc d;
+    memset(&d, 0, sizeof d);
+    d.control_points = f.control_points;
+    d.count = f.control_count;
+    d.filter = RUGO_FILTER_DEFAULT;
+    if (!f.tolerance_met) {
+        fprintf(stderr,
+                "rugo %s: %s: max_error %.6g at %d control points (the most tried for %d samples) is above the "
+                "tolerance %.6g; give --control-points, a larger --tolerance or more --samples\n",
+                g_command, file, f.max_error, f.control_count, s.count, tol);
+        rc = EXIT_INPUT;
+    } else {
+        rc = check_outline(file, &d, RUGO_CHECK_ALL);
+    }
+    if (rc == 0) rc = write_desc_atomic(out, &d);
+    if (rc == 0) {
+        rugo_contour c = {f.control_points, f.control_count};
+        printf("{\"output\": ");
+        print_json_string(stdout, out);
+        printf(", \"source\": \"%s\", \"path_id\": ", svg ? "svg" : "points");
+        if (svg && id)
+            print_json_string(stdout, id);
+        else
+            printf("null");
+        printf(", \"samples\": %d, \"perimeter\": %.17g, \"control_points\": %d, \"tolerance\": ", s.count,
+               s.perimeter, f.control_count);
+        if (n)
+            printf("null");
+        else
+            printf("%.17g", tol);
+        printf(", \"max_error\": %.17g, \"rms_error\": %.17g, \"max_error_at_parameter\": %.17g, \"area\": %.17g}\n",
+               f.max_error, f.rms_error, f.max_error_at_parameter, rugo_contour_signed_area(c));
+    }
+    rugo_outline_fit_free(&f);
+    rugo_outline_samples_free(&s);
+    return rc;
+#else
+    (void)argc;
+    (void)argv;
+    return fail("import", RUGO_ERR_UNSUPPORTED);
+#endif
 }
 
 static int cmd_fit(int argc, char** argv) {
@@ -605,20 +811,10 @@ static int cmd_fit(int argc, char** argv) {
         param = RUGO_PARAM_UNIFORM;
     else if (pv && strcmp(pv, "chord") != 0)
         return usage_error("--param must be chord or uniform, got '%s'", pv);
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(a.positional[0], NULL, &text, &len);
-    if (st != RUGO_OK) return fail(a.positional[0], st);
     rugo_vec2* pts = NULL;
     int count = 0;
-    rugo_parse_error err;
-    st = rugo_points_parse(text, len, "points", NULL, &pts, &count, &err);
-    rugo_text_free(NULL, text);
-    if (st != RUGO_OK) {
-        fprintf(stderr, "rugo fit: %s:%d:%d: %s%s%s (status %d: %s)\n", a.positional[0], err.line, err.column,
-                err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
-        return EXIT_INPUT;
-    }
+    if ((rc = load_points(a.positional[0], &pts, &count))) return rc;
+    rugo_status st;
     rugo_vec2* ctrl = malloc(sizeof *ctrl * (size_t)n);
     if (ctrl == NULL) {
         rugo_points_free(NULL, pts);
@@ -651,14 +847,37 @@ static int cmd_fit(int argc, char** argv) {
 #endif
 }
 
+/* Reads a CSV roughness profile (docs/roughness.md); 0, or EXIT_INPUT after a message naming the file,
+ * line, column and sample. */
+static int load_profile_csv(const char* file, rugo_profile_sample** samples, int* count) {
+    char* text = NULL;
+    size_t len = 0;
+    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, file, rugo_status_string(st),
+                (int)st);
+        return EXIT_INPUT;
+    }
+    rugo_parse_error err;
+    st = rugo_roughness_profile_parse_csv(text, len, NULL, samples, count, &err);
+    rugo_text_free(NULL, text);
+    if (st != RUGO_OK) {
+        fprintf(stderr, "rugo %s: %s:%d:%d: %s%s%s (status %d: %s)\n", g_command, file, err.line, err.column,
+                err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
 static int cmd_roughen(int argc, char** argv) {
-    static const char* const vals[] = {"--method", "--preset", "--seed", "--levels", "-o", NULL};
+    static const char* const vals[] = {"--method", "--preset", "--seed", "--levels", "--profile", "-o", NULL};
     args a;
     int rc = parse_args(argc, argv, vals, NULL, &a);
     if (rc) return rc;
     if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
     const char *mv = opt(&a, "--method", NULL), *pv = opt(&a, "--preset", NULL),
-               *sv = opt(&a, "--seed", NULL), *lv = opt(&a, "--levels", NULL);
+               *sv = opt(&a, "--seed", NULL), *lv = opt(&a, "--levels", NULL),
+               *fv = opt(&a, "--profile", NULL);
     int method = -1; /* -1: the tolerance library only; else a rugo_roughen_method */
     int levels = 2;
     rugo_tolerance_preset preset = RUGO_PRESET_TIPO_1;
@@ -671,6 +890,7 @@ static int cmd_roughen(int argc, char** argv) {
         return usage_error("--method must be wavelet, local or library, got '%s'", mv);
     if (pv && rugo_preset_from_name(pv, &preset) != RUGO_OK)
         return usage_error("--preset must be tipo_1, tipo_2, tipo_3 or tipo_5, got '%s'", pv);
+    if (pv && fv) return usage_error("--preset and --profile exclude each other%s", "");
     if (sv && parse_seed(sv, &seed) != 0)
         return usage_error("--seed must be an integer from 0 to 9007199254740992 (2^53), got '%s'", sv);
     if (lv && method < 0) return usage_error("--levels applies to --method wavelet or local%s", "");
@@ -689,6 +909,12 @@ static int cmd_roughen(int argc, char** argv) {
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
+    rugo_profile_sample* profile = NULL;
+    int profile_count = 0;
+    if (fv && (rc = load_profile_csv(fv, &profile, &profile_count))) {
+        rugo_shape_desc_free(&desc);
+        return rc;
+    }
     int n = desc.count;
     int reversed = rugo_contour_orient_ccw(desc.control_points, n);
     rugo_roughness_desc r = roughness_of(&desc);
@@ -696,10 +922,15 @@ static int cmd_roughen(int argc, char** argv) {
         r.kind = RUGO_ROUGHNESS_PRESET;
         r.preset = preset;
     }
+    if (fv) { /* resolved on the input's points, in its own order, below */
+        r.kind = RUGO_ROUGHNESS_PROFILE;
+        r.profile = profile;
+        r.profile_count = profile_count;
+    }
     if (sv) r.seed = seed;
     rugo_real* tol = NULL;
     rugo_vec2* pert = NULL;
-    if ((rc = finest_tolerances(path, &r, n, reversed, &tol))) goto done;
+    if ((rc = finest_tolerances(path, &r, desc.control_points, n, reversed, &tol))) goto done;
     /* The resolved values are written, not the preset: the file then says exactly what the shape is,
      * in the numbering of the points written (counter-clockwise), whatever later versions of the
      * presets do. */
@@ -749,6 +980,7 @@ static int cmd_roughen(int argc, char** argv) {
 done:
     free(pert);
     free(tol);
+    rugo_roughness_profile_free(NULL, profile);
     rugo_shape_desc_free(&desc);
     return rc;
 }
@@ -806,7 +1038,7 @@ static int cmd_tolerances(int argc, char** argv) {
             rc = EXIT_USAGE;
             goto done;
         }
-        if ((rc = finest_tolerances(path, source, desc.count, 0, &tol))) goto done;
+        if ((rc = finest_tolerances(path, source, desc.control_points, desc.count, 0, &tol))) goto done;
         rugo_real lambda = rugo_tolerance_at(tol, desc.count, seg, st_pair.y, 0.0);
         printf("{\"segment\": %d, \"t\": %.17g, \"tolerance\": %.17g, \"friction\": %.17g, \"restitution\": "
                "%.17g}\n",
@@ -816,7 +1048,9 @@ static int cmd_tolerances(int argc, char** argv) {
     rugo_pyramid* p = NULL;
     if ((rc = build_pyramid(path, &desc, desc.filter, 0, &p))) goto done;
     int reversed = rugo_pyramid_was_reversed(p);
-    if ((rc = finest_tolerances(path, source, desc.count, reversed, &tol))) {
+    rugo_contour ccw; /* the pyramid's finest level: the points, counter-clockwise */
+    rugo_pyramid_level(p, rugo_pyramid_finest_level(p), &ccw);
+    if ((rc = finest_tolerances(path, source, ccw.points, desc.count, reversed, &tol))) {
         rugo_pyramid_destroy(p);
         goto done;
     }
@@ -876,7 +1110,8 @@ static int make_shape(const char* path, const rugo_shape_desc* desc, rugo_shape*
     *out = NULL;
     rugo_roughness_desc r = roughness_of(desc);
     rugo_real* tol = NULL;
-    int rc = finest_tolerances(path, desc->has_roughness ? &desc->roughness : NULL, desc->count, 0, &tol);
+    int rc = finest_tolerances(path, desc->has_roughness ? &desc->roughness : NULL, desc->control_points,
+                               desc->count, 0, &tol);
     if (rc) return rc;
     rugo_shape_def def = rugo_default_shape_def();
     def.points = desc->control_points;
@@ -1018,7 +1253,7 @@ static int cmd_render(int argc, char** argv) {
     int reversed = rugo_contour_orient_ccw(desc.control_points, desc.count);
     rugo_real* tol = NULL;
     if (band && (rc = finest_tolerances(a.positional[0], desc.has_roughness ? &desc.roughness : NULL,
-                                        desc.count, reversed, &tol))) {
+                                        desc.control_points, desc.count, reversed, &tol))) {
         rugo_shape_desc_free(&desc);
         return rc;
     }
@@ -1152,11 +1387,14 @@ static void usage(FILE* f) {
         "                                       over R levels with weights e^(-W s)\n"
         "  fit POINTS.json [--control-points N] [--param chord|uniform] [-o OUT.json]\n"
         "                                       least-squares closed contour through {\"points\": [...]}\n"
+        "  import FILE.svg|POINTS [--path-id ID] [--control-points N | --tolerance T] [--samples M] -o OUT.json\n"
+        "                                       outline from an SVG <path> (y flipped up) or a point list,\n"
+        "                                       sampled and fitted; prints the fit error (docs/import.md)\n"
         "  render SHAPE.json -o OUT.svg [--levels K] [--samples N] [--no-control-polygon] [--band]\n"
         "         [--perturbation]              SVG picture; --band: the tolerance band, --perturbation:\n"
         "                                       the stored perturbation geometry\n"
         "  roughen SHAPE.json [--method wavelet|local|library] [--preset tipo_1|tipo_2|tipo_3|tipo_5]\n"
-        "          [--seed N] [--levels M] [-o OUT.json]\n"
+        "          [--profile PROFILE.csv] [--seed N] [--levels M] [-o OUT.json]\n"
         "                                       the shape with per-segment tolerances (and, for wavelet\n"
         "                                       or local, display perturbations M levels finer)\n"
         "  tolerances SHAPE.json [--estimator detail|coefficients] [--at SEGMENT,T]\n"
@@ -1184,7 +1422,7 @@ int main(int argc, char** argv) {
         int (*run)(int, char**);
     } commands[] = {{"info", cmd_info},       {"decompose", cmd_decompose},
                     {"refine", cmd_refine},   {"deform", cmd_deform},
-                    {"fit", cmd_fit},         {"render", cmd_render}, {"contacts", cmd_contacts},
+                    {"fit", cmd_fit},         {"import", cmd_import},         {"render", cmd_render}, {"contacts", cmd_contacts},
                     {"roughen", cmd_roughen}, {"tolerances", cmd_tolerances},
                     {"bake", cmd_bake}};
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)

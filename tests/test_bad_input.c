@@ -3,6 +3,7 @@
 #include "rugo/rugo.h"
 #include "test_util.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,7 +23,8 @@ static rugo_status json_to_shape(const char* text) {
     def.filter = d.filter;
     if (d.has_roughness && d.count > 0) {
         lam = (rugo_real*)malloc(sizeof *lam * (size_t)d.count);
-        st = rugo_roughness_tolerances(&d.roughness, d.count, lam);
+        rugo_contour c = {d.control_points, d.count}; /* arc-length roughness needs the curve */
+        st = rugo_roughness_tolerances_on_contour(&d.roughness, c, NULL, lam);
         def.tolerances = lam;
         def.q = d.roughness.q;
         def.friction = d.roughness.friction;
@@ -75,6 +77,36 @@ static const row ROWS[] = {
     {"restitution range empty", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 0.9, \"epsilon_max\": 0.5}}}", RUGO_ERR_EMPTY_RANGE},
     {"seed beyond 2^53", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_2\", \"seed\": 9007199254740993}}", RUGO_ERR_BAD_FIELD},
     {"unknown preset", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_9\"}}", RUGO_ERR_BAD_FIELD},
+    {"range from outside [0, 1]", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": -0.1, \"to\": 0.5, \"tolerance\": 0.1}]}}", RUGO_ERR_BAD_FIELD},
+    {"empty range", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.5, \"to\": 0.5, \"tolerance\": 0.1}]}}", RUGO_ERR_BAD_FIELD},
+    {"range without tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5}]}}", RUGO_ERR_BAD_FIELD},
+    {"negative range tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5, \"tolerance\": -0.1}]}}", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"negative background", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"background\": -1}}", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"empty profile", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": []}}", RUGO_ERR_BAD_FIELD},
+    {"profile s outside [0, 1]", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0.1], [2, 0.1]]}}", RUGO_ERR_BAD_FIELD},
+    {"profile s not increasing", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, 0.1], [0.5, 0.2]]}}", RUGO_ERR_BAD_FIELD},
+    {"negative profile tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, -0.1]]}}", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"ranges and profile both", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"profile\": [[0, 0]]}}", RUGO_ERR_BAD_FIELD},
+    {"ranges on too few points", "{\"control_points\": [[0,0],[1,0],[0,1]], \"roughness\": {\"ranges\": []}}", RUGO_ERR_TOO_FEW_POINTS},
+    {"ranges on a curve of no length", "{\"control_points\": [[1,1],[1,1],[1,1],[1,1]], \"roughness\": {\"ranges\": []}}", RUGO_ERR_ZERO_AREA},
+    {"valid ranges (control row: builds)", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.9, \"to\": 0.1, \"tolerance\": 0.1}]}}", RUGO_OK},
+    {"valid profile (control row: builds)", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0], [0.5, 0.1]]}}", RUGO_OK},
+};
+
+/* CSV roughness profiles (rugo_roughness_profile_parse_csv). */
+static const row CSV_ROWS[] = {
+    {"no samples", "s,lambda\n", RUGO_ERR_BAD_FIELD},
+    {"one field", "0.1\n", RUGO_ERR_PARSE},
+    {"three fields", "0.1,0.2,0.3\n", RUGO_ERR_PARSE},
+    {"not a number", "0.1,abc\n", RUGO_ERR_PARSE},
+    {"empty field", "0.1,\n", RUGO_ERR_PARSE},
+    {"NaN", "nan,0.1\n", RUGO_ERR_NOT_FINITE},
+    {"infinity", "0.1,inf\n", RUGO_ERR_NOT_FINITE},
+    {"overflow", "0.1,1e999\n", RUGO_ERR_NOT_FINITE},
+    {"s outside [0, 1]", "1.5,0.1\n", RUGO_ERR_BAD_FIELD},
+    {"s not increasing", "0.5,0.1\n0.25,0.1\n", RUGO_ERR_BAD_FIELD},
+    {"negative tolerance", "0.5,-0.1\n", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"valid (control row)", "s,lambda\n0,0.1\n0.5,0.2\n", RUGO_OK},
 };
 
 START_TEST(json_rows) {
@@ -83,6 +115,21 @@ START_TEST(json_rows) {
         ck_assert_msg(st == ROWS[i].expect, "%s: got %d (%s), expected %d (%s)", ROWS[i].what, st,
                       rugo_status_string(st), ROWS[i].expect, rugo_status_string(ROWS[i].expect));
         ck_assert(strlen(rugo_status_string(st)) > 0);
+    }
+}
+END_TEST
+
+START_TEST(csv_rows) {
+    for (size_t i = 0; i < sizeof CSV_ROWS / sizeof CSV_ROWS[0]; ++i) {
+        rugo_profile_sample* p = NULL;
+        int n = 0;
+        rugo_parse_error e;
+        const char* t = CSV_ROWS[i].json;
+        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), NULL, &p, &n, &e);
+        ck_assert_msg(st == CSV_ROWS[i].expect, "csv %s: got %d (%s), expected %d (%s)", CSV_ROWS[i].what, st,
+                      rugo_status_string(st), CSV_ROWS[i].expect, rugo_status_string(CSV_ROWS[i].expect));
+        if (st != RUGO_OK) ck_assert(e.message[0] != '\0' && e.line >= 1);
+        rugo_roughness_profile_free(NULL, p);
     }
 }
 END_TEST
@@ -104,6 +151,16 @@ START_TEST(huge_counts) {
     deep[150] = '\0';
     rugo_shape_desc d;
     ck_assert_int_eq(rugo_shape_desc_parse(deep, 150, NULL, &d, NULL), RUGO_ERR_PARSE);
+    /* More than 2^16 ranges in a roughness object. */
+    size_t cap = ((size_t)RUGO_MAX_ROUGHNESS_RANGES + 1) * 40 + 128, len = 0;
+    char* big = (char*)malloc(cap);
+    ck_assert_ptr_nonnull(big);
+    len += (size_t)snprintf(big, cap, "{\"control_points\": %s, \"roughness\": {\"ranges\": [", SQ);
+    for (int i = 0; i <= RUGO_MAX_ROUGHNESS_RANGES; ++i)
+        len += (size_t)snprintf(big + len, cap - len, "%s{\"from\":0,\"to\":1,\"tolerance\":0}", i ? "," : "");
+    len += (size_t)snprintf(big + len, cap - len, "]}}");
+    ck_assert_int_eq(rugo_shape_desc_parse(big, len, NULL, &d, NULL), RUGO_ERR_TOO_MANY_POINTS);
+    free(big);
 }
 END_TEST
 
@@ -196,6 +253,7 @@ int main(void) {
     tcase_add_test(tc, huge_counts);
     tcase_add_test(tc, parameters_out_of_range);
     tcase_add_test(tc, baked_rows);
+    tcase_add_test(tc, csv_rows);
     suite_add_tcase(s, tc);
     return test_run_suite(s);
 }

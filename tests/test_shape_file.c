@@ -1162,6 +1162,22 @@ static void assert_same_roughness(const rugo_roughness_desc* a, const rugo_rough
         for (int i = 0; i < a->tolerance_count; ++i)
             ck_assert(bits_of(a->tolerances[i]) == bits_of(b->tolerances[i]));
     }
+    if (a->kind == RUGO_ROUGHNESS_RANGES) {
+        ck_assert_int_eq(a->range_count, b->range_count);
+        ck_assert(bits_of(a->background) == bits_of(b->background));
+        for (int i = 0; i < a->range_count; ++i) {
+            ck_assert(bits_of(a->ranges[i].from) == bits_of(b->ranges[i].from));
+            ck_assert(bits_of(a->ranges[i].to) == bits_of(b->ranges[i].to));
+            ck_assert(bits_of(a->ranges[i].tolerance) == bits_of(b->ranges[i].tolerance));
+        }
+    }
+    if (a->kind == RUGO_ROUGHNESS_PROFILE) {
+        ck_assert_int_eq(a->profile_count, b->profile_count);
+        for (int i = 0; i < a->profile_count; ++i) {
+            ck_assert(bits_of(a->profile[i].s) == bits_of(b->profile[i].s));
+            ck_assert(bits_of(a->profile[i].tolerance) == bits_of(b->profile[i].tolerance));
+        }
+    }
     ck_assert(a->seed == b->seed);
     ck_assert(bits_of(a->q) == bits_of(b->q));
     ck_assert_int_eq(a->estimator, b->estimator);
@@ -1530,6 +1546,24 @@ static rugo_roughness_desc random_roughness(test_rng* r, int n) {
         }
         d.tolerance_count = n;
     }
+    if (d.kind == RUGO_ROUGHNESS_RANGES) { /* 0 to 3 ranges, any bits in [0, 1] */
+        d.range_count = (int)(test_rng_next(r) % 4);
+        d.ranges = (rugo_roughness_range*)malloc(sizeof(rugo_roughness_range) * 4);
+        for (int i = 0; i < d.range_count; ++i) {
+            d.ranges[i].from = test_rng_uniform(r, 0.0, 1.0);
+            d.ranges[i].to = test_rng_next(r) % 4 == 0 ? 1.0 : test_rng_uniform(r, 0.0, 1.0);
+            d.ranges[i].tolerance = fabs(random_double(r));
+        }
+        d.background = fabs(random_double(r));
+    }
+    if (d.kind == RUGO_ROUGHNESS_PROFILE) { /* 1 to 4 samples, strictly increasing s */
+        d.profile_count = 1 + (int)(test_rng_next(r) % 4);
+        d.profile = (rugo_profile_sample*)malloc(sizeof(rugo_profile_sample) * 4);
+        for (int i = 0; i < d.profile_count; ++i) {
+            d.profile[i].s = (i + test_rng_uniform(r, 0.0, 1.0)) / 4.0;
+            d.profile[i].tolerance = fabs(random_double(r));
+        }
+    }
     d.constant = fabs(random_double(r));
     switch (test_rng_next(r) % 4) {
     case 0:
@@ -1569,6 +1603,8 @@ static rugo_roughness_desc random_roughness(test_rng* r, int n) {
 static void free_random_roughness(rugo_roughness_desc* d) {
     free(d->tolerances);
     free(d->perturbation_points);
+    free(d->ranges);
+    free(d->profile);
 }
 
 START_TEST(roughness_round_trip_bits) {
@@ -2379,6 +2415,830 @@ START_TEST(fuzz_token_soup) {
 }
 END_TEST
 
+/* ------------------------------------------------------------------------------------------------ */
+/* Roughness by arc length: "ranges" and "profile", resampled onto the segments */
+
+/* The unit square's control polygon: its B-spline has four segments of equal length (a quarter turn
+ * maps segment j onto j+1), so segment j covers [j/4, (j+1)/4] of the perimeter. */
+static const rugo_vec2 SQ4[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+
+static rugo_roughness_desc ranges_desc(rugo_roughness_range* g, int m, double background) {
+    rugo_roughness_desc r = rugo_default_roughness_desc();
+    r.kind = RUGO_ROUGHNESS_RANGES;
+    r.ranges = g;
+    r.range_count = m;
+    r.background = background;
+    return r;
+}
+
+static rugo_roughness_desc profile_desc(rugo_profile_sample* p, int m) {
+    rugo_roughness_desc r = rugo_default_roughness_desc();
+    r.kind = RUGO_ROUGHNESS_PROFILE;
+    r.profile = p;
+    r.profile_count = m;
+    return r;
+}
+
+/* Resolves r on the square; every |out_j - expect_j| <= tol. */
+static void expect_on_square(const char* what, const rugo_roughness_desc* r, const double expect[4],
+                             double tol) {
+    rugo_contour c = {SQ4, 4};
+    rugo_real out[4];
+    rugo_status st = rugo_roughness_tolerances_on_contour(r, c, NULL, out);
+    ck_assert_msg(st == RUGO_OK, "%s: status %d", what, (int)st);
+    for (int j = 0; j < 4; ++j)
+        ck_assert_msg(fabs(out[j] - expect[j]) <= tol, "%s: segment %d: %.17g, expected %.17g", what, j,
+                      out[j], expect[j]);
+}
+
+START_TEST(arc_square_quarters) {
+    /* What the hand-computed cases below stand on: four equal arcs. */
+    rugo_contour c = {SQ4, 4};
+    double l0 = rugo_contour_segment_length(c, 0);
+    ck_assert(l0 > 0.73 && l0 < 0.731);
+    for (int j = 1; j < 4; ++j)
+        ck_assert_near(rugo_contour_segment_length(c, j), l0, 1e-15);
+}
+END_TEST
+
+START_TEST(arc_ranges_hand_computed) {
+    /* 0.2..0.4 touches segments 0 ([0, 0.25]) and 1 ([0.25, 0.5]); both are partly outside the range,
+     * but max(0.3, 0.05) = 0.3. */
+    rugo_roughness_range a[1] = {{0.2, 0.4, 0.3}};
+    rugo_roughness_desc r = ranges_desc(a, 1, 0.05);
+    static const double ea[4] = {0.3, 0.3, 0.05, 0.05};
+    expect_on_square("0.2-0.4", &r, ea, 0.0);
+    /* A background above the range wins wherever the range does not cover the whole segment. */
+    rugo_roughness_range b[1] = {{0.2, 0.4, 0.1}};
+    r = ranges_desc(b, 1, 0.5);
+    static const double eb[4] = {0.5, 0.5, 0.5, 0.5};
+    expect_on_square("low range, high background", &r, eb, 0.0);
+    /* A smooth patch exactly on segment 1: its ends on the segment boundaries do not spill over. */
+    rugo_roughness_range c[1] = {{0.25, 0.5, 0.1}};
+    r = ranges_desc(c, 1, 0.5);
+    static const double ec[4] = {0.5, 0.1, 0.5, 0.5};
+    expect_on_square("patch on segment 1", &r, ec, 0.0);
+    /* Wrap-around: from 0.9 through 0 to 0.1 touches segments 3 and 0. */
+    rugo_roughness_range d[1] = {{0.9, 0.1, 0.4}};
+    r = ranges_desc(d, 1, 0.0);
+    static const double ed[4] = {0.4, 0.0, 0.0, 0.4};
+    expect_on_square("wrap", &r, ed, 0.0);
+    /* From 1 (= 0) to 0.3: [0, 0.3]. */
+    rugo_roughness_range e[1] = {{1.0, 0.3, 0.6}};
+    r = ranges_desc(e, 1, 0.0);
+    static const double ee[4] = {0.6, 0.6, 0.0, 0.0};
+    expect_on_square("from 1", &r, ee, 0.0);
+    /* Overlap: the larger tolerance, in either order. */
+    rugo_roughness_range f[2] = {{0.1, 0.6, 0.2}, {0.3, 0.4, 0.7}};
+    r = ranges_desc(f, 2, 0.0);
+    static const double ef[4] = {0.2, 0.7, 0.2, 0.0};
+    expect_on_square("overlap", &r, ef, 0.0);
+    rugo_roughness_range f2[2] = {{0.3, 0.4, 0.7}, {0.1, 0.6, 0.2}};
+    r = ranges_desc(f2, 2, 0.0);
+    expect_on_square("overlap, other order", &r, ef, 0.0);
+    /* Two touching ranges cover segment 1 together, so the background stays out of it. */
+    rugo_roughness_range g[2] = {{0.2, 0.3, 0.1}, {0.3, 0.55, 0.2}};
+    r = ranges_desc(g, 2, 0.9);
+    static const double eg[4] = {0.9, 0.2, 0.9, 0.9};
+    expect_on_square("union covers", &r, eg, 0.0);
+    /* The whole perimeter; no ranges at all; a tiny range inside segment 2. */
+    rugo_roughness_range h[1] = {{0.0, 1.0, 0.15}};
+    r = ranges_desc(h, 1, 0.9);
+    static const double eh[4] = {0.15, 0.15, 0.15, 0.15};
+    expect_on_square("whole", &r, eh, 0.0);
+    r = ranges_desc(NULL, 0, 0.07);
+    static const double ei[4] = {0.07, 0.07, 0.07, 0.07};
+    expect_on_square("background only", &r, ei, 0.0);
+    rugo_roughness_range k[1] = {{0.6, 0.6000001, 1.0}};
+    r = ranges_desc(k, 1, 0.0);
+    static const double ek[4] = {0.0, 0.0, 1.0, 0.0};
+    expect_on_square("narrow", &r, ek, 0.0);
+    /* Through the file: the same as the struct. */
+    char buf[1024];
+    rough_text("\"ranges\": [{\"from\": 0.2, \"to\": 0.4, \"tolerance\": 0.3}], \"background\": 0.05", buf,
+               sizeof buf);
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    ck_assert_int_eq(shape_parse_n(buf, strlen(buf), &desc, &err), RUGO_OK);
+    expect_on_square("parsed", &desc.roughness, ea, 0.0);
+    rugo_shape_desc_free(&desc);
+}
+END_TEST
+
+START_TEST(arc_profile_hand_computed) {
+    /* A peak inside segment 0 is its tolerance; the profile is 0 elsewhere (periodic through 1). */
+    rugo_profile_sample a[3] = {{0.1, 0.0}, {0.125, 1.0}, {0.15, 0.0}};
+    rugo_roughness_desc r = profile_desc(a, 3);
+    static const double ea[4] = {1.0, 0.0, 0.0, 0.0};
+    expect_on_square("peak", &r, ea, 0.0);
+    /* λ = 2 (s - 0.125) up to s = 0.625, then down to 0 at 1.125 (= 0.125): the maxima are at the
+     * segments' ends, except on segment 2, which holds the peak. λ(0) = λ(1) = 0.25. */
+    rugo_profile_sample b[2] = {{0.125, 0.0}, {0.625, 1.0}};
+    r = profile_desc(b, 2);
+    static const double eb[4] = {0.25, 0.75, 1.0, 0.75};
+    expect_on_square("linear", &r, eb, 1e-12);
+    /* Samples at 0 and 1 with different values: the seam takes the larger (0.6) on both sides. */
+    rugo_profile_sample c[3] = {{0.0, 0.2}, {0.5, 0.2}, {1.0, 0.6}};
+    r = profile_desc(c, 3);
+    static const double ec[4] = {0.6, 0.2, 0.4, 0.6};
+    expect_on_square("seam", &r, ec, 1e-12);
+    /* One sample is a constant. */
+    rugo_profile_sample d[1] = {{0.3, 0.12}};
+    r = profile_desc(d, 1);
+    static const double ed[4] = {0.12, 0.12, 0.12, 0.12};
+    expect_on_square("one sample", &r, ed, 0.0);
+    /* Inline in the file. */
+    char buf[1024];
+    rough_text("\"profile\": [[0.1, 0], [0.125, 1], [0.15, 0]]", buf, sizeof buf);
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    ck_assert_int_eq(shape_parse_n(buf, strlen(buf), &desc, &err), RUGO_OK);
+    ck_assert_int_eq(desc.roughness.kind, RUGO_ROUGHNESS_PROFILE);
+    expect_on_square("parsed", &desc.roughness, ea, 0.0);
+    rugo_shape_desc_free(&desc);
+}
+END_TEST
+
+/* Arc fractions of a contour's segments: a[j], a[j+1] bound segment j (a[0] = 0, a[n] = 1). */
+static void arc_fractions(rugo_contour c, double* a) {
+    double total = 0.0;
+    for (int j = 0; j < c.count; ++j)
+        total += rugo_contour_segment_length(c, j);
+    double before = 0.0;
+    a[0] = 0.0;
+    for (int j = 0; j < c.count; ++j) {
+        before += rugo_contour_segment_length(c, j);
+        a[j + 1] = j == c.count - 1 ? 1.0 : before / total;
+    }
+}
+
+/* λ(x) of ranges at a point: the largest range containing x (closed), else the background. */
+static double ranges_at(const rugo_roughness_range* g, int m, double background, double x) {
+    double best = -1.0;
+    for (int i = 0; i < m; ++i) {
+        int in = g[i].from < g[i].to ? (x >= g[i].from && x <= g[i].to) : (x >= g[i].from || x <= g[i].to);
+        if (in && g[i].tolerance > best) best = g[i].tolerance;
+    }
+    return best >= 0.0 ? best : background;
+}
+
+static int cmp_double(const void* a, const void* b) {
+    double x = *(const double*)a, y = *(const double*)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+START_TEST(arc_ranges_brute_force) {
+    /* On random outlines with uneven segments: the maximum of λ over each segment's arc, found
+     * independently from the breakpoints of λ and a point between each two of them. */
+    test_rng r = test_rng_seed(0xa7c);
+    enum { N = 32, M = 8 };
+    rugo_vec2 pts[N];
+    double frac[N + 1];
+    for (int iter = 0; iter < 300; ++iter) {
+        test_random_star(&r, N, rugo_v2(3.0, -1.0), 2.0, 0.45, pts);
+        rugo_contour c = {pts, N};
+        arc_fractions(c, frac);
+        int m = (int)(test_rng_next(&r) % (M + 1));
+        rugo_roughness_range g[M], shuffled[M];
+        for (int i = 0; i < m; ++i) {
+            do {
+                g[i].from = test_rng_uniform(&r, 0.0, 1.0);
+                g[i].to = test_rng_next(&r) % 3 == 0 ? test_rng_uniform(&r, 0.0, 1.0)
+                                                     : fmod(g[i].from + test_rng_uniform(&r, 0.0, 0.2), 1.0);
+            } while (g[i].from == g[i].to);
+            g[i].tolerance = test_rng_uniform(&r, 0.0, 1.0);
+        }
+        double background = test_rng_uniform(&r, 0.0, 0.6);
+        rugo_roughness_desc d = ranges_desc(g, m, background);
+        rugo_real out[N], again[N];
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&d, c, NULL, out), RUGO_OK);
+        for (int j = 0; j < N; ++j) {
+            double p = frac[j] + RUGO_ROUGHNESS_RANGE_SLACK, q = frac[j + 1] - RUGO_ROUGHNESS_RANGE_SLACK;
+            double cand[2 * M + 2];
+            int nc = 0;
+            cand[nc++] = p;
+            cand[nc++] = q;
+            for (int i = 0; i < m; ++i) {
+                if (g[i].from > p && g[i].from < q) cand[nc++] = g[i].from;
+                if (g[i].to > p && g[i].to < q) cand[nc++] = g[i].to;
+            }
+            qsort(cand, (size_t)nc, sizeof cand[0], cmp_double);
+            double expect = 0.0;
+            for (int k = 0; k < nc; ++k) {
+                expect = fmax(expect, ranges_at(g, m, background, cand[k]));
+                if (k + 1 < nc)
+                    expect = fmax(expect, ranges_at(g, m, background, 0.5 * (cand[k] + cand[k + 1])));
+            }
+            ck_assert_msg(out[j] == expect, "iter %d segment %d: %.17g, expected %.17g", iter, j, out[j],
+                          expect);
+        }
+        /* The order of the ranges does not matter. */
+        for (int i = 0; i < m; ++i)
+            shuffled[i] = g[m - 1 - i];
+        d.ranges = shuffled;
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&d, c, NULL, again), RUGO_OK);
+        ck_assert(memcmp(out, again, sizeof out) == 0);
+    }
+}
+END_TEST
+
+/* λ(x) of a periodic piecewise-linear profile, by a plain search (x in [0, 1]). */
+static double profile_at(const rugo_profile_sample* p, int k, double x) {
+    if (x <= p[0].s || x >= p[k - 1].s) { /* between the last sample and the first, through 1 = 0 */
+        double x0 = p[k - 1].s - 1.0, x1 = p[0].s;
+        double xx = x >= p[k - 1].s ? x - 1.0 : x;
+        if (x1 == x0) return p[0].tolerance;
+        return p[k - 1].tolerance + (p[0].tolerance - p[k - 1].tolerance) * (xx - x0) / (x1 - x0);
+    }
+    for (int i = 0; i + 1 < k; ++i)
+        if (x >= p[i].s && x <= p[i + 1].s)
+            return p[i].tolerance +
+                   (p[i + 1].tolerance - p[i].tolerance) * (x - p[i].s) / (p[i + 1].s - p[i].s);
+    return -1.0;
+}
+
+START_TEST(arc_profile_brute_force) {
+    test_rng r = test_rng_seed(0x9f0);
+    enum { N = 16, K = 12 };
+    rugo_vec2 pts[N];
+    double frac[N + 1];
+    for (int iter = 0; iter < 300; ++iter) {
+        test_random_star(&r, N, rugo_v2(0.0, 0.0), 1.0, 0.4, pts);
+        rugo_contour c = {pts, N};
+        arc_fractions(c, frac);
+        int k = 1 + (int)(test_rng_next(&r) % K);
+        double s[K];
+        for (int i = 0; i < k; ++i)
+            s[i] = test_rng_uniform(&r, 0.0, 1.0);
+        qsort(s, (size_t)k, sizeof s[0], cmp_double);
+        rugo_profile_sample p[K];
+        int kk = 0;
+        for (int i = 0; i < k; ++i)
+            if (kk == 0 || s[i] > p[kk - 1].s) {
+                p[kk].s = s[i];
+                p[kk++].tolerance = test_rng_uniform(&r, 0.0, 1.0);
+            }
+        rugo_roughness_desc d = profile_desc(p, kk);
+        rugo_real out[N];
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&d, c, NULL, out), RUGO_OK);
+        for (int j = 0; j < N; ++j) {
+            double a = frac[j], b = frac[j + 1];
+            double expect = fmax(profile_at(p, kk, a), profile_at(p, kk, b));
+            for (int i = 0; i < kk; ++i)
+                if (p[i].s >= a && p[i].s <= b) expect = fmax(expect, p[i].tolerance);
+            ck_assert_msg(fabs(out[j] - expect) <= 1e-12, "iter %d segment %d: %.17g, expected %.17g", iter,
+                          j, out[j], expect);
+            /* A bound: no point of the arc is above it. */
+            for (int t = 0; t <= 64; ++t)
+                ck_assert(profile_at(p, kk, a + (b - a) * t / 64.0) <= out[j] + 1e-12);
+        }
+    }
+}
+END_TEST
+
+START_TEST(arc_parse_and_write) {
+    rugo_shape_desc d = parse_rough_ok("\"background\": 0.01, \"ranges\": [{\"from\": 0.9, \"to\": 0.1, "
+                                       "\"tolerance\": 0.5, \"note\": \"x\"}, {\"tolerance\": 0, \"to\": 1, "
+                                       "\"from\": 0}], \"seed\": 3");
+    const rugo_roughness_desc* r = &d.roughness;
+    ck_assert_int_eq(r->kind, RUGO_ROUGHNESS_RANGES);
+    ck_assert_int_eq(r->range_count, 2);
+    ck_assert(r->ranges[0].from == 0.9 && r->ranges[0].to == 0.1 && r->ranges[0].tolerance == 0.5);
+    ck_assert(r->ranges[1].from == 0.0 && r->ranges[1].to == 1.0 && r->ranges[1].tolerance == 0.0);
+    ck_assert(r->background == 0.01 && r->seed == 3);
+    ck_assert_ptr_null(r->profile);
+    char* text = NULL;
+    size_t len = 0;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"ranges\": [\n"
+                                       "      {\"from\": 0.90000000000000002, \"to\": 0.10000000000000001, "
+                                       "\"tolerance\": 0.5},\n"
+                                       "      {\"from\": 0, \"to\": 1, \"tolerance\": 0}\n    ],\n"
+                                       "    \"background\": 0.01,\n    \"seed\": 3,\n"));
+    rugo_text_free(NULL, text);
+    rugo_shape_desc_free(&d);
+    ck_assert_ptr_null(d.roughness.ranges);
+    /* An empty list is the background alone; the background defaults to 0. */
+    d = parse_rough_ok("\"ranges\": []");
+    ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_RANGES);
+    ck_assert_int_eq(d.roughness.range_count, 0);
+    ck_assert(d.roughness.background == 0.0);
+    rugo_shape_desc_free(&d);
+    /* "background" belongs to ranges: with another kind it is ignored like an unknown member. */
+    d = parse_rough_ok("\"constant\": 0.5, \"background\": -1");
+    ck_assert(d.roughness.background == 0.0);
+    rugo_shape_desc_free(&d);
+    d = parse_rough_ok("\"profile\": [[0, 0.5], [0.25, 1e-300], [1, -0]]");
+    ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_PROFILE);
+    ck_assert_int_eq(d.roughness.profile_count, 3);
+    ck_assert(d.roughness.profile[1].s == 0.25 && d.roughness.profile[1].tolerance == 1e-300);
+    ck_assert(bits_of(d.roughness.profile[2].tolerance) == bits_of(-0.0));
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"profile\": [\n      [0, 0.5],\n"
+                                       "      [0.25, 1e-300],\n      [1, -0]\n    ],\n"
+                                       "    \"seed\": 0,\n"));
+    rugo_text_free(NULL, text);
+    rugo_shape_desc_free(&d);
+    /* A custom allocator holds the arrays and frees them. */
+    budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {budget_alloc, budget_free, &ctx};
+    char buf[1024];
+    rugo_parse_error err;
+    rough_text("\"ranges\": [{\"from\": 0, \"to\": 0.5, \"tolerance\": 1}]", buf, sizeof buf);
+    ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), &a, &d, &err), RUGO_OK);
+    ck_assert_int_eq(ctx.live, 2);
+    rugo_shape_desc_free(&d);
+    ck_assert_int_eq(ctx.live, 0);
+    rough_text("\"profile\": [[0, 1]]", buf, sizeof buf);
+    ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), &a, &d, &err), RUGO_OK);
+    ck_assert_int_eq(ctx.live, 2);
+    rugo_shape_desc_free(&d);
+    ck_assert_int_eq(ctx.live, 0);
+}
+END_TEST
+
+/* A random fraction with all its bits: 0, 1 or uniform. */
+static double random_fraction(test_rng* r) {
+    uint64_t u = test_rng_next(r);
+    if (u % 10 == 0) return 0.0;
+    if (u % 10 == 1) return 1.0;
+    return test_rng_uniform(r, 0.0, 1.0);
+}
+
+START_TEST(arc_round_trip_bits) {
+    test_rng r = test_rng_seed(0x3a3a);
+    rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int iter = 0; iter < 400; ++iter) {
+        rugo_shape_desc desc = make_desc(four, 4, RUGO_FILTER_CDF4_8);
+        desc.has_roughness = 1;
+        rugo_roughness_range g[12];
+        rugo_profile_sample p[12];
+        int m = (int)(test_rng_next(&r) % 12);
+        if (iter % 2 == 0) {
+            for (int i = 0; i < m; ++i) {
+                do {
+                    g[i].from = random_fraction(&r);
+                    g[i].to = random_fraction(&r);
+                } while (g[i].from == g[i].to || (g[i].from == 1.0 && g[i].to == 0.0));
+                g[i].tolerance = test_rng_uniform(&r, 0.0, 1e3) * (test_rng_next(&r) % 2 ? 1e-200 : 1.0);
+            }
+            desc.roughness = ranges_desc(g, m, test_rng_uniform(&r, 0.0, 2.0));
+        } else {
+            double s = 0.0;
+            int k = 0;
+            for (int i = 0; i <= m; ++i) {
+                s = k == 0 ? random_fraction(&r) * 0.5 : s + (1.0 - s) * test_rng_uniform(&r, 0.01, 1.0);
+                if (k > 0 && !(s > p[k - 1].s && s <= 1.0)) break;
+                p[k].s = s;
+                p[k++].tolerance = test_rng_uniform(&r, 0.0, 5.0);
+            }
+            desc.roughness = profile_desc(p, k);
+        }
+        desc.roughness.seed = test_rng_next(&r) % (RUGO_MAX_FILE_SEED + 1);
+        char* text = NULL;
+        size_t len = 0;
+        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
+        rugo_shape_desc back;
+        rugo_parse_error err;
+        ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s: %s\n%s", err.path,
+                      err.message, text);
+        const rugo_roughness_desc *a = &desc.roughness, *b = &back.roughness;
+        assert_same_roughness(a, b); /* every member, the ranges or samples included, bit for bit */
+        char* text2 = NULL;
+        size_t len2 = 0;
+        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2, &len2), RUGO_OK);
+        ck_assert(len2 == len && memcmp(text, text2, len) == 0);
+        /* The resolved tolerances agree too. */
+        rugo_real t1[4], t2[4];
+        rugo_contour c = {four, 4};
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(a, c, NULL, t1), RUGO_OK);
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(b, c, NULL, t2), RUGO_OK);
+        ck_assert(memcmp(t1, t2, sizeof t1) == 0);
+        rugo_text_free(NULL, text2);
+        rugo_text_free(NULL, text);
+        rugo_shape_desc_free(&back);
+    }
+}
+END_TEST
+
+START_TEST(arc_parse_errors) {
+    /* one source */
+    expect_rough_fail("\"ranges\": [], \"constant\": 1", RUGO_ERR_BAD_FIELD, "roughness",
+                      "found \"constant\" and \"ranges\"");
+    expect_rough_fail("\"profile\": [[0, 1]], \"preset\": \"tipo_1\"", RUGO_ERR_BAD_FIELD, "roughness",
+                      "found \"preset\" and \"profile\"");
+    expect_rough_fail("\"seed\": 1", RUGO_ERR_BAD_FIELD, "roughness", "\"ranges\" or \"profile\"");
+    /* ranges */
+    expect_rough_fail("\"ranges\": {}", RUGO_ERR_BAD_FIELD, "roughness.ranges", "found an object");
+    expect_rough_fail("\"ranges\": null", RUGO_ERR_BAD_FIELD, "roughness.ranges", "found null");
+    expect_rough_fail("\"ranges\": [[0, 1, 2]]", RUGO_ERR_BAD_FIELD, "roughness.ranges[0]", "found an array");
+    expect_rough_fail(
+        "\"ranges\": [{\"from\": 0, \"to\": 1, \"tolerance\": 1}, {\"to\": 1, \"tolerance\": 1}]",
+        RUGO_ERR_BAD_FIELD, "roughness.ranges[1].from", "missing field \"from\"");
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"tolerance\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0].to", "missing field \"to\"");
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"to\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0].tolerance", "missing field \"tolerance\"");
+    expect_rough_fail("\"ranges\": [{\"from\": -0.1, \"to\": 1, \"tolerance\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0].from", "in [0, 1]");
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"to\": 1.5, \"tolerance\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0].to", "found 1.5");
+    expect_rough_fail("\"ranges\": [{\"from\": 0.3, \"to\": 0.3, \"tolerance\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0]", "is empty");
+    expect_rough_fail("\"ranges\": [{\"from\": 1, \"to\": 0, \"tolerance\": 1}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0]", "is empty");
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"to\": 1, \"tolerance\": -0.5}]",
+                      RUGO_ERR_NEGATIVE_TOLERANCE, "roughness.ranges[0].tolerance", "-0.5");
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"to\": 1, \"tolerance\": \"1\"}]", RUGO_ERR_BAD_FIELD,
+                      "roughness.ranges[0].tolerance", "found a string");
+    expect_rough_fail("\"ranges\": [{\"from\": 1e999, \"to\": 1, \"tolerance\": 1}]", RUGO_ERR_NOT_FINITE,
+                      "roughness.ranges[0].from", NULL);
+    expect_rough_fail("\"ranges\": [{\"from\": 0, \"from\": 0, \"to\": 1, \"tolerance\": 1}]",
+                      RUGO_ERR_BAD_FIELD, "roughness.ranges[0].from", "appears 2 times");
+    expect_rough_fail("\"ranges\": [], \"background\": -0.01", RUGO_ERR_NEGATIVE_TOLERANCE,
+                      "roughness.background", NULL);
+    expect_rough_fail("\"ranges\": [], \"background\": \"0\"", RUGO_ERR_BAD_FIELD, "roughness.background",
+                      "found a string");
+    expect_rough_fail("\"ranges\": [], \"background\": 0, \"background\": 0", RUGO_ERR_BAD_FIELD,
+                      "roughness.background", "appears 2 times");
+    /* profile */
+    expect_rough_fail("\"profile\": 1", RUGO_ERR_BAD_FIELD, "roughness.profile", "found a number");
+    expect_rough_fail("\"profile\": []", RUGO_ERR_BAD_FIELD, "roughness.profile", "at least one");
+    expect_rough_fail("\"profile\": [[0, 1], 2]", RUGO_ERR_BAD_FIELD, "roughness.profile[1]",
+                      "found a number");
+    expect_rough_fail("\"profile\": [[0, 1, 2]]", RUGO_ERR_BAD_FIELD, "roughness.profile[0]", "array of 3");
+    expect_rough_fail("\"profile\": [[0, \"1\"]]", RUGO_ERR_BAD_FIELD, "roughness.profile[0][1]",
+                      "found a string");
+    expect_rough_fail("\"profile\": [[0, 1], [1.5, 1]]", RUGO_ERR_BAD_FIELD, "roughness.profile[1][0]",
+                      "in [0, 1]");
+    expect_rough_fail("\"profile\": [[-1e-300, 1]]", RUGO_ERR_BAD_FIELD, "roughness.profile[0][0]", NULL);
+    expect_rough_fail("\"profile\": [[0.5, 1], [0.5, 2]]", RUGO_ERR_BAD_FIELD, "roughness.profile[1][0]",
+                      "increase strictly");
+    expect_rough_fail("\"profile\": [[0.5, 1], [0.75, 2], [0.25, 2]]", RUGO_ERR_BAD_FIELD,
+                      "roughness.profile[2][0]", "0.25 follows 0.75");
+    expect_rough_fail("\"profile\": [[0.5, -1]]", RUGO_ERR_NEGATIVE_TOLERANCE, "roughness.profile[0][1]",
+                      NULL);
+    expect_rough_fail("\"profile\": [[0.5, 1e999]]", RUGO_ERR_NOT_FINITE, "roughness.profile[0][1]", NULL);
+    /* Positions */
+    rugo_shape_desc desc;
+    rugo_parse_error err;
+    const char* t = "{\"control_points\": [],\n \"roughness\": {\"profile\": [[0, 1],\n    [0.5, -2]]}}";
+    ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_str_eq(err.path, "roughness.profile[1][1]");
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_int_eq(err.column, 11);
+    /* Size limits */
+    size_t cap = (size_t)(RUGO_MAX_ROUGHNESS_RANGES + 1) * 40 + 256;
+    char* big = (char*)malloc(cap);
+    ck_assert_ptr_nonnull(big);
+    size_t n = (size_t)snprintf(big, cap, "{%s, \"roughness\": {\"ranges\": [", SQUARE4);
+    for (int i = 0; i <= RUGO_MAX_ROUGHNESS_RANGES; ++i)
+        n += (size_t)snprintf(big + n, cap - n, "%s{\"from\":0,\"to\":1,\"tolerance\":0}", i ? "," : "");
+    n += (size_t)snprintf(big + n, cap - n, "]}}");
+    ck_assert_int_eq(shape_parse_n(big, n, &desc, &err), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_str_eq(err.path, "roughness.ranges");
+    free(big);
+    cap = (size_t)(RUGO_MAX_PROFILE_SAMPLES + 1) * 6 + 256;
+    big = (char*)malloc(cap);
+    ck_assert_ptr_nonnull(big);
+    n = (size_t)snprintf(big, cap, "{%s, \"roughness\": {\"profile\": [", SQUARE4);
+    for (int i = 0; i <= RUGO_MAX_PROFILE_SAMPLES; ++i) {
+        memcpy(big + n, i ? ",[0,0]" : "[0,0]", i ? 6 : 5);
+        n += i ? 6 : 5;
+    }
+    n += (size_t)snprintf(big + n, cap - n, "]}}");
+    ck_assert_int_eq(shape_parse_n(big, n, &desc, &err), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_str_eq(err.path, "roughness.profile");
+    free(big);
+}
+END_TEST
+
+START_TEST(arc_resolve_errors) {
+    rugo_contour c = {SQ4, 4};
+    rugo_real out[4];
+    rugo_roughness_range g[2] = {{0.2, 0.4, 0.3}, {0.5, 0.6, 0.1}};
+    rugo_profile_sample p[2] = {{0.2, 0.3}, {0.5, 0.1}};
+    rugo_roughness_desc r = ranges_desc(g, 2, 0.0);
+    rugo_roughness_desc q = profile_desc(p, 2);
+    /* The geometry-free function refuses the kinds that need geometry. */
+    ck_assert_int_eq(rugo_roughness_tolerances(&r, 4, out), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_tolerances(&q, 4, out), RUGO_ERR_BAD_ARGUMENT);
+    /* The old kinds pass through. */
+    rugo_roughness_desc t = rugo_default_roughness_desc();
+    t.kind = RUGO_ROUGHNESS_PRESET;
+    t.preset = RUGO_PRESET_TIPO_3;
+    rugo_real expect[4];
+    ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&t, c, NULL, out), RUGO_OK);
+    ck_assert_int_eq(rugo_roughness_tolerances(&t, 4, expect), RUGO_OK);
+    ck_assert(memcmp(out, expect, sizeof out) == 0);
+    rugo_contour none = {NULL, 4};
+    ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&t, none, NULL, out), RUGO_OK); /* count only */
+    /* Every error leaves out untouched. */
+    struct {
+        const char* what;
+        rugo_roughness_desc d;
+        rugo_contour c;
+        rugo_status expect;
+    } cases[32];
+    int nc = 0;
+    rugo_vec2 nan_pts[4] = {{0, 0}, {1, 0}, {1, NAN}, {0, 1}};
+    rugo_vec2 same[4] = {{2, 2}, {2, 2}, {2, 2}, {2, 2}};
+    rugo_vec2 huge[4] = {{0, 0}, {1e308, 0}, {1e308, 1e308}, {0, 1e308}};
+    rugo_contour three = {SQ4, 3}, nanc = {nan_pts, 4}, zero = {same, 4}, big = {huge, 4};
+    rugo_contour many = {SQ4, RUGO_MAX_CONTROL_POINTS + 1};
+    rugo_roughness_range bad_from[1] = {{1.5, 0.4, 0.3}}, empty[1] = {{0.4, 0.4, 0.3}},
+                         neg[1] = {{0.1, 0.4, -0.3}}, inf_to[1] = {{0.1, INFINITY, 0.3}};
+    rugo_profile_sample down[2] = {{0.5, 0.3}, {0.4, 0.1}}, negp[1] = {{0.5, -0.1}}, nanp[1] = {{NAN, 0.1}};
+#define CASE(w, dd, cc, st)                                                                                  \
+    (cases[nc].what = (w), cases[nc].d = (dd), cases[nc].c = (cc), cases[nc++].expect = (st))
+    CASE("no points", r, none, RUGO_ERR_NULL_ARGUMENT);
+    CASE("three points", r, three, RUGO_ERR_TOO_FEW_POINTS);
+    CASE("too many points", r, many, RUGO_ERR_TOO_MANY_POINTS);
+    CASE("NaN point", q, nanc, RUGO_ERR_NOT_FINITE);
+    CASE("zero perimeter", r, zero, RUGO_ERR_ZERO_AREA);
+    CASE("overflowing perimeter", q, big, RUGO_ERR_NOT_FINITE);
+    CASE("from out of range", ranges_desc(bad_from, 1, 0.0), c, RUGO_ERR_BAD_ARGUMENT);
+    CASE("empty range", ranges_desc(empty, 1, 0.0), c, RUGO_ERR_BAD_ARGUMENT);
+    CASE("negative range tolerance", ranges_desc(neg, 1, 0.0), c, RUGO_ERR_NEGATIVE_TOLERANCE);
+    CASE("infinite to", ranges_desc(inf_to, 1, 0.0), c, RUGO_ERR_NOT_FINITE);
+    CASE("negative background", ranges_desc(g, 2, -1.0), c, RUGO_ERR_NEGATIVE_TOLERANCE);
+    CASE("NaN background", ranges_desc(g, 2, NAN), c, RUGO_ERR_NOT_FINITE);
+    CASE("ranges NULL", ranges_desc(NULL, 2, 0.0), c, RUGO_ERR_NULL_ARGUMENT);
+    CASE("negative range count", ranges_desc(g, -1, 0.0), c, RUGO_ERR_BAD_ARGUMENT);
+    CASE("too many ranges", ranges_desc(g, RUGO_MAX_ROUGHNESS_RANGES + 1, 0.0), c, RUGO_ERR_TOO_MANY_POINTS);
+    CASE("empty profile", profile_desc(p, 0), c, RUGO_ERR_BAD_ARGUMENT);
+    CASE("profile NULL", profile_desc(NULL, 2), c, RUGO_ERR_NULL_ARGUMENT);
+    CASE("too many samples", profile_desc(p, RUGO_MAX_PROFILE_SAMPLES + 1), c, RUGO_ERR_TOO_MANY_POINTS);
+    CASE("s decreasing", profile_desc(down, 2), c, RUGO_ERR_BAD_ARGUMENT);
+    CASE("negative sample", profile_desc(negp, 1), c, RUGO_ERR_NEGATIVE_TOLERANCE);
+    CASE("NaN s", profile_desc(nanp, 1), c, RUGO_ERR_NOT_FINITE);
+#undef CASE
+    for (int i = 0; i < nc; ++i) {
+        for (int j = 0; j < 4; ++j)
+            out[j] = -7.0;
+        rugo_status st = rugo_roughness_tolerances_on_contour(&cases[i].d, cases[i].c, NULL, out);
+        ck_assert_msg(st == cases[i].expect, "%s: status %d, expected %d", cases[i].what, (int)st,
+                      (int)cases[i].expect);
+        for (int j = 0; j < 4; ++j)
+            ck_assert(out[j] == -7.0);
+        /* The writer refuses the same descriptions (ones that need points aside). */
+        if (cases[i].c.points == SQ4 && cases[i].c.count == 4) {
+            rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
+            d.has_roughness = 1;
+            d.roughness = cases[i].d;
+            char* text = NULL;
+            size_t len = 0;
+            ck_assert_msg(rugo_shape_desc_write(&d, NULL, &text, &len) == cases[i].expect, "write: %s",
+                          cases[i].what);
+            ck_assert_ptr_null(text);
+        }
+    }
+    ck_assert_int_eq(rugo_roughness_tolerances_on_contour(NULL, c, NULL, out), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&r, c, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    /* Out of memory at every allocation: the status, nothing leaked, then success. */
+    for (long budget = 0;; ++budget) {
+        budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        for (int j = 0; j < 4; ++j)
+            out[j] = -7.0;
+        rugo_status st = rugo_roughness_tolerances_on_contour(&r, c, &a, out);
+        ck_assert_int_eq(ctx.live, 0);
+        if (st == RUGO_OK) {
+            ck_assert(out[0] == 0.3 && out[2] == 0.1);
+            ck_assert_int_ge(budget, 2);
+            break;
+        }
+        ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
+        ck_assert(out[0] == -7.0);
+        ck_assert_int_lt(budget, 10);
+    }
+}
+END_TEST
+
+START_TEST(arc_shape_from_ranges) {
+    /* A regular octagon: eight equal arcs, segment j on [j/8, (j+1)/8]. 0.3..0.45 touches segments 2 and
+     * 3; the built shape carries exactly these tolerances at its finest level. */
+    rugo_vec2 ccw[8], cw[8];
+    for (int i = 0; i < 8; ++i)
+        ccw[i] = rugo_v2(2.0 * cos(i * M_PI / 4.0), 2.0 * sin(i * M_PI / 4.0));
+    for (int i = 0; i < 8; ++i)
+        cw[i] = ccw[7 - i];
+    static const double expect[8] = {0.01, 0.01, 0.2, 0.2, 0.01, 0.01, 0.01, 0.01};
+    for (int orient = 0; orient < 2; ++orient) {
+        rugo_vec2* pts = orient == 0 ? ccw : cw;
+        char text[2048];
+        int len = snprintf(text, sizeof text, "{\"control_points\": [");
+        for (int i = 0; i < 8; ++i)
+            len += snprintf(text + len, sizeof text - (size_t)len, "%s[%.17g, %.17g]", i ? ", " : "",
+                            pts[i].x, pts[i].y);
+        len += snprintf(text + len, sizeof text - (size_t)len,
+                        "], \"roughness\": {\"ranges\": [{\"from\": 0.3, \"to\": 0.45, \"tolerance\": 0.2}], "
+                        "\"background\": 0.01}}");
+        rugo_shape_desc d;
+        rugo_parse_error err;
+        ck_assert_int_eq(shape_parse_n(text, (size_t)len, &d, &err), RUGO_OK);
+        rugo_real lam[8];
+        rugo_contour c = {d.control_points, d.count};
+        ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&d.roughness, c, NULL, lam), RUGO_OK);
+        for (int j = 0; j < 8; ++j)
+            ck_assert_msg(lam[j] == expect[j], "orient %d segment %d: %g", orient, j, lam[j]);
+        rugo_shape_def def = rugo_default_shape_def();
+        def.points = d.control_points;
+        def.count = d.count;
+        def.filter = d.filter;
+        def.tolerances = lam;
+        rugo_shape* s = NULL;
+        ck_assert_int_eq(rugo_shape_create(&def, &s, NULL), RUGO_OK);
+        ck_assert_int_eq(rugo_shape_was_reversed(s), orient);
+        rugo_tolerance_level L;
+        ck_assert_int_eq(rugo_shape_tolerance_level(s, rugo_shape_finest_level(s), &L), RUGO_OK);
+        ck_assert_int_eq(L.count, 8);
+        /* A clockwise file's segment j is the shape's segment n-2-j. */
+        for (int k = 0; k < 8; ++k)
+            ck_assert(L.total[k] == (orient == 0 ? expect[k] : expect[(8 - 2 - k + 8) % 8]));
+        rugo_shape_destroy(s);
+        rugo_shape_desc_free(&d);
+    }
+}
+END_TEST
+
+/* ---- profiles from CSV ---- */
+
+static rugo_status csv_parse_n(const char* s, size_t n, rugo_profile_sample** p, int* count,
+                               rugo_parse_error* e) {
+    char* buf = exact_copy(s, n);
+    rugo_status st = rugo_roughness_profile_parse_csv(buf, n, NULL, p, count, e);
+    free(buf);
+    return st;
+}
+
+static void expect_csv_fail(const char* s, rugo_status status, const char* path, int line,
+                            const char* fragment) {
+    rugo_profile_sample* p = (rugo_profile_sample*)&p; /* must come back NULL */
+    int count = -1;
+    rugo_parse_error e;
+    rugo_status st = csv_parse_n(s, strlen(s), &p, &count, &e);
+    ck_assert_msg(st == status, "csv <%s>: status %d (%s), expected %d; %s", s, (int)st,
+                  rugo_status_string(st), (int)status, e.message);
+    ck_assert_ptr_null(p);
+    ck_assert_int_eq(count, 0);
+    ck_assert(e.message[0] != '\0' && str_nul_terminated(e.message, sizeof e.message));
+    if (path != NULL)
+        ck_assert_msg(strcmp(e.path, path) == 0, "csv <%s>: path \"%s\", expected \"%s\"", s, e.path, path);
+    if (line > 0) ck_assert_msg(e.line == line, "csv <%s>: line %d, expected %d", s, e.line, line);
+    if (fragment != NULL)
+        ck_assert_msg(strstr(e.message, fragment) != NULL, "csv <%s>: message \"%s\" lacks \"%s\"", s,
+                      e.message, fragment);
+}
+
+START_TEST(profile_csv_good) {
+    struct {
+        const char* text;
+        int count;
+        double s1, lam1; /* the second sample (or the first if there is one) */
+    } good[] = {
+        {"s,lambda\n0,0.1\n0.5,0.2\n", 2, 0.5, 0.2},
+        {"0,0.1\n0.5,0.2", 2, 0.5, 0.2}, /* no header, no final newline */
+        {"\xEF\xBB\xBF"
+         "s,lambda\r\n0,0.1\r\n0.5,0.2\r\n",
+         2, 0.5, 0.2}, /* BOM, CRLF */
+        {"# measured\n\n  s , lambda \n\t0 ,\t0.1  \n# mid\n\n 0.5, 0.2\n\n", 2, 0.5, 0.2},
+        {".25,5.\n+0.5,-0\n", 2, 0.5, -0.0},
+        {"0.1,1e-1\n00.5,2E+0\n", 2, 0.5, 2.0},
+        {"\"s\",\"lambda\"\n0.7,0.1\n", 1, 0.7, 0.1}, /* any header names */
+        {"0.1,0.30000000000000004\n", 1, 0.1, 0.30000000000000004},
+    };
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; ++i) {
+        rugo_profile_sample* p = NULL;
+        int count = 0;
+        rugo_parse_error e;
+        rugo_status st = csv_parse_n(good[i].text, strlen(good[i].text), &p, &count, &e);
+        ck_assert_msg(st == RUGO_OK, "csv %d: %s at %d:%d %s", (int)i, rugo_status_string(st), e.line,
+                      e.column, e.message);
+        ck_assert_int_eq(count, good[i].count);
+        const rugo_profile_sample* x = &p[count > 1 ? 1 : 0];
+        ck_assert(bits_of(x->s) == bits_of(good[i].s1));
+        ck_assert(bits_of(x->tolerance) == bits_of(good[i].lam1));
+        rugo_roughness_profile_free(NULL, p);
+    }
+    /* The same bits as the JSON reader for every number it writes. */
+    test_rng r = test_rng_seed(0xc5f);
+    char text[64];
+    for (int i = 0; i < 2000; ++i) {
+        double s = test_rng_uniform(&r, 0.0, 1.0),
+               lam = test_rng_uniform(&r, 0.0, 1e3) * pow(10.0, -(i % 300));
+        snprintf(text, sizeof text, "%.17g,%.17g\n", s, lam);
+        rugo_profile_sample* p = NULL;
+        int count = 0;
+        ck_assert_int_eq(csv_parse_n(text, strlen(text), &p, &count, NULL), RUGO_OK);
+        ck_assert(bits_of(p[0].s) == bits_of(s) && bits_of(p[0].tolerance) == bits_of(lam));
+        rugo_roughness_profile_free(NULL, p);
+    }
+    /* A profile read from CSV resolves like the same profile inline. */
+    const char* csv = "s,lambda\n0.1,0\n0.125,1\n0.15,0\n";
+    rugo_profile_sample* p = NULL;
+    int count = 0;
+    ck_assert_int_eq(csv_parse_n(csv, strlen(csv), &p, &count, NULL), RUGO_OK);
+    rugo_roughness_desc d = profile_desc(p, count);
+    static const double expect[4] = {1.0, 0.0, 0.0, 0.0};
+    expect_on_square("csv", &d, expect, 0.0);
+    rugo_roughness_profile_free(NULL, p);
+    rugo_roughness_profile_free(NULL, NULL);
+}
+END_TEST
+
+START_TEST(profile_csv_bad) {
+    expect_csv_fail("", RUGO_ERR_BAD_FIELD, "", 0, "no samples");
+    expect_csv_fail("s,lambda\n", RUGO_ERR_BAD_FIELD, "", 0, "no samples");
+    expect_csv_fail("# nothing\n\n", RUGO_ERR_BAD_FIELD, NULL, 0, "no samples");
+    expect_csv_fail("0.1\n", RUGO_ERR_PARSE, "profile[0]", 1, "1 field");
+    expect_csv_fail("0.1,0.2,0.3\n", RUGO_ERR_PARSE, "profile[0]", 1, "3 fields");
+    expect_csv_fail("0.1;0.2\n", RUGO_ERR_PARSE, "profile[0]", 1, NULL);
+    expect_csv_fail("s,lambda,x\n0.1,0.2\n", RUGO_ERR_PARSE, "", 1, "header");
+    expect_csv_fail("0.1,0.2\n0.2,abc\n", RUGO_ERR_PARSE, "profile[1][1]", 2, "\"abc\"");
+    expect_csv_fail("0.1,\n", RUGO_ERR_PARSE, "profile[0][1]", 1, "empty field");
+    expect_csv_fail("0.1,0.2\ns,lambda\n", RUGO_ERR_PARSE, "profile[1][0]", 2,
+                    NULL); /* a header only first */
+    expect_csv_fail("0.1,0x10\n", RUGO_ERR_PARSE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("0.1,1e\n", RUGO_ERR_PARSE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("0.1,-\n", RUGO_ERR_PARSE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("0.1,0.2\r\r\n", RUGO_ERR_PARSE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("nan,0.1\n", RUGO_ERR_NOT_FINITE, "profile[0][0]", 1, "not a finite number");
+    expect_csv_fail("s,lambda\n0.1,inf\n", RUGO_ERR_NOT_FINITE, "profile[0][1]", 2, NULL);
+    expect_csv_fail("0.1,-Infinity\n", RUGO_ERR_NOT_FINITE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("0.1,NaN\n", RUGO_ERR_NOT_FINITE, "profile[0][1]", 1, NULL);
+    expect_csv_fail("0.1,1e999\n", RUGO_ERR_NOT_FINITE, "profile[0][1]", 1, "overflows");
+    expect_csv_fail("-0.1,0.2\n", RUGO_ERR_BAD_FIELD, "profile[0][0]", 1, "in [0, 1]");
+    expect_csv_fail("0.5,0\n1.5,0\n", RUGO_ERR_BAD_FIELD, "profile[1][0]", 2, "found 1.5");
+    expect_csv_fail("0.5,0\n0.5,1\n", RUGO_ERR_BAD_FIELD, "profile[1][0]", 2, "increase strictly");
+    expect_csv_fail("0.5,0\n\n0.4,1\n", RUGO_ERR_BAD_FIELD, "profile[1][0]", 3,
+                    "0.40000000000000002 follows 0.5");
+    expect_csv_fail("0.1,-0.2\n", RUGO_ERR_NEGATIVE_TOLERANCE, "profile[0][1]", 1, NULL);
+    /* The column of the offending field. */
+    rugo_profile_sample* p = NULL;
+    int count = 0;
+    rugo_parse_error e;
+    const char* t = "s,lambda\n0.1, 0.2\n0.3,  -4\n";
+    ck_assert_int_eq(csv_parse_n(t, strlen(t), &p, &count, &e), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_int_eq(e.line, 3);
+    ck_assert_int_eq(e.column, 7);
+    /* Arguments; error may be NULL. */
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv(NULL, 0, NULL, &p, &count, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", 3, NULL, NULL, &count, &e),
+                     RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", 3, NULL, &p, NULL, NULL),
+                     RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,-1", 4, NULL, &p, &count, NULL),
+                     RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_ptr_null(p);
+}
+END_TEST
+
+START_TEST(profile_csv_limits_and_memory) {
+    /* Larger than the text limit: refused before reading. */
+    rugo_profile_sample* p = NULL;
+    int count = 0;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", RUGO_MAX_JSON_BYTES + 1, NULL, &p, &count, &e),
+                     RUGO_ERR_PARSE);
+    /* RUGO_MAX_PROFILE_SAMPLES rows are read; one more is too many. */
+    size_t cap = (size_t)(RUGO_MAX_PROFILE_SAMPLES + 1) * 12 + 64;
+    char* big = (char*)malloc(cap);
+    ck_assert_ptr_nonnull(big);
+    size_t n = 0;
+    for (int i = 0; i < RUGO_MAX_PROFILE_SAMPLES; ++i)
+        n += (size_t)snprintf(big + n, cap - n, "%d.%07d,0\n", 0, i); /* strictly increasing below 0.105 */
+    ck_assert_int_eq(csv_parse_n(big, n, &p, &count, &e), RUGO_OK);
+    ck_assert_int_eq(count, RUGO_MAX_PROFILE_SAMPLES);
+    ck_assert(p[count - 1].s == 0.1048575);
+    rugo_roughness_profile_free(NULL, p);
+    n += (size_t)snprintf(big + n, cap - n, "0.5,0\n");
+    ck_assert_int_eq(csv_parse_n(big, n, &p, &count, &e), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(e.line, RUGO_MAX_PROFILE_SAMPLES + 1);
+    ck_assert_ptr_null(p);
+    free(big);
+    /* Out of memory at every allocation, nothing leaks. */
+    const char* t = "s,lambda\n0,0.1\n0.25,0.2\n0.5,0.3\n";
+    for (long budget = 0;; ++budget) {
+        budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), &a, &p, &count, &e);
+        if (st == RUGO_OK) {
+            ck_assert_int_eq(count, 3);
+            ck_assert_int_eq(ctx.live, 1);
+            rugo_roughness_profile_free(&a, p);
+            ck_assert_int_eq(ctx.live, 0);
+            break;
+        }
+        ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
+        ck_assert_ptr_null(p);
+        ck_assert_int_eq(ctx.live, 0);
+        ck_assert_int_lt(budget, 50);
+    }
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("shape_file");
     TCase* json = tcase_create("json");
@@ -2421,6 +3281,19 @@ int main(void) {
     tcase_add_test(rough, roughness_write_size_limit);
     tcase_add_test(rough, roughness_tolerances_resolve);
     tcase_add_test(rough, roughness_out_of_memory);
+    tcase_add_test(rough, arc_square_quarters);
+    tcase_add_test(rough, arc_ranges_hand_computed);
+    tcase_add_test(rough, arc_profile_hand_computed);
+    tcase_add_test(rough, arc_ranges_brute_force);
+    tcase_add_test(rough, arc_profile_brute_force);
+    tcase_add_test(rough, arc_parse_and_write);
+    tcase_add_test(rough, arc_round_trip_bits);
+    tcase_add_test(rough, arc_parse_errors);
+    tcase_add_test(rough, arc_resolve_errors);
+    tcase_add_test(rough, arc_shape_from_ranges);
+    tcase_add_test(rough, profile_csv_good);
+    tcase_add_test(rough, profile_csv_bad);
+    tcase_add_test(rough, profile_csv_limits_and_memory);
     suite_add_tcase(s, rough);
 
     TCase* fuzz = tcase_create("fuzz");

@@ -60,6 +60,63 @@ rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points,
 rugo_status rugo_pyramid_move_points(rugo_pyramid* p, int level, int count, const int* segments,
                                      const rugo_real* ts, const rugo_vec2* deltas, rugo_detail_mode mode);
 
+/* ---- fitting an imported outline (rugo/import.h, docs/import.md) ------------------------------- */
+
+/** Largest control count the automatic search of rugo_fit_outline tries by default. */
+#define RUGO_DEFAULT_MAX_FIT_CONTROL_POINTS 1024
+
+/** What rugo_fit_outline fits; fill from rugo_default_outline_fit_def(). */
+typedef struct rugo_outline_fit_def {
+    const rugo_vec2* samples; /**< ordered outline points (borrowed), e.g. rugo_outline_samples.points */
+    int sample_count;         /**< number of samples */
+    int control_count;        /**< 2^J >= 4; or 0 (default): the smallest power of two whose max_error is
+                                   <= tolerance */
+    rugo_real tolerance;      /**< control_count 0: the max_error to reach, > 0, in length units */
+    int max_control_count;    /**< control_count 0: largest count tried, a power of two in
+                                   [4, RUGO_MAX_CONTROL_POINTS] (default RUGO_DEFAULT_MAX_FIT_CONTROL_POINTS);
+                                   the search also stops at sample_count / 4 */
+    rugo_parameterization parameterization; /**< as in rugo_fit_def (default chord length) */
+    rugo_allocator allocator; /**< for the result's control points and scratch (zeroed: malloc/free) */
+    int cookie;               /**< set by rugo_default_outline_fit_def; catches uninitialised defs */
+} rugo_outline_fit_def;
+
+/** The defaults described in rugo_outline_fit_def (tolerance 0: set it for the automatic count). */
+rugo_outline_fit_def rugo_default_outline_fit_def(void);
+
+/** A fitted outline; owns control_points (allocated with `allocator`). */
+typedef struct rugo_outline_fit {
+    rugo_vec2* control_points; /**< control_count points, counter-clockwise */
+    int control_count;         /**< the count used (the one found, for the automatic search) */
+    rugo_real max_error;       /**< largest distance from a sample to the fitted curve (closest point
+                                    on the whole curve, rugo_contour_closest_point), length units */
+    rugo_real rms_error;       /**< root mean square of those distances */
+    rugo_real max_error_at_parameter; /**< rugo_fit_contour's error: distance to the curve point at the
+                                           sample's own parameter (>= max_error) */
+    int tolerance_met;         /**< 1 if tolerance <= 0 or max_error <= tolerance; 0 when the automatic
+                                    search stopped at its largest count without reaching it */
+    int reversed;              /**< 1 if the fit ran clockwise and the control points were reversed */
+    rugo_allocator allocator;  /**< the allocator of control_points */
+} rugo_outline_fit;
+
+/** Fits a closed cubic B-spline to outline samples: rugo_fit_contour with def->control_count control
+ * points, or, for control_count 0, with 4, 8, 16, ... until max_error <= tolerance or the largest
+ * count allowed (min(max_control_count, sample_count / 4), rounded down to a power of two) has been
+ * tried (then tolerance_met is 0 and out holds that largest fit: not an error). The result is turned
+ * counter-clockwise; its errors are measured as distances from every sample to the closest point of
+ * the fitted curve, not only at the sample's parameter. Cost: O(sample_count x control_count) per
+ * count tried, for the closest points. Deterministic.
+ * Errors (out zeroed): NULL_ARGUMENT, BAD_ARGUMENT (def not from rugo_default_outline_fit_def;
+ * control_count 0 with a tolerance that is not finite and > 0, or max_control_count below 4),
+ * NOT_POWER_OF_TWO and TOO_MANY_POINTS (max_control_count; a sample_count beyond
+ * RUGO_MAX_CONTROL_POINTS), TOO_FEW_POINTS (control_count 0 with fewer than 16 samples), and those of
+ * rugo_fit_contour for the counts tried (including SINGULAR, also when one count of the search is
+ * singular), OUT_OF_MEMORY.
+ * Free the result with rugo_outline_fit_free. */
+rugo_status rugo_fit_outline(const rugo_outline_fit_def* def, rugo_outline_fit* out);
+
+/** Frees the control points and zeroes the struct (NULL and a zeroed struct are fine). */
+void rugo_outline_fit_free(rugo_outline_fit* fit);
+
 #ifdef __cplusplus
 }
 #endif

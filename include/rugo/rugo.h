@@ -15,5 +15,6 @@
 #include "rugo/shape_file.h"
 #include "rugo/baked.h"
 #include "rugo/world.h"
+#include "rugo/import.h"
 
 #endif

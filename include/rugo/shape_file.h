@@ -2,7 +2,19 @@
  *
  * A shape file is a JSON object {"control_points": [[x, y], ...]} with optional fields:
  *   "filter": "cdf4.2" | "cdf4.4" | "cdf4.6" | "cdf4.8" | "cdf4.12"   (default cdf4.8)
- *   "roughness": {...}   (see rugo_roughness_desc below and docs/roughness.md)
+ *   "roughness": {...}   (see rugo_roughness_desc below and docs/roughness.md), with exactly one of
+ *       "preset": "tipo_1" | "tipo_2" | "tipo_3" | "tipo_5"
+ *       "tolerances": [λ_0, ..., λ_{n-1}]            one per finest segment
+ *       "constant": λ                                 every segment
+ *       "ranges": [{"from": a, "to": b, "tolerance": λ}, ...]  plus optional "background": λ_0
+ *                 a, b in [0, 1]: fractions of the perimeter by arc length from the start of
+ *                 segment 0 along the file's own point order; b < a wraps through 0; overlapping
+ *                 ranges take the largest λ; λ_0 (default 0) outside every range
+ *       "profile": [[s, λ], ...]   λ(s) piecewise linear and periodic in s in [0, 1], s strictly
+ *                 increasing (also from CSV text: rugo_roughness_profile_parse_csv)
+ *     and optional "seed", "q", "estimator", "friction", "restitution", "perturbation".
+ *     "ranges" and "profile" need the geometry to resolve: rugo_roughness_tolerances_on_contour
+ *     gives every finest segment the maximum of λ over its arc (a band is a bound).
  * Unknown fields are ignored, at the top level and inside "roughness", so later versions and reports
  * spliced in by tools keep files readable. A points file for fitting is {"points": [[x, y], ...]}.
  * Input may be in either orientation; nothing here validates geometry (use rugo_contour_check /
@@ -16,6 +28,7 @@
 #define RUGO_SHAPE_FILE_H
 
 #include "rugo/base.h"
+#include "rugo/contour.h"
 #include "rugo/rough.h"
 #include "rugo/tolerance.h"
 #include "rugo/wavelet.h"
@@ -40,8 +53,34 @@ typedef enum rugo_roughness_kind {
     RUGO_ROUGHNESS_PRESET = 0,     /* "preset": "tipo_1" | "tipo_2" | "tipo_3" | "tipo_5" (rough.h) */
     RUGO_ROUGHNESS_TOLERANCES = 1, /* "tolerances": [λ_0, ..., λ_{n-1}], one per finest segment */
     RUGO_ROUGHNESS_CONSTANT = 2,   /* "constant": λ on every segment */
+    RUGO_ROUGHNESS_RANGES = 3,     /* "ranges": λ per arc-length range of the perimeter (+ "background") */
+    RUGO_ROUGHNESS_PROFILE = 4,    /* "profile": λ(s) along the perimeter, piecewise linear */
     RUGO_ROUGHNESS_KIND_COUNT
 } rugo_roughness_kind;
+
+/* One arc-length range of kind RANGES. Positions are fractions of the perimeter, measured by arc
+ * length from the start of segment 0 (f_0(0)) along the order of the file's control points. The
+ * range covers [from, to] when from < to, and [from, 1] with [0, to] (through 0) when from > to; it
+ * must not be empty (from == to, or from 1 to 0, is refused; [0, 1] is the whole perimeter). */
+typedef struct rugo_roughness_range {
+    rugo_real from;      /* in [0, 1] */
+    rugo_real to;        /* in [0, 1] */
+    rugo_real tolerance; /* λ >= 0 on the range (length) */
+} rugo_roughness_range;
+
+/* One sample of kind PROFILE: λ at position s (a fraction of the perimeter, as for ranges). */
+typedef struct rugo_profile_sample {
+    rugo_real s;         /* in [0, 1], strictly increasing from one sample to the next */
+    rugo_real tolerance; /* λ(s) >= 0 (length) */
+} rugo_profile_sample;
+
+/* Most ranges and profile samples one roughness object may hold (more is TOO_MANY_POINTS). */
+#define RUGO_MAX_ROUGHNESS_RANGES (1 << 16)
+#define RUGO_MAX_PROFILE_SAMPLES (1 << 20)
+/* A range counts for a segment only if it overlaps the segment's arc by more than this fraction of
+ * the perimeter at either end, so that a range ending exactly on a segment boundary (0.25 of a square)
+ * does not spill into the next segment through the round-off of the arc lengths. */
+#define RUGO_ROUGHNESS_RANGE_SLACK 1e-12
 
 /* Largest seed a file can carry: 2^53, the largest integer up to which every integer is a double, so
  * that any JSON reader (JavaScript's included) keeps it exact. */
@@ -71,10 +110,17 @@ typedef struct rugo_roughness_desc {
     int perturbation_levels;        /* 1..RUGO_MAX_PERTURBATION_LEVELS */
     rugo_vec2* perturbation_points; /* owned like tolerances */
     int perturbation_count;
+    /* Added with arc-length roughness; zero when a caller leaves them out of an initializer. */
+    rugo_roughness_range* ranges; /* kind RANGES: range_count ranges (0 allowed: background only),
+                                     owned like tolerances; their order does not matter */
+    int range_count;
+    rugo_real background;         /* kind RANGES: "background", λ outside every range (default 0) */
+    rugo_profile_sample* profile; /* kind PROFILE: profile_count >= 1 samples, owned like tolerances */
+    int profile_count;
 } rugo_roughness_desc;
 
 /* Preset tipo_1, seed 0, q = RUGO_DEFAULT_Q, the detail estimator, the default friction map and
- * restitution, no perturbation, no arrays. */
+ * restitution, no perturbation, no arrays, background 0. */
 rugo_roughness_desc rugo_default_roughness_desc(void);
 
 typedef struct rugo_shape_desc {
@@ -102,7 +148,15 @@ typedef struct rugo_shape_desc {
  * BAD_QUANTILE (q <= 0), and the statuses of rugo_friction_map_check (BAD_ARGUMENT for alpha < 0,
  * NEGATIVE_TOLERANCE for lambda_min < 0) and rugo_restitution_check (BAD_ARGUMENT outside [0, 1],
  * EMPTY_RANGE for epsilon > epsilon_max). Absent optional members take the defaults of
- * rugo_default_roughness_desc. */
+ * rugo_default_roughness_desc.
+ * "ranges" adds: BAD_FIELD (not an array of objects; a range without "from", "to" or "tolerance";
+ * from or to outside [0, 1]; an empty range), TOO_MANY_POINTS (more than RUGO_MAX_ROUGHNESS_RANGES),
+ * NEGATIVE_TOLERANCE (a range's tolerance or the background below zero), NOT_FINITE. "background"
+ * is read only with "ranges" (ignored, like an unknown member, with the other kinds).
+ * "profile" adds: BAD_FIELD (not an array of [s, tolerance] pairs; no sample; s outside [0, 1] or
+ * not strictly increasing), TOO_MANY_POINTS (more than RUGO_MAX_PROFILE_SAMPLES),
+ * NEGATIVE_TOLERANCE, NOT_FINITE. Paths name the value, e.g. "roughness.ranges[2].from",
+ * "roughness.profile[5][0]". */
 rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
                                   rugo_shape_desc* out, rugo_parse_error* error);
 /* Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0. */
@@ -110,9 +164,58 @@ void rugo_shape_desc_free(rugo_shape_desc* desc);
 
 /* The tolerance of every finest segment, out[0..n) (n = the control point count, in the file's own
  * segment numbering): the preset (rugo_tolerances_preset with the seed), the constant, or a copy of
- * the list. Errors: NULL_ARGUMENT, BAD_ARGUMENT (unknown kind or preset, or a list whose length is
- * not n), TOO_FEW_POINTS (n < 1), TOO_MANY_POINTS, NOT_FINITE, NEGATIVE_TOLERANCE. */
+ * the list. Errors: NULL_ARGUMENT, BAD_ARGUMENT (unknown kind or preset, a list whose length is
+ * not n, or kind RANGES or PROFILE, which need the geometry: use
+ * rugo_roughness_tolerances_on_contour), TOO_FEW_POINTS (n < 1), TOO_MANY_POINTS, NOT_FINITE,
+ * NEGATIVE_TOLERANCE. */
 rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, rugo_real* out);
+
+/* The tolerance of every finest segment, out[0..contour.count), for a shape whose control points are
+ * `contour` in the file's own order (not reversed; the caller keeps them alive). Any kind: the
+ * geometry-free ones as rugo_roughness_tolerances(desc, contour.count, out). For RANGES and PROFILE,
+ * segment j covers the arc [a_j, b_j] of the perimeter (a fraction; arc lengths by
+ * rugo_contour_segment_length, a_0 = 0, b_{n-1} = 1) and gets the MAXIMUM of λ over it, because a
+ * tolerance is a band that must bound the roughness anywhere on its segment (a mean would let a
+ * narrow rough patch slip under a smooth neighbour):
+ *  - RANGES: the largest tolerance of the ranges that overlap [a_j, b_j] (an overlap of at most
+ *    RUGO_ROUGHNESS_RANGE_SLACK at the segment's ends does not count; a segment shorter than twice
+ *    that is taken at its midpoint), and the background too unless the ranges cover the whole arc.
+ *    Exact: no sampling.
+ *  - PROFILE: λ is linear between consecutive samples and periodic (from the last sample through
+ *    s = 1 ≡ 0 to the first); the maximum over [a_j, b_j] is that of λ(a_j), λ(b_j) and the samples
+ *    inside, exact up to round-off. With samples at both s = 0 and s = 1 the point 0 ≡ 1 takes the
+ *    larger of their values.
+ * O(n + m log m) for m ranges, O(n + m) for m samples. allocator (NULL: malloc/free) serves the
+ * scratch of RANGES (about 48 bytes a range); nothing else allocates. out is untouched on error.
+ * Errors: NULL_ARGUMENT, and for RANGES and PROFILE: TOO_FEW_POINTS (count < 4), TOO_MANY_POINTS,
+ * NOT_FINITE (a point or the perimeter), ZERO_AREA (perimeter 0), the value errors the parser
+ * reports (BAD_ARGUMENT for a range or sample out of its range, NEGATIVE_TOLERANCE, NOT_FINITE,
+ * TOO_MANY_POINTS, NULL_ARGUMENT for a missing array, BAD_ARGUMENT for an empty profile),
+ * OUT_OF_MEMORY. */
+rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc, rugo_contour contour,
+                                                 const rugo_allocator* allocator, rugo_real* out);
+
+/* Parses a profile λ(s) from CSV text: one sample per line, "s,lambda" (two numbers separated by a
+ * comma; spaces and tabs around them are ignored; lines end with "\n" or "\r\n"). Blank lines and
+ * lines starting with '#' are skipped; the first other line may be a header (two names, e.g.
+ * "s,lambda"): it is one when its first field does not start like a number (a digit, a sign or '.')
+ * and is not nan or inf. Numbers are decimal (an optional sign,
+ * digits with an optional '.', an optional exponent; ".5" and "5." are accepted) and read exactly as
+ * JSON numbers are, whatever the locale. No quoting. The samples are checked as the JSON "profile"
+ * (s in [0, 1], strictly increasing, λ >= 0). On success *samples (allocated with `allocator`, NULL:
+ * malloc/free; free with rugo_roughness_profile_free) holds *count >= 1 samples.
+ * Errors (error may be NULL; it gets the 1-based line and column, the path "profile[i][0]" for s or
+ * "profile[i][1]" for λ of sample i, and a message): NULL_ARGUMENT; PARSE (text over
+ * RUGO_MAX_JSON_BYTES, a line without exactly two fields, an empty field, a field that is not a
+ * number, a header with other than two fields); NOT_FINITE (nan, inf, infinity in any case, or a
+ * number overflowing to infinity); BAD_FIELD (no samples; s outside [0, 1] or not strictly
+ * increasing); NEGATIVE_TOLERANCE (λ < 0); TOO_MANY_POINTS (more than RUGO_MAX_PROFILE_SAMPLES
+ * rows); OUT_OF_MEMORY. On error *samples is NULL and *count 0. */
+rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, const rugo_allocator* allocator,
+                                             rugo_profile_sample** samples, int* count,
+                                             rugo_parse_error* error);
+/* Frees samples from rugo_roughness_profile_parse_csv (allocator as given there; NULL is fine). */
+void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples);
 
 /* Parses the array under `key` ("points" or "control_points") of a JSON object into an owned point
  * array (free with the allocator given, via rugo_points_free). Same errors as above. */
@@ -128,8 +231,9 @@ void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
  * parse(write(d)) gives d back bit for bit and write(parse(write(d))) the same text.
  * The writer refuses what the reader would: NOT_FINITE, BAD_FILTER, TOO_MANY_POINTS, and for the
  * roughness BAD_ARGUMENT (kind, preset, estimator, method, levels, a count mismatch, a seed beyond
- * RUGO_MAX_FILE_SEED) and the value checks listed for parsing; TOO_MANY_POINTS also when the text
- * would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object). */
+ * RUGO_MAX_FILE_SEED, a range or profile sample out of its range, an empty profile) and the value
+ * checks listed for parsing (NULL_ARGUMENT for a missing ranges or profile array); TOO_MANY_POINTS also when
+ * the text would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object). */
 rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator, char** text,
                                   size_t* length);
 void rugo_text_free(const rugo_allocator* allocator, char* text);

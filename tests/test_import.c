@@ -1,0 +1,1362 @@
+/* Suite "import": SVG path data, transforms and documents, outline sampling and point lists
+ * (rugo/import.h); with the Eigen shim also the outline fit (rugo_fit_outline, rugo/fit.h).
+ *
+ * Golden numbers: the rock of tests/data/rock_inkscape.svg and the circles below were cross-checked
+ * once by an independent Python script (xml.etree for the document, its own parser for the path data,
+ * composite 8-point Gauss-Legendre arc length with 256 pieces per segment, a dense least-squares
+ * solve, and closest points by a local grid and golden-section search): its samples matched these to
+ * 7e-12, its control points to 3e-12 and its errors to 3e-13 (rock) and 2e-14 (circle); see each test. */
+#include "rugo/import.h"
+#ifdef RUGO_HAVE_FIT
+#include "rugo/fit.h"
+#endif
+#include "test_util.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static void data_path(const char* name, char* out, size_t size) {
+    const char* file = __FILE__;
+    const char* slash = strrchr(file, '/');
+    int dir = slash != NULL ? (int)(slash - file + 1) : 0;
+    snprintf(out, size, "%.*sdata/%s", dir, file, name);
+}
+
+static char* read_data(const char* name, size_t* length) {
+    char path[1024];
+    data_path(name, path, sizeof path);
+    char* text = NULL;
+    rugo_status st = rugo_read_file(path, NULL, &text, length);
+    ck_assert_msg(st == RUGO_OK, "%s: %s", path, rugo_status_string(st));
+    return text;
+}
+
+static void parse_ok(const char* d, rugo_path* p) {
+    rugo_parse_error e;
+    rugo_status st = rugo_path_parse(d, strlen(d), NULL, p, &e);
+    ck_assert_msg(st == RUGO_OK, "<%s>: status %d, %d:%d %s", d, st, e.line, e.column, e.message);
+}
+
+/* Parsing d fails with `status` at `column` (0: do not check) with `fragment` in the message. */
+static void parse_fails(const char* d, rugo_status status, int column, const char* fragment) {
+    rugo_path p;
+    rugo_parse_error e;
+    rugo_status st = rugo_path_parse(d, strlen(d), NULL, &p, &e);
+    ck_assert_msg(st == status, "<%s>: status %d (%s), expected %d; %s", d, st, rugo_status_string(st),
+                  status, e.message);
+    ck_assert_ptr_null(p.segments);
+    ck_assert_int_eq(p.segment_count, 0);
+    ck_assert_ptr_null(p.subpaths);
+    ck_assert_str_eq(e.path, "d");
+    if (column > 0) ck_assert_int_eq(e.line, 1);
+    if (column > 0)
+        ck_assert_msg(e.column == column, "<%s>: column %d, expected %d (%s)", d, e.column, column,
+                      e.message);
+    if (fragment != NULL)
+        ck_assert_msg(strstr(e.message, fragment) != NULL, "<%s>: message \"%s\" lacks \"%s\"", d, e.message,
+                      fragment);
+}
+
+#define ck_assert_vec_near(v, X, Y, tol)                                                                     \
+    do {                                                                                                     \
+        rugo_vec2 ck_v_ = (v);                                                                               \
+        ck_assert_near(ck_v_.x, (X), (tol));                                                                 \
+        ck_assert_near(ck_v_.y, (Y), (tol));                                                                 \
+    } while (0)
+
+static rugo_vec2 seg_point(const rugo_path* p, int k, double t) {
+    return rugo_path_segment_point(&p->segments[k], t);
+}
+
+/* ---- path data: every command -------------------------------------------------------------------- */
+
+/* One path using every absolute command; each segment's points against hand-computed values. */
+START_TEST(absolute_commands) {
+    rugo_path p;
+    parse_ok("M 10 20 L 30 40 H 50 V 60 C 50 70 40 80 30 80 S 10 70 10 60 Q 10 50 20 50 T 30 40 "
+             "A 5 5 0 0 1 30 30 Z",
+             &p);
+    ck_assert_int_eq(p.subpath_count, 1);
+    ck_assert_int_eq(p.subpaths[0].first, 0);
+    ck_assert_int_eq(p.subpaths[0].count, 9);
+    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert_vec_near(p.subpaths[0].start, 10, 20, 0);
+    ck_assert_int_eq(p.segment_count, 9);
+    const rugo_path_segment* s = p.segments;
+    ck_assert_int_eq(s[0].kind, RUGO_PATH_LINE);
+    ck_assert_vec_near(s[0].p[0], 10, 20, 0);
+    ck_assert_vec_near(s[0].p[1], 30, 40, 0);
+    ck_assert_int_eq(s[1].kind, RUGO_PATH_LINE); /* H keeps y */
+    ck_assert_vec_near(s[1].p[1], 50, 40, 0);
+    ck_assert_int_eq(s[2].kind, RUGO_PATH_LINE); /* V keeps x */
+    ck_assert_vec_near(s[2].p[1], 50, 60, 0);
+    ck_assert_int_eq(s[3].kind, RUGO_PATH_CUBIC);
+    ck_assert_vec_near(s[3].p[0], 50, 60, 0);
+    ck_assert_vec_near(s[3].p[1], 50, 70, 0);
+    ck_assert_vec_near(s[3].p[2], 40, 80, 0);
+    ck_assert_vec_near(s[3].p[3], 30, 80, 0);
+    /* S: first control = (40, 80) reflected about (30, 80) = (20, 80). */
+    ck_assert_int_eq(s[4].kind, RUGO_PATH_CUBIC);
+    ck_assert_vec_near(s[4].p[1], 20, 80, 0);
+    ck_assert_vec_near(s[4].p[2], 10, 70, 0);
+    ck_assert_vec_near(s[4].p[3], 10, 60, 0);
+    ck_assert_int_eq(s[5].kind, RUGO_PATH_QUADRATIC);
+    ck_assert_vec_near(s[5].p[1], 10, 50, 0);
+    ck_assert_vec_near(s[5].p[2], 20, 50, 0);
+    /* T: control = (10, 50) reflected about (20, 50) = (30, 50). */
+    ck_assert_int_eq(s[6].kind, RUGO_PATH_QUADRATIC);
+    ck_assert_vec_near(s[6].p[1], 30, 50, 0);
+    ck_assert_vec_near(s[6].p[2], 30, 40, 0);
+    /* A from (30, 40) to (30, 30), r = 5: the chord is a diameter, centre (30, 35), half circle. Sweep
+     * 1 = the positive-angle direction: θ from π/2 up to 3π/2, through θ = π, i.e. via (25, 35). */
+    ck_assert_int_eq(s[7].kind, RUGO_PATH_ARC);
+    ck_assert_vec_near(s[7].centre, 30, 35, 1e-14);
+    ck_assert_near(s[7].rx, 5, 1e-14);
+    ck_assert_near(s[7].dtheta, PI, 1e-14);
+    ck_assert_vec_near(seg_point(&p, 7, 0.5), 25, 35, 1e-13);
+    ck_assert_vec_near(seg_point(&p, 7, 1.0), 30, 30, 0);
+    /* Z: a line back to the start. */
+    ck_assert_int_eq(s[8].kind, RUGO_PATH_LINE);
+    ck_assert_vec_near(s[8].p[0], 30, 30, 0);
+    ck_assert_vec_near(s[8].p[1], 10, 20, 0);
+    /* Offsets name the command that made each segment. */
+    ck_assert_uint_eq(s[0].offset, 8);
+    ck_assert_uint_eq(s[1].offset, 16);
+    rugo_path_free(&p);
+    ck_assert_ptr_null(p.segments);
+    rugo_path_free(&p); /* twice is fine */
+    rugo_path_free(NULL);
+}
+END_TEST
+
+/* The same drawing in relative commands gives the same segments (to round-off of the sums). */
+START_TEST(relative_commands) {
+    rugo_path a, r;
+    parse_ok("M 10 20 L 30 40 H 50 V 60 C 50 70 40 80 30 80 S 10 70 10 60 Q 10 50 20 50 T 30 40 "
+             "A 5 5 0 0 1 30 30 Z",
+             &a);
+    parse_ok("m 10 20 l 20 20 h 20 v 20 c 0 10 -10 20 -20 20 s -20 -10 -20 -20 q 0 -10 10 -10 t 10 -10 "
+             "a 5 5 0 0 1 0 -10 z",
+             &r);
+    ck_assert_int_eq(a.segment_count, r.segment_count);
+    for (int k = 0; k < a.segment_count; ++k) {
+        ck_assert_int_eq(a.segments[k].kind, r.segments[k].kind);
+        for (int i = 0; i < 4; ++i)
+            ck_assert_vec_near(r.segments[k].p[i], a.segments[k].p[i].x, a.segments[k].p[i].y, 1e-12);
+        for (int i = 0; i <= 4; ++i) {
+            rugo_vec2 q = seg_point(&a, k, i / 4.0);
+            ck_assert_vec_near(seg_point(&r, k, i / 4.0), q.x, q.y, 1e-12);
+        }
+    }
+    rugo_path_free(&a);
+    rugo_path_free(&r);
+}
+END_TEST
+
+/* Midpoints of a quadratic and a cubic, and the derivative, from the Bernstein forms. */
+START_TEST(curve_points) {
+    rugo_path p;
+    parse_ok("M0 0 Q 1 2 2 0 M0 0 C 0 1 1 1 1 0", &p);
+    ck_assert_int_eq(p.subpath_count, 2);
+    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    /* Q: 1/4 (0,0) + 1/2 (1,2) + 1/4 (2,0) = (1, 1); derivative at 1/2 = (2 - 0, 0 - 0) = (2, 0). */
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), 1, 1, 1e-15);
+    ck_assert_vec_near(rugo_path_segment_derivative(&p.segments[0], 0.5), 2, 0, 1e-15);
+    /* C: 1/8 (0,0) + 3/8 (0,1) + 3/8 (1,1) + 1/8 (1,0) = (1/2, 3/4); derivative at 0 = 3 (p1 - p0). */
+    ck_assert_vec_near(seg_point(&p, 1, 0.5), 0.5, 0.75, 1e-15);
+    ck_assert_vec_near(rugo_path_segment_derivative(&p.segments[1], 0.0), 0, 3, 1e-15);
+    rugo_vec2 nan_point = rugo_path_segment_point(NULL, 0.5);
+    ck_assert(isnan(nan_point.x) && isnan(nan_point.y));
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* S and T reflect only after C/S and Q/T; otherwise the first control point is the current point. */
+START_TEST(smooth_reflection_rules) {
+    rugo_path p;
+    parse_ok("M0 0 C 1 1 2 1 3 0 S 5 -1 6 0 s 1 1 2 0", &p);
+    ck_assert_vec_near(p.segments[1].p[1], 4, -1, 0); /* (2,1) about (3,0) */
+    ck_assert_vec_near(p.segments[2].p[1], 7, 1, 0);  /* (5,-1) about (6,0): S after S */
+    ck_assert_vec_near(p.segments[2].p[2], 7, 1, 0);  /* relative to (6,0) */
+    rugo_path_free(&p);
+    parse_ok("M0 0 L 1 0 S 2 1 3 0", &p); /* after L: the current point */
+    ck_assert_vec_near(p.segments[1].p[1], 1, 0, 0);
+    rugo_path_free(&p);
+    parse_ok("M0 0 Q 1 1 2 0 T 4 0 T 6 0 t 2 0", &p);
+    ck_assert_vec_near(p.segments[1].p[1], 3, -1, 0); /* (1,1) about (2,0) */
+    ck_assert_vec_near(p.segments[2].p[1], 5, 1, 0);  /* (3,-1) about (4,0): T after T */
+    ck_assert_vec_near(p.segments[3].p[1], 7, -1, 0);
+    ck_assert_vec_near(p.segments[3].p[2], 8, 0, 0);
+    rugo_path_free(&p);
+    parse_ok("M0 0 L 1 0 T 2 0", &p);
+    ck_assert_vec_near(p.segments[1].p[1], 1, 0, 0);
+    rugo_path_free(&p);
+    /* A quadratic does not feed S, nor a cubic T. */
+    parse_ok("M0 0 Q 1 1 2 0 S 3 1 4 0 M0 0 C 1 1 2 1 3 0 T 5 0", &p);
+    ck_assert_vec_near(p.segments[1].p[1], 2, 0, 0);
+    ck_assert_vec_near(p.segments[3].p[1], 3, 0, 0);
+    rugo_path_free(&p);
+    /* After Z the reflection is reset too. */
+    parse_ok("M0 0 C 1 1 2 1 3 0 Z S 1 1 2 2", &p);
+    ck_assert_vec_near(p.segments[2].p[1], 0, 0, 0);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* Arcs by the SVG implementation notes: both centres of a chord, sweep direction, radius scaling,
+ * rotation, zero radius, same end points, negative radii, relative form, flags without separators. */
+START_TEST(arcs) {
+    rugo_path p;
+    /* (1,0) -> (0,1), r = 1. Small arc, sweep 1: centre (0,0), θ from 0 to π/2. */
+    parse_ok("M 1 0 A 1 1 0 0 1 0 1", &p);
+    ck_assert_int_eq(p.segments[0].kind, RUGO_PATH_ARC);
+    ck_assert_vec_near(p.segments[0].centre, 0, 0, 1e-15);
+    ck_assert_near(p.segments[0].theta1, 0, 1e-15);
+    ck_assert_near(p.segments[0].dtheta, PI / 2, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), sqrt(0.5), sqrt(0.5), 1e-15);
+    rugo_path_free(&p);
+    /* Large arc, sweep 1: centre (1,1), θ from -π/2 through 0 to π (3π/2). */
+    parse_ok("M 1 0 A 1 1 0 1 1 0 1", &p);
+    ck_assert_vec_near(p.segments[0].centre, 1, 1, 1e-15);
+    ck_assert_near(p.segments[0].theta1, -PI / 2, 1e-15);
+    ck_assert_near(p.segments[0].dtheta, 1.5 * PI, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 1.0 / 3.0), 2, 1, 1e-14); /* θ = 0 */
+    rugo_path_free(&p);
+    /* Small arc, sweep 0: centre (1,1) again, the short way round (negative). */
+    parse_ok("M 1 0 A 1 1 0 0 0 0 1", &p);
+    ck_assert_vec_near(p.segments[0].centre, 1, 1, 1e-15);
+    ck_assert_near(p.segments[0].dtheta, -PI / 2, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), 1 - sqrt(0.5), 1 - sqrt(0.5), 1e-15);
+    rugo_path_free(&p);
+    /* Radius 1 cannot span a chord of 4: scaled to 2, centre at the midpoint, through (2, -2). */
+    parse_ok("M 0 0 A 1 1 0 0 1 4 0", &p);
+    ck_assert_near(p.segments[0].rx, 2, 1e-15);
+    ck_assert_near(p.segments[0].ry, 2, 1e-15);
+    ck_assert_vec_near(p.segments[0].centre, 2, 0, 1e-15);
+    ck_assert_near(p.segments[0].dtheta, PI, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), 2, -2, 1e-15);
+    rugo_path_free(&p);
+    /* An ellipse rx = 2, ry = 1 rotated 90°: its long axis is vertical; (0,0) -> (0,4) is that axis,
+     * centre (0,2), and the half ellipse passes (1, 2) (sweep 1). */
+    parse_ok("M 0 0 A 2 1 90 0 1 0 4", &p);
+    ck_assert_vec_near(p.segments[0].centre, 0, 2, 1e-15);
+    ck_assert_near(p.segments[0].phi, PI / 2, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), 1, 2, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 1.0), 0, 4, 0);
+    rugo_path_free(&p);
+    /* A zero radius is a straight line; an arc to its own start is dropped. */
+    parse_ok("M0 0 A 0 5 0 0 1 3 4 A 5 5 0 0 1 3 4 L 5 5", &p);
+    ck_assert_int_eq(p.segment_count, 2);
+    ck_assert_int_eq(p.segments[0].kind, RUGO_PATH_LINE);
+    ck_assert_vec_near(p.segments[0].p[1], 3, 4, 0);
+    ck_assert_int_eq(p.segments[1].kind, RUGO_PATH_LINE);
+    rugo_path_free(&p);
+    /* Negative radii count as positive; the relative form is relative to the current point. */
+    rugo_path q;
+    parse_ok("M 1 0 A -1 -1 0 0 1 0 1", &p);
+    parse_ok("M 1 0 a 1 1 0 0 1 -1 1", &q);
+    ck_assert_vec_near(p.segments[0].centre, 0, 0, 1e-15);
+    ck_assert_vec_near(q.segments[0].centre, 0, 0, 1e-15);
+    ck_assert_near(q.segments[0].dtheta, PI / 2, 1e-15);
+    rugo_path_free(&p);
+    rugo_path_free(&q);
+    /* Flags without separators: "a1 1 0 00 1 1" is rx 1, ry 1, rotation 0, large 0, sweep 0, to +(1,1):
+     * centre (1,0) (sweep 0 from (0,0) to (1,1) turns the negative way), through (1-√½, √½). */
+    parse_ok("M0 0a1 1 0 00 1 1", &p);
+    ck_assert_int_eq(p.segments[0].kind, RUGO_PATH_ARC);
+    ck_assert_vec_near(p.segments[0].p[1], 1, 1, 0);
+    ck_assert_vec_near(p.segments[0].centre, 1, 0, 1e-15);
+    ck_assert_near(p.segments[0].dtheta, -PI / 2, 1e-15);
+    ck_assert_vec_near(seg_point(&p, 0, 0.5), 1 - sqrt(0.5), sqrt(0.5), 1e-15);
+    rugo_path_free(&p);
+    parse_ok("M0 0a1,1,0,0,1,1,1", &p); /* commas everywhere */
+    ck_assert_near(p.segments[0].dtheta, PI / 2, 1e-15);
+    rugo_path_free(&p);
+    parse_ok("M0 0a1 1 0 1110 0", &p); /* large 1, sweep 1, then "10" and "0" */
+    ck_assert_vec_near(p.segments[0].p[1], 10, 0, 0);
+    ck_assert_near(p.segments[0].rx, 5, 1e-15); /* scaled up to half the chord */
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* Implicit commands: further pairs after M are lines (m: relative lines); repeated argument sets
+ * repeat the command; a drawing command after Z starts a new subpath at the old start. */
+START_TEST(implicit_commands) {
+    rugo_path p;
+    parse_ok("M 0 0 1 0 1 1 0 1 z", &p);
+    ck_assert_int_eq(p.subpath_count, 1);
+    ck_assert_int_eq(p.segment_count, 4);
+    ck_assert_vec_near(p.segments[2].p[1], 0, 1, 0);
+    ck_assert_vec_near(p.segments[3].p[1], 0, 0, 0); /* the closing line */
+    rugo_path_free(&p);
+    parse_ok("m 1 1 2 0 0 2", &p);
+    ck_assert_int_eq(p.segment_count, 2);
+    ck_assert_vec_near(p.segments[0].p[1], 3, 1, 0);
+    ck_assert_vec_near(p.segments[1].p[1], 3, 3, 0);
+    rugo_path_free(&p);
+    parse_ok("M0 0 C 0 1 1 1 1 0 1 -1 2 -1 2 0 h 1 2 v 1", &p);
+    ck_assert_int_eq(p.segment_count, 5);
+    ck_assert_int_eq(p.segments[1].kind, RUGO_PATH_CUBIC);
+    ck_assert_vec_near(p.segments[1].p[3], 2, 0, 0);
+    ck_assert_vec_near(p.segments[3].p[1], 5, 0, 0);
+    ck_assert_vec_near(p.segments[4].p[1], 5, 1, 0);
+    rugo_path_free(&p);
+    parse_ok("M 0 0 L 1 0 1 1 Z L 5 5 Z", &p);
+    ck_assert_int_eq(p.subpath_count, 2);
+    ck_assert_vec_near(p.subpaths[1].start, 0, 0, 0);
+    ck_assert_int_eq(p.subpaths[1].count, 2);
+    ck_assert_vec_near(p.segments[p.subpaths[1].first].p[0], 0, 0, 0);
+    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert_int_eq(p.subpaths[1].closed, 1);
+    rugo_path_free(&p);
+    /* A second moveto (relative to the end of the first subpath's closing point). */
+    parse_ok("M 1 1 h 1 z m 2 0 h 1", &p);
+    ck_assert_int_eq(p.subpath_count, 2);
+    ck_assert_vec_near(p.subpaths[1].start, 3, 1, 0);
+    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    rugo_path_free(&p);
+    /* Empty data: no subpaths, not an error. */
+    parse_ok("", &p);
+    ck_assert_int_eq(p.subpath_count, 0);
+    rugo_path_free(&p);
+    parse_ok(" \t\r\n\f", &p);
+    ck_assert_int_eq(p.subpath_count, 0);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* Number syntax of SVG: signs and points separate numbers, exponents, "1." and ".5", whitespace and
+ * commas. */
+START_TEST(number_syntax) {
+    rugo_path p;
+    parse_ok("M-.5.5L1e-3-2E+1", &p);
+    ck_assert_vec_near(p.subpaths[0].start, -0.5, 0.5, 0);
+    ck_assert_vec_near(p.segments[0].p[1], 0.001, -20, 0);
+    rugo_path_free(&p);
+    parse_ok("M1.5.5.25-1L1.e1+2", &p);
+    ck_assert_vec_near(p.subpaths[0].start, 1.5, 0.5, 0);
+    ck_assert_vec_near(p.segments[0].p[1], 0.25, -1, 0);
+    ck_assert_vec_near(p.segments[1].p[1], 10, 2, 0);
+    rugo_path_free(&p);
+    parse_ok("M+1,+2\tL\n3 ,4,5\f,6", &p);
+    ck_assert_vec_near(p.subpaths[0].start, 1, 2, 0);
+    ck_assert_vec_near(p.segments[0].p[1], 3, 4, 0);
+    ck_assert_vec_near(p.segments[1].p[1], 5, 6, 0);
+    rugo_path_free(&p);
+    parse_ok("M 0 0 L 1e-400 12345678901234567890", &p); /* underflow to 0 is fine */
+    ck_assert_vec_near(p.segments[0].p[1], 0, 12345678901234567890.0, 0);
+    rugo_path_free(&p);
+    parse_ok("M0 0L1 1z", &p);
+    ck_assert_int_eq(p.segment_count, 2);
+    rugo_path_free(&p);
+    /* "1e" is the number 1 followed by an unknown command 'e'. */
+    parse_fails("M 1e 2", RUGO_ERR_PARSE, 4, "expected a number (argument 2 of the 2 of 'M'), found 'e'");
+}
+END_TEST
+
+/* Each kind of bad path data gives its status, the column of the problem and a message. */
+START_TEST(bad_path_data) {
+    parse_fails("L 1 1", RUGO_ERR_PARSE, 1, "must start with a moveto");
+    parse_fails("  10 20", RUGO_ERR_PARSE, 3, "must start with a moveto");
+    parse_fails("M 0 0 X 1 1", RUGO_ERR_PARSE, 7, "unknown path command 'X'");
+    parse_fails("M 0 0 L 1", RUGO_ERR_PARSE, 10, "argument 2 of the 2 of 'L'");
+    parse_fails("M 0 0 C 1 2 3 4 5", RUGO_ERR_PARSE, 18, "argument 6 of the 6 of 'C'");
+    parse_fails("M 0 0 L 1 1 ,", RUGO_ERR_PARSE, 12, "comma must be followed by a number");
+    parse_fails("M 0 0 L 1 1, L 2 2", RUGO_ERR_PARSE, 12, "comma must be followed by a number");
+    parse_fails("M,0 0", RUGO_ERR_PARSE, 2, "expected a number");
+    parse_fails("M 0,,0", RUGO_ERR_PARSE, 5, "expected a number");
+    parse_fails(", M 0 0", RUGO_ERR_PARSE, 1, "unexpected ','");
+    parse_fails("M 0 0 Z 1 1", RUGO_ERR_PARSE, 9, "takes no numbers");
+    parse_fails("M 0 0 A 1 1 0 2 1 3 3", RUGO_ERR_PARSE, 15, "large-arc flag and must be 0 or 1");
+    parse_fails("M 0 0 A 1 1 0 0 -1 3 3", RUGO_ERR_PARSE, 17, "sweep flag and must be 0 or 1");
+    parse_fails("M 0 0 L nan 0", RUGO_ERR_PARSE, 9,
+                "expected a number (argument 1 of the 2 of 'L'), found 'n'");
+    parse_fails("M 0 0 L 1 inf", RUGO_ERR_PARSE, 11, "expected a number");
+    parse_fails("M 0 0 L 0x10 0", RUGO_ERR_PARSE, 10, "expected a number");
+    parse_fails("M 0 0 L . 1", RUGO_ERR_PARSE, 9, "expected a number");
+    parse_fails("M 0 0 1e999 0", RUGO_ERR_NOT_FINITE, 7, "beyond the range of a double");
+    parse_fails("M 0 0 L 1 -1e400000", RUGO_ERR_NOT_FINITE, 11, "beyond the range");
+    parse_fails("M 1e308 0 l 1e308 0", RUGO_ERR_NOT_FINITE, 11, "overflow");
+    parse_fails("M 0 0 a 1 1 0 0 1 1.7e308 0 a 1 1 0 0 1 1.7e308 0", RUGO_ERR_NOT_FINITE, 29, "overflow");
+    parse_fails("M 0 0 L 1 1\n L 2 2 \n Y", RUGO_ERR_PARSE, 0, "unknown path command 'Y'");
+    {
+        rugo_path p;
+        rugo_parse_error e;
+        ck_assert_int_eq(rugo_path_parse("M 0 0 L 1 1\n L 2 2 \n Y", 22, NULL, &p, &e), RUGO_ERR_PARSE);
+        ck_assert_int_eq(e.line, 3);
+        ck_assert_int_eq(e.column, 2);
+        /* Non-ASCII bytes are shown as hex. */
+        ck_assert_int_eq(rugo_path_parse("M 0 0 \xC3\xA9", 8, NULL, &p, &e), RUGO_ERR_PARSE);
+        ck_assert_ptr_nonnull(strstr(e.message, "byte 0xC3"));
+        /* The text need not be NUL-terminated: length is obeyed (here it cuts the data short). */
+        ck_assert_int_eq(rugo_path_parse("M 0 0 L 1 1", 9, NULL, &p, &e), RUGO_ERR_PARSE);
+        ck_assert_int_eq(e.column, 10);
+        /* A number too long to be reasonable. */
+        char longnum[700];
+        memset(longnum, '1', sizeof longnum);
+        memcpy(longnum, "M 0 ", 4);
+        ck_assert_int_eq(rugo_path_parse(longnum, sizeof longnum, NULL, &p, &e), RUGO_ERR_PARSE);
+        ck_assert_ptr_nonnull(strstr(e.message, "longer than"));
+        /* Size limit (refused before reading) and NULL arguments. */
+        ck_assert_int_eq(rugo_path_parse("M 0 0", RUGO_MAX_SVG_BYTES + 1, NULL, &p, &e), RUGO_ERR_TOO_LARGE);
+        ck_assert_int_eq(rugo_path_parse(NULL, 0, NULL, &p, &e), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_path_parse("M 0 0", 5, NULL, NULL, &e), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_path_parse("M 0 0 X", 7, NULL, &p, NULL),
+                         RUGO_ERR_PARSE); /* error may be NULL */
+    }
+}
+END_TEST
+
+/* An allocator that fails after `budget` allocations and counts live blocks. */
+typedef struct budget_ctx {
+    long budget;
+    long live;
+} budget_ctx;
+
+static void* budget_alloc(size_t n, void* ctx) {
+    budget_ctx* b = (budget_ctx*)ctx;
+    if (b->budget <= 0) return NULL;
+    --b->budget;
+    void* p = malloc(n);
+    if (p != NULL) ++b->live;
+    return p;
+}
+
+static void budget_free(void* p, void* ctx) {
+    budget_ctx* b = (budget_ctx*)ctx;
+    if (p != NULL) --b->live;
+    free(p);
+}
+
+/* Every allocation failure is OUT_OF_MEMORY with nothing leaked, for parsing and sampling; the
+ * allocator given is the one used. */
+START_TEST(allocation_failures) {
+    /* 40 segments: several growths of the segment array. */
+    char d[1024] = "M 0 0";
+    for (int i = 1; i < 40; ++i)
+        snprintf(d + strlen(d), sizeof d - strlen(d), " L %d %d", i, (i * 7) % 13);
+    strcat(d, " Z");
+    int ok_parse = 0, ok_sample = 0;
+    for (long budget = 0; budget < 64 && !(ok_parse && ok_sample); ++budget) {
+        budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        rugo_path p;
+        rugo_status st = rugo_path_parse(d, strlen(d), &a, &p, NULL);
+        if (st != RUGO_OK) {
+            ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
+            ck_assert_int_eq(ctx.live, 0);
+            continue;
+        }
+        ok_parse = 1;
+        rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+        sd.path = &p;
+        sd.sample_count = 100;
+        sd.allocator = a;
+        rugo_outline_samples s;
+        st = rugo_outline_sample(&sd, &s, NULL);
+        if (st == RUGO_OK) {
+            ok_sample = 1;
+            rugo_outline_samples_free(&s);
+        } else {
+            ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
+        }
+        rugo_path_free(&p);
+        ck_assert_int_eq(ctx.live, 0);
+    }
+    ck_assert(ok_parse && ok_sample);
+}
+END_TEST
+
+/* ---- transforms ---------------------------------------------------------------------------------- */
+
+static rugo_affine transform_ok(const char* s) {
+    rugo_affine m;
+    rugo_parse_error e;
+    rugo_status st = rugo_svg_transform_parse(s, strlen(s), &m, &e);
+    ck_assert_msg(st == RUGO_OK, "<%s>: %d %s", s, st, e.message);
+    return m;
+}
+
+static void transform_fails(const char* s, rugo_status status, int column, const char* fragment) {
+    rugo_affine m;
+    rugo_parse_error e;
+    rugo_status st = rugo_svg_transform_parse(s, strlen(s), &m, &e);
+    ck_assert_msg(st == status, "<%s>: status %d, expected %d (%s)", s, st, status, e.message);
+    ck_assert(m.a == 1 && m.b == 0 && m.c == 0 && m.d == 1 && m.e == 0 && m.f == 0);
+    ck_assert_str_eq(e.path, "transform");
+    if (column > 0) ck_assert_msg(e.column == column, "<%s>: column %d, expected %d", s, e.column, column);
+    if (fragment != NULL) ck_assert_msg(strstr(e.message, fragment) != NULL, "<%s>: \"%s\"", s, e.message);
+}
+
+START_TEST(transform_lists) {
+    rugo_affine m = transform_ok("matrix(1 2 3 4 5 6)");
+    ck_assert(m.a == 1 && m.b == 2 && m.c == 3 && m.d == 4 && m.e == 5 && m.f == 6);
+    m = transform_ok("translate(3)"); /* ty defaults to 0 */
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 1)), 4, 1, 0);
+    m = transform_ok("scale(2)"); /* sy defaults to sx */
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 1)), 2, 2, 0);
+    m = transform_ok("scale(2,-3)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 1)), 2, -3, 0);
+    m = transform_ok("rotate(90)"); /* exact for multiples of 90 degrees */
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), 0, 1, 0);
+    m = transform_ok("rotate(-450)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), 0, -1, 0);
+    m = transform_ok("rotate(30)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), sqrt(3) / 2, 0.5, 1e-15);
+    m = transform_ok("rotate(90 10 20)"); /* about (10, 20): (11, 20) -> (10, 21) */
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(11, 20)), 10, 21, 1e-14);
+    m = transform_ok("skewX(45)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(0, 1)), 1, 1, 1e-15);
+    m = transform_ok("skewY(45)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), 1, 1, 1e-15);
+    /* A list applies right to left: translate(10) scale(2) maps 1 to 12. */
+    m = transform_ok(" translate(10, 0) , scale(2)\n");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), 12, 0, 0);
+    m = transform_ok("scale(2)translate(10)");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(1, 0)), 22, 0, 0);
+    m = transform_ok("translate( 1e1 , -.5 )");
+    ck_assert_vec_near(rugo_affine_apply(m, rugo_v2(0, 0)), 10, -0.5, 0);
+    m = transform_ok("");
+    ck_assert(m.a == 1 && m.d == 1 && m.e == 0);
+    /* rugo_affine_multiply agrees with applying in turn. */
+    rugo_affine r = transform_ok("rotate(30)"), t = transform_ok("translate(3,4)");
+    rugo_vec2 p = rugo_v2(0.7, -1.3), q = rugo_affine_apply(r, rugo_affine_apply(t, p));
+    ck_assert_vec_near(rugo_affine_apply(rugo_affine_multiply(r, t), p), q.x, q.y, 1e-15);
+}
+END_TEST
+
+START_TEST(bad_transforms) {
+    transform_fails("foo(1)", RUGO_ERR_PARSE, 1, "unknown transform 'foo'");
+    transform_fails("translate(1) 7", RUGO_ERR_PARSE, 14, "expected a transform");
+    transform_fails("translate(1,2,3)", RUGO_ERR_PARSE, 1, "translate takes 1 or 2 numbers, found 3");
+    transform_fails("rotate(1,2)", RUGO_ERR_PARSE, 1, "rotate takes 1 or 3 numbers");
+    transform_fails("matrix(1 2 3 4 5)", RUGO_ERR_PARSE, 1, "matrix takes 6 numbers");
+    transform_fails("matrix(1 2 3 4 5 6 7)", RUGO_ERR_PARSE, 20, "too many arguments");
+    transform_fails("skewX()", RUGO_ERR_PARSE, 1, "skewX takes 1 number, found 0");
+    transform_fails("rotate(10", RUGO_ERR_PARSE, 10, "not closed");
+    transform_fails("scale 2", RUGO_ERR_PARSE, 7, "expected '('");
+    transform_fails("translate(1,)", RUGO_ERR_PARSE, 12, "comma must be followed by a number");
+    transform_fails("scale(2),", RUGO_ERR_PARSE, 9, "comma must be followed by a transform");
+    transform_fails("scale(1e999)", RUGO_ERR_NOT_FINITE, 7, "beyond the range");
+    transform_fails("scale(1e300) scale(1e300)", RUGO_ERR_NOT_FINITE, 14, "overflows");
+    transform_fails("translate(x)", RUGO_ERR_PARSE, 11, "expected a number");
+    rugo_affine m;
+    ck_assert_int_eq(rugo_svg_transform_parse(NULL, 0, &m, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_svg_transform_parse("", 0, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_svg_transform_parse("", RUGO_MAX_SVG_BYTES + 1, &m, NULL), RUGO_ERR_TOO_LARGE);
+}
+END_TEST
+
+/* ---- SVG documents --------------------------------------------------------------------------------- */
+
+static void find_fails(const char* doc, const char* id, rugo_status status, int line, const char* fragment) {
+    rugo_svg_path_element el;
+    rugo_parse_error e;
+    rugo_status st = rugo_svg_find_path(doc, strlen(doc), id, NULL, &el, &e);
+    ck_assert_msg(st == status, "id %s: status %d, expected %d (%s)", id ? id : "NULL", st, status,
+                  e.message);
+    ck_assert_ptr_null(el.d);
+    if (line >= 0) ck_assert_msg(e.line == line, "line %d, expected %d (%s)", e.line, line, e.message);
+    if (fragment != NULL)
+        ck_assert_msg(strstr(e.message, fragment) != NULL, "\"%s\" lacks \"%s\"", e.message, fragment);
+}
+
+/* The scan finds the element by id whatever the attribute order and quotes, past comments, CDATA,
+ * processing instructions and a DOCTYPE that mention the id, with entities decoded, and composes the
+ * transforms of its ancestors (only those still open). */
+START_TEST(find_path_in_document) {
+    const char* doc =
+        "\xEF\xBB\xBF<?xml version=\"1.0\"?>\n"
+        "<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" \"x\" [ <!ENTITY e \"<path id='r'>\"> ]>\n"
+        "<svg:svg xmlns:svg='http://www.w3.org/2000/svg'>\n"
+        "<!-- <path id=\"r\" d=\"M 9 9\"/> -->\n"
+        "<svg:g transform='translate(100,0)'><svg:path id='r' d='M 8 8'/></svg:g>\n"
+        "<![CDATA[ <path id=\"r\"/> ]]>\n"
+        "<g transform=\"translate(10,20)\">\n"
+        "  <text>a &lt; b</text>\n"
+        "  <g transform=\"scale(2)\" id=\"inner\">\n"
+        "    <svg:path\n"
+        "       transform='rotate(90)' d=\"M 1 0 H 2 &#x5A;\" style=\"x\" id=\"a&amp;b\" />\n"
+        "  </g>\n"
+        "</g>\n"
+        "</svg:svg>\n";
+    rugo_svg_path_element el;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "a&b", NULL, &el, &e), RUGO_OK);
+    ck_assert_str_eq(el.d, "M 1 0 H 2 Z");
+    ck_assert_uint_eq(el.d_length, 11);
+    ck_assert_int_eq(el.d_has_entities, 1);
+    ck_assert_int_eq(el.line, 10);
+    ck_assert_int_eq(el.column, 5);
+    /* translate(10,20) scale(2) rotate(90): (1,0) -> (0,1) -> (0,2) -> (10,22). */
+    ck_assert_vec_near(rugo_affine_apply(el.transform, rugo_v2(1, 0)), 10, 22, 0);
+    rugo_svg_path_element_free(&el);
+    ck_assert_ptr_null(el.d);
+    rugo_svg_path_element_free(NULL);
+    /* The first real element with the id "r" is inside the closed translate(100) group. */
+    ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "r", NULL, &el, &e), RUGO_OK);
+    ck_assert_str_eq(el.d, "M 8 8");
+    ck_assert_int_eq(el.d_has_entities, 0);
+    ck_assert_vec_near(rugo_affine_apply(el.transform, rugo_v2(0, 0)), 100, 0, 0);
+    rugo_svg_path_element_free(&el);
+    /* An id that only occurs in comments or CDATA is not found. */
+    find_fails("<svg><!-- <path id='x' d='M0 0'/> --><![CDATA[<path id='x'/>]]></svg>", "x",
+               RUGO_ERR_BAD_FIELD, 0, "no element with id 'x'");
+    /* Without an id: the only <path>. */
+    const char* one = "<svg><g><rect id='r'/><path d='M 0 0 H 1 V 1 Z'/></g></svg>";
+    ck_assert_int_eq(rugo_svg_find_path(one, strlen(one), NULL, NULL, &el, &e), RUGO_OK);
+    ck_assert_str_eq(el.d, "M 0 0 H 1 V 1 Z");
+    rugo_svg_path_element_free(&el);
+}
+END_TEST
+
+START_TEST(bad_documents) {
+    find_fails("<svg><rect id='x'/></svg>", "x", RUGO_ERR_BAD_FIELD, 1, "is <rect>, not <path>");
+    find_fails("<svg>\n<path id='x'/></svg>", "x", RUGO_ERR_BAD_FIELD, 2, "no d attribute");
+    find_fails("<svg><path d='M0 0'/><path d='M1 1'/></svg>", NULL, RUGO_ERR_BAD_FIELD, 1,
+               "more than one <path>");
+    find_fails("<svg><g/></svg>", NULL, RUGO_ERR_BAD_FIELD, 0, "no <path> element");
+    find_fails("", "x", RUGO_ERR_BAD_FIELD, 0, "no element with id");
+    find_fails("<svg>\n<g>\n</svg>\n<path id='x' d='M0 0'/>", "x", RUGO_ERR_PARSE, 3,
+               "</svg> does not match <g>");
+    find_fails("<svg></g>", "x", RUGO_ERR_PARSE, 1, "does not match");
+    find_fails("</svg>", "x", RUGO_ERR_PARSE, 1, "without a matching start tag");
+    find_fails("<svg><!-- never closed <path id='x' d='M0 0'/>", "x", RUGO_ERR_PARSE, 1,
+               "unterminated comment");
+    find_fails("<svg><![CDATA[ x", "x", RUGO_ERR_PARSE, 1, "unterminated CDATA");
+    find_fails("<?xml version='1.0'", "x", RUGO_ERR_PARSE, 1, "unterminated processing instruction");
+    find_fails("<!DOCTYPE svg [ <!ENTITY a 'b'>", "x", RUGO_ERR_PARSE, 1, "unterminated declaration");
+    find_fails("<svg>\n  <path id='x' d='M0 0", "x", RUGO_ERR_PARSE, 2, "unterminated attribute value");
+    find_fails("<svg><path id='x' d='M0 0'", "x", RUGO_ERR_PARSE, 1, "unterminated tag");
+    find_fails("<svg><path id='x' d=M0></svg>", "x", RUGO_ERR_PARSE, 1, "expected a quoted attribute value");
+    find_fails("<svg><path id='x' d></svg>", "x", RUGO_ERR_PARSE, 1, "expected '='");
+    find_fails("<svg><path id='x' id='y' d='M0 0'/></svg>", "x", RUGO_ERR_PARSE, 1, "given twice");
+    find_fails("<svg>< path/></svg>", "x", RUGO_ERR_PARSE, 1, "expected an element name");
+    find_fails("<svg><path id='x' d='M 0 0 &foo; 1'/></svg>", "x", RUGO_ERR_PARSE, 1, "entity");
+    find_fails("<svg><path id='x' d='M 0 0 &#0; 1'/></svg>", "x", RUGO_ERR_PARSE, 1, "entity");
+    find_fails("<svg><path id='x' d='M 0 0 &#xD800; 1'/></svg>", "x", RUGO_ERR_PARSE, 1, "entity");
+    find_fails("<svg><path id='x' d='M 0 0 &#x110000; 1'/></svg>", "x", RUGO_ERR_PARSE, 1, "entity");
+    find_fails("<svg><path id='x' d='M 0 0 & 1'/></svg>", "x", RUGO_ERR_PARSE, 1, "entity");
+    /* A bad transform of an ancestor is reported inside that attribute, with the element's name. */
+    {
+        const char* doc =
+            "<svg>\n<g id='L' transform='translate(1) frob(2)'>\n<path id='x' d='M0 0'/></g></svg>";
+        rugo_svg_path_element el;
+        rugo_parse_error e;
+        ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "x", NULL, &el, &e), RUGO_ERR_PARSE);
+        ck_assert_int_eq(e.line, 2);
+        ck_assert_int_eq(e.column, 35);
+        ck_assert_str_eq(e.path, "g#L/transform");
+        ck_assert_ptr_nonnull(strstr(e.message, "unknown transform 'frob'"));
+        const char* big =
+            "<svg><g transform='scale(1e200)'><path id='x' transform='scale(1e200)' d='M0 0'/></g></svg>";
+        ck_assert_int_eq(rugo_svg_find_path(big, strlen(big), "x", NULL, &el, &e), RUGO_ERR_NOT_FINITE);
+        /* Nesting beyond the limit. */
+        size_t n = (RUGO_SVG_MAX_DEPTH + 1) * 3 + 32;
+        char* deep = malloc(n);
+        size_t w = 0;
+        for (int i = 0; i <= RUGO_SVG_MAX_DEPTH; ++i)
+            w += (size_t)sprintf(deep + w, "<g>");
+        w += (size_t)sprintf(deep + w, "<path id='x' d='M0 0'/>");
+        ck_assert_int_eq(rugo_svg_find_path(deep, w, "x", NULL, &el, &e), RUGO_ERR_PARSE);
+        ck_assert_ptr_nonnull(strstr(e.message, "nested deeper"));
+        /* Exactly at the limit is fine. */
+        w = 0;
+        for (int i = 0; i < RUGO_SVG_MAX_DEPTH; ++i)
+            w += (size_t)sprintf(deep + w, "<g>");
+        w += (size_t)sprintf(deep + w, "<path id='x' d='M0 0'/>");
+        ck_assert_int_eq(rugo_svg_find_path(deep, w, "x", NULL, &el, &e), RUGO_OK);
+        rugo_svg_path_element_free(&el);
+        free(deep);
+        ck_assert_int_eq(rugo_svg_find_path(NULL, 0, "x", NULL, &el, &e), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_svg_find_path("<svg/>", 6, "x", NULL, NULL, &e), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_svg_find_path("<svg/>", RUGO_MAX_SVG_BYTES + 1, "x", NULL, &el, &e),
+                         RUGO_ERR_TOO_LARGE);
+    }
+}
+END_TEST
+
+/* Errors in the d attribute of a document are reported at their line and column in the document. */
+START_TEST(document_error_positions) {
+    const char* doc = "<svg>\n  <path id=\"p\"\n     d=\"M 0 0 L 1 1\n        Q 2 2 x\" />\n</svg>";
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    rugo_outline_samples s;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_svg_import_outline(doc, strlen(doc), "p", &sd, &s, &e), RUGO_ERR_PARSE);
+    ck_assert_int_eq(e.line, 4);
+    ck_assert_int_eq(e.column, 15);
+    ck_assert_str_eq(e.path, "path#p/d");
+    ck_assert_ptr_null(s.points);
+    /* An open path: the error points at its d attribute. */
+    const char* open = "<svg>\n<path id='o' d='M 0 0 L 1 1 L 0 1'/></svg>";
+    ck_assert_int_eq(rugo_svg_import_outline(open, strlen(open), "o", &sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_int_eq(e.line, 2);
+    ck_assert_int_eq(e.column, 17);
+    ck_assert_ptr_nonnull(strstr(e.message, "no closed subpath"));
+    rugo_outline_sample_def bad = sd;
+    bad.cookie = 0;
+    ck_assert_int_eq(rugo_svg_import_outline(open, strlen(open), "o", &bad, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_svg_import_outline(NULL, 0, "o", &sd, &s, &e), RUGO_ERR_NULL_ARGUMENT);
+}
+END_TEST
+
+/* ---- sampling --------------------------------------------------------------------------------------- */
+
+static void sample_ok(const rugo_path* p, int subpath, rugo_affine m, int count, rugo_outline_samples* s) {
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    sd.path = p;
+    sd.subpath = subpath;
+    sd.transform = m;
+    sd.sample_count = count;
+    rugo_parse_error e;
+    rugo_status st = rugo_outline_sample(&sd, s, &e);
+    ck_assert_msg(st == RUGO_OK, "status %d: %s", st, e.message);
+}
+
+static double polygon_area(const rugo_vec2* p, int n) {
+    double a = 0.0;
+    for (int i = 0; i < n; ++i)
+        a += rugo_v2_cross(p[i], p[(i + 1) % n]);
+    return 0.5 * a;
+}
+
+/* A square of side 10 with 10 samples: its 4 corners, and 6 more by largest remainders (1.5 per side:
+ * one each, and the two left to the first two sides), equally spaced on each side. */
+START_TEST(sample_square_by_hand) {
+    rugo_path p;
+    parse_ok("M0 0 H10 V10 H0 Z", &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 10, &s);
+    static const double want[10][2] = {{0, 0},         {10.0 / 3, 0}, {20.0 / 3, 0}, {10, 0}, {10, 10.0 / 3},
+                                       {10, 20.0 / 3}, {10, 10},      {5, 10},       {0, 10}, {0, 5}};
+    ck_assert_int_eq(s.count, 10);
+    for (int i = 0; i < 10; ++i)
+        ck_assert_vec_near(s.points[i], want[i][0], want[i][1], 1e-13);
+    ck_assert_near(s.perimeter, 40, 1e-13);
+    ck_assert_near(s.area, 100, 1e-12);
+    ck_assert_int_eq(s.reversed, 0);
+    ck_assert_int_eq(s.segment_count, 4);
+    ck_assert_int_eq(s.subpath, 0);
+    rugo_outline_samples_free(&s);
+    ck_assert_ptr_null(s.points);
+    rugo_outline_samples_free(&s);
+    rugo_outline_samples_free(NULL);
+    /* Under SVG's y flip the same drawing runs clockwise: the samples come out reversed, start kept. */
+    rugo_affine flip = {1, 0, 0, -1, 0, 0};
+    sample_ok(&p, -1, flip, 10, &s);
+    ck_assert_int_eq(s.reversed, 1);
+    ck_assert_vec_near(s.points[0], 0, 0, 0);
+    ck_assert_vec_near(s.points[1], 0, -5, 1e-13);
+    ck_assert_vec_near(s.points[9], 10.0 / 3, 0, 1e-13);
+    ck_assert(polygon_area(s.points, s.count) > 0);
+    rugo_outline_samples_free(&s);
+    /* As many samples as segments: just the corners. */
+    sample_ok(&p, -1, rugo_affine_identity(), 4, &s);
+    ck_assert_int_eq(s.count, 4);
+    ck_assert_vec_near(s.points[2], 10, 10, 0);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* A circle of radius 10 as four arcs: perimeter 2π r, every sample on the circle, spacing uniform
+ * (1024 samples per quarter). */
+START_TEST(sample_circle_of_arcs) {
+    rugo_path p;
+    parse_ok("M 10 0 A 10 10 0 0 1 0 10 A 10 10 0 0 1 -10 0 A 10 10 0 0 1 0 -10 A 10 10 0 0 1 10 0 Z", &p);
+    ck_assert_int_eq(p.segment_count, 4); /* the arcs end exactly at the start: Z adds nothing */
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 0, &s);
+    ck_assert_int_eq(s.count, RUGO_DEFAULT_OUTLINE_SAMPLES);
+    ck_assert_near(s.perimeter, 2 * PI * 10, 1e-12);
+    double step_min = 1e9, step_max = 0;
+    for (int i = 0; i < s.count; ++i) {
+        ck_assert_near(hypot(s.points[i].x, s.points[i].y), 10, 1e-13);
+        const double step = hypot(s.points[(i + 1) % s.count].x - s.points[i].x,
+                                  s.points[(i + 1) % s.count].y - s.points[i].y);
+        step_min = fmin(step_min, step);
+        step_max = fmax(step_max, step);
+        /* sample k at angle 2π k / M */
+        const double ang = 2 * PI * i / s.count;
+        ck_assert_vec_near(s.points[i], 10 * cos(ang), 10 * sin(ang), 1e-12);
+    }
+    ck_assert_near(step_max / step_min, 1, 1e-10);
+    ck_assert_int_eq(s.reversed, 0);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* The usual four-cubic circle (k = 4(√2-1)/3 r) is not a circle: its perimeter is 2π r (1 + 1.40293e-4)
+ * (independent value: 62.840667922954331 by composite Gauss-Legendre with 16384 pieces), and its
+ * points lie between r and r (1 + 2.7253e-4). */
+START_TEST(sample_circle_of_cubics) {
+    rugo_path p;
+    parse_ok("M 10 0 C 10 5.522847498307936 5.522847498307936 10 0 10 C -5.522847498307936 10 -10 "
+             "5.522847498307936 "
+             "-10 0 C -10 -5.522847498307936 -5.522847498307936 -10 0 -10 C 5.522847498307936 -10 10 "
+             "-5.522847498307936 10 0 Z",
+             &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 0, &s);
+    ck_assert_near(s.perimeter, 62.840667922954331, 1e-11);
+    ck_assert_near(s.perimeter / (2 * PI * 10) - 1, 1.40293e-4, 1e-9);
+    double rmin = 1e9, rmax = 0;
+    for (int i = 0; i < s.count; ++i) {
+        const double r = hypot(s.points[i].x, s.points[i].y);
+        rmin = fmin(rmin, r);
+        rmax = fmax(rmax, r);
+    }
+    ck_assert_near(rmin, 10, 1e-12);
+    ck_assert_near(rmax, 10.0027253, 1e-7);
+    /* Consecutive samples are equally spaced in arc length, so their chords are nearly equal. */
+    for (int i = 0; i < s.count; ++i) {
+        const double step = hypot(s.points[(i + 1) % s.count].x - s.points[i].x,
+                                  s.points[(i + 1) % s.count].y - s.points[i].y);
+        ck_assert_near(step, s.perimeter / s.count, 1e-6);
+    }
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* Which subpath: the closed one of largest area by default (an outline with a hole gives its outer
+ * boundary), or the one asked for; errors for open, empty and missing subpaths. */
+START_TEST(sample_subpath_choice) {
+    rugo_path p;
+    parse_ok("M 2 2 h 1 v 1 h -1 z M 0 0 h 10 v 10 h -10 z M 20 20 l 5 0 l 0 5 M 30 30 Z", &p);
+    ck_assert_int_eq(p.subpath_count, 4);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 8, &s);
+    ck_assert_int_eq(s.subpath, 1);
+    ck_assert_near(s.area, 100, 1e-12);
+    rugo_outline_samples_free(&s);
+    sample_ok(&p, 0, rugo_affine_identity(), 8, &s);
+    ck_assert_int_eq(s.subpath, 0);
+    ck_assert_near(s.area, 1, 1e-12);
+    rugo_outline_samples_free(&s);
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    sd.path = &p;
+    rugo_parse_error e;
+    sd.subpath = 2;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_nonnull(strstr(e.message, "subpath 2 is open"));
+    sd.subpath = 3;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_nonnull(strstr(e.message, "subpath 3 is empty"));
+    sd.subpath = 4;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    sd.subpath = -2;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    rugo_path_free(&p);
+    /* No closed subpath at all; a subpath ending on its start without Z counts as closed. */
+    parse_ok("M 0 0 L 1 0 L 1 1", &p);
+    sd = rugo_default_outline_sample_def();
+    sd.path = &p;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_nonnull(strstr(e.message, "no closed subpath"));
+    rugo_path_free(&p);
+    parse_ok("M 0 0 L 1 0 L 1 1 L 0 0", &p);
+    sd.path = &p;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_OK);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+    parse_ok("", &p);
+    sd.path = &p;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    rugo_path_free(&p);
+}
+END_TEST
+
+START_TEST(sample_bad_input) {
+    rugo_path p;
+    parse_ok("M0 0 H10 V10 H0 Z", &p);
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    ck_assert_int_eq(sd.subpath, -1);
+    ck_assert_int_eq(sd.sample_count, 0);
+    ck_assert(sd.transform.a == 1 && sd.transform.d == 1);
+    sd.path = &p;
+    rugo_outline_samples s;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_outline_sample(NULL, &s, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_outline_sample(&sd, NULL, &e), RUGO_ERR_NULL_ARGUMENT);
+    rugo_outline_sample_def d2 = sd;
+    d2.cookie = 12345;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    d2 = sd;
+    d2.path = NULL;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_NULL_ARGUMENT);
+    d2 = sd;
+    d2.sample_count = 3; /* below the 4 segments */
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_ptr_nonnull(strstr(e.message, "below the 4 segments"));
+    d2.sample_count = 2;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    d2.sample_count = -1;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    d2.sample_count = RUGO_MAX_CONTROL_POINTS + 1;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_TOO_MANY_POINTS);
+    d2 = sd;
+    d2.transform.c = NAN;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_NOT_FINITE);
+    d2.transform = rugo_affine_identity();
+    d2.transform.a = 1e300; /* finite points, but an area beyond doubles */
+    d2.transform.d = 1e300;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_NOT_FINITE);
+    ck_assert_ptr_nonnull(strstr(e.message, "area overflows"));
+    d2.transform.a = 1e308; /* lengths beyond doubles */
+    d2.transform.d = 1e308;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_NOT_FINITE);
+    ck_assert_ptr_nonnull(strstr(e.message, "length overflows"));
+    d2.transform = rugo_affine_identity();
+    d2.transform.d = 0; /* everything onto the x axis */
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_ZERO_AREA);
+    d2.transform.a = 0;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_ZERO_AREA);
+    ck_assert_ptr_null(s.points);
+    rugo_path_free(&p);
+    /* A path whose counts disagree with its arrays. */
+    rugo_path bogus;
+    memset(&bogus, 0, sizeof bogus);
+    bogus.subpath_count = 1;
+    d2 = sd;
+    d2.path = &bogus;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+}
+END_TEST
+
+/* Same input, same bits; and the points lie on the curve (a cubic here: distance to the true curve
+ * checked by dense bisection-free evaluation is below 1e-12). */
+START_TEST(sample_deterministic_and_on_curve) {
+    rugo_path p;
+    parse_ok("M 0 0 C 10 -5 20 15 30 0 Q 40 -20 30 -30 A 15 10 30 0 1 0 0 Z", &p);
+    rugo_outline_samples a, b;
+    sample_ok(&p, -1, rugo_affine_identity(), 777, &a);
+    sample_ok(&p, -1, rugo_affine_identity(), 777, &b);
+    ck_assert_int_eq(a.count, 777);
+    ck_assert_int_eq(memcmp(a.points, b.points, sizeof(rugo_vec2) * (size_t)a.count), 0);
+    ck_assert(a.perimeter == b.perimeter);
+    /* Arc lengths between consecutive samples inside one segment are equal: check on the arc, whose
+     * samples lie on its ellipse. */
+    const rugo_path_segment* arc = &p.segments[2];
+    ck_assert_int_eq(arc->kind, RUGO_PATH_ARC);
+    int on_ellipse = 0;
+    for (int i = 0; i < a.count; ++i) {
+        const rugo_vec2 q = rugo_v2_sub(a.points[i], arc->centre);
+        const double c = cos(arc->phi), s = sin(arc->phi);
+        const double u = (c * q.x + s * q.y) / arc->rx, v = (-s * q.x + c * q.y) / arc->ry;
+        if (fabs(hypot(u, v) - 1) < 1e-12) ++on_ellipse;
+    }
+    /* the arc's share of the samples (its start included) */
+    ck_assert_int_gt(on_ellipse, 200);
+    rugo_outline_samples_free(&a);
+    rugo_outline_samples_free(&b);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* ---- point lists --------------------------------------------------------------------------------- */
+
+START_TEST(points_text) {
+    const char* t = "x,y\r\n# a comment\r\n1,2\r\n\r\n 3 4 \n5;6\n7\t8\n-1e1 , +.5\n";
+    rugo_vec2* pts = NULL;
+    int n = -1;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e), RUGO_OK);
+    ck_assert_int_eq(n, 5);
+    ck_assert_vec_near(pts[0], 1, 2, 0);
+    ck_assert_vec_near(pts[1], 3, 4, 0);
+    ck_assert_vec_near(pts[2], 5, 6, 0);
+    ck_assert_vec_near(pts[3], 7, 8, 0);
+    ck_assert_vec_near(pts[4], -10, 0.5, 0);
+    rugo_points_free(NULL, pts);
+    /* JSON is told by its '{'. */
+    const char* j = "  {\"points\": [[1, 2], [3, 4], [5, 7]]}";
+    ck_assert_int_eq(rugo_points_text_parse(j, strlen(j), NULL, &pts, &n, &e), RUGO_OK);
+    ck_assert_int_eq(n, 3);
+    ck_assert_vec_near(pts[2], 5, 7, 0);
+    rugo_points_free(NULL, pts);
+    const char* jbad = "{\"points\": [[1, 2], [3]]}";
+    ck_assert_int_eq(rugo_points_text_parse(jbad, strlen(jbad), NULL, &pts, &n, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_null(pts);
+    /* The data file rugo fit reads. */
+    size_t len = 0;
+    char* c64 = read_data("circle64_points.json", &len);
+    ck_assert_int_eq(rugo_points_text_parse(c64, len, NULL, &pts, &n, &e), RUGO_OK);
+    ck_assert_int_eq(n, 64);
+    rugo_points_free(NULL, pts);
+    free(c64);
+    /* Empty text: no points. */
+    ck_assert_int_eq(rugo_points_text_parse("", 0, NULL, &pts, &n, &e), RUGO_OK);
+    ck_assert_int_eq(n, 0);
+    ck_assert_ptr_null(pts);
+}
+END_TEST
+
+static void points_fail(const char* t, rugo_status status, int line, int column, const char* fragment) {
+    rugo_vec2* pts = (rugo_vec2*)&pts;
+    int n = -1;
+    rugo_parse_error e;
+    rugo_status st = rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e);
+    ck_assert_msg(st == status, "<%s>: status %d, expected %d (%s)", t, st, status, e.message);
+    ck_assert_ptr_null(pts);
+    ck_assert_int_eq(n, 0);
+    ck_assert_msg(e.line == line && e.column == column, "<%s>: at %d:%d, expected %d:%d", t, e.line, e.column,
+                  line, column);
+    if (fragment != NULL) ck_assert_msg(strstr(e.message, fragment) != NULL, "<%s>: \"%s\"", t, e.message);
+}
+
+START_TEST(bad_points_text) {
+    points_fail("1,2\n3,4,5\n", RUGO_ERR_PARSE, 2, 4, "two numbers per line");
+    points_fail("1,2\n3\n", RUGO_ERR_PARSE, 2, 2, "expected a separator");
+    points_fail("1,2\n3,\n", RUGO_ERR_PARSE, 2, 3, "expected a number (y)");
+    points_fail("1,2\nx,y\n", RUGO_ERR_PARSE, 2, 1, "expected a number (x)"); /* a header only comes first */
+    points_fail("nan,1\n", RUGO_ERR_PARSE, 1, 1, "expected a number");        /* has a digit: not a header */
+    points_fail("0x10,1\n", RUGO_ERR_PARSE, 1, 2, "separator");
+    points_fail("1,2\n1e999,0\n", RUGO_ERR_NOT_FINITE, 2, 1, "beyond the range");
+    points_fail("1,2\n3-4\n", RUGO_ERR_PARSE, 2, 2, "separator");
+    rugo_vec2* pts;
+    int n;
+    ck_assert_int_eq(rugo_points_text_parse(NULL, 0, NULL, &pts, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", 3, NULL, NULL, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &n, NULL),
+                     RUGO_ERR_TOO_LARGE);
+}
+END_TEST
+
+START_TEST(path_from_points) {
+    const rugo_vec2 pts[] = {{0, 0}, {1, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+    rugo_path p;
+    ck_assert_int_eq(rugo_path_from_points(pts, 6, NULL, &p), RUGO_OK);
+    ck_assert_int_eq(p.subpath_count, 1);
+    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert_int_eq(p.segment_count, 4); /* the repeat and the closing repeat give no segment */
+    ck_assert_vec_near(p.segments[3].p[1], 0, 0, 0);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 4, &s); /* M = S: the points themselves */
+    ck_assert_int_eq(s.count, 4);
+    ck_assert_vec_near(s.points[1], 1, 0, 0);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+    const rugo_vec2 bad[] = {{0, 0}, {NAN, 0}, {1, 1}};
+    ck_assert_int_eq(rugo_path_from_points(bad, 3, NULL, &p), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_path_from_points(pts, 2, NULL, &p), RUGO_ERR_TOO_FEW_POINTS);
+    ck_assert_int_eq(rugo_path_from_points(NULL, 3, NULL, &p), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_path_from_points(pts, RUGO_MAX_PATH_SEGMENTS + 1, NULL, &p), RUGO_ERR_TOO_LARGE);
+    ck_assert_ptr_null(p.segments);
+}
+END_TEST
+
+/* ---- the Inkscape rock ------------------------------------------------------------------------------ */
+
+/* tests/data/rock_inkscape.svg: a path of relative c/s/l commands closed by z, inside a layer with
+ * translate() and a group with a rotation matrix; also an open path (crack) and an ellipse. */
+START_TEST(rock_samples) {
+    size_t len = 0;
+    char* text = read_data("rock_inkscape.svg", &len);
+    rugo_svg_path_element el;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_svg_find_path(text, len, "rock", NULL, &el, &e), RUGO_OK);
+    ck_assert_int_eq(el.line, 46);
+    /* translate(-12.5,-30.25) matrix(0.97629601,-0.21643961,0.21643961,0.97629601,-29.530157,27.335921) */
+    ck_assert_near(el.transform.a, 0.97629601, 1e-15);
+    ck_assert_near(el.transform.b, -0.21643961, 1e-15);
+    ck_assert_near(el.transform.e, -29.530157 - 12.5, 1e-13);
+    ck_assert_near(el.transform.f, 27.335921 - 30.25, 1e-13);
+    rugo_path p;
+    ck_assert_int_eq(rugo_path_parse(el.d, el.d_length, NULL, &p, &e), RUGO_OK);
+    ck_assert_int_eq(p.subpath_count, 1);
+    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    rugo_path_free(&p);
+    rugo_svg_path_element_free(&el);
+
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    rugo_outline_samples s;
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, "rock", &sd, &s, &e), RUGO_OK);
+    ck_assert_int_eq(s.count, 4096);
+    ck_assert_int_eq(s.segment_count, 9);
+    ck_assert_int_eq(s.reversed, 1); /* drawn clockwise as seen on screen, which stays clockwise in the
+                                        y-up frame: the samples were reversed */
+    /* Independent values (Python cross-check): perimeter 259.835191015432, area 5286.30072137481. */
+    ck_assert_near(s.perimeter, 259.835191015432, 1e-9);
+    ck_assert_near(s.area, 5286.30072137481, 1e-8);
+    ck_assert(polygon_area(s.points, s.count) > 0);
+    /* y up: every point below the x axis (the drawing lies at positive SVG y). */
+    for (int i = 0; i < s.count; ++i)
+        ck_assert(s.points[i].y < 0);
+    /* Spacing at most perimeter / (M - S). */
+    for (int i = 0; i < s.count; ++i) {
+        const double step = hypot(s.points[(i + 1) % s.count].x - s.points[i].x,
+                                  s.points[(i + 1) % s.count].y - s.points[i].y);
+        ck_assert(step <= s.perimeter / (s.count - s.segment_count) * (1 + 1e-9));
+    }
+    rugo_outline_samples_free(&s);
+    /* The other elements: an open path and an ellipse. */
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, "crack", &sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, "shadow", &sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_nonnull(strstr(e.message, "<ellipse>"));
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, NULL, &sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, "layer1", &sd, &s, &e), RUGO_ERR_BAD_FIELD);
+    free(text);
+}
+END_TEST
+
+#ifdef RUGO_HAVE_FIT
+
+static void fit_samples(const rugo_vec2* pts, int m, int n, rugo_outline_fit* f) {
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    fd.samples = pts;
+    fd.sample_count = m;
+    fd.control_count = n;
+    rugo_status st = rugo_fit_outline(&fd, f);
+    ck_assert_msg(st == RUGO_OK, "fit n=%d: %s", n, rugo_status_string(st));
+}
+
+/* The rock at 32 and 64 control points: errors pinned to the independent Python values (which agree
+ * with these to 3e-13); corners make the error fall as 1/n. */
+START_TEST(rock_fit_error) {
+    size_t len = 0;
+    char* text = read_data("rock_inkscape.svg", &len);
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    rugo_outline_samples s;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_svg_import_outline(text, len, "rock", &sd, &s, &e), RUGO_OK);
+    free(text);
+    rugo_outline_fit f32, f64;
+    fit_samples(s.points, s.count, 32, &f32);
+    fit_samples(s.points, s.count, 64, &f64);
+    printf("import: rock n=32 max %.17g rms %.17g; n=64 max %.17g rms %.17g\n", f32.max_error, f32.rms_error,
+           f64.max_error, f64.rms_error);
+    ck_assert_near(f32.max_error, 0.318609779069381, 1e-9);
+    ck_assert_near(f32.rms_error, 0.060787653237868, 1e-9);
+    ck_assert_near(f64.max_error, 0.159069876479946, 1e-9);
+    ck_assert_near(f64.rms_error, 0.0187383065573883, 1e-9);
+    ck_assert_int_eq(f32.control_count, 32);
+    ck_assert(f32.max_error <= f32.max_error_at_parameter);
+    ck_assert(f32.rms_error <= f32.max_error);
+    ck_assert_int_eq(f32.tolerance_met, 1);
+    ck_assert_int_eq(f32.reversed, 0); /* the samples were counter-clockwise already */
+    rugo_contour c = {f64.control_points, 64};
+    ck_assert(rugo_contour_signed_area(c) > 0);
+    ck_assert_int_eq(rugo_contour_check(f64.control_points, 64, RUGO_CHECK_ALL, NULL, NULL), RUGO_OK);
+    /* The fitted area is the outline's within the band the errors allow. */
+    ck_assert_near(rugo_contour_signed_area(c), s.area, s.perimeter * f64.max_error);
+    rugo_outline_fit_free(&f32);
+    rugo_outline_fit_free(&f64);
+    ck_assert_ptr_null(f64.control_points);
+    rugo_outline_fit_free(NULL);
+    rugo_outline_samples_free(&s);
+}
+END_TEST
+
+/* The circle of four arcs (r = 10, 4096 samples at equal angles): max and rms distance at 16 and 32
+ * control points, pinned to the Python values (3.42586344810131e-4 / 2.24767141639678e-4 and
+ * 2.08337941103309e-5 / 1.36464781677137e-5; the Python closest points are a golden-section search,
+ * good to ~1e-13 here). */
+START_TEST(circle_fit_error) {
+    rugo_path p;
+    parse_ok("M 10 0 A 10 10 0 0 1 0 10 A 10 10 0 0 1 -10 0 A 10 10 0 0 1 0 -10 A 10 10 0 0 1 10 0 Z", &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 0, &s);
+    rugo_outline_fit f16, f32;
+    fit_samples(s.points, s.count, 16, &f16);
+    fit_samples(s.points, s.count, 32, &f32);
+    ck_assert_near(f16.max_error, 3.42586344810131e-4, 1e-13);
+    ck_assert_near(f16.rms_error, 2.24767141639678e-4, 1e-13);
+    ck_assert_near(f32.max_error, 2.08337941103309e-5, 1e-13);
+    ck_assert_near(f32.rms_error, 1.36464781677137e-5, 1e-13);
+    /* A smooth outline: the error falls as n^-4 (16x per doubling), unlike the rock's corners. */
+    ck_assert(f16.max_error / f32.max_error > 14 && f16.max_error / f32.max_error < 18);
+    rugo_outline_fit_free(&f16);
+    rugo_outline_fit_free(&f32);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
+/* The automatic count is the smallest power of two that meets the tolerance; a tolerance out of reach
+ * stops at the largest count allowed with tolerance_met 0. */
+START_TEST(automatic_control_count) {
+    rugo_path p;
+    parse_ok("M 10 0 A 10 10 0 0 1 0 10 A 10 10 0 0 1 -10 0 A 10 10 0 0 1 0 -10 A 10 10 0 0 1 10 0 Z", &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 0, &s);
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    ck_assert_int_eq(fd.max_control_count, RUGO_DEFAULT_MAX_FIT_CONTROL_POINTS);
+    fd.samples = s.points;
+    fd.sample_count = s.count;
+    fd.tolerance = 1e-4; /* between the 16- and 32-point errors */
+    rugo_outline_fit f;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.control_count, 32);
+    ck_assert_int_eq(f.tolerance_met, 1);
+    ck_assert(f.max_error <= 1e-4);
+    rugo_outline_fit_free(&f);
+    fd.tolerance = 1e-30;
+    fd.max_control_count = 64;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.control_count, 64);
+    ck_assert_int_eq(f.tolerance_met, 0);
+    rugo_outline_fit_free(&f);
+    /* The search also stops at sample_count / 4 (100 samples: 16). */
+    rugo_outline_samples_free(&s);
+    sample_ok(&p, -1, rugo_affine_identity(), 100, &s);
+    fd.samples = s.points;
+    fd.sample_count = s.count;
+    fd.max_control_count = 1 << 20;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.control_count, 16);
+    ck_assert_int_eq(f.tolerance_met, 0);
+    rugo_outline_fit_free(&f);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
+START_TEST(fit_bad_input) {
+    rugo_vec2 pts[64];
+    for (int i = 0; i < 64; ++i)
+        pts[i] = rugo_v2(cos(2 * PI * i / 64), sin(2 * PI * i / 64));
+    rugo_outline_fit f;
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    fd.samples = pts;
+    fd.sample_count = 64;
+    ck_assert_int_eq(rugo_fit_outline(NULL, &f), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_fit_outline(&fd, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_BAD_ARGUMENT); /* automatic without a tolerance */
+    fd.tolerance = NAN;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_BAD_ARGUMENT);
+    fd.tolerance = 1e-3;
+    fd.max_control_count = 48;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_NOT_POWER_OF_TWO);
+    fd.max_control_count = 2;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_BAD_ARGUMENT);
+    fd.max_control_count = 2 * RUGO_MAX_CONTROL_POINTS;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_TOO_MANY_POINTS);
+    fd.max_control_count = 64;
+    fd.sample_count = 15;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_TOO_FEW_POINTS);
+    fd.sample_count = 64;
+    fd.control_count = 12;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_NOT_POWER_OF_TWO);
+    fd.control_count = -8;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_TOO_FEW_POINTS);
+    fd.control_count = 128; /* more than the samples */
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_BAD_ARGUMENT);
+    fd.control_count = 8;
+    pts[5] = pts[4]; /* a repeated sample: zero chord */
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_BAD_ARGUMENT);
+    pts[5].x = INFINITY;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_ERR_NOT_FINITE);
+    ck_assert_ptr_null(f.control_points);
+    rugo_outline_fit_def bad = fd;
+    bad.cookie = 1;
+    ck_assert_int_eq(rugo_fit_outline(&bad, &f), RUGO_ERR_BAD_ARGUMENT);
+    bad = fd;
+    bad.samples = NULL;
+    ck_assert_int_eq(rugo_fit_outline(&bad, &f), RUGO_ERR_NULL_ARGUMENT);
+    /* A clockwise input comes out counter-clockwise, flagged. */
+    for (int i = 0; i < 64; ++i)
+        pts[i] = rugo_v2(cos(-2 * PI * i / 64), sin(-2 * PI * i / 64));
+    fd.control_count = 8;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.reversed, 1);
+    rugo_contour c = {f.control_points, 8};
+    ck_assert(rugo_contour_signed_area(c) > 0);
+    rugo_outline_fit_free(&f);
+}
+END_TEST
+
+/* A point list through the same pipeline: the 64 points of circle64_points.json as samples (M = the
+ * point count keeps them as they are) give exactly the fit `rugo fit` computes from them. */
+START_TEST(points_pipeline_matches_fit_contour) {
+    size_t len = 0;
+    char* text = read_data("circle64_points.json", &len);
+    rugo_vec2* pts = NULL;
+    int n = 0;
+    ck_assert_int_eq(rugo_points_text_parse(text, len, NULL, &pts, &n, NULL), RUGO_OK);
+    free(text);
+    rugo_path p;
+    ck_assert_int_eq(rugo_path_from_points(pts, n, NULL, &p), RUGO_OK);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), n, &s);
+    ck_assert_int_eq(s.count, n);
+    const int flip = s.reversed;
+    for (int i = 0; i < n; ++i) {
+        const rugo_vec2 q = pts[flip ? (n - i) % n : i];
+        ck_assert(s.points[i].x == q.x && s.points[i].y == q.y);
+    }
+    rugo_outline_fit f;
+    fit_samples(s.points, s.count, 16, &f);
+    rugo_fit_def fd = rugo_default_fit_def();
+    fd.samples = s.points;
+    fd.sample_count = s.count;
+    fd.control_count = 16;
+    rugo_vec2 ctrl[16];
+    rugo_fit_result r;
+    ck_assert_int_eq(rugo_fit_contour(&fd, ctrl, &r), RUGO_OK);
+    rugo_contour_orient_ccw(ctrl, 16);
+    ck_assert_int_eq(memcmp(ctrl, f.control_points, sizeof ctrl), 0);
+    ck_assert(f.max_error_at_parameter == r.max_error);
+    ck_assert(f.max_error <= r.max_error);
+    rugo_outline_fit_free(&f);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+    rugo_points_free(NULL, pts);
+}
+END_TEST
+
+#endif /* RUGO_HAVE_FIT */
+
+static Suite* import_suite(void) {
+    Suite* s = suite_create("import");
+    TCase* tp = tcase_create("path_data");
+    tcase_add_test(tp, absolute_commands);
+    tcase_add_test(tp, relative_commands);
+    tcase_add_test(tp, curve_points);
+    tcase_add_test(tp, smooth_reflection_rules);
+    tcase_add_test(tp, arcs);
+    tcase_add_test(tp, implicit_commands);
+    tcase_add_test(tp, number_syntax);
+    tcase_add_test(tp, bad_path_data);
+    tcase_add_test(tp, allocation_failures);
+    tcase_add_test(tp, transform_lists);
+    tcase_add_test(tp, bad_transforms);
+    suite_add_tcase(s, tp);
+
+    TCase* td = tcase_create("svg_document");
+    tcase_add_test(td, find_path_in_document);
+    tcase_add_test(td, bad_documents);
+    tcase_add_test(td, document_error_positions);
+    tcase_add_test(td, rock_samples);
+    suite_add_tcase(s, td);
+
+    TCase* ts = tcase_create("sampling");
+    tcase_add_test(ts, sample_square_by_hand);
+    tcase_add_test(ts, sample_circle_of_arcs);
+    tcase_add_test(ts, sample_circle_of_cubics);
+    tcase_add_test(ts, sample_subpath_choice);
+    tcase_add_test(ts, sample_bad_input);
+    tcase_add_test(ts, sample_deterministic_and_on_curve);
+    tcase_add_test(ts, points_text);
+    tcase_add_test(ts, bad_points_text);
+    tcase_add_test(ts, path_from_points);
+    suite_add_tcase(s, ts);
+
+#ifdef RUGO_HAVE_FIT
+    TCase* tf = tcase_create("fit");
+    tcase_set_timeout(tf, 120);
+    tcase_add_test(tf, rock_fit_error);
+    tcase_add_test(tf, circle_fit_error);
+    tcase_add_test(tf, automatic_control_count);
+    tcase_add_test(tf, fit_bad_input);
+    tcase_add_test(tf, points_pipeline_matches_fit_contour);
+    suite_add_tcase(s, tf);
+#endif
+    return s;
+}
+
+int main(void) { return test_run_suite(import_suite()); }

@@ -1,30 +1,34 @@
-// librugo — the Box2D 2.4 bridge: rough curved bodies in an ordinary b2World.
-//
-// One rugo::Bridge per b2World. Constructing it installs a contact listener, a contact filter and a
-// destruction listener on the world that chain to whatever the world had before (and to whatever the
-// user sets later: Step() notices a replaced listener or filter and chains to the new one). Attaching a
-// rugo_shape to a b2Body gives the body density-0 proxy fixtures — the MOBBtree's boxes at a proxy level,
-// which enclose the curve and its tolerance band — and the exact mass of the contour. Box2D's broad phase
-// and its proxy-vs-proxy test decide which proxy pairs may touch; in PreSolve the bridge replaces the
-// manifold of every contact that involves a proxy with librugo's contacts for the curve pieces under the
-// two proxies, and sets the contact's friction and restitution from the surfaces at those points.
-//
-// Semantics (docs/box2d.md has the full statement):
-//  - Separation in the manifold is the curve distance minus the tolerance bands λ_A(t_A) + λ_B(t_B):
-//    bodies rest on their asperities, like Box2D's polygon skin.
-//  - Each real contact point belongs to exactly one proxy pair (the pair of proxies whose tree nodes
-//    hold the two curve segments); other proxy pairs of the same body pair do not repeat it.
-//  - A proxy pair without a curve contact is disabled for the step (b2Contact::SetEnabled(false)) and
-//    its manifold is emptied; Begin/EndContact still follow the proxies (Box2D's own notion).
-//  - Continuous collision: see Bridge::Step and docs/box2d.md ("speculative within the step").
-//  - Box2D is single precision; librugo computes in double and converts at the boundary.
-//
-// Lifetime: shapes are shared, never copied, and must outlive every body they are attached to. Destroy
-// the bridge before its world (it restores the world's callbacks and removes its proxies); if the world
-// was destroyed first, call ReleaseWorld() before destroying the bridge. Destroying a rough body with
-// b2World::DestroyBody is fine (the destruction listener forgets it).
-//
-// Thread safety: as Box2D — one thread drives the world and the bridge.
+/// @file rugo/box2d.hpp
+/// librugo — the Box2D 2.4 bridge: rough curved bodies in an ordinary b2World.
+///
+/// One rugo::Bridge per b2World. Constructing it installs a contact listener, a contact filter and a
+/// destruction listener on the world that chain to whatever the world had before (and to whatever the
+/// user sets later: Step() notices a replaced listener or filter and chains to the new one). Attaching a
+/// rugo_shape to a b2Body gives the body density-0 proxy fixtures — the MOBBtree's boxes at a proxy level,
+/// which enclose the curve and its tolerance band — and the exact mass of the contour. Box2D's broad phase
+/// and its proxy-vs-proxy test decide which proxy pairs may touch; in PreSolve the bridge replaces the
+/// manifold of every contact that involves a proxy with librugo's contacts for the curve pieces under the
+/// two proxies, and sets the contact's friction and restitution from the surfaces at those points.
+///
+/// Semantics (docs/box2d.md has the full statement):
+///  - Separation in the manifold is the curve distance minus the tolerance bands λ_A(t_A) + λ_B(t_B):
+///    bodies rest on their asperities, like Box2D's polygon skin.
+///  - Each real contact point belongs to exactly one proxy pair (the pair of proxies whose tree nodes
+///    hold the two curve segments); other proxy pairs of the same body pair do not repeat it.
+///  - A proxy pair without a curve contact is disabled for the step (b2Contact::SetEnabled(false)) and
+///    its manifold is emptied; Begin/EndContact still follow the proxies (Box2D's own notion).
+///  - Continuous collision: see Bridge::Step and docs/box2d.md ("speculative within the step").
+///  - Box2D is single precision; librugo computes in double and converts at the boundary.
+///
+/// Lifetime: shapes are shared, never copied, and must outlive every body they are attached to. Destroy
+/// the bridge before its world (it restores the world's callbacks and removes its proxies); if the world
+/// was destroyed first, call ReleaseWorld() before destroying the bridge. Destroying a rough body with
+/// b2World::DestroyBody is fine (the destruction listener forgets it).
+///
+/// Thread safety: as Box2D — one thread drives the world and the bridge.
+///
+/// Units: Box2D's (metres, kilograms, seconds, radians); shapes are in metres. Errors are returned as
+/// rugo_status (never thrown); only the constructor can throw (std::bad_alloc, as any C++ allocation).
 #ifndef RUGO_BOX2D_HPP
 #define RUGO_BOX2D_HPP
 
@@ -37,144 +41,174 @@
 
 #include "rugo/rugo.h"
 
+/// The Box2D 2.4 bridge of librugo (target rugo::box2d).
 namespace rugo {
 
-// A level value meaning "choose automatically".
+/// A level value meaning "choose automatically".
 constexpr int kAutoLevel = -1000000;
 
+/// Settings of a Bridge, given to its constructor.
 struct BridgeDef {
-    // Automatic level of detail: the coarsest level whose extra geometric error (largest hard bound β
-    // of the level minus that of the finest level, in metres) is at most this. Per body, see
-    // RoughBodyDef::errorBudget.
+    /// Automatic level of detail: the coarsest level whose extra geometric error (largest hard bound β
+    /// of the level minus that of the finest level, in metres) is at most this. Per body, see
+    /// RoughBodyDef::errorBudget.
     double errorBudget = 0.005;
-    // Automatic proxy level: at most 2^maxProxyLevel proxies per body (never finer than the body's
-    // contact level, never coarser than the tree's coarsest level).
+    /// Automatic proxy level: at most 2^maxProxyLevel proxies per body (never finer than the body's
+    /// contact level, never coarser than the tree's coarsest level).
     int maxProxyLevel = 4;
-    // Continuous collision policy (docs/box2d.md): a proxy pair whose curves are apart by a gap that
-    // the bodies' approach speed closes within the step gets that closest pair as a speculative point
-    // (positive separation), so fast rough bodies do not tunnel and stop at most that gap short.
-    // false: only touching points (s <= 0) are ever submitted.
+    /// Continuous collision policy (docs/box2d.md): a proxy pair whose curves are apart by a gap that
+    /// the bodies' approach speed closes within the step gets that closest pair as a speculative point
+    /// (positive separation), so fast rough bodies do not tunnel and stop at most that gap short.
+    /// false: only touching points (s <= 0) are ever submitted.
     bool speculative = true;
-    // Contacts per proxy pair are reduced to Box2D's 2 manifold points (deepest, then farthest).
-    // Friction of the contact: how the per-point μ of the (at most 2) points are combined.
+    /// Contacts per proxy pair are reduced to Box2D's 2 manifold points (deepest, then farthest).
+    /// Friction of the contact: how the per-point μ of the (at most 2) points are combined.
     rugo_mix_rule pointFrictionMix = RUGO_MIX_MEAN;
-    // Box2D has no getter for the world's destruction listener: give the one you had set on the world
-    // here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
+    /// Box2D has no getter for the world's destruction listener: give the one you had set on the world
+    /// here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
+    /// Not owned; must outlive the bridge.
     b2DestructionListener* destructionListener = nullptr;
 };
 
+/// How Bridge::Attach makes a b2Body rough.
 struct RoughBodyDef {
-    const rugo_shape* shape = nullptr; // shared, not copied; must outlive the attachment
-    double density = 1.0;              // kg/m^2 (> 0 for a dynamic body)
-    // Level of detail of this body's contacts: 0 = finest, -1 = one level coarser, ... (clamped to the
-    // shape's coarsest level); kAutoLevel = from errorBudget. A body pair uses the finer of its two levels.
+    const rugo_shape* shape = nullptr; ///< shared, not copied; must outlive the attachment
+    double density = 1.0;              ///< kg/m^2 (> 0 for a dynamic body)
+    /// Level of detail of this body's contacts: 0 = finest, -1 = one level coarser, ... (clamped to the
+    /// shape's coarsest level); kAutoLevel = from errorBudget. A body pair uses the finer of its two levels.
     int level = kAutoLevel;
-    double errorBudget = -1.0; // metres; < 0 = BridgeDef::errorBudget
-    // Absolute MOBBtree level of the proxy boxes; kAutoLevel = automatic (see BridgeDef). Must not be
-    // finer than the body's contact level (the boxes must enclose that level's curve and band).
+    double errorBudget = -1.0; ///< metres; < 0 = BridgeDef::errorBudget
+    /// Absolute MOBBtree level of the proxy boxes; kAutoLevel = automatic (see BridgeDef). Must not be
+    /// finer than the body's contact level (the boxes must enclose that level's curve and band).
     int proxyLevel = kAutoLevel;
-    // Given to every proxy fixture, as b2FixtureDef would.
+    /// Given to every proxy fixture, as b2FixtureDef would.
     b2Filter filter;
-    bool isSensor = false;
-    b2FixtureUserData userData;
+    bool isSensor = false;      ///< makes every proxy fixture a sensor (Box2D reports, no contact response)
+    b2FixtureUserData userData; ///< given to every proxy fixture (the bridge does not use it)
 };
 
-// Debug drawing flags (Bridge::Draw).
+/// Debug drawing flags (Bridge::Draw).
 enum DrawFlags : unsigned {
-    kDrawCurve = 1u,    // the curve at the body's contact level (b2Draw::DrawSegment polylines)
-    kDrawBand = 2u,     // the tolerance band's two offset curves
-    kDrawProxies = 4u,  // the proxy boxes (DrawPolygon)
-    kDrawContacts = 8u  // the last step's rough contact points and normals
+    kDrawCurve = 1u,    ///< the curve at the body's contact level (b2Draw::DrawSegment polylines)
+    kDrawBand = 2u,     ///< the tolerance band's two offset curves
+    kDrawProxies = 4u,  ///< the proxy boxes (DrawPolygon)
+    kDrawContacts = 8u  ///< the last step's rough contact points and normals
 };
 
+/// The closest hit of Bridge::RayCast.
 struct RayHit {
-    b2Body* body = nullptr;
-    b2Fixture* fixture = nullptr; // the proxy (rough body) or the ordinary fixture hit
-    b2Vec2 point;                 // world point on the true curve (or on the ordinary fixture)
-    b2Vec2 normal;                // unit outward normal there
-    float fraction = 1.0f;        // along p1 -> p2
-    int segment = -1;             // curve segment at the body's contact level (-1: ordinary fixture)
-    double t = 0.0;               // curve parameter in [0, 1)
+    b2Body* body = nullptr;       ///< the body hit
+    b2Fixture* fixture = nullptr; ///< the proxy (rough body) or the ordinary fixture hit
+    b2Vec2 point;                 ///< world point on the true curve (or on the ordinary fixture)
+    b2Vec2 normal;                ///< unit outward normal there
+    float fraction = 1.0f;        ///< along p1 -> p2
+    int segment = -1;             ///< curve segment at the body's contact level (-1: ordinary fixture)
+    double t = 0.0;               ///< curve parameter in [0, 1)
 };
 
-// Counters since construction or ResetStats().
+/// Counters since construction or ResetStats().
 struct BridgeStats {
-    long preSolves = 0;          // PreSolve calls on contacts with a proxy
-    long toiPreSolves = 0;       // of those, during Box2D's continuous (TOI) phase
-    long queries = 0;            // librugo collision queries run (one per body pair and pose)
-    long cacheHits = 0;          // proxy pairs answered from a query already run for the same poses
-    long pointsSubmitted = 0;    // manifold points written
-    long speculativePoints = 0;  // of those, with positive separation (CCD policy)
-    long disabledContacts = 0;   // proxy pairs disabled for a step (no curve contact)
-    long boxTests = 0, segmentPairs = 0, fallbacks = 0; // librugo query statistics, summed
-    long massReapplied = 0;      // times Box2D had reset a rough body's mass and the bridge fixed it
-    long listenersRechained = 0; // times Step() found a replaced listener/filter and chained to it
+    long preSolves = 0;          ///< PreSolve calls on contacts with a proxy
+    long toiPreSolves = 0;       ///< of those, during Box2D's continuous (TOI) phase
+    long queries = 0;            ///< librugo collision queries run (one per body pair and pose)
+    long cacheHits = 0;          ///< proxy pairs answered from a query already run for the same poses
+    long pointsSubmitted = 0;    ///< manifold points written
+    long speculativePoints = 0;  ///< of those, with positive separation (CCD policy)
+    long disabledContacts = 0;   ///< proxy pairs disabled for a step (no curve contact)
+    /// librugo query statistics, summed (rugo_query_stats). @{
+    long boxTests = 0, segmentPairs = 0, fallbacks = 0;
+    /// @}
+    long massReapplied = 0;      ///< times Box2D had reset a rough body's mass and the bridge fixed it
+    long listenersRechained = 0; ///< times Step() found a replaced listener/filter and chained to it
 };
 
-// Memory held for one rough body (shapes are shared and counted separately).
+/// Memory held for one rough body (shapes are shared and counted separately).
 struct BodyMemory {
-    std::size_t bridgeBytes = 0;  // the bridge's own record for the body
-    std::size_t box2dBytes = 0;   // proxy fixtures, their shapes and broad-phase proxies inside Box2D
-    int proxyCount = 0;
-    std::size_t sharedShapeBytes = 0; // the rugo_shape (shared by every body using it; not per body)
+    std::size_t bridgeBytes = 0;  ///< the bridge's own record for the body
+    std::size_t box2dBytes = 0;   ///< proxy fixtures, their shapes and broad-phase proxies inside Box2D
+    int proxyCount = 0;           ///< number of proxy fixtures
+    std::size_t sharedShapeBytes = 0; ///< the rugo_shape (shared by every body using it; not per body)
 };
 
+/// Rough curved bodies in one b2World (see the top of this file). Not copyable.
 class Bridge {
 public:
+    /// Installs the bridge's contact listener, contact filter and destruction listener on `world`,
+    /// chaining to those the world had (world is not owned; nullptr makes an inert bridge). Create it
+    /// after setting your own listener and filter. Throws std::bad_alloc if memory runs out.
     explicit Bridge(b2World* world, const BridgeDef& def = BridgeDef());
+    /// Removes every proxy and restores the world's listener, filter and destruction listener (unless
+    /// ReleaseWorld() was called). Must run before the world is destroyed.
     ~Bridge();
+    /// Not copyable: one bridge per world.
     Bridge(const Bridge&) = delete;
+    /// Not assignable.
     Bridge& operator=(const Bridge&) = delete;
 
-    // Errors: RUGO_ERR_NULL_ARGUMENT (body or def.shape), RUGO_ERR_BAD_ARGUMENT (body of another world,
+    /// Makes `body` rough: adds density-0 proxy fixtures (owned by the body, removed by Detach or by
+    /// destroying the body) and applies the exact mass. The shape is borrowed (see RoughBodyDef).
+    /// Errors: RUGO_ERR_NULL_ARGUMENT (body or def.shape), RUGO_ERR_BAD_ARGUMENT (body of another world,
     // density not finite or < 0, or 0 on a dynamic body, proxyLevel outside the tree or finer than the
     // contact level), RUGO_ERR_ALREADY_ATTACHED, RUGO_ERR_WORLD_LOCKED (inside Step or a callback),
-    // RUGO_ERR_OUT_OF_MEMORY.
+    /// RUGO_ERR_OUT_OF_MEMORY.
     rugo_status Attach(b2Body* body, const RoughBodyDef& def);
-    // Removes the proxies and the rough mass (Box2D recomputes the mass from the remaining fixtures).
-    // Errors: RUGO_ERR_NULL_ARGUMENT, RUGO_ERR_NOT_ATTACHED, RUGO_ERR_WORLD_LOCKED.
+    /// Removes the proxies and the rough mass (Box2D recomputes the mass from the remaining fixtures).
+    /// Errors: RUGO_ERR_NULL_ARGUMENT, RUGO_ERR_NOT_ATTACHED, RUGO_ERR_WORLD_LOCKED.
     rugo_status Detach(b2Body* body);
 
+    /// Is a rough shape attached to this body? (false for nullptr)
     bool IsRough(const b2Body* body) const;
-    const rugo_shape* GetShape(const b2Body* body) const; // nullptr if not rough
-    int GetLevel(const b2Body* body) const;               // absolute contact level; -1 if not rough
-    int GetProxyLevel(const b2Body* body) const;          // absolute proxy level; -1 if not rough
-    // Is this fixture one of the bridge's proxies? (body and tree node k at the proxy level)
+    /// The attached shape (borrowed); nullptr if not rough.
+    const rugo_shape* GetShape(const b2Body* body) const;
+    /// The body's absolute contact level; -1 if not rough.
+    int GetLevel(const b2Body* body) const;
+    /// The body's absolute proxy level; -1 if not rough.
+    int GetProxyLevel(const b2Body* body) const;
+    /// Is this fixture one of the bridge's proxies? If so and node is not nullptr, *node = its tree node
+    /// k at the proxy level.
     bool IsProxy(const b2Fixture* fixture, int* node = nullptr) const;
 
-    // The step wrapper: re-chains a listener or filter the user replaced, re-applies the exact mass of
-    // every rough body whose mass Box2D has reset (SetType, fixture changes, SetFixedRotation), then
-    // calls b2World::Step. Calling b2World::Step directly also works, but then mass resets are only
-    // repaired by SyncMass.
+    /// The step wrapper: re-chains a listener or filter the user replaced, re-applies the exact mass of
+    /// every rough body whose mass Box2D has reset (SetType, fixture changes, SetFixedRotation), then
+    /// calls b2World::Step (timeStep in seconds, iteration counts as Box2D's). Calling b2World::Step
+    /// directly also works, but then mass resets are only repaired by SyncMass.
     void Step(float timeStep, int32 velocityIterations, int32 positionIterations);
-    // Re-applies the exact mass now: the rough contour's integrals times density, plus the mass of the
-    // body's ordinary fixtures. Errors: NULL_ARGUMENT, NOT_ATTACHED, WORLD_LOCKED.
+    /// Re-applies the exact mass now: the rough contour's integrals times density, plus the mass of the
+    /// body's ordinary fixtures. Errors: NULL_ARGUMENT, NOT_ATTACHED, WORLD_LOCKED.
     rugo_status SyncMass(b2Body* body);
-    // The exact mass data the bridge gives a body (what SyncMass applies).
+    /// The exact mass data the bridge gives a body (what SyncMass applies: kg, local centre in metres,
+    /// rotational inertia about the body origin in kg m^2) into *out. Errors: NULL_ARGUMENT,
+    /// NOT_ATTACHED.
     rugo_status GetExactMass(const b2Body* body, b2MassData* out) const;
 
-    // Closest hit along p1 -> p2 over all fixtures: rough bodies are hit on their true curve (at their
-    // contact level, band ignored), ordinary fixtures as Box2D reports them. Returns false if none.
+    /// Closest hit along p1 -> p2 (world, metres) over all fixtures: rough bodies are hit on their true
+    /// curve (at their contact level, band ignored), ordinary fixtures as Box2D reports them. Returns
+    /// false if none; on a hit fills *hit unless it is nullptr. Allocates a small temporary vector.
     bool RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const;
-    // Is the world point inside the rough body's true curve? (false if not rough)
+    /// Is the world point inside the rough body's true curve? (false if not rough)
     bool TestPoint(const b2Body* body, const b2Vec2& p) const;
-    // Bodies whose true geometry overlaps the box: rough bodies by their curve (plus band), ordinary
-    // bodies by their fixtures' AABBs as Box2D would. Each body reported once; return false to stop.
+    /// Bodies whose true geometry overlaps the box: rough bodies by their curve (plus band), ordinary
+    /// bodies by their fixtures' AABBs as Box2D would. Each body reported once; return false to stop.
     void QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& callback) const;
 
-    // Draws every rough body through any b2Draw (flags: DrawFlags).
+    /// Draws every rough body through any b2Draw (flags: DrawFlags); nothing for nullptr.
     void Draw(b2Draw* draw, unsigned flags = kDrawCurve) const;
 
+    /// Memory held for one rough body (all zero if not rough).
     BodyMemory GetBodyMemory(const b2Body* body) const;
+    /// The counters since construction or the last ResetStats().
     BridgeStats GetStats() const;
+    /// Sets every counter to 0.
     void ResetStats();
+    /// The world given to the constructor (nullptr after ReleaseWorld()).
     b2World* GetWorld() const;
-    // The destruction listener the bridge chains to (b2World::SetDestructionListener would replace the
-    // bridge's own, which must stay installed so that destroyed rough bodies are forgotten).
+    /// The destruction listener the bridge chains to (b2World::SetDestructionListener would replace the
+    /// bridge's own, which must stay installed so that destroyed rough bodies are forgotten). Not owned.
     void SetDestructionListener(b2DestructionListener* listener);
-    // The world was destroyed before the bridge: forget it without touching it.
+    /// The world was destroyed before the bridge: forget it without touching it.
     void ReleaseWorld();
 
+    /// The implementation (box2d_bridge/), also the listener and filter installed on the world.
     struct Impl;
 
 private:

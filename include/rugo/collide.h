@@ -1,4 +1,5 @@
-/* librugo — contacts between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2).
+/** @file rugo/collide.h
+ * librugo — contacts between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2).
  *
  * Semantics (docs/contacts.md has the full statement):
  *  - Normal points from A to B; separation s = (point_b - point_a)·normal is the signed distance
@@ -18,7 +19,12 @@
  * Nothing is missed: the narrow phase certifies apart/contact/crossing with Bezier-hull subdivision
  * when Newton does not converge. Queries allocate only when a context grows (it never shrinks).
  * A NULL query means rugo_default_contact_query(); capacity 0 with NULL stats returns the state only.
- * Rotations in transforms are assumed unit (only finiteness is checked). */
+ * Rotations in transforms are assumed unit (only finiteness is checked).
+ *
+ * Units: positions, separations and tolerances in the shapes' length units; μ and ε dimensionless.
+ * Ownership: contacts, pairs and stats are written into caller-owned arrays; shapes are only read; a
+ * context is created by rugo_collide_context_create, owned by the caller and used by one thread at a
+ * time. Query errors leave *count = 0. */
 #ifndef RUGO_COLLIDE_H
 #define RUGO_COLLIDE_H
 
@@ -32,61 +38,84 @@
 extern "C" {
 #endif
 
+/** What a query found between two shapes (see the top of this file). */
 typedef enum rugo_contact_state {
-    RUGO_STATE_APART = 0,
-    RUGO_STATE_CONTACT = 1,
-    RUGO_STATE_INTERSECTING = 2
+    RUGO_STATE_APART = 0,       /**< no distance minimum within the summed bands (or the margin) */
+    RUGO_STATE_CONTACT = 1,     /**< apart curves whose bands touch: one contact per local minimum */
+    RUGO_STATE_INTERSECTING = 2 /**< the curves cross (or one lies inside the other) */
 } rugo_contact_state;
 
-/* "apart", "contact", "intersecting". */
+/** The state's name, "apart", "contact" or "intersecting" (a static string; "unknown" for an invalid
+ * value). */
 const char* rugo_contact_state_name(rugo_contact_state s);
 
+/** One contact point pair between shape A and shape B (or a primitive as B). */
 typedef struct rugo_contact {
-    rugo_vec2 point_a, point_b; /* world points on the curves */
-    rugo_vec2 normal;           /* unit, from A to B */
-    rugo_real separation;       /* (point_b - point_a)·normal; negative = penetration */
-    int segment_a, segment_b;   /* segment indices at the query's level of each shape (-1: primitive) */
-    rugo_real t_a, t_b;         /* parameters in [0, 1) (t_b = 0 for primitives) */
-    int level_a, level_b;       /* the level of each shape used (0 for primitives) */
-    rugo_real tolerance_a, tolerance_b; /* λ(t) at the points (the override if the query gives one) */
-    rugo_real friction;         /* mixed μ of the two surfaces at the points */
-    rugo_real restitution;      /* mixed base restitution ε of the two surfaces */
-    int region;                 /* contact region index (overlap region or local minimum), from 0 */
-    uint64_t id;                /* stable while the contact persists */
+    /** World points on the curves of A and B. @{ */
+    rugo_vec2 point_a, point_b;
+    /** @} */
+    rugo_vec2 normal;           /**< unit, from A to B */
+    rugo_real separation;       /**< (point_b - point_a)·normal; negative = penetration */
+    /** Segment indices at the query's level of each shape (-1: primitive). @{ */
+    int segment_a, segment_b;
+    /** @} */
+    /** Parameters in [0, 1) on those segments (t_b = 0 for primitives). @{ */
+    rugo_real t_a, t_b;
+    /** @} */
+    /** The level of each shape used (0 for primitives). @{ */
+    int level_a, level_b;
+    /** @} */
+    /** λ(t) at the points (the override if the query gives one), length units. @{ */
+    rugo_real tolerance_a, tolerance_b;
+    /** @} */
+    rugo_real friction;         /**< mixed μ of the two surfaces at the points */
+    rugo_real restitution;      /**< mixed base restitution ε of the two surfaces */
+    int region;                 /**< contact region index (overlap region or local minimum), from 0 */
+    uint64_t id;                /**< stable while the contact persists */
 } rugo_contact;
 
+/** What a query cost, to set speed against error. */
 typedef struct rugo_query_stats {
-    long box_tests;         /* OBB overlap tests in the tree traversal */
-    long segment_pairs;     /* segment pairs given to the narrow phase */
-    long newton_iterations; /* total Newton iterations */
-    long fallbacks;         /* pairs decided by subdivision because Newton did not settle */
-    int contacts_found;     /* before truncation to the caller's capacity */
+    long box_tests;         /**< OBB overlap tests in the tree traversal */
+    long segment_pairs;     /**< segment pairs given to the narrow phase */
+    long newton_iterations; /**< total Newton iterations */
+    long fallbacks;         /**< pairs decided by subdivision because Newton did not settle */
+    int contacts_found;     /**< before truncation to the caller's capacity */
 } rugo_query_stats;
 
+/** Options of a contact query. Start from rugo_default_contact_query() (or pass NULL for the
+ * defaults). */
 typedef struct rugo_contact_query {
-    /* Level of detail: 0 = the finest level of each shape, -1 = one level coarser, ... (clamped at
+    /** Level of detail: 0 = the finest level of each shape, -1 = one level coarser, ... (clamped at
      * each shape's coarsest level); a positive value is an absolute level (clamped to each shape's
      * range). Coarse levels use their coarse segments with their accumulated tolerances λ^j. */
     int level;
-    /* < 0 (default): use the shapes' tolerances; >= 0: both shapes get this constant band instead. */
+    /** < 0 (default): use the shapes' tolerances; >= 0: both shapes get this constant band (length
+     * units) instead. */
     rugo_real tolerance;
-    rugo_mix_rule friction_mix;    /* default RUGO_MIX_MAX (thesis) */
-    rugo_mix_rule restitution_mix; /* default RUGO_MIX_MIN (thesis) */
-    /* >= 0, default 0: also report local minima of the distance within λ_A + λ_B + margin (speculative
+    rugo_mix_rule friction_mix;    /**< default RUGO_MIX_MAX (thesis) */
+    rugo_mix_rule restitution_mix; /**< default RUGO_MIX_MIN (thesis) */
+    /** >= 0 (length units), default 0: also report local minima of the distance within λ_A + λ_B + margin (speculative
      * contacts for continuous collision, separation > band). The state is then CONTACT when such a
      * minimum exists. Errors: NOT_FINITE, BAD_ARGUMENT (negative). */
     rugo_real margin;
-    int cookie;
+    int cookie; /**< set by rugo_default_contact_query; catches uninitialised queries */
 } rugo_contact_query;
 
+/** Level 0 (finest), the shapes' tolerances, max for μ, min for ε, margin 0, cookie set. */
 rugo_contact_query rugo_default_contact_query(void);
 
-/* Reusable scratch for queries (node stacks, pair lists). One per thread. */
+/** Reusable scratch for queries (node stacks, pair lists; opaque). One per thread. */
 typedef struct rugo_collide_context rugo_collide_context;
+/** Creates an empty context into *out (owned by the caller; free with rugo_collide_context_destroy).
+ * It allocates through a copy of `allocator` (NULL = malloc/free; its functions and ctx must outlive
+ * the context) when a query needs more room, and keeps that room. Errors: NULL_ARGUMENT,
+ * OUT_OF_MEMORY. */
 rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out);
+/** Frees the context and its buffers; NULL is allowed. */
 void rugo_collide_context_destroy(rugo_collide_context* ctx);
 
-/* Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
+/** Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
  * first within each region, regions in a stable order), the number written to *count, the state to
  * *state; stats may be NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (query cookie, capacity < 0),
  * NOT_FINITE (a transform), OUT_OF_MEMORY (the context could not grow). */
@@ -95,35 +124,46 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
                                 rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
                                 rugo_query_stats* stats);
 
-/* A shape against Box2D-like primitives (B, smooth, tolerance 0, in world coordinates): a circle, a
- * segment with radius (a capsule; radius 0 is an edge), a convex polygon of 3..8 counter-clockwise
- * vertices with radius (Box2D's polygon skin). Same outputs and errors; BAD_ARGUMENT also for a
- * negative radius or a polygon that is not convex and counter-clockwise. */
+/** A shape against a circle (B, smooth, tolerance 0, in world coordinates) of the given centre and
+ * radius; see rugo_collide_polygon for the primitives and rugo_collide_shapes for outputs and errors
+ * (BAD_ARGUMENT also for a negative radius). */
 rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
                                 rugo_real radius, const rugo_contact_query* query, rugo_contact* contacts,
                                 int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats);
+/** A shape against a segment p1-p2 with a radius (a capsule; radius 0 is an edge), in world
+ * coordinates; see rugo_collide_polygon. */
 rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
                                  rugo_vec2 p2, rugo_real radius, const rugo_contact_query* query,
                                  rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
                                  rugo_query_stats* stats);
+/** A shape against Box2D-like primitives (B, smooth, tolerance 0, in world coordinates): a circle, a
+ * segment with radius (a capsule; radius 0 is an edge), a convex polygon of 3..8 counter-clockwise
+ * vertices with radius (Box2D's polygon skin). Same outputs and errors as rugo_collide_shapes;
+ * BAD_ARGUMENT also for a negative radius or a polygon that is not convex and counter-clockwise.
+ * This function: the convex polygon (vertices borrowed for the call). */
 rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
                                  const rugo_vec2* vertices, int vertex_count, rugo_real radius,
                                  const rugo_contact_query* query, rugo_contact* contacts, int capacity, int* count,
                                  rugo_contact_state* state, rugo_query_stats* stats);
 
-/* Tree against tree (SPEC 7): the node pairs whose boxes overlap, descending the taller subtree
+/** A pair of MOBBtree nodes whose boxes overlap (rugo_tree_pairs). */
+typedef struct rugo_node_pair {
+    /** Node indices at the stop levels of tree A and tree B. @{ */
+    int k_a, k_b;
+    /** @} */
+} rugo_node_pair;
+/** Tree against tree (SPEC 7): the node pairs whose boxes overlap, descending the taller subtree
  * (both when equally tall) and stopping at level_a / level_b (absolute levels, clamped to each
  * tree). Writes at most capacity pairs; *count = number found (may exceed capacity);
- * *box_tests = OBB tests done. */
-typedef struct rugo_node_pair {
-    int k_a, k_b; /* node indices at the stop levels */
-} rugo_node_pair;
+ * *box_tests = OBB tests done (box_tests may be NULL). Errors: NULL_ARGUMENT (ctx, a tree, count, or
+ * pairs with capacity > 0), BAD_ARGUMENT (capacity < 0), NOT_FINITE (a transform), OUT_OF_MEMORY. */
 rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa, int level_a,
                             const rugo_mobb_tree* b, rugo_transform xb, int level_b, rugo_node_pair* pairs,
                             int capacity, int* count, long* box_tests);
 
-/* Manifold reduction: keeps at most k contacts per region (k >= 1): the deepest, then repeatedly the
- * one farthest from those kept. Order is preserved otherwise. Returns the new count. */
+/** Manifold reduction in place: keeps at most k contacts per region (k >= 1; smaller k counts as 1):
+ * the deepest, then repeatedly the one farthest from those kept. Order is preserved otherwise. Returns
+ * the new count (0 for NULL or count <= 0). Allocates nothing. */
 int rugo_reduce_manifold(rugo_contact* contacts, int count, int k);
 
 #ifdef __cplusplus

@@ -1,11 +1,17 @@
-/* librugo — closed uniform cubic B-spline contours (SPEC 1).
+/** @file rugo/contour.h
+ * librugo — closed uniform cubic B-spline contours (SPEC 1).
  *
  * A contour is a view of n >= 4 control points c_0..c_{n-1} (cyclic). Segment j, t in [0,1):
  *   f_j(t) = 1/6 [t^3 t^2 t 1] M [c_{j-1} c_j c_{j+1} c_{j+2}]^T        (thesis 2.4-2.5)
  * so f_j(1) = f_{j+1}(0) and the curve is C2. A point with t = 1 belongs to segment j+1.
  * The view borrows its points; the caller keeps them alive. Query functions expect a contour that
  * passed rugo_contour_check (they do not re-validate; segment indices wrap cyclically).
- * Lengths are in the caller's units; the library is unit-free. */
+ * Lengths are in the caller's units; the library is unit-free. Parameters t are dimensionless in
+ * [0, 1) per segment; segment indices count from 0.
+ *
+ * Ownership: nothing here allocates except rugo_contour_check (through its allocator, freed before it
+ * returns); results are returned by value or written into caller-owned memory. Query functions have no
+ * status: they give zeros (count < 1) or NaN (non-finite parameters) instead. */
 #ifndef RUGO_CONTOUR_H
 #define RUGO_CONTOUR_H
 
@@ -15,27 +21,29 @@
 extern "C" {
 #endif
 
+/** A closed contour: a view of its control points (borrowed, never copied or freed by librugo; the
+ * caller keeps them alive while the view is used). Segment j runs from near c_j to near c_{j+1}. */
 typedef struct rugo_contour {
-    const rugo_vec2* points; /* borrowed, count entries */
-    int count;
+    const rugo_vec2* points; /**< borrowed, count entries, in length units */
+    int count;               /**< number of control points = number of segments (>= 4 for a valid contour) */
 } rugo_contour;
 
-/* Flags for rugo_contour_check. */
+/** Flags for rugo_contour_check (bitwise or). */
 enum {
-    RUGO_CHECK_POWER_OF_TWO = 1 << 0,      /* require count to be a power of two */
-    RUGO_CHECK_SELF_INTERSECTION = 1 << 1, /* test the curve for crossings (O(n log n) typical) */
-    RUGO_CHECK_ALL = RUGO_CHECK_POWER_OF_TWO | RUGO_CHECK_SELF_INTERSECTION
+    RUGO_CHECK_POWER_OF_TWO = 1 << 0,      /**< require count to be a power of two */
+    RUGO_CHECK_SELF_INTERSECTION = 1 << 1, /**< test the curve for crossings (O(n log n) typical) */
+    RUGO_CHECK_ALL = RUGO_CHECK_POWER_OF_TWO | RUGO_CHECK_SELF_INTERSECTION /**< both checks */
 };
 
-/* What a failed check found, for messages: the offending index or segment pair. */
+/** What a failed check found, for messages: the offending index or segment pair. */
 typedef struct rugo_contour_problem {
-    int index;     /* first non-finite point index, or -1 */
-    int segment_a; /* for RUGO_ERR_SELF_INTERSECTING: two segments that cross (segment_a <= segment_b), */
-    int segment_b; /* possibly equal for a loop inside one segment; -1 otherwise */
-    rugo_vec2 where; /* an approximate crossing point */
+    int index;     /**< first non-finite point index, or -1 */
+    int segment_a; /**< for RUGO_ERR_SELF_INTERSECTING: two segments that cross (segment_a <= segment_b), */
+    int segment_b; /**< possibly equal for a loop inside one segment; -1 otherwise */
+    rugo_vec2 where; /**< an approximate crossing point */
 } rugo_contour_problem;
 
-/* Validates control points, in this order: NULL, count < 4 (TOO_FEW_POINTS), count > max
+/** Validates control points, in this order: NULL, count < 4 (TOO_FEW_POINTS), count > max
  * (TOO_MANY_POINTS), power of two if asked (NOT_POWER_OF_TWO), non-finite coordinate (NOT_FINITE),
  * coordinates so large (beyond ~1e150) that the area overflows (NOT_FINITE),
  * |area| <= 1e-12 * (diagonal of the curve's bounds)^2 (ZERO_AREA — or SELF_INTERSECTING when the
@@ -50,69 +58,85 @@ typedef struct rugo_contour_problem {
 rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, rugo_contour_problem* problem,
                                const rugo_allocator* allocator);
 
-/* Signed area of the region bounded by the curve (positive when counter-clockwise). */
+/** Signed area of the region bounded by the curve (squared length units; positive when
+ * counter-clockwise), exact for the cubic curve (not the control polygon). 0 for an empty contour. */
 rugo_real rugo_contour_signed_area(rugo_contour c);
 
-/* Reverses points in place if the curve is clockwise, so it becomes counter-clockwise.
- * Returns 1 if it reversed, 0 if not. Reversal maps segment j to segment n-2-j, t to 1-t. */
+/** Reverses points in place if the curve is clockwise, so it becomes counter-clockwise.
+ * Returns 1 if it reversed, 0 if not (also for NULL or count < 2). Reversal maps segment j to segment
+ * n-2-j, t to 1-t. The caller owns points. */
 int rugo_contour_orient_ccw(rugo_vec2* points, int count);
 
-/* Evaluation in the matrix form (2.4) and derivatives (2.6)-(2.7). */
+/** The point f_segment(t) in the matrix form (2.4), in length units. The segment index wraps
+ * cyclically; t in [0, 1] (other values extrapolate the segment's cubic). Zeros for count < 1. */
 rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t);
+/** First derivative f'_segment(t) with respect to t (2.6), in length units per unit of t. As
+ * rugo_contour_point for the arguments. */
 rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t);
+/** Second derivative f''_segment(t) with respect to t (2.7), in length units per unit of t squared. As
+ * rugo_contour_point for the arguments. */
 rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t);
-/* Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically).
+/** Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically).
  * NaN for a non-finite u or an empty contour. Query functions given count < 1 return zeros. */
 rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u);
 
-/* The four cubic Bezier control points of segment j (a uniform cubic B-spline segment is a cubic
- * Bezier curve; the convex hull of these points contains the segment). */
+/** The four cubic Bezier control points of segment j into out (caller-owned; a uniform cubic
+ * B-spline segment is a cubic Bezier curve; the convex hull of these points contains the segment).
+ * The segment index wraps; zeros for count < 1. */
 void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4]);
 
-/* The coefficients of (3.8): f'_j(t) = 1/2 (v t^2 + w t + r). */
+/** The coefficients of (3.8): f'_j(t) = 1/2 (v t^2 + w t + r), written to v, w and r (caller-owned;
+ * each may be NULL). The segment index wraps; zeros for count < 1. */
 void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
                                           rugo_vec2* r);
 
-/* Arc length of one segment by 4-point Gauss-Legendre (3.6)-(3.7). */
+/** Arc length of one segment (length units) by 4-point Gauss-Legendre (3.6)-(3.7). The segment
+ * index wraps; 0 for count < 1. */
 rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
-/* Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
+/** Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
  * estimate of the error actually reached, round-off included, goes to *error_bound (may be NULL).
  * Returns RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached,
  * e.g. for a tolerance tighter than double precision allows; NULL_ARGUMENT, TOO_FEW_POINTS,
  * BAD_ARGUMENT (tolerance not finite and > 0). */
 rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
                                                  rugo_real* length, rugo_real* error_bound);
-/* Whole perimeter, 4-point Gauss-Legendre per segment. */
+/** Whole perimeter (length units), 4-point Gauss-Legendre per segment. 0 for count < 1. */
 rugo_real rugo_contour_perimeter(rugo_contour c);
 
-/* Exact mass properties of the enclosed region for unit density, by Green's theorem with Gauss
+/** Exact mass properties of the enclosed region for unit density, by Green's theorem with Gauss
  * quadrature exact for the polynomial integrands (no sampling), evaluated about an interior
- * reference point for precision far from the origin. */
+ * reference point for precision far from the origin. Multiply area and inertia by a density
+ * (mass per area) for a body's mass and moment. */
 typedef struct rugo_mass_properties {
-    rugo_real area;     /* > 0 for a counter-clockwise contour, negative for clockwise */
-    rugo_vec2 centroid;
-    rugo_real inertia;  /* polar moment of the region about the centroid, unit density: ∫∫|p-c|^2 dA;
-                           has the sign of area (negative for a clockwise contour) */
+    rugo_real area;     /**< length²; > 0 for a counter-clockwise contour, negative for clockwise */
+    rugo_vec2 centroid; /**< centre of the region (length units) */
+    rugo_real inertia;  /**< polar moment of the region about the centroid, unit density: ∫∫|p-c|^2 dA
+                           (length⁴); has the sign of area (negative for a clockwise contour) */
 } rugo_mass_properties;
+/** The mass properties of the region bounded by the curve (see rugo_mass_properties). All zero for
+ * count < 1; NaN or infinite values propagate. Never fails otherwise. */
 rugo_mass_properties rugo_contour_mass_properties(rugo_contour c);
 
-/* Axis-aligned bounds of the curve itself (exact, from the derivative's roots). */
+/** Axis-aligned bounds of the curve itself (exact, from the derivative's roots) into *lower and *upper
+ * (caller-owned, not NULL); both (0, 0) for count < 1. */
 void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper);
 
-/* Closest point on the curve to p. */
+/** A point on a curve: where, and how far from a query point or ray origin. */
 typedef struct rugo_curve_point {
-    int segment;
-    rugo_real t;       /* in [0,1) */
-    rugo_vec2 point;
-    rugo_real distance;
+    int segment;        /**< segment index, in [0, count) */
+    rugo_real t;        /**< in [0,1) */
+    rugo_vec2 point;    /**< the curve point f_segment(t) */
+    rugo_real distance; /**< distance from the query point (length units) */
 } rugo_curve_point;
+/** Closest point on the curve to p (global minimum of the distance over all segments). For count < 1
+ * the result is p itself with distance HUGE_VAL. */
 rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
 
-/* 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the
+/** 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the
  * curve itself (within round-off) may go either way. */
 int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
 
-/* First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
+/** First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
  * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal, hit->distance = s |d|) or
  * 0 for no hit. direction must be non-zero; fraction, hit and normal may be NULL. An origin on the
  * curve hits at s = 0; a ray along a straight segment hits its first point; a hit at a joint is
@@ -121,13 +145,15 @@ int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
                           rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
                           rugo_vec2* normal);
 
-/* Unit tangent and outward unit normal (for a counter-clockwise contour) at f_j(t). Degenerate
- * (zero-speed) points take the direction of the second, then third derivative. */
+/** Unit tangent at f_j(t), in the direction of increasing t. Degenerate (zero-speed) points take the
+ * direction of the second, then third derivative. The segment index wraps. */
 rugo_vec2 rugo_contour_tangent(rugo_contour c, int segment, rugo_real t);
+/** Outward unit normal (for a counter-clockwise contour; inward for a clockwise one) at f_j(t): the
+ * tangent turned clockwise. Degenerate points as rugo_contour_tangent. */
 rugo_vec2 rugo_contour_normal(rugo_contour c, int segment, rugo_real t);
 
-/* Uniform cubic B-spline basis values N_1..N_4 at t (weights of c_{j-1}, c_j, c_{j+1}, c_{j+2});
- * they sum to 1. */
+/** Uniform cubic B-spline basis values N_1..N_4 at t into out (caller-owned; weights of c_{j-1}, c_j,
+ * c_{j+1}, c_{j+2}); they sum to 1. */
 void rugo_bspline_basis(rugo_real t, rugo_real out[4]);
 
 #ifdef __cplusplus

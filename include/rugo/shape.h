@@ -1,10 +1,17 @@
-/* librugo — the rough curved shape: everything a body needs, built once and immutable.
+/** @file rugo/shape.h
+ * librugo — the rough curved shape: everything a body needs, built once and immutable.
  *
  * A rugo_shape owns the wavelet pyramid of its contour (levels J_min..J), the tolerances λ and hard
  * bounds β of every level, the MOBBtree, the exact mass properties (unit density) and the surface's
  * friction map and restitution. Once created it never changes, so one shape can be shared by many
  * bodies and threads; all queries on it are re-entrant. Everything is in the shape's local frame;
- * bodies place it with a rugo_transform. */
+ * bodies place it with a rugo_transform. Lengths are in the caller's units (metres for the Box2D
+ * bridge and the simulator).
+ *
+ * Ownership: rugo_shape_create (or rugo_shape_load_baked, baked.h) returns a shape owned by the caller,
+ * freed by rugo_shape_destroy after every body, world or bridge that uses it. It copies its inputs;
+ * all views and pointers it returns stay valid for its lifetime. Accessors given NULL return -1, 0,
+ * NULL or NaN values (they have no status). */
 #ifndef RUGO_SHAPE_H
 #define RUGO_SHAPE_H
 
@@ -18,45 +25,63 @@
 extern "C" {
 #endif
 
+/** A built rough shape (opaque, immutable): pyramid, tolerances, MOBBtree, mass, surface. */
 typedef struct rugo_shape rugo_shape;
 
+/** What rugo_shape_create needs. Start from rugo_default_shape_def(); the arrays are borrowed for the
+ * call only. */
 typedef struct rugo_shape_def {
-    const rugo_vec2* points; /* 2^J control points, either orientation (normalised to CCW) */
-    int count;
-    rugo_filter filter;      /* default RUGO_FILTER_DEFAULT */
-    int coarsest_level;      /* J_min >= 2; 0 = as coarse as possible (2) */
-    const rugo_real* tolerances; /* λ per finest segment of the INPUT order (count values); NULL = smooth */
-    rugo_real q;             /* default RUGO_DEFAULT_Q */
-    rugo_tolerance_estimator estimator; /* default RUGO_ESTIMATOR_DETAIL */
-    rugo_friction_map friction;         /* default rugo_default_friction_map() */
-    rugo_restitution restitution;       /* default rugo_default_restitution() */
-    rugo_box_method box_method;         /* default RUGO_BOXES_MULTIRES */
-    int check_self_intersection;        /* default 1 */
-    rugo_allocator allocator;
-    int cookie;
+    const rugo_vec2* points; /**< 2^J control points, either orientation (normalised to CCW) */
+    int count;               /**< number of control points: a power of two >= 4 */
+    rugo_filter filter;      /**< default RUGO_FILTER_DEFAULT */
+    int coarsest_level;      /**< J_min >= 2; 0 = as coarse as possible (2) */
+    const rugo_real* tolerances; /**< λ per finest segment of the INPUT order (count values); NULL = smooth */
+    rugo_real q;             /**< default RUGO_DEFAULT_Q */
+    rugo_tolerance_estimator estimator; /**< default RUGO_ESTIMATOR_DETAIL */
+    rugo_friction_map friction;         /**< default rugo_default_friction_map() */
+    rugo_restitution restitution;       /**< default rugo_default_restitution() */
+    rugo_box_method box_method;         /**< default RUGO_BOXES_MULTIRES */
+    int check_self_intersection;        /**< default 1 */
+    rugo_allocator allocator;           /**< used for the shape's lifetime; zeroed = malloc/free */
+    int cookie;                         /**< set by rugo_default_shape_def; catches uninitialised defs */
 } rugo_shape_def;
 
+/** A def with the defaults above and its cookie set; fill in points and count (and tolerances). */
 rugo_shape_def rugo_default_shape_def(void);
 
-/* Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
- * Errors: those of rugo_pyramid_create, rugo_tolerances_create, rugo_mobb_tree_create,
- * rugo_friction_map_check and rugo_restitution_check. problem may be NULL. */
+/** Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
+ * On success *out is a new shape owned by the caller (free with rugo_shape_destroy); on error NULL.
+ * Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie), those of rugo_pyramid_create,
+ * rugo_tolerances_create, rugo_mobb_tree_create, rugo_friction_map_check and rugo_restitution_check.
+ * problem may be NULL. */
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem);
+/** Frees the shape through its allocator; NULL is allowed. Nothing may use it afterwards. */
 void rugo_shape_destroy(rugo_shape* shape);
 
+/** The finest level J (2^J segments); -1 for NULL. */
 int rugo_shape_finest_level(const rugo_shape* s);
+/** The coarsest level J_min; -1 for NULL. */
 int rugo_shape_coarsest_level(const rugo_shape* s);
-/* The curve of a level (a view valid for the shape's lifetime); BAD_LEVEL outside [J_min, J]. */
+/** The curve of a level (a view valid for the shape's lifetime), in the shape's local frame. Errors:
+ * NULL_ARGUMENT, BAD_LEVEL (outside [J_min, J]). */
 rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out);
+/** The tolerances λ, own estimates and hard bounds β of a level (views valid for the shape's
+ * lifetime, length units; all zero for a smooth shape). Errors: NULL_ARGUMENT, BAD_LEVEL. */
 rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out);
+/** The shape's MOBBtree (owned by the shape); NULL for NULL. */
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
+/** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */
 const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s);
+/** Area, centroid and polar inertia about the centroid for unit density (positive: the shape is
+ * counter-clockwise); multiply by a density for mass and moment. NaN values for NULL. */
 rugo_mass_properties rugo_shape_mass(const rugo_shape* s);
+/** The surface's friction map (NaN values for NULL). */
 rugo_friction_map rugo_shape_friction_map(const rugo_shape* s);
+/** The surface's restitution (NaN values for NULL). */
 rugo_restitution rugo_shape_restitution(const rugo_shape* s);
-/* 1 if any finest tolerance is > 0. */
+/** 1 if any finest tolerance is > 0 (0 for NULL). */
 int rugo_shape_is_rough(const rugo_shape* s);
-/* 1 if the input was clockwise and was reversed (segment j of the input is segment n-2-j here). */
+/** 1 if the input was clockwise and was reversed (segment j of the input is segment n-2-j here). */
 int rugo_shape_was_reversed(const rugo_shape* s);
 
 #ifdef __cplusplus

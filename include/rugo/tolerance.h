@@ -1,4 +1,5 @@
-/* librugo — tolerances at every level, tolerance at a point, friction and restitution from roughness
+/** @file rugo/tolerance.h
+ * librugo — tolerances at every level, tolerance at a point, friction and restitution from roughness
  * (SPEC 6; thesis 5.3-5.5, 7.3).
  *
  * Two quantities per segment of every level j of a pyramid:
@@ -10,7 +11,11 @@
  *  - β (hard bound): the largest distance of the finest curve plus its band from the segment,
  *    computed conservatively (Bezier hull bounds), so it is never exceeded. Boxes and certified
  *    level-of-detail errors use β. At the finest level β_k bounds λ(t) over the segment.
- * Lengths are in the shape's units. */
+ * Lengths are in the shape's units; μ and ε are dimensionless.
+ *
+ * Ownership: rugo_tolerances is created by rugo_tolerances_create, owned by the caller and freed by
+ * rugo_tolerances_destroy; it does not keep the pyramid or the input values. The level views it gives
+ * point into it. The functions of λ(t), friction and restitution allocate nothing. */
 #ifndef RUGO_TOLERANCE_H
 #define RUGO_TOLERANCE_H
 
@@ -22,113 +27,132 @@
 extern "C" {
 #endif
 
+/** How a coarser level's own tolerance is estimated from its perturbation (thesis 5.3). */
 typedef enum rugo_tolerance_estimator {
-    /* From wavelet coefficients (5.3.1): the normal components (local frames) of the 2k+1 details
+    /** From wavelet coefficients (5.3.1): the normal components (local frames) of the 2k+1 details
      * nearest the segment — centred on the detail inserted inside it (fine index 2j+1, i.e. d_{j+1}
      * in SPEC 2.2's indexing) — give σ with mean 0; own = q σ. */
     RUGO_ESTIMATOR_COEFFICIENTS = 0,
-    /* From the detail contour (5.3.2): g = f^{j+1} - f^j (f^j refined) on the segment's two fine
+    /** From the detail contour (5.3.2): g = f^{j+1} - f^j (f^j refined) on the segment's two fine
      * halves, sampled; the `extremes` largest and smallest normal components give σ; own = q σ.
      * The thesis finds this one more exact. Default. */
     RUGO_ESTIMATOR_DETAIL = 1
 } rugo_tolerance_estimator;
 
+/** What rugo_tolerances_create needs. Start from rugo_default_tolerance_def(). */
 typedef struct rugo_tolerance_def {
-    const rugo_pyramid* pyramid; /* geometry of every level; borrowed only during creation */
-    const rugo_real* finest;     /* λ per finest segment (2^J values) in the PYRAMID's segment order
+    const rugo_pyramid* pyramid; /**< geometry of every level; borrowed only during creation */
+    const rugo_real* finest;     /**< λ per finest segment (2^J values) in the PYRAMID's segment order
                                     (counter-clockwise: remap if the pyramid reversed the input) */
-    int count;                   /* must equal 2^J */
-    rugo_real q;                 /* default RUGO_DEFAULT_Q */
-    rugo_tolerance_estimator estimator; /* default RUGO_ESTIMATOR_DETAIL */
-    int neighbours;              /* k of the 2k+1 coefficients; >= 1, default 1 (a window wider than a
+    int count;                   /**< must equal 2^J */
+    rugo_real q;                 /**< default RUGO_DEFAULT_Q */
+    rugo_tolerance_estimator estimator; /**< default RUGO_ESTIMATOR_DETAIL */
+    int neighbours;              /**< k of the 2k+1 coefficients; >= 1, default 1 (a window wider than a
                                     level uses each of its details once) */
-    int extremes;                /* maxima and minima per segment for the detail estimator (of 32 samples,
+    int extremes;                /**< maxima and minima per segment for the detail estimator (of 32 samples,
                                     16 per fine half); 3..16, default 3 */
-    rugo_real minimum;           /* floor of λ(t) (clamping of the cubic interpolation); >= 0, default 0 */
-    rugo_allocator allocator;
-    int cookie;
+    rugo_real minimum;           /**< floor of λ(t) (clamping of the cubic interpolation); >= 0, default 0 */
+    rugo_allocator allocator;    /**< zeroed = malloc/free */
+    int cookie;                  /**< set by rugo_default_tolerance_def; catches uninitialised defs */
 } rugo_tolerance_def;
 
+/** A def with the defaults above and its cookie set; fill in pyramid, finest and count. */
 rugo_tolerance_def rugo_default_tolerance_def(void);
 
+/** λ, own estimates and β of every level of a pyramid (opaque; see rugo_tolerances_level). */
 typedef struct rugo_tolerances rugo_tolerances;
 
-/* Builds λ and β for every level of the pyramid. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie, count
+/** Builds λ and β for every level of the pyramid. On success *out is new and owned by the caller (free
+ * with rugo_tolerances_destroy); on error it is NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie, count
  * mismatch, neighbours or extremes out of range, estimator), NOT_FINITE, NEGATIVE_TOLERANCE,
  * BAD_QUANTILE (q <= 0 or not finite), OUT_OF_MEMORY. */
 rugo_status rugo_tolerances_create(const rugo_tolerance_def* def, rugo_tolerances** out);
+/** Frees t through its allocator; NULL is allowed. Level views into it become invalid. */
 void rugo_tolerances_destroy(rugo_tolerances* t);
 
+/** The finest level J; -1 for NULL. */
 int rugo_tolerances_finest_level(const rugo_tolerances* t);
+/** The coarsest level J_min; -1 for NULL. */
 int rugo_tolerances_coarsest_level(const rugo_tolerances* t);
 
+/** The tolerances of one level: views of count values each, in length units, indexed by segment. */
 typedef struct rugo_tolerance_level {
-    int level;
-    int count;              /* 2^level segments */
-    const rugo_real* own;   /* own^j_k: the estimate from this level's perturbation (finest: the input) */
-    const rugo_real* total; /* λ^j_k, accumulated by (5.3) */
-    const rugo_real* bound; /* β^j_k, the hard bound */
+    int level;              /**< the level j */
+    int count;              /**< 2^level segments */
+    const rugo_real* own;   /**< own^j_k: the estimate from this level's perturbation (finest: the input) */
+    const rugo_real* total; /**< λ^j_k, accumulated by (5.3) */
+    const rugo_real* bound; /**< β^j_k, the hard bound */
 } rugo_tolerance_level;
 
-/* Views of one level (valid until destroy). RUGO_ERR_BAD_LEVEL outside the pyramid's levels. */
+/** Views of one level into *out (valid until destroy). Errors: NULL_ARGUMENT, BAD_LEVEL (outside the
+ * pyramid's levels). */
 rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tolerance_level* out);
 
-/* λ(t) at the point f_segment(t) of a contour whose segments carry `lambda` (count values), by the
+/** λ(t) at the point f_segment(t) of a contour whose segments carry `lambda` (count values), by the
  * corrected cubic interpolation of SPEC 6.3 (λ_i attached to the midpoint of segment i; continuous
  * along the whole contour; equal to λ_j at f_j(1/2)), clamped below at `minimum`. Segment indices
  * wrap; t in [0, 1]. NaN for NULL lambda or count < 1; a NaN λ stays NaN (the clamp does not hide it). */
 rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rugo_real t, rugo_real minimum);
 
-/* A certified upper bound of λ(t) over segment `segment` (t in [0, 1]) for the interpolation of
+/** A certified upper bound of λ(t) over segment `segment` (t in [0, 1]) for the interpolation of
  * rugo_tolerance_at, never below `minimum`: the largest Bernstein coefficient of the two cubic
  * pieces plus a round-off pad. Within ~1.5% of the true maximum. NaN for NULL lambda or count < 1. */
 rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum);
 
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
-/* μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise: the thesis' (5.6) with base = 0. The
- * thesis uses α = 1 (its tolerances lie in [0, 1]) and λ_min = the tolerance of a smooth surface; the
- * defaults are α = 1, λ_min = 0.04 (the smooth segments of the thesis' tipo_5), base = 0. α has units of
- * 1/length: calibrate it to your scale. α = 0 gives a constant μ = base (an ordinary material). */
+/** The friction map of a surface: μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise: the
+ * thesis' (5.6) with base = 0. The thesis uses α = 1 (its tolerances lie in [0, 1]) and λ_min = the
+ * tolerance of a smooth surface; the defaults are α = 1, λ_min = 0.04 (the smooth segments of the
+ * thesis' tipo_5), base = 0. α has units of 1/length: calibrate it to your scale. α = 0 gives a
+ * constant μ = base (an ordinary material). */
 typedef struct rugo_friction_map {
-    rugo_real alpha;
-    rugo_real lambda_min;
-    rugo_real base; /* μ of a smooth surface (λ <= λ_min); >= 0 */
+    rugo_real alpha;      /**< slope α of μ over λ (1/length); >= 0 */
+    rugo_real lambda_min; /**< tolerance of a smooth surface (length); >= 0 */
+    rugo_real base; /**< μ of a smooth surface (λ <= λ_min); >= 0 */
 } rugo_friction_map;
 
+/** α = 1, λ_min = 0.04, base = 0 (the thesis' values). */
 rugo_friction_map rugo_default_friction_map(void);
-/* NOT_FINITE, BAD_ARGUMENT (alpha < 0 or base < 0), NEGATIVE_TOLERANCE (lambda_min < 0). */
+/** Validates a map. Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (alpha < 0 or base < 0),
+ * NEGATIVE_TOLERANCE (lambda_min < 0). */
 rugo_status rugo_friction_map_check(const rugo_friction_map* m);
+/** The friction coefficient μ(λ) of the map at a tolerance λ (length units); NaN for a NULL map or a
+ * NaN λ. The map is not validated here (rugo_friction_map_check). */
 rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
-/* Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max
+/** Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max
  * (e.g. "the roughest point of this shape has μ = 0.9"). Checks in this order: NULL_ARGUMENT,
  * NOT_FINITE, NEGATIVE_TOLERANCE, BAD_ARGUMENT (mu_max < 0), EMPTY_RANGE (lambda_min >= lambda_max:
  * equality would divide by zero). */
 rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
                                     rugo_friction_map* out);
 
-/* Mixing of a pair's values (7.2): the thesis takes the max for μ and the min for ε. */
+/** Mixing of a pair's values (7.2): the thesis takes the max for μ and the min for ε. */
 typedef enum rugo_mix_rule {
-    RUGO_MIX_MAX = 0,
-    RUGO_MIX_MIN = 1,
-    RUGO_MIX_MEAN = 2,
-    RUGO_MIX_GEOMETRIC = 3 /* sqrt(a b), Box2D's b2MixFriction */
+    RUGO_MIX_MAX = 0,      /**< max(a, b) */
+    RUGO_MIX_MIN = 1,      /**< min(a, b) */
+    RUGO_MIX_MEAN = 2,     /**< (a + b) / 2 */
+    RUGO_MIX_GEOMETRIC = 3 /**< sqrt(a b), Box2D's b2MixFriction */
 } rugo_mix_rule;
-/* Mixed value; NaN for an invalid rule. */
+/** The value of a and b mixed by `rule`; NaN for an invalid rule. */
 rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);
 
 /* ---- restitution in continuous contact (6.5, 7.3) --------------------------------------------- */
 
-/* ε_c(δ) = (ε_max - ε) δ² / λ² + ε for a penetration δ inside the band λ (δ clamped to [0, λ]; λ = 0
+/** A surface's restitution in continuous contact: ε_c(δ) = (ε_max - ε) δ² / λ² + ε for a penetration δ inside the band λ (δ clamped to [0, λ]; λ = 0
  * gives ε). Defaults ε = 0.5, ε_max = 0.9 (thesis). */
 typedef struct rugo_restitution {
-    rugo_real epsilon;
-    rugo_real epsilon_max;
+    rugo_real epsilon;     /**< ε: the base coefficient of restitution (no penetration), in [0, 1] */
+    rugo_real epsilon_max; /**< ε_max: at the edge of the band (δ = λ), in [ε, 1] */
 } rugo_restitution;
 
+/** ε = 0.5, ε_max = 0.9 (the thesis' values). */
 rugo_restitution rugo_default_restitution(void);
-/* NOT_FINITE, BAD_ARGUMENT (outside [0, 1]), EMPTY_RANGE (epsilon > epsilon_max). */
+/** Validates r. Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (outside [0, 1]), EMPTY_RANGE (epsilon >
+ * epsilon_max). */
 rugo_status rugo_restitution_check(const rugo_restitution* r);
+/** ε_c(δ) for a penetration δ into a band λ (both length units): ε for δ <= 0 or λ <= 0, ε_max for
+ * δ >= λ. NaN for a NULL r or a NaN argument. r is not validated here (rugo_restitution_check). */
 rugo_real rugo_restitution_in_band(const rugo_restitution* r, rugo_real delta, rugo_real lambda);
 
 #ifdef __cplusplus

@@ -1,4 +1,5 @@
-/* librugo — the thesis' own simulator: a small world of rough rigid bodies with impulse-based
+/** @file rugo/world.h
+ * librugo — the thesis' own simulator: a small world of rough rigid bodies with impulse-based
  * dynamics (SPEC 7, 9, 10; thesis chapters 6-7), for programs that do not use Box2D.
  *
  * Bodies are rugo_shapes placed by a transform of their local frame (the shape's coordinates); the
@@ -8,7 +9,12 @@
  * time of contact by bisection (SPEC 9), impulses at every contact point (SPEC 10) with per-point μ and
  * ε from the surfaces' friction maps, micro-collisions for resting contact (7.3), then integration.
  * No contact impulse ever adds kinetic energy (tested). Nothing per step allocates once the world's
- * buffers have grown to the scene. Deterministic: same defs and steps, same bits. */
+ * buffers have grown to the scene. Deterministic: same defs and steps, same bits.
+ *
+ * Units: SI as in the defs below (metres, kilograms, seconds, radians); shapes are in metres.
+ * Ownership: a world is created by rugo_world_create, owned by the caller and freed by
+ * rugo_world_destroy; it allocates through its def's allocator. Bodies borrow their shapes, which must
+ * outlive the world. Arrays it returns stay valid until the next step or destroy. */
 #ifndef RUGO_WORLD_H
 #define RUGO_WORLD_H
 #include "rugo/base.h"
@@ -19,140 +25,196 @@
 extern "C" {
 #endif
 
+/** The time integrator of rugo_world_step. */
 typedef enum rugo_integrator {
-    RUGO_INTEGRATE_SYMPLECTIC_EULER = 0, /* v += a h, then x += v h (default: stable resting contact) */
-    RUGO_INTEGRATE_EXPLICIT_EULER = 1    /* the thesis' x += v h, v += a h */
+    /** v += a h, then x += v h (default: no energy gained in flight, a resting body reports v = 0 on
+     *  average; docs/simulator.md, "Integrators") */
+    RUGO_INTEGRATE_SYMPLECTIC_EULER = 0,
+    /** the thesis' x += v h, then v += a h (gains g²h²/2 per unit mass each step of flight; a resting
+     *  body reports g h downwards) */
+    RUGO_INTEGRATE_EXPLICIT_EULER = 1
 } rugo_integrator;
 
+/** Kinds of body in a rugo_world. */
 typedef enum rugo_body_type {
-    RUGO_BODY_STATIC = 0, /* infinite mass, never moves */
-    RUGO_BODY_DYNAMIC = 1
+    RUGO_BODY_STATIC = 0, /**< infinite mass, never moves */
+    RUGO_BODY_DYNAMIC = 1 /**< moved by gravity and contact impulses */
 } rugo_body_type;
 
+/** What rugo_world_create needs. Start from rugo_default_world_def(). */
 typedef struct rugo_world_def {
-    rugo_vec2 gravity;        /* m/s^2; default (0, -9.81) */
-    rugo_real time_step;      /* s, > 0; default 1/60 */
-    rugo_integrator integrator;
-    int level;                /* level of detail of contacts (rugo_contact_query.level); default 0 */
-    int max_bisections;       /* halvings of a step toward the time of contact; default 8, 0..30 */
-    /* Penetration beyond the bands that triggers bisection, as a fraction of the smaller body's size
+    rugo_vec2 gravity;        /**< m/s^2; default (0, -9.81) */
+    rugo_real time_step;      /**< s, > 0; default 1/60 */
+    rugo_integrator integrator; /**< default RUGO_INTEGRATE_SYMPLECTIC_EULER */
+    int level;                /**< level of detail of contacts (rugo_contact_query.level); default 0 */
+    int max_bisections;       /**< halvings of a step toward the time of contact; default 8, 0..30 */
+    /** Penetration beyond the bands that triggers bisection, as a fraction of the smaller body's size
      * (root box half-diagonal); default 0.01. */
     rugo_real penetration_tolerance;
-    int micro_collisions;     /* 1 (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
-    int friction;             /* 1 (default): per-point μ; 0: frictionless */
-    int max_contacts_per_pair; /* default 8 */
-    rugo_allocator allocator;
-    int cookie;
+    int micro_collisions;     /**< 1 (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
+    int friction;             /**< 1 (default): per-point μ; 0: frictionless */
+    int max_contacts_per_pair; /**< contacts kept per body pair and step; 1..64, default 8 */
+    rugo_allocator allocator;  /**< used for the world's lifetime; zeroed = malloc/free */
+    int cookie;                /**< set by rugo_default_world_def; catches uninitialised defs */
 } rugo_world_def;
+/** A def with the defaults above and its cookie set. */
 rugo_world_def rugo_default_world_def(void);
 
+/** What rugo_world_add_body needs. Start from rugo_default_body_def(). */
 typedef struct rugo_body_def {
-    const rugo_shape* shape;    /* shared, not copied; must outlive the world */
-    rugo_body_type type;        /* default RUGO_BODY_DYNAMIC */
-    rugo_transform transform;   /* placement of the shape's local frame; default identity */
-    rugo_vec2 linear_velocity;  /* of the centre of mass, m/s */
-    rugo_real angular_velocity; /* rad/s */
-    rugo_real density;          /* kg/m^2, > 0 for a dynamic body; default 1 */
-    void* user_data;
-    int cookie;
+    const rugo_shape* shape;    /**< shared, not copied; must outlive the world */
+    rugo_body_type type;        /**< default RUGO_BODY_DYNAMIC */
+    rugo_transform transform;   /**< placement of the shape's local frame; default identity */
+    rugo_vec2 linear_velocity;  /**< of the centre of mass, m/s */
+    rugo_real angular_velocity; /**< rad/s */
+    rugo_real density;          /**< kg/m^2, > 0 for a dynamic body; default 1 */
+    void* user_data;            /**< the caller's, returned in rugo_body_state; never dereferenced */
+    int cookie;                 /**< set by rugo_default_body_def; catches uninitialised defs */
 } rugo_body_def;
+/** A def with the defaults above and its cookie set; fill in shape. */
 rugo_body_def rugo_default_body_def(void);
 
+/** A simulator world (opaque): bodies, broad phase, contact scratch. */
 typedef struct rugo_world rugo_world;
 
-/* Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie, time_step <= 0, integrator, max_bisections out of
+/** Creates an empty world into *out (owned by the caller; free with rugo_world_destroy). Errors:
+ * NULL_ARGUMENT, BAD_ARGUMENT (cookie, time_step <= 0, integrator, max_bisections out of
  * range, ...), NOT_FINITE, OUT_OF_MEMORY. */
 rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out);
+/** Frees the world and its buffers (not the shapes); NULL is allowed. */
 void rugo_world_destroy(rugo_world* world);
 
-/* Adds a body; *id is its index (0, 1, 2, ... in creation order). Errors: NULL_ARGUMENT,
- * BAD_ARGUMENT (cookie, type, density), NOT_FINITE, OUT_OF_MEMORY. */
+/** Adds a body; *id is its index (0, 1, 2, ... in creation order). Errors: NULL_ARGUMENT,
+ * BAD_ARGUMENT (cookie, type, density, a rotation that is not unit), NOT_FINITE, OUT_OF_MEMORY. */
 rugo_status rugo_world_add_body(rugo_world* world, const rugo_body_def* def, int* id);
+/** Number of bodies (0 for NULL). */
 int rugo_world_body_count(const rugo_world* world);
 
+/** A body's state after the last step (SI units). */
 typedef struct rugo_body_state {
-    rugo_transform transform;   /* of the shape's local frame */
-    rugo_vec2 center;           /* world centre of mass */
-    rugo_vec2 linear_velocity;
-    rugo_real angular_velocity;
-    rugo_real mass, inertia;    /* inertia about the centre of mass; 0 for static bodies */
-    rugo_body_type type;
-    void* user_data;
+    rugo_transform transform;   /**< of the shape's local frame */
+    rugo_vec2 center;           /**< world centre of mass */
+    rugo_vec2 linear_velocity;  /**< of the centre of mass, m/s */
+    rugo_real angular_velocity; /**< rad/s */
+    /** Mass (kg) and moment of inertia about the centre of mass (kg m^2); 0 for static bodies. @{ */
+    rugo_real mass, inertia;
+    /** @} */
+    rugo_body_type type;        /**< as created */
+    void* user_data;            /**< as given in the body def */
 } rugo_body_state;
-/* BAD_ARGUMENT for an id out of range. */
+/** The state of body `id` into *out. Errors: NULL_ARGUMENT, BAD_ARGUMENT (id out of range). */
 rugo_status rugo_world_body(const rugo_world* world, int id, rugo_body_state* out);
+/** Sets a body's linear (m/s, of the centre of mass) and angular (rad/s) velocity. Errors:
+ * NULL_ARGUMENT, BAD_ARGUMENT (id out of range, or a non-zero velocity for a static body),
+ * NOT_FINITE. */
 rugo_status rugo_world_set_velocity(rugo_world* world, int id, rugo_vec2 linear, rugo_real angular);
+/** Moves a body (placement of its shape's local frame; the rotation must be unit within 1e-6).
+ * Errors: NULL_ARGUMENT, BAD_ARGUMENT (id out of range, rotation not unit), NOT_FINITE. */
 rugo_status rugo_world_set_transform(rugo_world* world, int id, rugo_transform transform);
 
+/** What one step did. */
 typedef struct rugo_step_stats {
-    int candidate_pairs;   /* pairs from the sweep and prune */
-    long box_tests;        /* OBB tests in the tree traversals */
-    int contacts;          /* contact points handled */
-    int impulses;          /* impulses applied (collisions + micro-collisions) */
-    int bisections;        /* step halvings toward a time of contact */
-    int unresolved;        /* 1 if the bisection limit was reached with penetration left (see docs) */
-    rugo_real kinetic_energy; /* after the step, J */
+    int candidate_pairs;   /**< pairs from the sweep and prune */
+    long box_tests;        /**< OBB tests in the tree traversals */
+    int contacts;          /**< contact points handled */
+    int impulses;          /**< impulses applied (collisions + micro-collisions) */
+    int bisections;        /**< step halvings toward a time of contact */
+    int unresolved;        /**< 1 if the bisection limit was reached with penetration left (see docs) */
+    rugo_real kinetic_energy; /**< after the step, J */
 } rugo_step_stats;
 
-/* One impulse applied at a contact point during the last step. */
+/** One impulse applied at a contact point during the last step. */
 typedef struct rugo_contact_record {
+    /** The two bodies' ids. @{ */
     int body_a, body_b;
-    rugo_vec2 point;           /* world, midway between the two curve points */
-    rugo_vec2 normal;          /* unit, from A to B */
-    rugo_real separation;      /* curve distance (negative: overlap), before the bands */
-    rugo_real tolerance;       /* λ_A + λ_B at the points */
-    rugo_real friction;        /* μ used */
-    rugo_real restitution;     /* ε used (ε_c(δ) for micro-collisions) */
-    rugo_real normal_velocity_before, normal_velocity_after; /* relative, along the normal */
-    rugo_real impulse_normal, impulse_tangent; /* J_n >= 0 and |J_t| <= μ J_n */
-    int sticking;              /* 1 sticking branch, 0 sliding/frictionless */
-    int micro;                 /* 1 if a micro-collision (resting contact) */
+    /** @} */
+    rugo_vec2 point;           /**< world, midway between the two curve points */
+    rugo_vec2 normal;          /**< unit, from A to B */
+    rugo_real separation;      /**< curve distance (negative: overlap), before the bands */
+    rugo_real tolerance;       /**< λ_A + λ_B at the points */
+    rugo_real friction;        /**< μ used */
+    rugo_real restitution;     /**< ε used (ε_c(δ) for micro-collisions) */
+    /** Relative velocity along the normal before and after the impulse, m/s. @{ */
+    rugo_real normal_velocity_before, normal_velocity_after;
+    /** @} */
+    /** Normal and tangential impulse, N s: J_n >= 0 and |J_t| <= μ J_n. @{ */
+    rugo_real impulse_normal, impulse_tangent;
+    /** @} */
+    int sticking;              /**< 1 sticking branch, 0 sliding/frictionless */
+    int micro;                 /**< 1 if a micro-collision (resting contact) */
 } rugo_contact_record;
 
-/* Advances one time step. stats may be NULL. Errors: NULL_ARGUMENT, OUT_OF_MEMORY (buffers could not
+/** Advances one time step. stats may be NULL. Errors: NULL_ARGUMENT, OUT_OF_MEMORY (buffers could not
  * grow; the world is left as before the step). */
 rugo_status rugo_world_step(rugo_world* world, rugo_step_stats* stats);
-/* The impulses of the last step (valid until the next step). */
+/** The impulses of the last step (owned by the world, valid until the next step); their number goes
+ * to *count (count may be NULL). NULL and 0 for a NULL world. */
 const rugo_contact_record* rugo_world_contact_records(const rugo_world* world, int* count);
+/** Total kinetic energy of the dynamic bodies, J (NaN for NULL). */
 rugo_real rugo_world_kinetic_energy(const rugo_world* world);
 
 /* ---- the impulse at one contact (SPEC 10), exposed for tests and other solvers ---------------- */
+/** Two bodies at one contact point, for rugo_collision_impulse (SI units). */
 typedef struct rugo_impulse_input {
-    rugo_real inv_mass_a, inv_inertia_a, inv_mass_b, inv_inertia_b; /* 0 for static bodies */
-    rugo_vec2 r_a, r_b;        /* contact point relative to each centre of mass */
-    rugo_vec2 v_a, v_b;        /* velocities of the centres of mass */
-    rugo_real w_a, w_b;        /* angular velocities */
-    rugo_vec2 normal;          /* unit, from B to A (SPEC 10 convention) */
-    rugo_real friction;        /* μ >= 0 */
-    rugo_real restitution;     /* ε in [0, 1] */
+    /** Inverse masses (1/kg) and inverse moments of inertia (1/(kg m^2)); 0 for static bodies. @{ */
+    rugo_real inv_mass_a, inv_inertia_a, inv_mass_b, inv_inertia_b;
+    /** @} */
+    /** Contact point relative to each centre of mass, m. @{ */
+    rugo_vec2 r_a, r_b;
+    /** @} */
+    /** Velocities of the centres of mass, m/s. @{ */
+    rugo_vec2 v_a, v_b;
+    /** @} */
+    /** Angular velocities, rad/s. @{ */
+    rugo_real w_a, w_b;
+    /** @} */
+    rugo_vec2 normal;          /**< unit, from B to A (SPEC 10 convention) */
+    rugo_real friction;        /**< μ >= 0 */
+    rugo_real restitution;     /**< ε in [0, 1] */
 } rugo_impulse_input;
+/** The impulse of one collision. */
 typedef struct rugo_impulse_result {
-    rugo_vec2 impulse;         /* J on A (B gets -J) */
+    rugo_vec2 impulse;         /**< J on A (B gets -J), N s */
+    /** Its components along the normal and the tangent, N s. @{ */
     rugo_real impulse_normal, impulse_tangent;
-    int branch;                /* 0 none (separating), 1 sticking, 2 sliding, 3 frictionless */
-    rugo_real energy_change;   /* kinetic energy after minus before (<= 0 up to round-off) */
+    /** @} */
+    int branch;                /**< 0 none (separating), 1 sticking, 2 sliding, 3 frictionless */
+    rugo_real energy_change;   /**< kinetic energy after minus before (<= 0 up to round-off), J */
 } rugo_impulse_result;
-/* Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (μ < 0, ε outside [0, 1], normal not unit). */
+/** The collision impulse at one contact (SPEC 10) into *out; never adds kinetic energy. Errors:
+ * NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (μ < 0, ε outside [0, 1], normal not unit). */
 rugo_status rugo_collision_impulse(const rugo_impulse_input* in, rugo_impulse_result* out);
 
 /* ---- sweep and prune (SPEC 7), exposed for tests and the benchmarks --------------------------- */
+/** An axis-aligned box. */
 typedef struct rugo_aabb {
+    /** Lower and upper corners (lower <= upper on both axes). @{ */
     rugo_vec2 lower, upper;
+    /** @} */
 } rugo_aabb;
+/** A pair of overlapping boxes, by index. */
 typedef struct rugo_pair {
-    int a, b; /* a < b */
+    /** Indices of the two boxes, a < b. @{ */
+    int a, b;
+    /** @} */
 } rugo_pair;
+/** Sweep-and-prune broad phase (opaque). */
 typedef struct rugo_sweep_prune rugo_sweep_prune;
+/** Creates an empty sweep and prune into *out (owned by the caller; free with
+ * rugo_sweep_prune_destroy); it allocates through `allocator` (NULL = malloc/free) as it grows.
+ * Errors: NULL_ARGUMENT, OUT_OF_MEMORY. */
 rugo_status rugo_sweep_prune_create(const rugo_allocator* allocator, rugo_sweep_prune** out);
+/** Frees it; NULL is allowed. */
 void rugo_sweep_prune_destroy(rugo_sweep_prune* sap);
-/* Boxes of all n objects for this step. The first call (or a change of n) sorts and sweeps (general
+/** Boxes of all n objects for this step. The first call (or a change of n) sorts and sweeps (general
  * algorithm); later calls insertion-sort the nearly sorted end points and add/remove pairs at each swap
  * (coherence algorithm), keeping pairs in a hash table. Errors: NULL_ARGUMENT, NOT_FINITE,
  * BAD_ARGUMENT (lower > upper), OUT_OF_MEMORY. */
 rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n);
-/* The overlapping pairs (boxes touching count), sorted by (a, b); valid until the next update. */
+/** The overlapping pairs (boxes touching count), sorted by (a, b), owned by sap and valid until the
+ * next update; their number goes to *count (count may be NULL). NULL and 0 for NULL. */
 const rugo_pair* rugo_sweep_prune_pairs(const rugo_sweep_prune* sap, int* count);
-/* Swaps done by the last update (0 for the general algorithm). */
+/** Swaps done by the last update (0 for the general algorithm or NULL). */
 long rugo_sweep_prune_swaps(const rugo_sweep_prune* sap);
 
 #ifdef __cplusplus

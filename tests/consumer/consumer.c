@@ -1,5 +1,7 @@
-/* Uses the installed headers and library: builds a pyramid of a circle-like outline and checks
- * its area against pi r^2 within the B-spline's known shrinkage. Exit code 0 on success. */
+/* Uses the installed headers and library: checks the version macros against the package's version
+ * (RUGO_EXPECTED_VERSION, given by the build: the CMake package's or pkg-config's), builds a pyramid
+ * of a circle-like outline and checks its area against pi r^2 within the B-spline's known shrinkage.
+ * Exit code 0 on success. */
 #include <rugo/rugo.h>
 #ifdef RUGO_HAVE_FIT
 #include <rugo/fit.h>
@@ -9,6 +11,31 @@
 #include <stdio.h>
 #include <string.h>
 
+#ifndef RUGO_EXPECTED_VERSION
+#error "build with -DRUGO_EXPECTED_VERSION=\"x.y.z\" (the installed package's version)"
+#endif
+/* The macros work in the preprocessor. */
+#if !RUGO_VERSION_AT_LEAST(0, 1, 0) || RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR + 1, 0, 0)
+#error "RUGO_VERSION_AT_LEAST is wrong"
+#endif
+
+/* The four version macros, the runtime string and the package agree; AT_LEAST orders versions. */
+static int check_version(void) {
+    char text[64];
+    snprintf(text, sizeof text, "%d.%d.%d", RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR, RUGO_VERSION_PATCH);
+    int ok = strcmp(text, RUGO_VERSION_STRING) == 0 && strcmp(RUGO_VERSION_STRING, RUGO_EXPECTED_VERSION) == 0 &&
+             strcmp(rugo_version_string(), RUGO_VERSION_STRING) == 0;
+    ok &= RUGO_VERSION_NUMBER == RUGO_VERSION_MAJOR * 10000 + RUGO_VERSION_MINOR * 100 + RUGO_VERSION_PATCH;
+    ok &= RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR, RUGO_VERSION_PATCH);
+    ok &= !RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR, RUGO_VERSION_PATCH + 1);
+    ok &= !RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR + 1, 0);
+    ok &= RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR - 1, 99, 99);
+    if (!ok)
+        fprintf(stderr, "version mismatch: macros %s, library %s, package %s\n", text, rugo_version_string(),
+                RUGO_EXPECTED_VERSION);
+    return ok;
+}
+
 int main(void) {
     enum { N = 64 };
     rugo_vec2 pts[N];
@@ -16,7 +43,7 @@ int main(void) {
         double th = 6.283185307179586 * k / N;
         pts[k] = rugo_v2(cos(th), sin(th));
     }
-    if (strcmp(rugo_version_string(), RUGO_VERSION_STRING) != 0) return 1;
+    if (!check_version()) return 1;
     rugo_pyramid_def def = rugo_default_pyramid_def();
     def.points = pts;
     def.count = N;

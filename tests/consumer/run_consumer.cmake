@@ -1,5 +1,7 @@
 # Installs the rugo build in RUGO_BUILD_DIR into a scratch prefix, then builds and runs the consumer
-# project against it twice: once through find_package(rugo), once through pkg-config.
+# project against it twice: once through find_package(rugo), once through pkg-config. With
+# RUGO_WITH_BOX2D, both ways also build and run the Box2D bridge consumer (rugo::box2d, rugo-box2d.pc).
+# The programs check the version macros against the package's version.
 file(REMOVE_RECURSE ${RUGO_SCRATCH})
 set(prefix ${RUGO_SCRATCH}/prefix)
 
@@ -20,10 +22,13 @@ endif()
 
 # 1. CMake package.
 run(${CMAKE_COMMAND} -S ${RUGO_CONSUMER_SOURCE} -B ${RUGO_SCRATCH}/build
-    -DCMAKE_PREFIX_PATH=${prefix} -DRUGO_WITH_EIGEN=${RUGO_WITH_EIGEN}
+    -DCMAKE_PREFIX_PATH=${prefix} -DRUGO_WITH_EIGEN=${RUGO_WITH_EIGEN} -DRUGO_WITH_BOX2D=${RUGO_WITH_BOX2D}
     "-DCMAKE_C_FLAGS=${san_flags}" "-DCMAKE_CXX_FLAGS=${san_flags}" "-DCMAKE_EXE_LINKER_FLAGS=${san_flags}")
 run(${CMAKE_COMMAND} --build ${RUGO_SCRATCH}/build)
 run(${RUGO_SCRATCH}/build/consumer)
+if(RUGO_WITH_BOX2D)
+  run(${RUGO_SCRATCH}/build/consumer_box2d)
+endif()
 
 # 2. pkg-config, plain compiler command line.
 find_program(PKG_CONFIG pkg-config REQUIRED)
@@ -33,12 +38,29 @@ file(GLOB pcdirs "${prefix}/lib/*/pkgconfig")
 foreach(d ${pcdirs})
   set(ENV{PKG_CONFIG_PATH} "${d}:$ENV{PKG_CONFIG_PATH}")
 endforeach()
-execute_process(COMMAND ${PKG_CONFIG} --cflags --libs rugo OUTPUT_VARIABLE pc RESULT_VARIABLE rc
-                OUTPUT_STRIP_TRAILING_WHITESPACE)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "pkg-config does not find rugo")
-endif()
-separate_arguments(pc_list UNIX_COMMAND "${pc}")
+# pkg_flags(MODULE VAR): the --cflags --libs of MODULE as a list; its --modversion in VAR_version.
+function(pkg_flags module var)
+  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs ${module} OUTPUT_VARIABLE pc RESULT_VARIABLE rc
+                  ERROR_VARIABLE err OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config does not find ${module}: ${err}")
+  endif()
+  execute_process(COMMAND ${PKG_CONFIG} --modversion ${module} OUTPUT_VARIABLE version
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+  separate_arguments(list UNIX_COMMAND "${pc}")
+  set(${var} ${list} PARENT_SCOPE)
+  set(${var}_version ${version} PARENT_SCOPE)
+endfunction()
 separate_arguments(san_list UNIX_COMMAND "${san_flags}")
-run(${CC_EXE} -std=c99 ${san_list} ${RUGO_CONSUMER_SOURCE}/consumer.c ${pc_list} -o ${RUGO_SCRATCH}/consumer_pc)
+pkg_flags(rugo pc_list)
+run(${CC_EXE} -std=c99 ${san_list} "-DRUGO_EXPECTED_VERSION=\"${pc_list_version}\"" ${RUGO_CONSUMER_SOURCE}/consumer.c
+    ${pc_list} -o ${RUGO_SCRATCH}/consumer_pc)
 run(${RUGO_SCRATCH}/consumer_pc)
+if(RUGO_WITH_BOX2D)
+  # The bridge through rugo-box2d.pc (Requires: rugo, box2d), linked by the C++ compiler.
+  find_program(CXX_EXE NAMES c++ g++ REQUIRED)
+  pkg_flags(rugo-box2d pc_b2_list)
+  run(${CXX_EXE} -std=c++17 ${san_list} "-DRUGO_EXPECTED_VERSION=\"${pc_b2_list_version}\""
+      ${RUGO_CONSUMER_SOURCE}/consumer_box2d.cpp ${pc_b2_list} -o ${RUGO_SCRATCH}/consumer_box2d_pc)
+  run(${RUGO_SCRATCH}/consumer_box2d_pc)
+endif()

@@ -1,0 +1,284 @@
+#!/usr/bin/env python3
+"""Plots of the benchmarks' CSV files as SVG (Python 3 standard library only, no matplotlib).
+
+Usage:
+    python3 scripts/plot_benchmarks.py [CSV_DIR] [OUT_DIR]
+
+CSV_DIR holds what `bench_queries` wrote (default out/bench_queries); OUT_DIR receives the SVG files
+(default docs/img). Written:
+    bench_queries_pareto.svg  time per query against the effective maximum separation error, log-log,
+                              one panel each for all pose pairs, smooth pairs and rough pairs
+    bench_queries_sweep.svg   box tests, segment pairs and time per query against the segment count
+                              (one contact) and against the contact count (1024 segments)
+A configuration with a missed or spurious contact is drawn hollow at an error of at least D = 0.005
+(the benchmark's contact window), as the benchmark's summary counts it.
+"""
+
+import csv
+import math
+import os
+import sys
+
+WINDOW = 0.005  # D of bench_queries.cpp
+FLOOR = 1e-17   # errors of 0 are drawn here
+
+COLOURS = {
+    "rugo": "#1f6fb4",
+    "brute": "#7b3fa0",
+    "box2d": "#d0502a",
+    "box2d_narrow": "#e8a33d",
+}
+LABELS = {
+    "rugo": "librugo (level 0, -1, -2, -3)",
+    "brute": "librugo narrow phase, all segment pairs",
+    "box2d": "Box2D polygons (m vertices)",
+    "box2d_narrow": "Box2D polygons, b2CollidePolygons only",
+}
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def eff_err(row):
+    e = float(row["max_sep_err"])
+    if int(row["missed"]) + int(row["spurious"]) > 0:
+        e = max(e, WINDOW)
+    return max(e, FLOOR)
+
+
+class Panel:
+    """A log-log (or log-linear) plot area inside an SVG document."""
+
+    def __init__(self, x, y, w, h, xlim, ylim, xlog=True, ylog=True):
+        self.x, self.y, self.w, self.h = x, y, w, h
+        self.xlim, self.ylim, self.xlog, self.ylog = xlim, ylim, xlog, ylog
+        self.out = []
+
+    def _t(self, v, lim, log):
+        lo, hi = lim
+        if log:
+            v, lo, hi = math.log10(v), math.log10(lo), math.log10(hi)
+        return (v - lo) / (hi - lo)
+
+    def px(self, v):
+        return self.x + self.w * self._t(v, self.xlim, self.xlog)
+
+    def py(self, v):
+        return self.y + self.h * (1.0 - self._t(v, self.ylim, self.ylog))
+
+    def text(self, x, y, s, size=11, anchor="start", rotate=None, weight="normal", colour="#222"):
+        tr = f' transform="rotate({rotate} {x:.1f} {y:.1f})"' if rotate is not None else ""
+        s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+        self.out.append(f'<text x="{x:.1f}" y="{y:.1f}" font-size="{size}" text-anchor="{anchor}" '
+                        f'font-weight="{weight}" fill="{colour}"{tr}>{s}</text>')
+
+    def frame(self, title, xlabel, ylabel, xticks, yticks):
+        o = self.out
+        o.append(f'<rect x="{self.x}" y="{self.y}" width="{self.w}" height="{self.h}" fill="white" stroke="#444"/>')
+        for v, lab in xticks:
+            X = self.px(v)
+            o.append(f'<line x1="{X:.1f}" y1="{self.y}" x2="{X:.1f}" y2="{self.y + self.h}" stroke="#e4e4e4"/>')
+            self.text(X, self.y + self.h + 14, lab, 10, "middle")
+        for v, lab in yticks:
+            Y = self.py(v)
+            o.append(f'<line x1="{self.x}" y1="{Y:.1f}" x2="{self.x + self.w}" y2="{Y:.1f}" stroke="#e4e4e4"/>')
+            self.text(self.x - 5, Y + 3.5, lab, 10, "end")
+        self.text(self.x + self.w / 2, self.y - 8, title, 12, "middle", weight="bold")
+        self.text(self.x + self.w / 2, self.y + self.h + 30, xlabel, 11, "middle")
+        self.text(self.x - 48, self.y + self.h / 2, ylabel, 11, "middle", rotate=-90)
+
+    def hline(self, v, colour, label):
+        Y = self.py(v)
+        self.out.append(f'<line x1="{self.x}" y1="{Y:.1f}" x2="{self.x + self.w}" y2="{Y:.1f}" stroke="{colour}" '
+                        f'stroke-dasharray="2,3"/>')
+        self.text(self.x + self.w - 4, Y - 3, label, 9, "end", colour=colour)
+
+    def series(self, pts, colour, dashed=False, labels=None, hollow=None, marker="circle"):
+        if not pts:
+            return
+        d = " ".join(f"{'M' if i == 0 else 'L'}{self.px(x):.1f},{self.py(y):.1f}" for i, (x, y) in enumerate(pts))
+        dash = ' stroke-dasharray="5,3"' if dashed else ""
+        self.out.append(f'<path d="{d}" fill="none" stroke="{colour}" stroke-width="1.6"{dash}/>')
+        for i, (x, y) in enumerate(pts):
+            X, Y = self.px(x), self.py(y)
+            fill = "white" if hollow and hollow[i] else colour
+            if marker == "square":
+                self.out.append(f'<rect x="{X - 3.2:.1f}" y="{Y - 3.2:.1f}" width="6.4" height="6.4" fill="{fill}" '
+                                f'stroke="{colour}" stroke-width="1.3"/>')
+            else:
+                self.out.append(f'<circle cx="{X:.1f}" cy="{Y:.1f}" r="3.4" fill="{fill}" stroke="{colour}" '
+                                f'stroke-width="1.3"/>')
+            if labels:
+                self.text(X + 5, Y - 5, labels[i], 9, colour=colour)
+
+
+def decade_ticks(lo, hi, every=1):
+    ticks = []
+    e = math.floor(math.log10(lo))
+    while 10.0 ** e <= hi * 1.0001:
+        if 10.0 ** e >= lo * 0.9999 and e % every == 0:
+            ticks.append((10.0 ** e, f"1e{e}" if abs(e) > 2 else f"{10.0 ** e:g}"))
+        e += 1
+    return ticks
+
+
+def svg_doc(width, height, body):
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+            f'viewBox="0 0 {width} {height}" font-family="Helvetica, Arial, sans-serif">\n'
+            f'<rect width="{width}" height="{height}" fill="white"/>\n' + "\n".join(body) + "\n</svg>\n")
+
+
+def pareto_plot(csv_dir, out_path):
+    subsets = [("all pose pairs", "bench_queries.csv"), ("smooth pairs", "bench_queries_smooth.csv"),
+               ("rough pairs", "bench_queries_rough.csv")]
+    data = []
+    for title, name in subsets:
+        path = os.path.join(csv_dir, name)
+        if os.path.exists(path):
+            data.append((title, read_csv(path)))
+    xs = [eff_err(r) for _, rows in data for r in rows]
+    ys = [float(r["time_ns_per_query"]) / 1000.0 for _, rows in data for r in rows]
+    xlim = (10.0 ** math.floor(math.log10(min(xs))), 10.0 ** math.ceil(math.log10(max(xs))))
+    ylim = (10.0 ** math.floor(math.log10(min(ys))), 10.0 ** math.ceil(math.log10(max(ys))))
+    W, H, left, top, gap = 330, 300, 70, 40, 75
+    body = []
+    for k, (title, rows) in enumerate(data):
+        p = Panel(left + k * (W + gap), top, W, H, xlim, ylim)
+        p.frame(title, "max separation error (body size 1)", "time per query [µs]",
+                decade_ticks(*xlim, every=2), decade_ticks(*ylim))
+        p.hline(1.0, "#999", "")
+        for meth in ["box2d_narrow", "box2d", "brute", "rugo"]:
+            rs = [r for r in rows if r["method"] == meth]
+            if not rs:
+                continue
+            if meth == "rugo":
+                rs.sort(key=lambda r: -int(r["param"]))
+            else:
+                rs.sort(key=lambda r: int(r["param"]))
+            pts = [(eff_err(r), float(r["time_ns_per_query"]) / 1000.0) for r in rs]
+            hollow = [int(r["missed"]) + int(r["spurious"]) > 0 for r in rs]
+            if meth == "rugo":
+                labels = ["L" + r["param"] for r in rs]
+            elif meth == "box2d":
+                labels = [r["param"] for r in rs]
+            else:
+                labels = None
+            p.series(pts, COLOURS[meth], dashed=(meth == "box2d_narrow"), labels=labels, hollow=hollow,
+                     marker="square" if meth.startswith("box2d") else "circle")
+        # the goal targets
+        for e, lab in [(1e-3, "1e-3"), (1e-5, "1e-5")]:
+            X = p.px(e)
+            p.out.append(f'<line x1="{X:.1f}" y1="{p.y}" x2="{X:.1f}" y2="{p.y + p.h}" stroke="#2a9d55" '
+                         f'stroke-dasharray="3,3"/>')
+            p.text(X + 3, p.y + p.h - 6, lab, 9, colour="#2a9d55")
+        body += p.out
+    # legend
+    ly = top + H + 52
+    lx = left
+    for meth in ["rugo", "brute", "box2d", "box2d_narrow"]:
+        c = COLOURS[meth]
+        dash = ' stroke-dasharray="5,3"' if meth == "box2d_narrow" else ""
+        body.append(f'<line x1="{lx}" y1="{ly}" x2="{lx + 24}" y2="{ly}" stroke="{c}" stroke-width="1.6"{dash}/>')
+        body.append(f'<text x="{lx + 30}" y="{ly + 4}" font-size="11" fill="#222">{LABELS[meth]}</text>')
+        lx += 265
+    body.append(f'<text x="{left}" y="{ly + 22}" font-size="10" fill="#555">Hollow: a missed or spurious contact '
+                f'(drawn at an error of at least D = {WINDOW}). Green: the goals\' error levels. Lower left is better.'
+                f'</text>')
+    width = left + len(data) * (W + gap)
+    with open(out_path, "w") as f:
+        f.write(svg_doc(width, ly + 36, body))
+
+
+def sweep_plot(csv_dir, out_path):
+    rows = read_csv(os.path.join(csv_dir, "bench_queries_sweep.csv"))
+    seg = [r for r in rows if r["kind"] == "segments"]
+    con = [r for r in rows if r["kind"] == "contacts"]
+    W, H, left, top, gap = 330, 240, 70, 40, 80
+    body = []
+    colours = {"ellipse-ellipse": "#1f6fb4", "bean-bean": "#2a9d55", "comb-slab": "#d0502a"}
+
+    def counts_panel(x, rs, key, xlabel, title, xlog_ticks):
+        xs = [float(r[key]) for r in rs]
+        vals = [float(r[c]) for r in rs for c in ("box_tests", "segment_pairs")]
+        xlim = (min(xs) / 1.3, max(xs) * 1.3)
+        ylim = (10.0 ** math.floor(math.log10(min(vals))), 10.0 ** math.ceil(math.log10(max(vals) * 3)))
+        p = Panel(x, top, W, H, xlim, ylim)
+        p.frame(title, xlabel, "count per query", xlog_ticks, decade_ticks(*ylim))
+        for i, shapes in enumerate(sorted({r["shapes"] for r in rs})):
+            sr = sorted([r for r in rs if r["shapes"] == shapes], key=lambda r: float(r[key]))
+            c = colours.get(shapes, "#444")
+            p.series([(float(r[key]), float(r["box_tests"])) for r in sr], c)
+            p.series([(float(r[key]), float(r["segment_pairs"])) for r in sr], c, dashed=True, marker="square")
+            last = sr[-1]
+            p.text(p.px(float(last[key])) - 4, p.py(float(last["box_tests"])) - 8 - 12 * i, shapes + ": boxes", 9, "end",
+                   colour=c)
+            p.text(p.px(float(last[key])) - 4, p.py(float(last["segment_pairs"])) + 14 + 12 * i, shapes + ": pairs", 9,
+                   "end", colour=c)
+        # what proportional growth would look like, from the first box count
+        first = sorted(rs, key=lambda r: float(r[key]))[0]
+        x0, y0 = float(first[key]), float(first["box_tests"])
+        x1 = max(xs)
+        y1 = y0 * x1 / x0
+        if y1 > ylim[1]:
+            x1 = x0 * ylim[1] / y0
+            y1 = ylim[1]
+        p.out.append(f'<line x1="{p.px(x0):.1f}" y1="{p.py(y0):.1f}" x2="{p.px(x1):.1f}" y2="{p.py(y1):.1f}" '
+                     f'stroke="#999" stroke-dasharray="2,3"/>')
+        p.text(p.px(x1) - 4, p.py(y1) + 12, "∝ " + ("segments" if key == "segments" else "contacts"), 9, "end",
+               colour="#777")
+        return p
+
+    def time_panel(x, y, rs, key, xlabel, xlog_ticks):
+        xs = [float(r[key]) for r in rs]
+        ts = [float(r["time_ns_per_query"]) / 1000.0 for r in rs]
+        xlim = (min(xs) / 1.3, max(xs) * 1.3)
+        ylim = (10.0 ** math.floor(math.log10(min(ts))), 10.0 ** math.ceil(math.log10(max(ts))))
+        p = Panel(x, y, W, H * 0.75, xlim, ylim)
+        p.frame("", xlabel, "time per query [µs]", xlog_ticks, decade_ticks(*ylim))
+        for i, shapes in enumerate(sorted({r["shapes"] for r in rs})):
+            sr = sorted([r for r in rs if r["shapes"] == shapes], key=lambda r: float(r[key]))
+            c = colours.get(shapes, "#444")
+            p.series([(float(r[key]), float(r["time_ns_per_query"]) / 1000.0) for r in sr], c)
+            p.text(p.x + 6, p.y + 14 + 12 * i, shapes, 9, colour=c)
+        return p
+
+    nt = [(float(v), str(v)) for v in sorted({int(r["segments"]) for r in seg})]
+    kt = [(float(v), str(v)) for v in sorted({int(r["contacts"]) for r in con})]
+    body += counts_panel(left, seg, "segments", "segments per shape", "one contact, 32 ... 4096 segments", nt).out
+    body += counts_panel(left + W + gap, con, "contacts", "contacts (comb on slabs, 1024 segments)",
+                         "1024 segments, 1 ... 32 contacts", kt).out
+    ty = top + H + 60
+    body += time_panel(left, ty, seg, "segments", "segments per shape", nt).out
+    body += time_panel(left + W + gap, ty, con, "contacts", "contacts", kt).out
+    ly = ty + H * 0.75 + 52
+    body.append(f'<text x="{left}" y="{ly}" font-size="10" fill="#555">Solid: OBB tests of the tree traversal; '
+                f'dashed: segment pairs given to the narrow phase. Finest level, gap 1e-7, margin 2e-7.</text>')
+    with open(out_path, "w") as f:
+        f.write(svg_doc(left + 2 * (W + gap), ly + 16, body))
+
+
+def main(argv):
+    csv_dir = argv[1] if len(argv) > 1 else "out/bench_queries"
+    out_dir = argv[2] if len(argv) > 2 else "docs/img"
+    os.makedirs(out_dir, exist_ok=True)
+    written = []
+    if os.path.exists(os.path.join(csv_dir, "bench_queries.csv")):
+        path = os.path.join(out_dir, "bench_queries_pareto.svg")
+        pareto_plot(csv_dir, path)
+        written.append(path)
+    if os.path.exists(os.path.join(csv_dir, "bench_queries_sweep.csv")):
+        path = os.path.join(out_dir, "bench_queries_sweep.svg")
+        sweep_plot(csv_dir, path)
+        written.append(path)
+    if not written:
+        sys.stderr.write(f"plot_benchmarks.py: no benchmark CSV in {csv_dir}\n")
+        return 1
+    for w in written:
+        print(w)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -973,7 +973,12 @@ static int leaf_walk_next(leaf_walk* w, double* a, double* b, double* len) {
         const int depth = w->stack[w->top].depth;
         const double mid = 0.5 * (la + lb);
         const double left = gl_length(w->g, la, mid), right = gl_length(w->g, mid, lb);
-        if (depth >= LEAF_DEPTH || fabs(left + right - whole) <= kLeafTolerance * w->scale * (lb - la)) {
+        /* A length that overflows (a speed beyond doubles, or inf - inf in the derivative of control
+         * points near DBL_MAX) can never pass the test: without the isfinite stop every such segment
+         * was split to the full depth, 2^LEAF_DEPTH leaves, only for the sampling to refuse the
+         * non-finite total afterwards (found while writing fuzz_import: 600 such segments, 24 s). */
+        if (depth >= LEAF_DEPTH || !isfinite(left + right) ||
+            fabs(left + right - whole) <= kLeafTolerance * w->scale * (lb - la)) {
             *a = la;
             *b = lb;
             *len = left + right;

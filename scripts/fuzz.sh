@@ -12,7 +12,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RUGO_FUZZ_BUILD:-$root/build-fuzz}
 limit=${1:-20}
 [ $# -gt 0 ] && shift
-targets=${*:-fuzz_shape_json fuzz_baked fuzz_contacts}
+targets=${*:-fuzz_shape_json fuzz_baked fuzz_contacts fuzz_import}
 case $limit in
     -runs=*) budget=$limit ;;
     *[!0-9]*|''|0) echo "usage: $0 [SECONDS | -runs=N] [TARGET...]" >&2; exit 2 ;;

@@ -210,6 +210,234 @@ START_TEST(parameters_out_of_range) {
 }
 END_TEST
 
+/* ---- SVG import and point lists (rugo/import.h): what `rugo import` does, step by step ---------- */
+
+/* Path data through the import pipeline: parse, then sample the outer closed subpath. */
+static rugo_status path_to_samples(const char* d, rugo_parse_error* e) {
+    rugo_path p;
+    rugo_status st = rugo_path_parse(d, strlen(d), NULL, &p, e);
+    if (st != RUGO_OK) return st;
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    sd.path = &p;
+    rugo_outline_samples s;
+    st = rugo_outline_sample(&sd, &s, e);
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+    return st;
+}
+
+/* A point list as `rugo import` reads it: parse, the closed polygon through the points, its samples. */
+static rugo_status points_to_samples(const char* text, rugo_parse_error* e) {
+    rugo_vec2* pts = NULL;
+    int n = 0;
+    rugo_status st = rugo_points_text_parse(text, strlen(text), NULL, &pts, &n, e);
+    if (st != RUGO_OK) {
+        ck_assert(pts == NULL && n == 0);
+        return st;
+    }
+    rugo_path p;
+    st = rugo_path_from_points(pts, n, NULL, &p);
+    if (st == RUGO_OK) {
+        rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+        sd.path = &p;
+        sd.sample_count = n;
+        rugo_outline_samples s;
+        st = rugo_outline_sample(&sd, &s, e);
+        rugo_outline_samples_free(&s);
+    }
+    rugo_path_free(&p);
+    rugo_points_free(NULL, pts);
+    return st;
+}
+
+/* kind 'd': path data (path_to_samples); 's': an SVG document (rugo_svg_import_outline with id);
+ * 't': a transform list (rugo_svg_transform_parse); 'p': a point list (points_to_samples). located: the
+ * error must carry a line and column (an error at a place in the text). */
+typedef struct import_row {
+    const char* what;
+    char kind;
+    const char* id;
+    const char* text;
+    rugo_status expect;
+    int located;
+} import_row;
+
+#define DOC(body) "<svg xmlns='http://www.w3.org/2000/svg'>\n" body "\n</svg>"
+#define SQUARE_D "M 0 0 H 10 V 10 H 0 Z"
+static const import_row IMPORT_ROWS[] = {
+    /* path data */
+    {"no initial moveto", 'd', NULL, "L 1 1", RUGO_ERR_PARSE, 1},
+    {"missing number", 'd', NULL, "M 0 0 L 1", RUGO_ERR_PARSE, 1},
+    {"stray comma", 'd', NULL, "M 0 0 L 1 1, L 2 2", RUGO_ERR_PARSE, 1},
+    {"numbers after Z", 'd', NULL, "M 0 0 L 1 0 L 0 1 Z 1 1", RUGO_ERR_PARSE, 1},
+    {"arc flag not 0 or 1", 'd', NULL, "M 0 0 A 1 1 0 2 1 3 3", RUGO_ERR_PARSE, 1},
+    {"unknown command", 'd', NULL, "M 0 0 X 1 1", RUGO_ERR_PARSE, 1},
+    {"NaN text", 'd', NULL, "M 0 0 L nan 0 L 0 1 Z", RUGO_ERR_PARSE, 1},
+    {"inf text", 'd', NULL, "M 0 0 L inf 0 L 0 1 Z", RUGO_ERR_PARSE, 1},
+    {"hexadecimal number", 'd', NULL, "M 0 0 L 0x10 0 L 0 1 Z", RUGO_ERR_PARSE, 1},
+    {"number overflowing to infinity", 'd', NULL, "M 0 0 L 1e999 0 L 0 1 Z", RUGO_ERR_NOT_FINITE, 1},
+    {"coordinates whose sum overflows", 'd', NULL, "M 1e308 0 l 1e308 0 l 0 1 z", RUGO_ERR_NOT_FINITE, 1},
+    {"lengths that overflow", 'd', NULL, "M -1.7e308 0 L 1.7e308 0 L 0 1 Z", RUGO_ERR_NOT_FINITE, 0},
+    {"open path (no Z)", 'd', NULL, "M 0 0 L 10 0 L 10 10", RUGO_ERR_BAD_FIELD, 0},
+    {"lone moveto", 'd', NULL, "M 5 5", RUGO_ERR_BAD_FIELD, 0},
+    {"empty path data", 'd', NULL, "", RUGO_ERR_BAD_FIELD, 0},
+    {"closed path enclosing no area", 'd', NULL, "M 0 0 L 10 0 Z", RUGO_ERR_ZERO_AREA, 0},
+    {"valid path (control row)", 'd', NULL, SQUARE_D, RUGO_OK, 0},
+    /* documents */
+    {"id not found", 's', "b", DOC("<path id='a' d='" SQUARE_D "'/>"), RUGO_ERR_BAD_FIELD, 0},
+    {"no <path> (no id given)", 's', NULL, DOC("<rect width='1' height='1'/>"), RUGO_ERR_BAD_FIELD, 0},
+    {"several <path> and no id", 's', NULL, DOC("<path d='" SQUARE_D "'/><path d='" SQUARE_D "'/>"),
+     RUGO_ERR_BAD_FIELD, 1},
+    {"id of an element that is not a <path>", 's', "r", DOC("<rect id='r'/>"), RUGO_ERR_BAD_FIELD, 1},
+    {"<path> without d", 's', "p", DOC("<path id='p'/>"), RUGO_ERR_BAD_FIELD, 1},
+    {"malformed d in a document", 's', "p", DOC("<path id='p' d='M 0 0 L 1 x'/>"), RUGO_ERR_PARSE, 1},
+    {"no closed subpath in a document", 's', "p", DOC("<path id='p' d='M 0 0 L 1 1'/>"), RUGO_ERR_BAD_FIELD, 1},
+    {"unterminated comment", 's', "p", DOC("<!-- <path id='p' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
+    {"mismatched end tag", 's', "p", DOC("<g></a><path id='p' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
+    {"unknown entity", 's', "p", DOC("<path id='p' d='M 0 0 &nbsp; H 1 V 1 Z'/>"), RUGO_ERR_PARSE, 1},
+    {"attribute given twice", 's', "p", DOC("<path id='p' d='" SQUARE_D "' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
+    {"unterminated attribute value", 's', "p", DOC("<path id='p' d='" SQUARE_D "/>"), RUGO_ERR_PARSE, 1},
+    {"bad transform of an ancestor", 's', "p", DOC("<g transform='rotate(1,2)'><path id='p' d='" SQUARE_D "'/></g>"),
+     RUGO_ERR_PARSE, 1},
+    {"unknown transform function", 's', "p", DOC("<path id='p' transform='spin(3)' d='" SQUARE_D "'/>"),
+     RUGO_ERR_PARSE, 1},
+    {"composed transforms overflowing", 's', "p",
+     DOC("<g transform='scale(1e200)'><path id='p' transform='scale(1e200)' d='" SQUARE_D "'/></g>"),
+     RUGO_ERR_NOT_FINITE, 1},
+    {"degenerate transform (scale(1, 0))", 's', "p", DOC("<path id='p' transform='scale(1,0)' d='" SQUARE_D "'/>"),
+     RUGO_ERR_ZERO_AREA, 1},
+    {"valid document (control row)", 's', "p", DOC("<g transform='translate(5 5)'><path id='p' d='" SQUARE_D "'/></g>"),
+     RUGO_OK, 0},
+    /* transform lists */
+    {"unknown transform", 't', NULL, "foo(1)", RUGO_ERR_PARSE, 1},
+    {"wrong argument count", 't', NULL, "rotate(1,2)", RUGO_ERR_PARSE, 1},
+    {"missing parenthesis", 't', NULL, "scale 2", RUGO_ERR_PARSE, 1},
+    {"comma without a number", 't', NULL, "translate(1,)", RUGO_ERR_PARSE, 1},
+    {"NaN in a transform", 't', NULL, "scale(nan)", RUGO_ERR_PARSE, 1},
+    {"transform number overflowing", 't', NULL, "scale(1e999)", RUGO_ERR_NOT_FINITE, 1},
+    {"transform product overflowing", 't', NULL, "scale(1e300) scale(1e300)", RUGO_ERR_NOT_FINITE, 1},
+    {"valid transform (control row)", 't', NULL, "translate(1 2) rotate(90)", RUGO_OK, 0},
+    /* point lists */
+    {"three numbers on a line", 'p', NULL, "1,2\n3,4,5\n", RUGO_ERR_PARSE, 1},
+    {"one number on a line", 'p', NULL, "1,2\n3\n", RUGO_ERR_PARSE, 1},
+    {"words after the first line", 'p', NULL, "1,2\nx,y\n", RUGO_ERR_PARSE, 1},
+    {"nan in a point list", 'p', NULL, "nan,1\n", RUGO_ERR_PARSE, 1},
+    {"inf in a point list", 'p', NULL, "1,inf\n", RUGO_ERR_PARSE, 1},
+    {"number overflowing in a point list", 'p', NULL, "1,2\n1e999,0\n", RUGO_ERR_NOT_FINITE, 1},
+    {"JSON points file: syntax error", 'p', NULL, "{\"points\": [[0, 0] [1, 0]]}", RUGO_ERR_PARSE, 1},
+    {"JSON points file: NaN literal", 'p', NULL, "{\"points\": [[0, NaN]]}", RUGO_ERR_PARSE, 1},
+    {"JSON points file: number overflowing", 'p', NULL, "{\"points\": [[0, 1e999]]}", RUGO_ERR_NOT_FINITE, 1},
+    {"JSON points file: no points member", 'p', NULL, "{\"control_points\": [[0, 0]]}", RUGO_ERR_BAD_FIELD, 1},
+    {"JSON points file: point not a pair", 'p', NULL, "{\"points\": [[0, 0], [1]]}", RUGO_ERR_BAD_FIELD, 1},
+    {"two points", 'p', NULL, "0,0\n1,1\n", RUGO_ERR_TOO_FEW_POINTS, 0},
+    {"empty point list (parses as NULL, 0)", 'p', NULL, "x,y\n", RUGO_ERR_NULL_ARGUMENT, 0},
+    {"all points equal", 'p', NULL, "1,1\n1,1\n1,1\n1,1\n", RUGO_ERR_BAD_FIELD, 0},
+    {"collinear points", 'p', NULL, "0,0\n1,1\n2,2\n", RUGO_ERR_ZERO_AREA, 0},
+    {"valid point list (control row)", 'p', NULL, "x,y\n0,0\n4,0\n4,3\n0,3\n", RUGO_OK, 0},
+};
+
+START_TEST(import_rows) {
+    for (size_t i = 0; i < sizeof IMPORT_ROWS / sizeof IMPORT_ROWS[0]; ++i) {
+        const import_row* r = &IMPORT_ROWS[i];
+        rugo_parse_error e;
+        memset(&e, 0x55, sizeof e); /* every function clears it */
+        rugo_status st = RUGO_OK;
+        if (r->kind == 'd') {
+            st = path_to_samples(r->text, &e);
+        } else if (r->kind == 's') {
+            rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+            rugo_outline_samples s;
+            st = rugo_svg_import_outline(r->text, strlen(r->text), r->id, &sd, &s, &e);
+            if (st != RUGO_OK) ck_assert(s.points == NULL && s.count == 0);
+            rugo_outline_samples_free(&s);
+        } else if (r->kind == 't') {
+            rugo_affine m;
+            st = rugo_svg_transform_parse(r->text, strlen(r->text), &m, &e);
+            if (st != RUGO_OK) ck_assert(m.a == 1 && m.b == 0 && m.c == 0 && m.d == 1 && m.e == 0 && m.f == 0);
+        } else {
+            st = points_to_samples(r->text, &e);
+        }
+        ck_assert_msg(st == r->expect, "%s: got %d (%s: %s), expected %d (%s)", r->what, st, rugo_status_string(st),
+                      e.message, r->expect, rugo_status_string(r->expect));
+        ck_assert(memchr(e.message, '\0', sizeof e.message) != NULL && memchr(e.path, '\0', sizeof e.path) != NULL);
+        if (st == RUGO_OK) continue;
+        /* every failure says why, and a failure at a place in the text says where */
+        if (r->kind != 'p' || r->located) ck_assert_msg(e.message[0] != '\0', "%s: no message", r->what);
+        if (r->located)
+            ck_assert_msg(e.line >= 1 && e.column >= 1, "%s: at %d:%d (%s)", r->what, e.line, e.column, e.message);
+    }
+}
+END_TEST
+
+/* The size and count limits of the import readers, and bad sampling parameters. */
+START_TEST(import_limits) {
+    rugo_path p;
+    rugo_parse_error e;
+    rugo_svg_path_element el;
+    rugo_vec2* pts = NULL;
+    int n = 0;
+    /* Text over 64 MiB is refused by its length, before anything is read. */
+    ck_assert_int_eq(rugo_path_parse("M 0 0", RUGO_MAX_SVG_BYTES + 1, NULL, &p, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_int_eq(rugo_svg_find_path("<svg/>", RUGO_MAX_SVG_BYTES + 1, NULL, NULL, &el, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &n, &e), RUGO_ERR_TOO_LARGE);
+    /* A number of more than 512 characters. */
+    char longnum[600];
+    memset(longnum, '1', sizeof longnum);
+    memcpy(longnum, "M 0 ", 4);
+    ck_assert_int_eq(rugo_path_parse(longnum, sizeof longnum, NULL, &p, &e), RUGO_ERR_PARSE);
+    ck_assert_ptr_nonnull(strstr(e.message, "longer than 512"));
+    /* More than 2^20 subpaths (lone movetos: 4 bytes of text each, refused at the limit). */
+    const size_t nsub = (size_t)RUGO_MAX_PATH_SEGMENTS + 1;
+    char* big = (char*)malloc(4 * nsub + 1);
+    ck_assert_ptr_nonnull(big);
+    for (size_t i = 0; i < nsub; ++i)
+        memcpy(big + 4 * i, "M0 0", 4);
+    ck_assert_int_eq(rugo_path_parse(big, 4 * nsub, NULL, &p, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_ptr_nonnull(strstr(e.message, "subpaths"));
+    ck_assert_ptr_null(p.subpaths);
+    /* More than 2^20 points in a point list ("0 0" lines). */
+    for (size_t i = 0; i < nsub; ++i)
+        memcpy(big + 4 * i, "0 0\n", 4);
+    ck_assert_int_eq(rugo_points_text_parse(big, 4 * nsub, NULL, &pts, &n, &e), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert(pts == NULL && n == 0);
+    free(big);
+    /* Elements nested deeper than 256. */
+    char deep[(RUGO_SVG_MAX_DEPTH + 1) * 3 + 64];
+    size_t w = 0;
+    for (int i = 0; i <= RUGO_SVG_MAX_DEPTH; ++i)
+        w += (size_t)sprintf(deep + w, "<g>");
+    w += (size_t)sprintf(deep + w, "<path id='p' d='M0 0'/>");
+    ck_assert_int_eq(rugo_svg_find_path(deep, w, "p", NULL, &el, &e), RUGO_ERR_PARSE);
+    ck_assert_ptr_nonnull(strstr(e.message, "nested deeper"));
+    /* Non-finite points given to the polygon builder by a program. */
+    rugo_vec2 q[4] = {{0, 0}, {1, 0}, {1, NAN}, {0, 1}};
+    ck_assert_int_eq(rugo_path_from_points(q, 4, NULL, &p), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_path_from_points(q, 2, NULL, &p), RUGO_ERR_TOO_FEW_POINTS);
+    /* Sampling parameters: a count of 1, 2, negative or below the segments; a def not from the
+     * default function; a subpath index out of range. */
+    ck_assert_int_eq(rugo_path_parse(SQUARE_D, strlen(SQUARE_D), NULL, &p, &e), RUGO_OK);
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    sd.path = &p;
+    rugo_outline_samples s;
+    const int bad_counts[4] = {1, 2, -5, 3};
+    for (int i = 0; i < 4; ++i) {
+        sd.sample_count = bad_counts[i];
+        ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    }
+    sd.sample_count = RUGO_MAX_CONTROL_POINTS + 1;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_TOO_MANY_POINTS);
+    sd.sample_count = 0;
+    sd.subpath = 1;
+    ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    rugo_outline_sample_def raw;
+    memset(&raw, 0, sizeof raw);
+    raw.path = &p;
+    ck_assert_int_eq(rugo_outline_sample(&raw, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_ptr_null(s.points);
+    rugo_path_free(&p);
+}
+END_TEST
+
 /* Baked rows: one representative each (test_baked covers every length, bit and field). */
 START_TEST(baked_rows) {
     rugo_vec2 p[8] = {{1, 0}, {0.7, 0.7}, {0, 1}, {-0.7, 0.7}, {-1, 0}, {-0.7, -0.7}, {0, -1}, {0.7, -0.7}};
@@ -254,6 +482,8 @@ int main(void) {
     tcase_add_test(tc, parameters_out_of_range);
     tcase_add_test(tc, baked_rows);
     tcase_add_test(tc, csv_rows);
+    tcase_add_test(tc, import_rows);
+    tcase_add_test(tc, import_limits);
     suite_add_tcase(s, tc);
     return test_run_suite(s);
 }

@@ -958,6 +958,42 @@ START_TEST(sample_deterministic_and_on_curve) {
 }
 END_TEST
 
+/* Regression (found while writing fuzz/fuzz_import.c): segments whose finite control points near
+ * DBL_MAX give an overflowing derivative (inf, or inf - inf = NaN) have no finite length; the adaptive
+ * arc length split each of them to 2^16 leaves before the sampler refused the total (about 40 ms a
+ * segment). Now the first non-finite leaf ends the walk: the status is NOT_FINITE as before, and
+ * these 32768 segments (cubics with NaN speeds, lines with infinite ones) take milliseconds, where
+ * the old walk needed over 20 minutes and the suite's CTest timeout would stop it. */
+START_TEST(sample_overflowing_lengths) {
+    enum { N = 32768 };
+    static const char* const pieces[2] = {"C1.7e308 0 -1.7e308 0 1.7e308 0", "L-1.7e308 0 L1.7e308 0"};
+    const size_t cap = (size_t)N * 40 + 64;
+    char* d = (char*)malloc(cap);
+    ck_assert_ptr_nonnull(d);
+    for (int k = 0; k < 2; ++k) {
+        size_t w = (size_t)snprintf(d, cap, "M-1.7e308 0");
+        for (int i = 0; i < N / (k + 1); ++i)
+            w += (size_t)snprintf(d + w, cap - w, "%s", pieces[k]);
+        w += (size_t)snprintf(d + w, cap - w, "Z");
+        rugo_path p;
+        rugo_parse_error e;
+        ck_assert_int_eq(rugo_path_parse(d, w, NULL, &p, &e), RUGO_OK);
+        ck_assert_int_eq(p.segment_count, N + 1); /* the closing line too */
+        rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+        sd.path = &p;
+        rugo_outline_samples s;
+        ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_NOT_FINITE);
+        ck_assert_ptr_nonnull(strstr(e.message, "length overflows"));
+        ck_assert_ptr_null(s.points);
+        sd.subpath = 0;
+        sd.sample_count = 2 * N + 2;
+        ck_assert_int_eq(rugo_outline_sample(&sd, &s, &e), RUGO_ERR_NOT_FINITE);
+        rugo_path_free(&p);
+    }
+    free(d);
+}
+END_TEST
+
 /* ---- point lists --------------------------------------------------------------------------------- */
 
 START_TEST(points_text) {
@@ -1341,6 +1377,7 @@ static Suite* import_suite(void) {
     tcase_add_test(ts, sample_subpath_choice);
     tcase_add_test(ts, sample_bad_input);
     tcase_add_test(ts, sample_deterministic_and_on_curve);
+    tcase_add_test(ts, sample_overflowing_lengths);
     tcase_add_test(ts, points_text);
     tcase_add_test(ts, bad_points_text);
     tcase_add_test(ts, path_from_points);

@@ -28,7 +28,9 @@
  * - rugo/mobb.h: oriented boxes and the MOBBtree
  * - rugo/shape.h, rugo/baked.h: the immutable rough shape and its binary file
  * - rugo/collide.h: contacts at a level of detail
- * - rugo/shape_file.h: JSON shape files; rugo/fit.h: least-squares fitting (Eigen shim)
+ * - rugo/shape_file.h: JSON shape files, roughness descriptions; rugo/fit.h: least-squares fitting
+ *   and the outline fit (Eigen shim)
+ * - rugo/import.h: outlines from SVG path data and point lists
  * - rugo/world.h: the thesis' impulse-based simulator
  * - rugo/box2d.hpp: the Box2D 2.4 bridge (C++)
  *

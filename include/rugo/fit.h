@@ -1,8 +1,15 @@
-/* librugo — least-squares fitting and simultaneous multi-point manipulation.
+/** @file rugo/fit.h
+ * librugo — least-squares fitting and simultaneous multi-point manipulation.
  *
  * These functions live in the Eigen shim (CMake target rugo::fit, C++17 inside, this C API outside).
  * The core library rugo::rugo does not depend on it. When the project is configured with
- * RUGO_WITH_EIGEN=OFF the target does not exist. */
+ * RUGO_WITH_EIGEN=OFF the target does not exist. No C++ exception crosses this API: an allocation
+ * failure inside Eigen or the standard library is reported as RUGO_ERR_OUT_OF_MEMORY.
+ *
+ * Units: points, deltas and errors are in the caller's length units; curve parameters are
+ * dimensionless. Memory: buffers of the shim's own go through the allocator of the def (or of the
+ * pyramid); Eigen's containers use the default C++ heap (Eigen has no per-call allocator hook).
+ * Deterministic: the same input gives the same bits. */
 #ifndef RUGO_FIT_H
 #define RUGO_FIT_H
 
@@ -13,50 +20,61 @@
 extern "C" {
 #endif
 
+/** How rugo_fit_contour assigns a curve parameter to each sample (fixed; no parameter correction). */
 typedef enum rugo_parameterization {
-    RUGO_PARAM_CHORD_LENGTH = 0, /* parameters proportional to cumulative chord length (default) */
-    RUGO_PARAM_UNIFORM = 1       /* sample k of m at u = k * n / m (n control points) */
+    RUGO_PARAM_CHORD_LENGTH = 0, /**< parameters proportional to cumulative chord length (default) */
+    RUGO_PARAM_UNIFORM = 1       /**< sample k of m at u = k * n / m (n control points) */
 } rugo_parameterization;
 
+/** What rugo_fit_contour fits; fill from rugo_default_fit_def(). */
 typedef struct rugo_fit_def {
-    const rugo_vec2* samples; /* ordered points around a closed outline; the last need not repeat the first */
-    int sample_count;         /* >= control_count */
-    int control_count;        /* 2^J >= 4 */
-    rugo_parameterization parameterization;
-    rugo_allocator allocator;
-    int cookie;
+    const rugo_vec2* samples; /**< ordered points around a closed outline (borrowed, length units); the last
+                                   need not repeat the first */
+    int sample_count;         /**< number of samples, >= control_count and <= RUGO_MAX_CONTROL_POINTS */
+    int control_count;        /**< control points to fit, 2^J >= 4 */
+    rugo_parameterization parameterization; /**< sample parameters (default chord length) */
+    rugo_allocator allocator; /**< for the fit's own scratch buffers (zeroed: malloc/free) */
+    int cookie;               /**< set by rugo_default_fit_def; catches uninitialised defs */
 } rugo_fit_def;
 
+/** A def with no samples, control_count 0, chord-length parameters, the malloc/free allocator and the
+ * cookie that marks an initialised def. Never fails. */
 rugo_fit_def rugo_default_fit_def(void);
 
+/** How well rugo_fit_contour fitted, in length units. */
 typedef struct rugo_fit_result {
-    rugo_real max_error;  /* largest distance from a sample to the curve point at its parameter */
-    rugo_real rms_error;  /* root mean square of those distances */
+    rugo_real max_error;  /**< largest distance from a sample to the curve point at its parameter */
+    rugo_real rms_error;  /**< root mean square of those distances */
 } rugo_fit_result;
 
-/* Least-squares fit of a closed uniform cubic B-spline with control_count control points to the
+/** Least-squares fit of a closed uniform cubic B-spline with control_count control points to the
  * samples. control_points receives control_count points (caller-owned). The result keeps the
  * samples' orientation; normalise with rugo_contour_orient_ccw if needed. Parameters stay as chosen
  * (no parameter correction), so the errors are distances to the curve point at each sample's own
  * parameter. Samples are scaled into [-1, 1]^2 internally, so any scale and offset works.
  * result may be NULL; on error control_points and result are untouched.
- * Errors: NULL_ARGUMENT, TOO_FEW_POINTS, NOT_POWER_OF_TWO, NOT_FINITE (input, or a fitted point that
- * would overflow), TOO_MANY_POINTS (either count beyond RUGO_MAX_CONTROL_POINTS), BAD_ARGUMENT
- * (sample_count < control_count, bad parameterization, repeated consecutive samples making chord
- * length zero), SINGULAR (a control point no sample influences, or a pivot showing the system may be singular
- * (condition number beyond about 1e11):
- * with chord-length parameters and about as many samples as control points this happens often),
- * OUT_OF_MEMORY. Buffers of its own use def->allocator; Eigen's containers use the default heap. */
+ * Errors: NULL_ARGUMENT (def, samples or control_points), TOO_FEW_POINTS (control_count < 4),
+ * NOT_POWER_OF_TWO, NOT_FINITE (input, or a fitted point that would overflow), TOO_MANY_POINTS
+ * (either count beyond RUGO_MAX_CONTROL_POINTS), BAD_ARGUMENT (def not from rugo_default_fit_def,
+ * sample_count < control_count, bad parameterization, repeated consecutive samples making chord
+ * length zero), SINGULAR (a control point no sample influences, or a pivot showing the system may be
+ * singular (condition number beyond about 1e11): with chord-length parameters and about as many
+ * samples as control points this happens often), OUT_OF_MEMORY. Buffers of its own use
+ * def->allocator; Eigen's containers use the default heap. */
 rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points, rugo_fit_result* result);
 
-/* Simultaneous direct manipulation of several points of one level (2.30-2.31 generalised): move
+/** Simultaneous direct manipulation of several points of one level (2.30-2.31 generalised): move
  * f^level_{segments[i]}(ts[i]) by deltas[i] for all i with the least-norm change of that level's
  * control points, then rebuild the pyramid as rugo_pyramid_move_point does. Constraints that share
  * control points are solved together (rank-revealing, so consistent duplicates are fine); the cost
  * grows with the cube of the largest such cluster: meant for an editor's handful of points.
+ * segments, ts and deltas are caller-owned arrays of count entries, only read; ts in [0, 1], deltas
+ * in length units. The pyramid is edited in place; bookkeeping allocates through the pyramid's
+ * allocator, Eigen's dense blocks from the C++ heap.
  * Errors: NULL_ARGUMENT, BAD_LEVEL, BAD_ARGUMENT (segment out of range, t outside [0,1] or NaN, bad
- * mode, count < 1), NOT_FINITE, TOO_MANY_POINTS, OUT_OF_MEMORY, and SINGULAR if the constraints
- * conflict (e.g. the same point twice with different deltas); on error the pyramid is unchanged. */
+ * mode, count < 1), NOT_FINITE (a delta, or a displacement that overflows in the rebuild),
+ * TOO_MANY_POINTS, OUT_OF_MEMORY, and SINGULAR if the constraints conflict (e.g. the same point
+ * twice with different deltas); on error the pyramid is unchanged. */
 rugo_status rugo_pyramid_move_points(rugo_pyramid* p, int level, int count, const int* segments,
                                      const rugo_real* ts, const rugo_vec2* deltas, rugo_detail_mode mode);
 

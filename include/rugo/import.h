@@ -10,7 +10,7 @@
  * Everything here is core C99 (no Eigen). Every entry point takes hostile text: it never reads past
  * `length` (the text need not be NUL-terminated), bounds sizes and nesting, rejects non-finite
  * numbers, and reports where it failed in a rugo_parse_error (rugo/shape_file.h): 1-based line and
- * column (lines end at '\n', columns count bytes), a short path naming the attribute (e.g.
+ * column (lines end at "\n", columns count bytes), a short path naming the attribute (e.g.
  * "path#rock/d") and a message. Path data errors are reported at the offending byte.
  *
  * Frames and units: SVG user units with y pointing down go in; rugo_svg_import_outline composes the
@@ -215,8 +215,9 @@ typedef struct rugo_outline_samples {
  * rugo_default_outline_sample_def, a path whose counts and arrays disagree, subpath index out of
  * range, sample_count negative, 1, 2 or below S), TOO_MANY_POINTS (M or S beyond
  * RUGO_MAX_CONTROL_POINTS), NOT_FINITE (a non-finite transform, or lengths or points that overflow
- * under it), BAD_FIELD (no closed subpath; the chosen one is open or empty), ZERO_AREA (zero length,
- * or the samples enclose no area, e.g. under a degenerate transform), OUT_OF_MEMORY.
+ * under it), BAD_FIELD (no closed subpath, also for any index into a path without subpaths; the
+ * chosen one is open or empty), ZERO_AREA (zero length, or the samples enclose no area, e.g. under a
+ * degenerate transform), OUT_OF_MEMORY.
  * Free the result with rugo_outline_samples_free. */
 rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline_samples* out,
                                 rugo_parse_error* error);
@@ -250,7 +251,8 @@ typedef struct rugo_svg_path_element {
  * of every enclosing element (`<g>`, `<a>`, `<svg>`, ...); it does not apply the root's viewBox, nested
  * `<svg>` viewports, CSS transforms or `<use>` references: coordinates are the root element's user
  * units. The first element with the id wins; the rest of the document is not read.
- * Errors (out zeroed; error gets the line and column in the document and a message; may be NULL):
+ * Errors (out zeroed; error gets the line and column in the document — 0 and 0 when nothing was
+ * found — and a message; may be NULL):
  * NULL_ARGUMENT, TOO_LARGE (document beyond RUGO_MAX_SVG_BYTES), PARSE (malformed markup before or
  * at the element: unterminated comment, quote or tag, mismatched end tag, unknown entity, an
  * attribute given twice, nesting too deep; a malformed transform of the element or an ancestor),
@@ -279,13 +281,14 @@ rugo_status rugo_svg_import_outline(const char* text, size_t length, const char*
 
 /* ---- point lists ------------------------------------------------------------------------------ */
 
-/** Reads a list of outline points of `length` bytes, told apart by content: text whose first
- * non-blank character is '{' is a JSON points file {"points": [[x, y], ...]} (rugo_points_parse);
- * anything else is plain text with one point per line: "x,y", "x y", "x;y" or "x<TAB>y" (blanks around
- * the separator allowed, CR LF line ends fine); lines that are blank or start with '#' are skipped, and
- * so is a first line without any digit (a CSV header such as "x,y"). Numbers use the SVG decimal
- * syntax (sign, fraction, exponent; no hex, inf or nan). *points is allocated with `allocator` (may be
- * NULL; free with rugo_points_free); an empty list gives count 0 and NULL.
+/** Reads a list of outline points of `length` bytes (one leading UTF-8 byte order mark is skipped),
+ * told apart by content: text whose first non-blank character is '{' is a JSON points file
+ * {"points": [[x, y], ...]} (rugo_points_parse); anything else is plain text with one point per line:
+ * "x,y", "x y", "x;y" or "x<TAB>y" (blanks around the separator allowed, CR LF line ends fine); lines
+ * that are blank or start with '#' are skipped, and so is a first line without any digit (a CSV
+ * header such as "x,y"). Numbers use the SVG decimal syntax (sign, fraction, exponent; no hex, inf
+ * or nan). *points is allocated with `allocator` (may be NULL; free with rugo_points_free); an empty
+ * list gives count 0 and NULL.
  * Errors (*points NULL and *count 0; error gets line, column and a message): NULL_ARGUMENT,
  * TOO_LARGE (beyond RUGO_MAX_JSON_BYTES), PARSE (a line that is not two numbers), NOT_FINITE (a number
  * that overflows, e.g. 1e999), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY, and

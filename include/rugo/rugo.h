@@ -1,4 +1,7 @@
-/* librugo — rough curved 2-D shapes. Include this for the whole C API. */
+/** @file rugo/rugo.h
+ * librugo — rough curved 2-D shapes. Include this for the whole C API: every C header of librugo
+ * except rugo/fit.h, which belongs to the optional Eigen shim (CMake target rugo::fit) and is
+ * included on its own. The Box2D bridge's C++ header is rugo/box2d.hpp. */
 #ifndef RUGO_RUGO_H
 #define RUGO_RUGO_H
 

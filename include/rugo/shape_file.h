@@ -1,4 +1,5 @@
-/* librugo — the shape description file (JSON) and point lists.
+/** @file rugo/shape_file.h
+ * librugo — the shape description file (JSON) and point lists.
  *
  * A shape file is a JSON object {"control_points": [[x, y], ...]} with optional fields:
  *   "filter": "cdf4.2" | "cdf4.4" | "cdf4.6" | "cdf4.8" | "cdf4.12"   (default cdf4.8)
@@ -20,10 +21,15 @@
  * Input may be in either orientation; nothing here validates geometry (use rugo_contour_check /
  * rugo_pyramid_create for that). The parser never reads past `length`, limits nesting depth (64) and
  * the number of values (2^23), accepts one leading UTF-8 byte order mark, and reports where it failed
- * (lines end at '\n'; columns count bytes).
+ * (lines end at "\n"; columns count bytes).
  * A repeated member ("control_points", "filter", "points", "roughness", or any member of the
  * roughness object) is BAD_FIELD, and so is null for an optional field.
- * An empty control_points list parses (count 0, NULL points); geometry checks reject it later. */
+ * An empty control_points list parses (count 0, NULL points); geometry checks reject it later.
+ *
+ * Units: coordinates and tolerances λ in the shape's length units; positions s, from and to are
+ * dimensionless fractions of the perimeter. Ownership: every array a parser returns is allocated
+ * with the allocator given (NULL or a zeroed one: malloc/free) and freed by the matching _free
+ * function; input text is only read and need not be NUL-terminated. */
 #ifndef RUGO_SHAPE_FILE_H
 #define RUGO_SHAPE_FILE_H
 
@@ -39,116 +45,124 @@
 extern "C" {
 #endif
 
-/* Where and why parsing failed: 1-based line and column (0 if not applicable), the JSON path of the
- * offending field (e.g. "control_points[3][1]") and a message. Always NUL-terminated. */
+/** Where and why parsing failed: 1-based line and column (0 if not applicable), the JSON path of the
+ * offending field (e.g. "control_points[3][1]") and a message. Always NUL-terminated. Every parser
+ * here and in rugo/import.h clears it first; after success its message is empty. */
 typedef struct rugo_parse_error {
-    int line;
-    int column;
-    char path[96];
-    char message[160];
+    int line;          /**< 1-based line of the error in the text (lines end at "\n"); 0 if none */
+    int column;        /**< 1-based column (bytes) in that line; 0 if none */
+    char path[96];     /**< the offending field, e.g. "control_points[3][1]" (may be empty) */
+    char message[160]; /**< what is wrong, in English */
 } rugo_parse_error;
 
-/* How the finest segments' tolerances are given (exactly one per roughness object). */
+/** How the finest segments' tolerances are given (exactly one per roughness object). */
 typedef enum rugo_roughness_kind {
-    RUGO_ROUGHNESS_PRESET = 0,     /* "preset": "tipo_1" | "tipo_2" | "tipo_3" | "tipo_5" (rough.h) */
-    RUGO_ROUGHNESS_TOLERANCES = 1, /* "tolerances": [λ_0, ..., λ_{n-1}], one per finest segment */
-    RUGO_ROUGHNESS_CONSTANT = 2,   /* "constant": λ on every segment */
-    RUGO_ROUGHNESS_RANGES = 3,     /* "ranges": λ per arc-length range of the perimeter (+ "background") */
-    RUGO_ROUGHNESS_PROFILE = 4,    /* "profile": λ(s) along the perimeter, piecewise linear */
-    RUGO_ROUGHNESS_KIND_COUNT
+    RUGO_ROUGHNESS_PRESET = 0,     /**< "preset": "tipo_1" | "tipo_2" | "tipo_3" | "tipo_5" (rough.h) */
+    RUGO_ROUGHNESS_TOLERANCES = 1, /**< "tolerances": [λ_0, ..., λ_{n-1}], one per finest segment */
+    RUGO_ROUGHNESS_CONSTANT = 2,   /**< "constant": λ on every segment */
+    RUGO_ROUGHNESS_RANGES = 3,     /**< "ranges": λ per arc-length range of the perimeter (+ "background") */
+    RUGO_ROUGHNESS_PROFILE = 4,    /**< "profile": λ(s) along the perimeter, piecewise linear */
+    RUGO_ROUGHNESS_KIND_COUNT      /**< the number of kinds (not a kind) */
 } rugo_roughness_kind;
 
-/* One arc-length range of kind RANGES. Positions are fractions of the perimeter, measured by arc
+/** One arc-length range of kind RANGES. Positions are fractions of the perimeter, measured by arc
  * length from the start of segment 0 (f_0(0)) along the order of the file's control points. The
  * range covers [from, to] when from < to, and [from, 1] with [0, to] (through 0) when from > to; it
  * must not be empty (from == to, or from 1 to 0, is refused; [0, 1] is the whole perimeter). */
 typedef struct rugo_roughness_range {
-    rugo_real from;      /* in [0, 1] */
-    rugo_real to;        /* in [0, 1] */
-    rugo_real tolerance; /* λ >= 0 on the range (length) */
+    rugo_real from;      /**< start, a fraction of the perimeter in [0, 1] */
+    rugo_real to;        /**< end, a fraction of the perimeter in [0, 1] */
+    rugo_real tolerance; /**< λ >= 0 on the range (length) */
 } rugo_roughness_range;
 
-/* One sample of kind PROFILE: λ at position s (a fraction of the perimeter, as for ranges). */
+/** One sample of kind PROFILE: λ at position s (a fraction of the perimeter, as for ranges). */
 typedef struct rugo_profile_sample {
-    rugo_real s;         /* in [0, 1], strictly increasing from one sample to the next */
-    rugo_real tolerance; /* λ(s) >= 0 (length) */
+    rugo_real s;         /**< in [0, 1], strictly increasing from one sample to the next */
+    rugo_real tolerance; /**< λ(s) >= 0 (length) */
 } rugo_profile_sample;
 
-/* Most ranges and profile samples one roughness object may hold (more is TOO_MANY_POINTS). */
+/** Most ranges one roughness object may hold (2^16; more is TOO_MANY_POINTS). */
 #define RUGO_MAX_ROUGHNESS_RANGES (1 << 16)
+/** Most profile samples one roughness object or CSV profile may hold (2^20; more is TOO_MANY_POINTS). */
 #define RUGO_MAX_PROFILE_SAMPLES (1 << 20)
-/* A range counts for a segment only if it overlaps the segment's arc by more than this fraction of
+/** A range counts for a segment only if it overlaps the segment's arc by more than this fraction of
  * the perimeter at either end, so that a range ending exactly on a segment boundary (0.25 of a square)
  * does not spill into the next segment through the round-off of the arc lengths. */
 #define RUGO_ROUGHNESS_RANGE_SLACK 1e-12
 
-/* Largest seed a file can carry: 2^53, the largest integer up to which every integer is a double, so
+/** Largest seed a file can carry: 2^53, the largest integer up to which every integer is a double, so
  * that any JSON reader (JavaScript's included) keeps it exact. */
 #define RUGO_MAX_FILE_SEED ((uint64_t)1 << 53)
-/* Largest "levels" of a stored perturbation (its point count is count << levels). */
+/** Largest "levels" of a stored perturbation (its point count is count << levels). */
 #define RUGO_MAX_PERTURBATION_LEVELS 20
 
-/* The "roughness" object of a shape file. Segment j is the segment of the file's own control points
+/** The "roughness" object of a shape file. Segment j is the segment of the file's own control points
  * (f_j runs from near c_j to near c_{j+1}); a tool that reverses a clockwise outline maps segment j to
- * n-2-j (mod n). Lengths are in the shape's units. */
+ * n-2-j (mod n). Lengths are in the shape's units. Its arrays are owned by the rugo_shape_desc that
+ * holds it (allocated with that desc's allocator, freed by rugo_shape_desc_free). */
 typedef struct rugo_roughness_desc {
-    rugo_roughness_kind kind;
-    rugo_tolerance_preset preset; /* kind PRESET */
-    rugo_real* tolerances;        /* kind TOLERANCES: tolerance_count values (= the control point count);
+    rugo_roughness_kind kind;     /**< which of the sources below gives the finest tolerances */
+    rugo_tolerance_preset preset; /**< kind PRESET: the preset */
+    rugo_real* tolerances;        /**< kind TOLERANCES: tolerance_count values (= the control point count);
                                      owned by the shape desc, allocated with its allocator */
-    int tolerance_count;
-    rugo_real constant; /* kind CONSTANT */
-    uint64_t seed;      /* "seed", 0..RUGO_MAX_FILE_SEED (default 0): tipo_2 and perturbations */
-    rugo_real q;        /* "q", band factor of λ = q σ, > 0 (default RUGO_DEFAULT_Q) */
-    rugo_tolerance_estimator estimator; /* "estimator": "detail" (default) | "coefficients" */
-    rugo_friction_map friction;         /* "friction": {"alpha", "lambda_min"} (rugo_default_friction_map) */
-    rugo_restitution restitution; /* "restitution": {"epsilon", "epsilon_max"} (rugo_default_restitution) */
+    int tolerance_count;          /**< kind TOLERANCES: entries of tolerances */
+    rugo_real constant; /**< kind CONSTANT: λ >= 0 of every segment (length) */
+    uint64_t seed;      /**< "seed", 0..RUGO_MAX_FILE_SEED (default 0): tipo_2 and perturbations */
+    rugo_real q;        /**< "q", band factor of λ = q σ, > 0 (default RUGO_DEFAULT_Q) */
+    rugo_tolerance_estimator estimator; /**< "estimator": "detail" (default) | "coefficients" */
+    rugo_friction_map friction;         /**< "friction": {"alpha", "lambda_min", "base"}
+                                             (rugo_default_friction_map) */
+    rugo_restitution restitution; /**< "restitution": {"epsilon", "epsilon_max"} (rugo_default_restitution) */
     /* Optional display geometry (written by `rugo roughen`): "perturbation": {"method": "wavelet" |
      * "local", "levels": m, "control_points": [...]}, with exactly count << m control points. */
-    int has_perturbation;
-    rugo_roughen_method perturbation_method;
-    int perturbation_levels;        /* 1..RUGO_MAX_PERTURBATION_LEVELS */
-    rugo_vec2* perturbation_points; /* owned like tolerances */
-    int perturbation_count;
+    int has_perturbation;           /**< 1 if the "perturbation" members below are set */
+    rugo_roughen_method perturbation_method; /**< "method": how the perturbed points were made */
+    int perturbation_levels;        /**< "levels" m, 1..RUGO_MAX_PERTURBATION_LEVELS */
+    rugo_vec2* perturbation_points; /**< the perturbed outline's control points, owned like tolerances */
+    int perturbation_count;         /**< entries of perturbation_points, count << perturbation_levels */
     /* Added with arc-length roughness; zero when a caller leaves them out of an initializer. */
-    rugo_roughness_range* ranges; /* kind RANGES: range_count ranges (0 allowed: background only),
+    rugo_roughness_range* ranges; /**< kind RANGES: range_count ranges (0 allowed: background only),
                                      owned like tolerances; their order does not matter */
-    int range_count;
-    rugo_real background;         /* kind RANGES: "background", λ outside every range (default 0) */
-    rugo_profile_sample* profile; /* kind PROFILE: profile_count >= 1 samples, owned like tolerances */
-    int profile_count;
+    int range_count;              /**< kind RANGES: entries of ranges, 0..RUGO_MAX_ROUGHNESS_RANGES */
+    rugo_real background;         /**< kind RANGES: "background", λ outside every range (default 0) */
+    rugo_profile_sample* profile; /**< kind PROFILE: profile_count >= 1 samples, owned like tolerances */
+    int profile_count;            /**< kind PROFILE: entries of profile, 1..RUGO_MAX_PROFILE_SAMPLES */
 } rugo_roughness_desc;
 
-/* Preset tipo_1, seed 0, q = RUGO_DEFAULT_Q, the detail estimator, the default friction map and
- * restitution, no perturbation, no arrays, background 0. */
+/** Preset tipo_1, seed 0, q = RUGO_DEFAULT_Q, the detail estimator, the default friction map and
+ * restitution, no perturbation, no arrays, background 0. Never fails. */
 rugo_roughness_desc rugo_default_roughness_desc(void);
 
+/** A parsed shape file: its control points, filter and optional roughness. Owns its arrays. */
 typedef struct rugo_shape_desc {
-    rugo_vec2* control_points; /* owned, allocated with `allocator` */
-    int count;
-    rugo_filter filter;
-    rugo_allocator allocator;
+    rugo_vec2* control_points; /**< count points in the file's order (length units); owned, allocated
+                                    with `allocator`; NULL when count is 0 */
+    int count;                 /**< number of control points (0..RUGO_MAX_CONTROL_POINTS) */
+    rugo_filter filter;        /**< "filter" (default RUGO_FILTER_DEFAULT) */
+    rugo_allocator allocator;  /**< the allocator of every array of the desc */
     /* Added with roughness; zero (no roughness) when a caller leaves them out of an initializer. */
-    int has_roughness;
-    rugo_roughness_desc roughness; /* meaningful when has_roughness; its arrays are owned like
+    int has_roughness;             /**< 1 if the file has a "roughness" object */
+    rugo_roughness_desc roughness; /**< meaningful when has_roughness; its arrays are owned like
                                       control_points and freed by rugo_shape_desc_free */
 } rugo_shape_desc;
 
-/* Largest text the parser accepts (64 MiB). */
+/** Largest text the parser accepts (64 MiB). */
 #define RUGO_MAX_JSON_BYTES ((size_t)64 << 20)
 
-/* Parses a shape file. Errors: NULL_ARGUMENT, PARSE (syntax, depth, size), BAD_FIELD (missing or
- * wrong type, e.g. a point that is not a pair of numbers), NOT_FINITE (a number that overflows to
- * infinity), TOO_MANY_POINTS, BAD_FILTER, OUT_OF_MEMORY. error may be NULL. On error out is zeroed.
+/** Parses a shape file of `length` bytes into *out (its arrays allocated with `allocator`, NULL:
+ * malloc/free; free with rugo_shape_desc_free). Errors: NULL_ARGUMENT, PARSE (syntax, depth, size),
+ * BAD_FIELD (missing or wrong type, e.g. a point that is not a pair of numbers), NOT_FINITE (a number
+ * that overflows to infinity), TOO_MANY_POINTS, BAD_FILTER, OUT_OF_MEMORY. error may be NULL. On
+ * error out is zeroed.
  * The roughness object adds: BAD_FIELD (not an object; none or several of preset / tolerances /
- * constant; an unknown preset or estimator; a tolerance list whose length is not the control point
- * count; a seed that is not an integer written in plain digits or exceeds RUGO_MAX_FILE_SEED; a
- * perturbation without method, levels in 1..RUGO_MAX_PERTURBATION_LEVELS or count << levels control
- * points), NEGATIVE_TOLERANCE (a tolerance or constant below zero, as rugo_tolerances_check),
- * BAD_QUANTILE (q <= 0), and the statuses of rugo_friction_map_check (BAD_ARGUMENT for alpha < 0,
- * NEGATIVE_TOLERANCE for lambda_min < 0) and rugo_restitution_check (BAD_ARGUMENT outside [0, 1],
- * EMPTY_RANGE for epsilon > epsilon_max). Absent optional members take the defaults of
- * rugo_default_roughness_desc.
+ * constant / ranges / profile; an unknown preset or estimator; a tolerance list whose length is not
+ * the control point count; a seed that is not an integer written in plain digits or exceeds
+ * RUGO_MAX_FILE_SEED; a perturbation without method, levels in 1..RUGO_MAX_PERTURBATION_LEVELS or
+ * count << levels control points), NEGATIVE_TOLERANCE (a tolerance or constant below zero, as
+ * rugo_tolerances_check), BAD_QUANTILE (q <= 0), and the statuses of rugo_friction_map_check
+ * (BAD_ARGUMENT for alpha or base < 0, NEGATIVE_TOLERANCE for lambda_min < 0) and
+ * rugo_restitution_check (BAD_ARGUMENT outside [0, 1], EMPTY_RANGE for epsilon > epsilon_max).
+ * Absent optional members take the defaults of rugo_default_roughness_desc.
  * "ranges" adds: BAD_FIELD (not an array of objects; a range without "from", "to" or "tolerance";
  * from or to outside [0, 1]; an empty range), TOO_MANY_POINTS (more than RUGO_MAX_ROUGHNESS_RANGES),
  * NEGATIVE_TOLERANCE (a range's tolerance or the background below zero), NOT_FINITE. "background"
@@ -159,18 +173,20 @@ typedef struct rugo_shape_desc {
  * "roughness.profile[5][0]". */
 rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
                                   rugo_shape_desc* out, rugo_parse_error* error);
-/* Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0. */
+/** Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0 (NULL is
+ * fine; a zeroed desc is fine). */
 void rugo_shape_desc_free(rugo_shape_desc* desc);
 
-/* The tolerance of every finest segment, out[0..n) (n = the control point count, in the file's own
+/** The tolerance of every finest segment, out[0..n) (caller-owned, n entries, length units; n = the
+ * control point count, in the file's own
  * segment numbering): the preset (rugo_tolerances_preset with the seed), the constant, or a copy of
  * the list. Errors: NULL_ARGUMENT, BAD_ARGUMENT (unknown kind or preset, a list whose length is
  * not n, or kind RANGES or PROFILE, which need the geometry: use
  * rugo_roughness_tolerances_on_contour), TOO_FEW_POINTS (n < 1), TOO_MANY_POINTS, NOT_FINITE,
- * NEGATIVE_TOLERANCE. */
+ * NEGATIVE_TOLERANCE. Allocates nothing. */
 rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, rugo_real* out);
 
-/* The tolerance of every finest segment, out[0..contour.count), for a shape whose control points are
+/** The tolerance of every finest segment, out[0..contour.count), for a shape whose control points are
  * `contour` in the file's own order (not reversed; the caller keeps them alive). Any kind: the
  * geometry-free ones as rugo_roughness_tolerances(desc, contour.count, out). For RANGES and PROFILE,
  * segment j covers the arc [a_j, b_j] of the perimeter (a fraction; arc lengths by
@@ -186,7 +202,8 @@ rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, ru
  *    inside, exact up to round-off. With samples at both s = 0 and s = 1 the point 0 ≡ 1 takes the
  *    larger of their values.
  * O(n + m log m) for m ranges, O(n + m) for m samples. allocator (NULL: malloc/free) serves the
- * scratch of RANGES (about 48 bytes a range); nothing else allocates. out is untouched on error.
+ * scratch of RANGES and PROFILE (the segment lengths, and about 48 bytes a range); out is
+ * caller-owned and untouched on error.
  * Errors: NULL_ARGUMENT, and for RANGES and PROFILE: TOO_FEW_POINTS (count < 4), TOO_MANY_POINTS,
  * NOT_FINITE (a point or the perimeter), ZERO_AREA (perimeter 0), the value errors the parser
  * reports (BAD_ARGUMENT for a range or sample out of its range, NEGATIVE_TOLERANCE, NOT_FINITE,
@@ -195,7 +212,8 @@ rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, ru
 rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc, rugo_contour contour,
                                                  const rugo_allocator* allocator, rugo_real* out);
 
-/* Parses a profile λ(s) from CSV text: one sample per line, "s,lambda" (two numbers separated by a
+/** Parses a profile λ(s) from CSV text of `length` bytes (need not be NUL-terminated; one leading
+ * UTF-8 byte order mark is skipped): one sample per line, "s,lambda" (two numbers separated by a
  * comma; spaces and tabs around them are ignored; lines end with "\n" or "\r\n"). Blank lines and
  * lines starting with '#' are skipped; the first other line may be a header (two names, e.g.
  * "s,lambda"): it is one when its first field does not start like a number (a digit, a sign or '.')
@@ -214,32 +232,43 @@ rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc
 rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, const rugo_allocator* allocator,
                                              rugo_profile_sample** samples, int* count,
                                              rugo_parse_error* error);
-/* Frees samples from rugo_roughness_profile_parse_csv (allocator as given there; NULL is fine). */
+/** Frees samples from rugo_roughness_profile_parse_csv (allocator as given there; NULL is fine). */
 void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples);
 
-/* Parses the array under `key` ("points" or "control_points") of a JSON object into an owned point
- * array (free with the allocator given, via rugo_points_free). Same errors as above. */
+/** Parses the array under `key` (NUL-terminated, e.g. "points" or "control_points") of a JSON object
+ * of `length` bytes into an owned point array: *points (allocated with `allocator`, NULL: malloc/free;
+ * free with rugo_points_free; NULL for an empty list) and *count. Errors (*points NULL and *count 0;
+ * error may be NULL): NULL_ARGUMENT, PARSE (JSON syntax, depth, size), BAD_FIELD (not an object,
+ * the key missing or repeated, not an array of [x, y] pairs of numbers), NOT_FINITE (a number that
+ * overflows), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY. */
 rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
                               const rugo_allocator* allocator, rugo_vec2** points, int* count,
                               rugo_parse_error* error);
+/** Frees points from rugo_points_parse or rugo_points_text_parse (allocator as given there; NULL is
+ * fine). */
 void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
 
-/* Writes a shape description as JSON into a newly allocated NUL-terminated string (*text, *length
+/** Writes a shape description as JSON into a newly allocated NUL-terminated string (*text, *length
  * without the NUL; both required; allocated with `allocator`, free with rugo_text_free). One point
  * (or tolerance) per line; numbers with 17 significant digits so that reading back gives the same
  * bits. With has_roughness, every roughness member is written (defaults included), so that
  * parse(write(d)) gives d back bit for bit and write(parse(write(d))) the same text.
- * The writer refuses what the reader would: NOT_FINITE, BAD_FILTER, TOO_MANY_POINTS, and for the
+ * The writer refuses what the reader would (*text NULL and *length 0 then): NULL_ARGUMENT,
+ * BAD_ARGUMENT (count < 0), NOT_FINITE, BAD_FILTER, TOO_MANY_POINTS, and for the
  * roughness BAD_ARGUMENT (kind, preset, estimator, method, levels, a count mismatch, a seed beyond
  * RUGO_MAX_FILE_SEED, a range or profile sample out of its range, an empty profile) and the value
  * checks listed for parsing (NULL_ARGUMENT for a missing ranges or profile array); TOO_MANY_POINTS also when
- * the text would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object). */
+ * the text would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object);
+ * OUT_OF_MEMORY. */
 rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator, char** text,
                                   size_t* length);
+/** Frees text from rugo_shape_desc_write or rugo_read_file (allocator as given there; NULL is fine). */
 void rugo_text_free(const rugo_allocator* allocator, char* text);
 
-/* Reads a whole file into a newly allocated NUL-terminated buffer (at most RUGO_MAX_JSON_BYTES).
- * RUGO_ERR_IO if it cannot be opened or read, RUGO_ERR_PARSE if it is too large. */
+/** Reads a whole file into a newly allocated NUL-terminated buffer (at most RUGO_MAX_JSON_BYTES):
+ * *text (allocated with `allocator`, NULL: malloc/free; free with rugo_text_free) and *length
+ * (bytes, without the NUL). Errors (*text NULL and *length 0): NULL_ARGUMENT, IO if it cannot be
+ * opened or read, PARSE if it is too large, OUT_OF_MEMORY. */
 rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, char** text, size_t* length);
 
 #ifdef __cplusplus

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace rugo {
@@ -54,6 +55,25 @@ struct CacheEntry {
     int level = 0;
     uint32_t start = 0, count = 0;
     bool toi = false; // run in Box2D's TOI phase
+    // Rough pairs: the first JointChunk (Impl::jointChunks) of the joints of the query's shape A [0]
+    // and B [1] (kNoJoints: none computed yet).
+    uint32_t joints[2] = {0xFFFFFFFFu, 0xFFFFFFFFu};
+};
+
+constexpr uint32_t kNoJoints = 0xFFFFFFFFu;
+
+// One joint's closest point on the other body's curve (same poses, same level): shared by every proxy
+// pair of the body pair that offers the joint (each used to recompute it: measured ~70% of a step).
+struct JointInfo {
+    rugo_curve_point cp;
+    signed char inside = -1; // rugo_contour_contains, -1 = not computed yet
+    bool done = false;
+};
+// The joints of one proxy piece (node) of one side of a body pair's query: Impl::jointPool[base ..
+// base + per] (its per joints and the piece's end), chained from CacheEntry::joints.
+struct JointChunk {
+    int node;
+    uint32_t next, base;
 };
 
 // A joint point joins a contact region only if its own closest-point direction is within ~10° of the
@@ -127,6 +147,9 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     std::vector<CacheEntry> table;
     std::vector<rugo_contact> pool;
     std::vector<rugo_contact> scratch;
+    std::vector<JointInfo> jointPool;   // per step like pool (CacheEntry::joints)
+    std::vector<JointChunk> jointChunks;
+    size_t lastEntry = 0;             // table index of the last cachedQuery's entry
     uint64_t gen = 1;
     size_t used = 0;
     std::vector<BPoint> cand;
@@ -141,6 +164,32 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     Impl() {
         table.resize(256);
         scratch.resize(64);
+        for (std::vector<BPoint>* v : {&cand, &joints, &apart, &regions})
+            v->reserve(64);
+        lastContacts.reserve(4096); // its cap (write)
+    }
+
+    // Room for the per-step caches of n rough bodies, reserved when a body is attached so that steps
+    // do not allocate once librugo's query context has grown (docs/box2d.md): per body 8 cached
+    // queries (at most half the table used), 16 contacts and the joints of 8 proxy pieces (piece of
+    // `per` joints). About 3 kB per body plus 0.4 kB per joint of a piece.
+    size_t jointReserve = 0;
+    void reserveFor(size_t n, int per) {
+        jointReserve += 8 * (static_cast<size_t>(per) + 1);
+        size_t want = table.size();
+        while (want < 16 * n && want < 65536)
+            want *= 2;
+        if (want != table.size()) {
+            table.assign(want, CacheEntry());
+            ++gen;
+            used = 0;
+            pool.clear();
+            jointPool.clear();
+            jointChunks.clear();
+        }
+        pool.reserve(16 * n);
+        jointPool.reserve(jointReserve);
+        jointChunks.reserve(8 * n);
     }
 
     ~Impl() override {
@@ -167,6 +216,7 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         if (userDestruction) userDestruction->SayGoodbye(j);
     }
     void SayGoodbye(b2Fixture* f) override {
+        ++destroyedFixtures;
         auto it = proxies.find(f);
         // A proxy is destroyed by Box2D only with its body (Detach goes through the bridge).
         if (it != proxies.end()) forget(it->second.rec);
@@ -203,6 +253,21 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         auto it = bodies.find(b);
         return it == bodies.end() ? nullptr : it->second;
     }
+    // The rough bodies in attach order (deterministic, unlike the hash map's order).
+    std::vector<b2Body*> bodiesInAttachOrder() const {
+        std::vector<const BodyRec*> recs;
+        for (const auto& kv : bodies)
+            recs.push_back(kv.second);
+        std::sort(recs.begin(), recs.end(), [](const BodyRec* a, const BodyRec* b) { return a->serial < b->serial; });
+        std::vector<b2Body*> out;
+        for (const BodyRec* r : recs)
+            out.push_back(r->body);
+        return out;
+    }
+    bool removingProxies = false; // inside Detach's DestroyFixture calls (EndContact may run)
+    // Bodies destroyed since construction (SayGoodbye of any fixture): a callback of the bridge's own
+    // (QueryAABB, Draw) that changed it may have destroyed bodies the bridge still holds.
+    long destroyedFixtures = 0;
 
     // ---- mass ------------------------------------------------------------------------------------
     b2MassData exactMass(const BodyRec* r) const {
@@ -289,12 +354,16 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             if (table.size() < 65536) {
                 table.assign(table.size() * 2, CacheEntry());
                 pool.clear();
+                jointPool.clear();
+                jointChunks.clear();
             }
             ++gen;
             used = 0;
         }
-        if (pool.size() > (1u << 20)) {
+        if (pool.size() > (1u << 20) || jointPool.size() > (1u << 20)) {
             pool.clear();
+            jointPool.clear();
+            jointChunks.clear();
             ++gen;
             used = 0;
         }
@@ -307,6 +376,7 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             if (e.a == a && e.b == b && e.child == child && e.margin == margin && e.level == level &&
                 std::memcmp(e.xf, xf, sizeof xf) == 0) {
                 ++stats.cacheHits;
+                lastEntry = i;
                 *start = e.start;
                 *count = e.count;
                 return true;
@@ -333,6 +403,8 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         e.margin = margin;
         e.level = level;
         e.toi = toiPhase;
+        e.joints[0] = e.joints[1] = kNoJoints;
+        lastEntry = i;
         e.start = static_cast<uint32_t>(pool.size());
         e.count = static_cast<uint32_t>(n);
         pool.insert(pool.end(), scratch.begin(), scratch.begin() + n);
@@ -499,7 +571,8 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
 
     // Joints of the segments of `r` owned by proxy `node` at absolute level L (world points, λ there).
     // With withEnd, also the piece's end (the next piece's first joint) as k = (node + 1) * per, so
-    // that the joints bound the piece's closest point from both sides.
+    // that the joints bound the piece's closest point from both sides. The curve's normal there comes
+    // as a callable (computed only for the joints that are kept).
     template <class F>
     static void forJoints(const BodyRec* r, int node, int L, bool withEnd, F&& fn) {
         rugo_contour curve;
@@ -511,29 +584,99 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         for (int k = node * per; k < last; ++k) {
             const int kk = k % curve.count;
             const rugo_vec2 pl = rugo_contour_point(curve, kk, 0.0);
-            fn(k, toB2(rugo_transform_point(x, pl)), rugo_tolerance_at(tl.total, tl.count, kk, 0.0, 0.0),
-               toB2(rugo_rotate(x.q, rugo_contour_normal(curve, kk, 0.0))));
+            const auto normal = [&curve, &x, kk]() { return toB2(rugo_rotate(x.q, rugo_contour_normal(curve, kk, 0.0))); };
+            fn(k, toB2(rugo_transform_point(x, pl)), rugo_tolerance_at(tl.total, tl.count, kk, 0.0, 0.0), normal);
         }
+    }
+
+    // ---- one-sided edges: chain children and b2EdgeShape with m_oneSided --------------------------
+    // Box2D 2.4.1 (b2_collide_edge.cpp) collides a one-sided edge only with a body whose centroid is in
+    // front of it (on the right of v1 -> v2), and keeps the normal in the edge's Gauss map set by its
+    // ghost vertices: the face normal along the edge; at a convex vertex a normal between the two
+    // edges' normals; at a flat or concave vertex the face normal ("snap"). That is what keeps bodies
+    // from catching on a chain's inner vertices (ghost collisions); the bridge applies the same rules to
+    // the curve's points. A point beyond a vertex that a real neighbouring child also covers is that
+    // child's (the previous child's face before v1; the next child's from v2 on, its t = 0).
+    struct OneSided {
+        bool on = false;
+        b2Vec2 v1, v2, e0, e1, n0, n1, n2; // world; e* unit directions, n* front normals
+        float len = 0.0f, radius = 0.0f;
+        bool convex1 = false, convex2 = false;
+        bool hasPrev = false, hasNext = false; // a real neighbouring child, not only a ghost vertex
+    };
+    OneSided oneSided; // of the fixture child being gathered (gatherPrimitive)
+
+    static OneSided makeOneSided(const b2EdgeShape& e, const b2Transform& x, bool hasPrev, bool hasNext) {
+        OneSided o;
+        o.on = true;
+        o.v1 = b2Mul(x, e.m_vertex1);
+        o.v2 = b2Mul(x, e.m_vertex2);
+        const b2Vec2 v0 = b2Mul(x, e.m_vertex0), v3 = b2Mul(x, e.m_vertex3);
+        b2Vec2 d1 = o.v2 - o.v1, d0 = o.v1 - v0, d2 = v3 - o.v2;
+        o.len = d1.Normalize();
+        const bool ghost0 = d0.Normalize() > 0.0f, ghost3 = d2.Normalize() > 0.0f;
+        o.e0 = ghost0 ? d0 : d1;
+        o.e1 = d1;
+        o.n0.Set(o.e0.y, -o.e0.x);
+        o.n1.Set(d1.y, -d1.x);
+        o.n2 = ghost3 ? b2Vec2(d2.y, -d2.x) : o.n1;
+        o.convex1 = ghost0 && b2Cross(d0, d1) > 0.0f;
+        o.convex2 = ghost3 && b2Cross(d1, d2) > 0.0f;
+        o.radius = e.m_radius;
+        o.hasPrev = hasPrev;
+        o.hasNext = hasNext;
+        return o;
+    }
+
+    // A curve point p (world) against the one-sided edge: false if another child reports it; else the
+    // normal out of the edge toward p (*m) and p's signed distance along it from the edge's skin.
+    static bool resolveOneSided(const OneSided& o, b2Vec2 p, b2Vec2* m, double* dist) {
+        const float along = b2Dot(p - o.v1, o.e1);
+        b2Vec2 base = o.v1;
+        *m = o.n1;
+        if (along < 0.0f) {
+            if (o.hasPrev && b2Dot(p - o.v1, o.e0) < 0.0f) return false; // on the previous child's face
+            if (o.convex1) {
+                b2Vec2 d = p - o.v1;
+                if (d.Normalize() > 0.0f) *m = b2Cross(o.n0, d) < 0.0f ? o.n0 : (b2Cross(d, o.n1) < 0.0f ? o.n1 : d);
+            }
+        } else if (along >= o.len) {
+            if (o.hasNext) return false; // the next child's (its t = 0)
+            base = o.v2;
+            if (o.convex2) {
+                b2Vec2 d = p - o.v2;
+                if (d.Normalize() > 0.0f) *m = b2Cross(o.n1, d) < 0.0f ? o.n1 : (b2Cross(d, o.n2) < 0.0f ? o.n2 : d);
+            }
+        }
+        *dist = static_cast<double>(b2Dot(p - base, *m)) - static_cast<double>(o.radius);
+        return true;
     }
 
     void jointsVsPrimitive(const ProxyRef* r, bool roughIsA, const b2Fixture* other, int child, bool dropEnd) {
         const BodyRec* R = r->rec;
         const int L = absLevel(R->shape, R->relLevel);
         const int endK = (r->node + 1) << (L - R->proxyLevel);
-        forJoints(R, r->node, L, fastPair, [&](int k, b2Vec2 p, double lam, b2Vec2 out) {
+        forJoints(R, r->node, L, fastPair, [&](int k, b2Vec2 p, double lam, const auto& out) {
             double sd, tEdge;
             b2Vec2 q;
-            if (!primitiveDistance(other, child, p, &sd, &q, &tEdge)) return;
-            if (dropEnd && tEdge >= 1.0 - 1e-7) return;
+            if (oneSided.on) {
+                b2Vec2 m;
+                if (!resolveOneSided(oneSided, p, &m, &sd)) return;
+                q = p - static_cast<float>(sd) * m; // on the edge's skin
+                tEdge = static_cast<double>(b2Dot(p - oneSided.v1, oneSided.e1) / oneSided.len);
+            } else {
+                if (!primitiveDistance(other, child, p, &sd, &q, &tEdge)) return;
+                if (dropEnd && tEdge >= 1.0 - 1e-7) return;
+            }
             const double s = sd - lam;
             if (s > 0.0 || k == endK) {
                 if (fastPair && s <= curMargin)
-                    pushJoint(roughIsA ? p : q, roughIsA ? q : p, sd < 0.0, roughIsA ? out : -out, s, other->GetFriction(),
+                    pushJoint(roughIsA ? p : q, roughIsA ? q : p, sd < 0.0, roughIsA ? out() : -out(), s, other->GetFriction(),
                               other->GetRestitution(), R, k, 0x1000000u, &apart);
                 return;
             }
             const size_t before = joints.size();
-            pushJoint(roughIsA ? p : q, roughIsA ? q : p, sd < 0.0, roughIsA ? out : -out, s, other->GetFriction(),
+            pushJoint(roughIsA ? p : q, roughIsA ? q : p, sd < 0.0, roughIsA ? out() : -out(), s, other->GetFriction(),
                       other->GetRestitution(), R, k, 0x1000000u, &joints);
             const b2Shape::Type ty = other->GetShape()->GetType();
             if (joints.size() > before && (ty == b2Shape::e_edge || ty == b2Shape::e_chain) && tEdge > 0.0 && tEdge < 1.0)
@@ -552,18 +695,39 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         const rugo_friction_map fmO = rugo_shape_friction_map(O->shape), fmS = rugo_shape_friction_map(S->shape);
         const rugo_restitution eO = rugo_shape_restitution(O->shape), eS = rugo_shape_restitution(S->shape);
         const int endK = (self->node + 1) << (LS - S->proxyLevel);
-        forJoints(S, self->node, LS, fastPair, [&](int k, b2Vec2 p, double lam, b2Vec2 out) {
+        // The joints' closest points are kept with the body pair's query (gatherRough ran it just
+        // before: table[lastEntry]), per piece of S; S is the query's A when it comes first in attach order.
+        const int per = 1 << (LS - S->proxyLevel);
+        uint32_t& head = table[lastEntry].joints[S->serial < O->serial ? 0 : 1];
+        uint32_t chunk = head;
+        while (chunk != kNoJoints && jointChunks[chunk].node != self->node)
+            chunk = jointChunks[chunk].next;
+        if (chunk == kNoJoints) {
+            chunk = static_cast<uint32_t>(jointChunks.size());
+            jointChunks.push_back(JointChunk{self->node, head, static_cast<uint32_t>(jointPool.size())});
+            head = chunk;
+            jointPool.resize(jointPool.size() + static_cast<size_t>(per) + 1); // capacity kept across steps
+        }
+        JointInfo* known = jointPool.data() + jointChunks[chunk].base;
+        const int firstK = self->node * per;
+        forJoints(S, self->node, LS, fastPair, [&](int k, b2Vec2 p, double lam, const auto& out) {
             const rugo_vec2 pl = rugo_inv_transform_point(xo, toRv(p));
-            const rugo_curve_point cp = rugo_contour_closest_point(oc, pl);
+            JointInfo& ji = known[k - firstK];
+            if (!ji.done) {
+                ji.cp = rugo_contour_closest_point(oc, pl);
+                ji.done = true;
+            }
+            const rugo_curve_point cp = ji.cp;
             if ((cp.segment >> (LO - O->proxyLevel)) != oth->node) return; // another proxy pair's point
-            const bool inside = rugo_contour_contains(oc, pl) != 0;
+            if (ji.inside < 0) ji.inside = rugo_contour_contains(oc, pl) != 0 ? 1 : 0;
+            const bool inside = ji.inside != 0;
             const double lamO = rugo_tolerance_at(otl.total, otl.count, cp.segment, cp.t, 0.0);
             const double s = (inside ? -cp.distance : cp.distance) - lam - lamO;
             const bool isApart = s > 0.0 || k == endK;
             if (isApart && !(fastPair && s <= curMargin)) return;
             const b2Vec2 q = toB2(rugo_transform_point(xo, cp.point));
             const double mu = rugo_mix(RUGO_MIX_MAX, rugo_friction(&fmS, lam), rugo_friction(&fmO, lamO));
-            pushJoint(selfIsA ? p : q, selfIsA ? q : p, inside, selfIsA ? out : -out, s, static_cast<float>(mu),
+            pushJoint(selfIsA ? p : q, selfIsA ? q : p, inside, selfIsA ? out() : -out(), s, static_cast<float>(mu),
                       static_cast<float>(std::min(eS.epsilon, eO.epsilon)), S, k, selfIsA ? 0x2000000u : 0x3000000u,
                       isApart ? &apart : &joints);
         });
@@ -665,9 +829,14 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             // still carries load.
             {
                 if (ra && rb) {
-                    const int rel = std::max(ra->rec->relLevel, rb->rec->relLevel);
-                    jointsVsRough(ra, rb, true, rel);
-                    jointsVsRough(rb, ra, false, rel);
+                    // A rough joint is used only by attaching it to one of the query's regions, or as
+                    // an apart candidate of a fast pair: without either, its closest points (most of
+                    // a step's time) would be computed for nothing.
+                    if (!regions.empty() || fastPair) {
+                        const int rel = std::max(ra->rec->relLevel, rb->rec->relLevel);
+                        jointsVsRough(ra, rb, true, rel);
+                        jointsVsRough(rb, ra, false, rel);
+                    }
                 } else {
                     jointsVsPrimitive(ra ? ra : rb, ra != nullptr, ra ? fb : fa, ra ? c->GetChildIndexB() : c->GetChildIndexA(),
                                       dropEndFlag);
@@ -763,17 +932,20 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         // Chain children: a point at an edge's second vertex belongs to the next edge (as t = 1 in librugo).
         bool dropEnd = false;
         dropEndFlag = false;
-        b2Vec2 e1(0, 0), e2(0, 0);
+        oneSided = OneSided();
         b2EdgeShape edge;
         if (sh->GetType() == b2Shape::e_chain) {
             const b2ChainShape* ch = static_cast<const b2ChainShape*>(sh);
-            ch->GetChildEdge(&edge, child);
+            ch->GetChildEdge(&edge, child); // one-sided, with ghost vertices (Box2D 2.4.1)
             const bool loop = ch->m_count > 2 && ch->m_vertices[0] == ch->m_vertices[ch->m_count - 1];
             dropEnd = loop || child + 1 < ch->GetChildCount();
             dropEndFlag = dropEnd;
-            e1 = b2Mul(xo, edge.m_vertex1);
-            e2 = b2Mul(xo, edge.m_vertex2);
+            oneSided = makeOneSided(edge, xo, loop || child > 0, dropEnd);
+        } else if (sh->GetType() == b2Shape::e_edge && static_cast<const b2EdgeShape*>(sh)->m_oneSided) {
+            oneSided = makeOneSided(*static_cast<const b2EdgeShape*>(sh), xo, false, false);
         }
+        // Box2D skips a one-sided edge when the other body's centroid is behind it.
+        if (oneSided.on && b2Dot(oneSided.n1, R->body->GetWorldCenter() - oneSided.v1) < 0.0f) return;
         uint32_t start = 0, count = 0;
         cachedQuery(R, other, child, xr, xo, margin, level,
                     [&](rugo_contact* out, int cap, int* n, rugo_query_stats* qs) -> rugo_status {
@@ -816,21 +988,20 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             const rugo_contact& k = pool[start + i];
             const bool owned = ownerNode(k.segment_a, k.level_a, R->proxyLevel) == r->node;
             bool keep = owned;
-            if (dropEnd) {
-                const b2Vec2 d = e2 - e1;
-                const double len2 = static_cast<double>(b2Dot(d, d));
-                const double t = len2 > 0.0 ? ((k.point_b.x - static_cast<double>(e1.x)) * static_cast<double>(d.x) +
-                                               (k.point_b.y - static_cast<double>(e1.y)) * static_cast<double>(d.y)) /
-                                                  len2
-                                            : 0.0;
-                if (t >= 1.0 - 1e-7) keep = false; // the next edge reports it (its t = 0)
-            }
             BPoint p;
-            const b2Vec2 pr = toB2(k.point_a), po = toB2(k.point_b), n = toB2(k.normal);
+            const b2Vec2 pr = toB2(k.point_a);
+            b2Vec2 po = toB2(k.point_b), n = toB2(k.normal);
+            double sep = k.separation;
+            if (oneSided.on) { // the edge's rules decide the normal and the owner (see OneSided)
+                b2Vec2 m;
+                if (!resolveOneSided(oneSided, pr, &m, &sep)) continue;
+                po = pr - static_cast<float>(sep) * m;
+                n = -m; // librugo's orientation: from the curve (its A) toward the edge
+            }
             p.pA = roughIsA ? pr : po;
             p.pB = roughIsA ? po : pr;
             p.n = roughIsA ? n : -n;
-            p.s = k.separation - k.tolerance_a - k.tolerance_b;
+            p.s = sep - k.tolerance_a - k.tolerance_b;
             p.mu = std::max(k.friction, mu);  // thesis 7.2: max for friction
             p.eps = std::min(k.restitution, eps); // and min for restitution
             p.key = hashId(k.id ^ (static_cast<uint64_t>(static_cast<uint32_t>(child)) << 40));
@@ -1036,13 +1207,11 @@ Bridge::Bridge(b2World* world, const BridgeDef& def) : m_impl(new Impl) {
 Bridge::~Bridge() {
     Impl& I = *m_impl;
     if (I.world) {
-        // Remove the proxies while our listener still chains EndContact to the user's.
-        std::vector<BodyRec*> recs;
-        for (auto& kv : I.bodies)
-            recs.push_back(kv.second);
-        std::sort(recs.begin(), recs.end(), [](const BodyRec* a, const BodyRec* b) { return a->serial < b->serial; });
-        for (BodyRec* r : recs)
-            if (!I.world->IsLocked()) Detach(r->body);
+        // Remove the proxies while our listener still chains EndContact to the user's. That listener
+        // may detach or destroy other rough bodies meanwhile: hold bodies, not records, and look
+        // each up again (a destroyed body's record is gone; its pointer is only a key then).
+        for (b2Body* b : I.bodiesInAttachOrder())
+            if (I.rec(b) != nullptr && !I.world->IsLocked()) Detach(b);
         const b2ContactManager& cm = I.world->GetContactManager();
         if (cm.m_contactListener == m_impl.get()) I.world->SetContactListener(I.prevListener);
         if (cm.m_contactFilter == m_impl.get()) I.world->SetContactFilter(I.prevFilter);
@@ -1054,7 +1223,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     Impl& I = *m_impl;
     if (body == nullptr || def.shape == nullptr) return RUGO_ERR_NULL_ARGUMENT;
     if (I.world == nullptr || body->GetWorld() != I.world) return RUGO_ERR_BAD_ARGUMENT;
-    if (I.world->IsLocked()) return RUGO_ERR_WORLD_LOCKED;
+    if (I.world->IsLocked() || I.removingProxies) return RUGO_ERR_WORLD_LOCKED;
     if (I.bodies.count(body)) return RUGO_ERR_ALREADY_ATTACHED;
     if (!std::isfinite(def.density) || def.density < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if (def.density == 0.0 && body->GetType() == b2_dynamicBody) return RUGO_ERR_BAD_ARGUMENT;
@@ -1108,6 +1277,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
         I.proxies[f] = ProxyRef{r, k};
     }
     I.bodies[body] = r;
+    I.reserveFor(I.bodies.size(), 1 << (level - proxyLevel));
     I.applyMass(r);
     return RUGO_OK;
 }
@@ -1117,7 +1287,7 @@ rugo_status Bridge::Detach(b2Body* body) {
     if (body == nullptr) return RUGO_ERR_NULL_ARGUMENT;
     BodyRec* r = I.rec(body);
     if (r == nullptr) return RUGO_ERR_NOT_ATTACHED;
-    if (I.world && I.world->IsLocked()) return RUGO_ERR_WORLD_LOCKED;
+    if ((I.world && I.world->IsLocked()) || I.removingProxies) return RUGO_ERR_WORLD_LOCKED;
     std::vector<b2Fixture*> fx;
     fx.swap(r->proxies);
     for (b2Fixture* f : fx)
@@ -1125,8 +1295,13 @@ rugo_status Bridge::Detach(b2Body* body) {
     I.bodies.erase(body);
     delete r;
     ++I.gen;
+    // Box2D calls EndContact from DestroyFixture while it walks the body's contact list: a listener
+    // that detached another body there would destroy contacts under that walk. Attach and Detach
+    // refuse meanwhile (WORLD_LOCKED), as they do inside Step.
+    I.removingProxies = true;
     for (b2Fixture* f : fx)
         body->DestroyFixture(f); // each resets the mass from the remaining fixtures
+    I.removingProxies = false;
     return RUGO_OK;
 }
 
@@ -1162,6 +1337,8 @@ void Bridge::Step(float timeStep, int32 velocityIterations, int32 positionIterat
     ++I.gen; // new poses: the cache of the last step is of no use
     I.used = 0;
     I.pool.clear();
+    I.jointPool.clear();
+    I.jointChunks.clear();
     I.lastContacts.clear();
     I.afterSolve = false;
     for (auto& kv : I.bodies)
@@ -1279,18 +1456,28 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
     CollectFixtures cf;
     cf.out = &fx;
     I.world->QueryAABB(&cf, aabb);
-    std::vector<b2Body*> done;
+    // Each body once, in the order Box2D reported its first fixture. The callback may attach, detach or
+    // destroy bodies, so no fixture or record is held across it, only body pointers, and those are
+    // checked against the world after a callback that destroyed or created any.
+    std::vector<b2Body*> candidates;
+    {
+        std::unordered_set<const b2Body*> seen;
+        for (b2Fixture* f : fx)
+            if (seen.insert(f->GetBody()).second) candidates.push_back(f->GetBody());
+    }
     rugo_vec2 v[4] = {rugo_v2(static_cast<double>(aabb.lowerBound.x), static_cast<double>(aabb.lowerBound.y)),
                       rugo_v2(static_cast<double>(aabb.upperBound.x), static_cast<double>(aabb.lowerBound.y)),
                       rugo_v2(static_cast<double>(aabb.upperBound.x), static_cast<double>(aabb.upperBound.y)),
                       rugo_v2(static_cast<double>(aabb.lowerBound.x), static_cast<double>(aabb.upperBound.y))};
     const bool degenerate = !(v[2].x > v[0].x && v[2].y > v[0].y);
-    for (b2Fixture* f : fx) {
-        b2Body* b = f->GetBody();
-        if (std::find(done.begin(), done.end(), b) != done.end()) continue;
+    long destroyed = I.destroyedFixtures;
+    int32 bodyCount = I.world->GetBodyCount();
+    const b2Body* head = I.world->GetBodyList();
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        b2Body* b = candidates[i];
+        if (b == nullptr) continue; // destroyed by an earlier callback
         const BodyRec* r = I.rec(b);
-        if (r != nullptr) {
-            done.push_back(b); // decided once, by the curve
+        if (r != nullptr) { // decided by the curve
             int n = 0;
             rugo_contact_state state = RUGO_STATE_APART;
             rugo_contact_query q = rugo_default_contact_query();
@@ -1299,10 +1486,21 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
             rugo_status st = degenerate ? rugo_collide_circle(I.ctx, r->shape, x, v[0], 0.0, &q, nullptr, 0, &n, &state, nullptr)
                                         : rugo_collide_polygon(I.ctx, r->shape, x, v, 4, 0.0, &q, nullptr, 0, &n, &state, nullptr);
             if (st != RUGO_OK || state == RUGO_STATE_APART) continue;
-        } else {
-            done.push_back(b);
         }
         if (!callback(b)) return;
+        if (I.world == nullptr) return; // ReleaseWorld inside the callback
+        // Creating a body changes the list's head, destroying one the count (and a destroyed body with
+        // fixtures says goodbye): then drop the candidates that are no longer in the world.
+        if (I.destroyedFixtures != destroyed || I.world->GetBodyCount() != bodyCount || I.world->GetBodyList() != head) {
+            std::unordered_set<const b2Body*> alive;
+            for (const b2Body* w = I.world->GetBodyList(); w != nullptr; w = w->GetNext())
+                alive.insert(w);
+            for (size_t j = i + 1; j < candidates.size(); ++j)
+                if (candidates[j] != nullptr && alive.count(candidates[j]) == 0) candidates[j] = nullptr;
+            destroyed = I.destroyedFixtures;
+            bodyCount = I.world->GetBodyCount();
+            head = I.world->GetBodyList();
+        }
     }
 }
 
@@ -1311,9 +1509,24 @@ void Bridge::Draw(b2Draw* draw, unsigned flags) const {
     if (draw == nullptr) return;
     const b2Color curveColor(0.9f, 0.9f, 0.3f), bandColor(0.5f, 0.5f, 0.2f), boxColor(0.4f, 0.6f, 0.9f),
         contactColor(1.0f, 0.2f, 0.2f);
-    for (const auto& kv : I.bodies) {
-        const BodyRec* r = kv.second;
-        const rugo_transform x = toRugo(r->body->GetTransform());
+    // Each body's picture is computed before any of its b2Draw calls and the next body is looked up
+    // again after them: a b2Draw may attach, detach or destroy bodies (or free a detached shape)
+    // without leaving the bridge holding anything stale. A debug path: it allocates.
+    struct Seg {
+        b2Vec2 a, b;
+        const b2Color* color;
+    };
+    std::vector<Seg> segs;
+    std::vector<b2Vec2> polys; // b2_maxPolygonVertices per proxy box, then its vertex count
+    std::vector<int> polyCounts;
+    const std::vector<Impl::DrawnContact> contacts = I.lastContacts;
+    for (b2Body* body : I.bodiesInAttachOrder()) {
+        const BodyRec* r = I.rec(body);
+        if (r == nullptr) continue; // gone during an earlier body's drawing
+        segs.clear();
+        polys.clear();
+        polyCounts.clear();
+        const rugo_transform x = toRugo(body->GetTransform());
         rugo_contour curve;
         if (rugo_shape_level(r->shape, r->level, &curve) != RUGO_OK) continue;
         rugo_tolerance_level tl;
@@ -1323,27 +1536,33 @@ void Bridge::Draw(b2Draw* draw, unsigned flags) const {
             for (int i = 0; i < perSeg; ++i) {
                 const double t0 = static_cast<double>(i) / perSeg, t1 = static_cast<double>(i + 1) / perSeg;
                 const rugo_vec2 a = rugo_contour_point(curve, k, t0), b = rugo_contour_point(curve, k, t1);
-                if (flags & kDrawCurve) draw->DrawSegment(toB2(rugo_transform_point(x, a)), toB2(rugo_transform_point(x, b)), curveColor);
+                if (flags & kDrawCurve) segs.push_back({toB2(rugo_transform_point(x, a)), toB2(rugo_transform_point(x, b)), &curveColor});
                 if ((flags & kDrawBand) && haveTol)
                     for (int side = -1; side <= 1; side += 2) {
                         const double la = rugo_tolerance_at(tl.total, tl.count, k, t0, 0.0) * side;
                         const double lb = rugo_tolerance_at(tl.total, tl.count, k, t1, 0.0) * side;
                         const rugo_vec2 oa = rugo_v2_add(a, rugo_v2_scale(la, rugo_contour_normal(curve, k, t0)));
                         const rugo_vec2 ob = rugo_v2_add(b, rugo_v2_scale(lb, rugo_contour_normal(curve, k, t1)));
-                        draw->DrawSegment(toB2(rugo_transform_point(x, oa)), toB2(rugo_transform_point(x, ob)), bandColor);
+                        segs.push_back({toB2(rugo_transform_point(x, oa)), toB2(rugo_transform_point(x, ob)), &bandColor});
                     }
             }
         if (flags & kDrawProxies)
             for (const b2Fixture* f : r->proxies) {
                 const b2PolygonShape* p = static_cast<const b2PolygonShape*>(f->GetShape());
-                b2Vec2 v[b2_maxPolygonVertices];
                 for (int i = 0; i < p->m_count; ++i)
-                    v[i] = b2Mul(r->body->GetTransform(), p->m_vertices[i]);
-                draw->DrawPolygon(v, p->m_count, boxColor);
+                    polys.push_back(b2Mul(body->GetTransform(), p->m_vertices[i]));
+                polyCounts.push_back(p->m_count);
             }
+        for (const Seg& sg : segs)
+            draw->DrawSegment(sg.a, sg.b, *sg.color);
+        size_t at = 0;
+        for (int n : polyCounts) {
+            draw->DrawPolygon(polys.data() + at, n, boxColor);
+            at += static_cast<size_t>(n);
+        }
     }
     if (flags & kDrawContacts)
-        for (const auto& c : I.lastContacts) {
+        for (const auto& c : contacts) {
             draw->DrawPoint(c.p, 4.0f, contactColor);
             draw->DrawSegment(c.p, c.p + 0.2f * c.n, contactColor);
         }

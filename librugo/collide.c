@@ -29,9 +29,10 @@
  *     (tiny or degenerate overlaps), the point of its arcs farthest from the other curve (samples +
  *     closest point) is used instead. Local minima within the band outside every region are reported
  *     too, as their own regions.
- *  5. No crossing, but one curve inside the other (a point of one inside the other): INTERSECTING,
- *     one contact: the closest pair of the two curves gives the way out (the outer curve's outward
- *     normal there); the inner body's support point against that normal gives the depth.
+ *  5. No crossing, but one curve inside the other (a point of one inside the other, decided through
+ *     the tree: "Containment through the tree" below): INTERSECTING, one contact: the closest pair of
+ *     the two curves gives the way out (the outer curve's outward normal there); the inner body's
+ *     support point against that normal gives the depth.
  *  6. Otherwise each local minimum of the distance within λ_A(t_A) + λ_B(t_B), with the two curves
  *     facing each other, is a contact (CONTACT), or none (APART).
  *
@@ -76,6 +77,7 @@ typedef struct buffer {
 
 typedef struct tnode {
     int la, ka, lb, kb; /* level -1: the root */
+    rugo_obb ba, bb;    /* their boxes as tested (B's in A's frame, both grown by their slack) */
 } tnode;
 
 /* A crossing or a stationary pair found by the narrow phase, in global parameters. */
@@ -104,6 +106,7 @@ typedef struct seginfo {
 struct rugo_collide_context {
     rugo_allocator al;
     buffer stack; /* tnode */
+    buffer kids;  /* rugo_obb: B's children of the node pair being expanded */
     buffer pairs; /* rugo_node_pair */
     buffer xs;    /* hit: crossings */
     buffer ss;    /* hit: stationary pairs of the first pass */
@@ -146,7 +149,8 @@ rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_co
 
 void rugo_collide_context_destroy(rugo_collide_context* c) {
     if (c == NULL) return;
-    buffer* all[] = {&c->stack, &c->pairs, &c->xs, &c->ss, &c->ss2, &c->ints, &c->marks, &c->segs, &c->out};
+    buffer* all[] = {&c->stack, &c->kids, &c->pairs, &c->xs,    &c->ss,
+                     &c->ss2,   &c->ints, &c->marks, &c->segs, &c->out};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
         rugo__free(&c->al, all[i]->data);
     rugo_allocator al = c->al;
@@ -374,6 +378,81 @@ static rugo_real side_lambda(const side* s, int seg, rugo_real t, rugo_real over
 }
 
 /* ---------------------------------------------------------------------------------------------------
+ * Containment through the tree.
+ *
+ * rugo_contour_contains sums, over all segments, the changes of the curve between below and above the
+ * horizontal line through p that happen right of p (the ray from p towards +x); p is inside iff the
+ * sum is not 0 (contour.c). side_contains computes the same sum but visits only the segments under
+ * tree boxes that the ray may meet, and gets each one's term from the same function
+ * (rugo__contour_winding_segment), so the answer is the same integer sum, bit for bit, on every input.
+ * A skipped segment's term is certainly 0: its curve lies in a box that keeps more than CONTAIN_PAD
+ * (relative to the shape's size and p's distance) above, below or left of p. The segment's count is
+ * computed relative to p from its control points with an error of a few ulps of their distance from p
+ * (bounded by that size and distance), far below the pad. Above (below): every computed y - p.y is
+ * positive (negative), so no change is counted. Left: every x at which a change is counted is
+ * negative, so none counts. The tree's boxes hold the query level's segments: node (j, k) contains its
+ * descendants' boxes down to that level, and each of those its own segment (mobb.h), with round-off
+ * pads of their own. So containment costs the boxes along the ray and the segments at its crossings,
+ * not a pass over all segments. */
+
+#define CONTAIN_PAD 1e-8
+
+/* 1 if box b keeps more than m above, below or left of p (its axis-aligned bounds). */
+static int clear_of_ray(const rugo_obb* b, rugo_vec2 p, rugo_real m) {
+    const rugo_real ex = b->half[0] * fabs(b->axis[0].x) + b->half[1] * fabs(b->axis[1].x);
+    const rugo_real ey = b->half[0] * fabs(b->axis[0].y) + b->half[1] * fabs(b->axis[1].y);
+    return b->center.y - ey > p.y + m || b->center.y + ey < p.y - m || b->center.x + ex < p.x - m;
+}
+
+/* rugo_contour_contains(s->curve, p) (p in the side's local frame), through the tree; *visited (may
+ * be NULL) gets the number of segments whose term was computed. */
+static int side_contains_count(const side* s, rugo_vec2 p, int* visited) {
+    const rugo_obb* root = rugo_mobb_tree_root(s->tree);
+    const rugo_real m =
+        CONTAIN_PAD * (box_size(root) + fabs(p.x - root->center.x) + fabs(p.y - root->center.y));
+    if (visited != NULL) *visited = 0;
+    /* Non-finite input goes the long way (which decides it the same way); a level range that the
+     * fixed stack below cannot hold cannot happen (a level has 2^level segments). */
+    if (!(m < HUGE_VAL) || s->level - s->jmin > 60) {
+        if (visited != NULL) *visited = s->n;
+        return rugo_contour_contains(s->curve, p);
+    }
+    if (clear_of_ray(root, p, m)) return 0;
+    int winding = 0, seen = 0;
+    int lv[64], kk[64];
+    for (int k0 = 0; k0 < (1 << s->jmin); ++k0) {
+        int top = 0;
+        lv[top] = s->jmin;
+        kk[top++] = k0;
+        while (top > 0) {
+            const int l = lv[--top], k = kk[top];
+            if (clear_of_ray(rugo_mobb_tree_node(s->tree, l, k), p, m)) continue;
+            if (l == s->level) {
+                winding += rugo__contour_winding_segment(s->curve, k, p);
+                ++seen;
+                continue;
+            }
+            lv[top] = l + 1; /* at most one entry per level plus one: depth-first */
+            kk[top++] = 2 * k + 1;
+            lv[top] = l + 1;
+            kk[top++] = 2 * k;
+        }
+    }
+    if (visited != NULL) *visited = seen;
+    return winding != 0;
+}
+
+static int side_contains(const side* s, rugo_vec2 p) { return side_contains_count(s, p, NULL); }
+
+int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited) {
+    if (visited != NULL) *visited = 0;
+    if (shape == NULL) return 0;
+    side s;
+    side_init(&s, shape, level, -1.0);
+    return side_contains_count(&s, p, visited);
+}
+
+/* ---------------------------------------------------------------------------------------------------
  * Tree traversal (SPEC 7). */
 
 typedef struct tside {
@@ -407,7 +486,9 @@ static rugo_obb tbox(const tside* s, int l, int k, int moved, rugo_transform rel
     return s->slack > 0.0 ? grow_box(r, s->slack) : r;
 }
 
-/* Node pairs at the stop levels whose boxes overlap, into ctx->pairs; B's boxes are moved by rel. */
+/* Node pairs at the stop levels whose boxes overlap, into ctx->pairs; B's boxes are moved by rel.
+ * Each box is computed (moved, grown) once, when its node is pushed, not for every pair it is tested
+ * in: an expansion that descends both trees tests 2 x 2 pairs from 2 + 2 boxes. */
 static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tside* B, rugo_transform rel,
                             long* tests, size_t* count) {
     size_t top = 0, found = 0;
@@ -418,12 +499,13 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
     st[top].ka = 0;
     st[top].lb = -1;
     st[top].kb = 0;
+    st[top].ba = tbox(A, -1, 0, 0, rel);
+    st[top].bb = tbox(B, -1, 0, 1, rel);
     ++top;
     while (top > 0) {
-        tnode t = st[--top];
-        rugo_obb ba = tbox(A, t.la, t.ka, 0, rel), bb = tbox(B, t.lb, t.kb, 1, rel);
+        const tnode t = st[--top];
         ++n_tests;
-        if (!rugo_obb_overlap(&ba, &bb)) continue;
+        if (!rugo_obb_overlap(&t.ba, &t.bb)) continue;
         const int ha = theight(A, t.la), hb = theight(B, t.lb);
         if (ha == 0 && hb == 0) {
             if (!reserve(ctx, &ctx->pairs, found + 1, sizeof(rugo_node_pair))) return RUGO_ERR_OUT_OF_MEMORY;
@@ -436,18 +518,26 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
         int cla = t.la, ka0 = t.ka, nka = 1, clb = t.lb, kb0 = t.kb, nkb = 1;
         if (ha >= hb) tchildren(A, t.la, t.ka, &cla, &ka0, &nka);
         if (hb >= ha) tchildren(B, t.lb, t.kb, &clb, &kb0, &nkb);
-        if (!reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(tnode)))
+        if (!reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(tnode)) ||
+            !reserve(ctx, &ctx->kids, (size_t)nkb, sizeof(rugo_obb)))
             return RUGO_ERR_OUT_OF_MEMORY;
         st = (tnode*)ctx->stack.data;
+        rugo_obb* kb = (rugo_obb*)ctx->kids.data;
+        for (int j = 0; j < nkb; ++j)
+            kb[j] = hb >= ha ? tbox(B, clb, kb0 + j, 1, rel) : t.bb;
         /* Pushed in reverse so that pairs come out in increasing order. */
-        for (int i = nka - 1; i >= 0; --i)
+        for (int i = nka - 1; i >= 0; --i) {
+            const rugo_obb ba = ha >= hb ? tbox(A, cla, ka0 + i, 0, rel) : t.ba;
             for (int j = nkb - 1; j >= 0; --j) {
                 st[top].la = cla;
                 st[top].ka = ka0 + i;
                 st[top].lb = clb;
                 st[top].kb = kb0 + j;
+                st[top].ba = ba;
+                st[top].bb = kb[j];
                 ++top;
             }
+        }
     }
     *tests += n_tests;
     *count = found;
@@ -829,6 +919,39 @@ static void piece_b(const pair_geo* g, int k, rugo_vec2 out[4]) {
         out[i] = rugo_transform_point(g->rel, q[i]);
 }
 
+/* The Bezier pieces of a query's segment pairs, each computed once: the pairs come sorted by A's
+ * segment, with B's segments of a small range repeating for each (direct-mapped by the low bits). */
+enum { PIECE_CACHE = 16 };
+typedef struct piece_cache {
+    int ka;
+    rugo_vec2 fa[4];
+    int kb[PIECE_CACHE];
+    rugo_vec2 gb[PIECE_CACHE][4];
+} piece_cache;
+
+static void piece_cache_init(piece_cache* pc) {
+    pc->ka = -1;
+    for (int i = 0; i < PIECE_CACHE; ++i)
+        pc->kb[i] = -1;
+}
+
+static const rugo_vec2* cached_piece_a(piece_cache* pc, const pair_geo* g, int k) {
+    if (pc->ka != k) {
+        rugo_contour_bezier(g->A->curve, k, pc->fa);
+        pc->ka = k;
+    }
+    return pc->fa;
+}
+
+static const rugo_vec2* cached_piece_b(piece_cache* pc, const pair_geo* g, int k) {
+    const int slot = k & (PIECE_CACHE - 1);
+    if (pc->kb[slot] != k) {
+        piece_b(g, k, pc->gb[slot]);
+        pc->kb[slot] = k;
+    }
+    return pc->gb[slot];
+}
+
 static rugo_vec2 normal_a(const pair_geo* g, int seg, rugo_real t) {
     return curve_normal(g->A->curve, seg, t);
 }
@@ -895,11 +1018,11 @@ static rugo_vec2 sh_point_b(void* u, rugo_real t) {
 }
 static int sh_inside_b(void* u, rugo_vec2 p) {
     const pair_geo* g = (const pair_geo*)u;
-    return rugo_contour_contains(g->B->curve, rugo_inv_transform_point(g->rel, p));
+    return side_contains(g->B, rugo_inv_transform_point(g->rel, p));
 }
 static int sh_inside_a(void* u, rugo_vec2 p) {
     const pair_geo* g = (const pair_geo*)u;
-    return rugo_contour_contains(g->A->curve, p);
+    return side_contains(g->A, p);
 }
 
 /* Extreme point of a curve (A's frame pieces from `piece`) along direction d: the point maximising
@@ -961,11 +1084,12 @@ static rugo_status closest_pair(rugo_collide_context* ctx, pair_geo* g, const ts
     if (st != RUGO_OK) return st;
     *found = 0;
     size_t ns = 0;
+    piece_cache pc;
+    piece_cache_init(&pc);
     for (size_t i = 0; i < np; ++i) {
         const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
-        rugo_vec2 f[4], h[4];
-        rugo_contour_bezier(g->A->curve, p.k_a, f);
-        piece_b(g, p.k_b, h);
+        const rugo_vec2* f = cached_piece_a(&pc, g, p.k_a);
+        const rugo_vec2* h = cached_piece_b(&pc, g, p.k_b);
         ns = 0;
         if (!run_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
                       NULL, &ctx->ss2, &ns))
@@ -1278,11 +1402,12 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
 
     /* First pass: crossings and stationary pairs within the band. */
     size_t nx = 0, ns = 0;
+    piece_cache pc;
+    piece_cache_init(&pc);
     for (size_t i = 0; i < np; ++i) {
         const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
-        rugo_vec2 f[4], h[4];
-        rugo_contour_bezier(A.curve, p.k_a, f);
-        piece_b(&g, p.k_b, h);
+        const rugo_vec2* f = cached_piece_a(&pc, &g, p.k_a);
+        const rugo_vec2* h = cached_piece_b(&pc, &g, p.k_b);
         const rugo_real cut = (override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b]) + q->margin;
         if (!run_pair(ctx, &g, p.k_a, f, p.k_b, h, cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g.scale, &ctx->xs,
                       &nx, &ctx->ss, &ns))
@@ -1355,11 +1480,11 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         int b_in_a = 0, a_in_b = 0;
         const rugo_vec2 pb0 = sh_point_b(&g, 0.0), pa0 = sh_point_a(&g, 0.0);
         if (!g.coincident && rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
-            b_in_a = rugo_contour_contains(A.curve, pb0);
+            b_in_a = side_contains(&A, pb0);
         if (!b_in_a && !g.coincident) {
             const rugo_vec2 pa0b = rugo_inv_transform_point(g.rel, pa0);
             if (rugo_obb_contains(rugo_mobb_tree_root(B.tree), pa0b, 0.0))
-                a_in_b = rugo_contour_contains(B.curve, pa0b);
+                a_in_b = side_contains(&B, pa0b);
         }
         if (b_in_a || a_in_b) {
             *state = RUGO_STATE_INTERSECTING;
@@ -1499,7 +1624,7 @@ static rugo_vec2 pr_point_a(void* u, rugo_real t) {
 static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const prim_geo*)u)->P, w); }
 static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const prim_geo*)u)->P, p, NULL, NULL) < 0.0; }
 static int pr_inside_a(void* u, rugo_vec2 p) {
-    return rugo_contour_contains(((const prim_geo*)u)->A->curve, p);
+    return side_contains(((const prim_geo*)u)->A, p);
 }
 
 static rugo_real rho_minus_r(const rugo_vec2 fl[4], rugo_vec2 vl, rugo_real R, rugo_real s) {
@@ -1714,7 +1839,7 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
     for (size_t i = 0; i + 1 < nt; ++i) {
         const rugo_real t0 = t[i], t1 = t[i + 1];
         if (!(t1 > t0)) continue;
-        if (!rugo_contour_contains(g->A->curve, lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
+        if (!side_contains(g->A, lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
         /* Depth along the piece: distance to A's curve, largest where the piece is deepest. */
         rugo_real best = -1.0, bt = t0;
         rugo_curve_point bcp;
@@ -1960,7 +2085,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         const rugo_vec2 pb0 = is_edge ? P->v[0] : prim_point(P, 0.0);
         int b_in_a = 0, a_in_b = 0;
         if (rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
-            b_in_a = rugo_contour_contains(A.curve, pb0);
+            b_in_a = side_contains(&A, pb0);
         if (!b_in_a && !is_edge && P->R + (P->V >= 3 ? 1.0 : 0.0) > 0.0)
             a_in_b = prim_sd(P, rugo_contour_point_at(A.curve, 0.0), NULL, NULL) < 0.0;
         if (b_in_a && !want) {

@@ -4,6 +4,7 @@
 #include "rugo/contour.h"
 
 #include "internal.h"
+#include "narrow.h" /* rugo__contour_winding_segment */
 #include "poly.h"
 
 #include <float.h>
@@ -489,47 +490,55 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
  * telescope around the closed curve whatever round-off does inside a segment: a tangency, a ray
  * through a joint or a horizontal piece on the ray yields canceling pairs of changes, never a lone
  * one. Only the x of a change (left or right of p) can be affected by round-off, which matters only
- * when p is within round-off of the curve. */
+ * when p is within round-off of the curve.
+ *
+ * The count is a sum over segments of rugo__contour_winding_segment (narrow.h), so a caller with a
+ * bounding-box tree may skip segments whose count is certainly 0 and get the same sum (collide.c). */
+
+int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p) {
+    rugo_vec2 q[4], b[4], k[4];
+    segment_points_rel(c, j, p, q);
+    bezier_from_points(q, b);
+    int all_up = 1, all_down = 1, all_left = 1;
+    for (int i = 0; i < 4; ++i) {
+        all_up &= b[i].y > 0.0;
+        all_down &= b[i].y < 0.0;
+        all_left &= b[i].x < 0.0;
+    }
+    /* Hull strictly on one side of the ray's line: both joints agree, no change. Hull left of p:
+     * every change happens left of p. */
+    if (all_up || all_down || all_left) return 0;
+    power_from_points(q, k);
+    rugo_real a[4] = {k[0].y, k[1].y, k[2].y, k[3].y};
+    rugo_real roots[RUGO__POLY_MAX_ROOTS];
+    int nr = rugo__poly_roots(a, 3, 0.0, 1.0, 0.0, roots);
+    rugo_real brk[RUGO__POLY_MAX_ROOTS + 2];
+    int nb = 0;
+    brk[nb++] = 0.0;
+    for (int i = 0; i < nr; ++i)
+        if (roots[i] > 0.0 && roots[i] < 1.0) brk[nb++] = roots[i];
+    brk[nb++] = 1.0;
+    int winding = 0;
+    int state = b[0].y >= 0.0;
+    for (int i = 0; i + 1 < nb; ++i) {
+        rugo_real mid = 0.5 * (brk[i] + brk[i + 1]);
+        int s = rugo__poly_eval(a, 3, mid) >= 0.0;
+        if (s != state) {
+            rugo_real x = i == 0 ? b[0].x : power_point(k, brk[i]).x;
+            if (x > 0.0) winding += s - state;
+            state = s;
+        }
+    }
+    int s_end = b[3].y >= 0.0;
+    if (s_end != state && b[3].x > 0.0) winding += s_end - state;
+    return winding;
+}
 
 int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
     if (c.points == NULL || c.count < 1) return 0;
     int winding = 0;
-    for (int j = 0; j < c.count; ++j) {
-        rugo_vec2 q[4], b[4], k[4];
-        segment_points_rel(c, j, p, q);
-        bezier_from_points(q, b);
-        int all_up = 1, all_down = 1, all_left = 1;
-        for (int i = 0; i < 4; ++i) {
-            all_up &= b[i].y > 0.0;
-            all_down &= b[i].y < 0.0;
-            all_left &= b[i].x < 0.0;
-        }
-        /* Hull strictly on one side of the ray's line: both joints agree, no change. Hull left of p:
-         * every change happens left of p. */
-        if (all_up || all_down || all_left) continue;
-        power_from_points(q, k);
-        rugo_real a[4] = {k[0].y, k[1].y, k[2].y, k[3].y};
-        rugo_real roots[RUGO__POLY_MAX_ROOTS];
-        int nr = rugo__poly_roots(a, 3, 0.0, 1.0, 0.0, roots);
-        rugo_real brk[RUGO__POLY_MAX_ROOTS + 2];
-        int nb = 0;
-        brk[nb++] = 0.0;
-        for (int i = 0; i < nr; ++i)
-            if (roots[i] > 0.0 && roots[i] < 1.0) brk[nb++] = roots[i];
-        brk[nb++] = 1.0;
-        int state = b[0].y >= 0.0;
-        for (int i = 0; i + 1 < nb; ++i) {
-            rugo_real mid = 0.5 * (brk[i] + brk[i + 1]);
-            int s = rugo__poly_eval(a, 3, mid) >= 0.0;
-            if (s != state) {
-                rugo_real x = i == 0 ? b[0].x : power_point(k, brk[i]).x;
-                if (x > 0.0) winding += s - state;
-                state = s;
-            }
-        }
-        int s_end = b[3].y >= 0.0;
-        if (s_end != state && b[3].x > 0.0) winding += s_end - state;
-    }
+    for (int j = 0; j < c.count; ++j)
+        winding += rugo__contour_winding_segment(c, j, p);
     return winding != 0;
 }
 

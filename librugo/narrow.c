@@ -60,7 +60,19 @@
  * pieces fill the root lists (or the box budget) and set overflow; the stationary search is then
  * skipped (every pair on the common stretch is a touching). `fallback` counts the decisions taken
  * without a uniqueness certificate: leaves, touchings, small-box acceptances, budget exhaustion.
- * Non-finite input gives an empty result; a NaN or negative cutoff gives crossings only. */
+ * Non-finite input gives an empty result; a NaN or negative cutoff gives crossings only.
+ *
+ * Speed (issue 7: most pairs a contact query hands over are near each other but hold nothing). The
+ * whole square is tested once for both searches (hulls apart: no crossing; then the tangent cones: no
+ * stationary pair), and a pair decided there costs a frame and those two tests. The hull test stops
+ * at the first separating direction, and near the cutoff it first checks whether two control points
+ * are closer than the cutoff (then no direction can separate). The Bernstein tests of the stationary
+ * search first look at their corner coefficients, which decide most failures. A box whose Newton run
+ * ends at a certified root outside it is dropped when the Jacobian is regular on a box spanning both
+ * (crossings: the tangent cones stay apart), because then that root is the only one there: without
+ * this a minimum just across a segment joint made the search subdivide toward the joint. Each
+ * shortcut decides a box as before or drops a box that provably holds no root, so the results do not
+ * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). */
 #include "narrow.h"
 
 #include "internal.h"
@@ -68,6 +80,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 #define EPS DBL_EPSILON
@@ -113,10 +126,13 @@ typedef struct ctx {
     rugo_real scale;  /* caller point = origin + scale * local point */
     rugo_real cutoff; /* local frame; negative: no stationary pairs */
     int newton, fallback, overflow;
-    root cross[TMP_CROSS];
-    int ncross;
+    int ncross, nstat;
+    /* Tests of the whole square [0,1]^2, shared by the two searches (both start there). */
+    int root_apart; /* the hulls of f and g are more than TAU_F apart: no crossing */
+    int root_cone_done, root_cone;
+    rugo_real root_rho;
+    root cross[TMP_CROSS]; /* (the lists last: they are not cleared) */
     root stat[TMP_STAT];
-    int nstat;
 } ctx;
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -178,6 +194,38 @@ static void sub_bezier(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo
         out[i] = w[i];
 }
 
+/* Bezier points of p (degree n <= 3) on any interval [a, b] with 0 < b, a < b: outside [0, 1] the
+ * polynomial is extrapolated (de Casteljau with parameters beyond 1 or below 0). For the boxes around
+ * a root found just outside a box (exclusion below). */
+static void sub_bezier_ext(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo_vec2* out) {
+    rugo_vec2 w[4], part[4];
+    for (int i = 0; i <= n; ++i)
+        w[i] = p[i];
+    if (b != 1.0) {
+        part[0] = w[0];
+        for (int k = 1; k <= n; ++k) {
+            for (int i = 0; i <= n - k; ++i)
+                w[i] = lerp(w[i], w[i + 1], b);
+            part[k] = w[0];
+        }
+        for (int i = 0; i <= n; ++i)
+            w[i] = part[i];
+    }
+    if (a != 0.0) {
+        rugo_real u = a / b;
+        part[n] = w[n];
+        for (int k = 1; k <= n; ++k) {
+            for (int i = 0; i <= n - k; ++i)
+                w[i] = lerp(w[i], w[i + 1], u);
+            part[n - k] = w[n - k];
+        }
+        for (int i = 0; i <= n; ++i)
+            w[i] = part[i];
+    }
+    for (int i = 0; i <= n; ++i)
+        out[i] = w[i];
+}
+
 /* Largest distance (max-norm) between control points: a size of the sub-piece. */
 static rugo_real poly_diam(const rugo_vec2* p, int n) {
     rugo_real lox = p[0].x, hix = p[0].x, loy = p[0].y, hiy = p[0].y;
@@ -202,46 +250,72 @@ static rugo_vec2 chord_normal(const rugo_vec2* p) {
     return rugo_v2(-d.y / l, d.x / l);
 }
 
-/* Lower bound of the distance between the convex hulls of F and G (4 points each) from their
- * projections on x, y, the two chord normals and the line between the polygons' centres. */
-static rugo_real hull_gap(const rugo_vec2 F[4], const rugo_vec2 G[4]) {
-    rugo_vec2 dir[5];
-    int nd = 0;
-    dir[nd++] = rugo_v2(1.0, 0.0);
-    dir[nd++] = rugo_v2(0.0, 1.0);
-    rugo_vec2 nf = chord_normal(F), ng = chord_normal(G);
-    if (nf.x != 0.0 || nf.y != 0.0) dir[nd++] = nf;
-    if (ng.x != 0.0 || ng.y != 0.0) dir[nd++] = ng;
+/* The gap between the projections of F and G (4 points each) on direction d. */
+static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
+    rugo_real flo = INFINITY, fhi = -INFINITY, glo = INFINITY, ghi = -INFINITY;
+    for (int i = 0; i < 4; ++i) {
+        rugo_real a = rugo_v2_dot(d, F[i]), b = rugo_v2_dot(d, G[i]);
+        flo = mn(flo, a);
+        fhi = mx(fhi, a);
+        glo = mn(glo, b);
+        ghi = mx(ghi, b);
+    }
+    return mx(flo - ghi, glo - fhi);
+}
+
+/* Whether a lower bound of the distance between the convex hulls of F and G exceeds thr: the largest
+ * gap between their projections on x, y, the two chord normals and the line between the polygons'
+ * centres. The directions are tried in that order and the first gap above thr decides (the max of the
+ * gaps exceeds thr iff one of them does), so the square roots of the later ones are often saved. */
+static int hull_gap_above(const rugo_vec2 F[4], const rugo_vec2 G[4], rugo_real thr) {
+    if (thr > 64.0 * EPS) {
+        /* No projection gap exceeds the distance of any point of F from any point of G. With the
+         * coordinates in [-1, 1] (the local frame), a computed gap is within ~8 eps of the true one
+         * for its (unit up to 4 eps) direction; so two control points closer than thr by a margin
+         * decide "not above" without the five projections (the usual case near a contact, where
+         * this test rarely prunes). */
+        const rugo_real lim = thr - 64.0 * EPS;
+        rugo_real d2 = INFINITY;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                const rugo_vec2 d = rugo_v2_sub(F[i], G[j]);
+                d2 = mn(d2, rugo_v2_dot(d, d));
+            }
+        if (d2 <= lim * lim * (1.0 - 64.0 * EPS)) return 0;
+    }
+    if (projection_gap(rugo_v2(1.0, 0.0), F, G) > thr) return 1;
+    if (projection_gap(rugo_v2(0.0, 1.0), F, G) > thr) return 1;
+    rugo_vec2 nf = chord_normal(F);
+    if ((nf.x != 0.0 || nf.y != 0.0) && projection_gap(nf, F, G) > thr) return 1;
+    rugo_vec2 ng = chord_normal(G);
+    if ((ng.x != 0.0 || ng.y != 0.0) && projection_gap(ng, F, G) > thr) return 1;
     rugo_vec2 cf =
         rugo_v2(0.25 * (F[0].x + F[1].x + F[2].x + F[3].x), 0.25 * (F[0].y + F[1].y + F[2].y + F[3].y));
     rugo_vec2 cg =
         rugo_v2(0.25 * (G[0].x + G[1].x + G[2].x + G[3].x), 0.25 * (G[0].y + G[1].y + G[2].y + G[3].y));
     rugo_vec2 dc = rugo_v2_sub(cf, cg);
     rugo_real lc = vlen(dc);
-    if (lc > 0.0) dir[nd++] = rugo_v2(dc.x / lc, dc.y / lc);
-    rugo_real gap = -INFINITY;
-    for (int k = 0; k < nd; ++k) {
-        rugo_real flo = INFINITY, fhi = -INFINITY, glo = INFINITY, ghi = -INFINITY;
-        for (int i = 0; i < 4; ++i) {
-            rugo_real a = rugo_v2_dot(dir[k], F[i]), b = rugo_v2_dot(dir[k], G[i]);
-            flo = mn(flo, a);
-            fhi = mx(fhi, a);
-            glo = mn(glo, b);
-            ghi = mx(ghi, b);
-        }
-        gap = mx(gap, mx(flo - ghi, glo - fhi));
-    }
-    return gap;
+    return lc > 0.0 && projection_gap(rugo_v2(dc.x / lc, dc.y / lc), F, G) > thr;
+}
+
+/* Whether four values are all above tau or all below -tau (as one_sign would find them). */
+static int corners_one_sign(rugo_real a, rugo_real b, rugo_real c, rugo_real d, rugo_real tau) {
+    return (a > tau && b > tau && c > tau && d > tau) || (a < -tau && b < -tau && c < -tau && d < -tau);
 }
 
 /* +1 / -1 if every value is above tau / below -tau, else 0. */
 static int one_sign(const rugo_real* v, int n, rugo_real tau) {
-    int pos = 1, neg = 1;
-    for (int i = 0; i < n; ++i) {
-        pos &= v[i] > tau;
-        neg &= v[i] < -tau;
+    if (v[0] > tau) {
+        for (int i = 1; i < n; ++i)
+            if (!(v[i] > tau)) return 0;
+        return 1;
     }
-    return pos ? 1 : (neg ? -1 : 0);
+    if (v[0] < -tau) {
+        for (int i = 1; i < n; ++i)
+            if (!(v[i] < -tau)) return 0;
+        return -1;
+    }
+    return 0;
 }
 
 /* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
@@ -249,18 +323,35 @@ static int one_sign(const rugo_real* v, int n, rugo_real tau) {
 static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
     rugo_real c[9], mf = 0.0, mg = 0.0, cmin = INFINITY;
     for (int i = 0; i < 3; ++i) {
-        mf = mx(mf, vlen(dF[i]));
-        mg = mx(mg, vlen(dG[i]));
+        /* squared lengths: sqrt is monotone and correctly rounded, so the max of the roots is the
+         * root of the max, bit for bit */
+        mf = mx(mf, rugo_v2_dot(dF[i], dF[i]));
+        mg = mx(mg, rugo_v2_dot(dG[i], dG[i]));
         for (int j = 0; j < 3; ++j) {
             c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
             cmin = mn(cmin, fabs(c[3 * i + j]));
         }
     }
+    mf = sqrt(mf);
+    mg = sqrt(mg);
     int sign = one_sign(c, 9, 16.0 * EPS * mf * mg);
     /* Over the box |det J| = |cross(f', g')| >= cmin and |J| <= mf + mg, so a point with |F| <= 16 eps
      * (computed residual plus evaluation error) has a root within 2 * 16 eps (mf + mg) / cmin. */
     if (radius) *radius = sign ? 32.0 * EPS * (mf + mg) / cmin : INFINITY;
     return sign;
+}
+
+/* The whole parameter square, where both searches start. */
+static int is_root(box b) { return b.s0 == 0.0 && b.s1 == 1.0 && b.t0 == 0.0 && b.t1 == 1.0; }
+
+/* cone_sign of the whole pieces, computed once for both searches (the sub-hodographs of the whole
+ * square are the hodographs themselves). */
+static int root_cone(ctx* c) {
+    if (!c->root_cone_done) {
+        c->root_cone = cone_sign(c->df, c->dg, &c->root_rho);
+        c->root_cone_done = 1;
+    }
+    return c->root_cone;
 }
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -407,6 +498,22 @@ static int in_domain(rugo_real s, rugo_real t) {
 }
 
 static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+
+/* For a root (s, t) found outside box b (widened as in_box): the box E spanning b and the square of
+ * half-width *r0 about the root, r0 half the root's max-norm distance to the widened box. 0 if the
+ * root is not clearly outside. */
+static int exclusion_box(box b, rugo_real s, rugo_real t, box* e, rugo_real* r0) {
+    rugo_real sl = b.s0 == 0.0 ? DOM_SLACK : SLACK, sh = b.s1 == 1.0 ? DOM_SLACK : SLACK;
+    rugo_real tl = b.t0 == 0.0 ? DOM_SLACK : SLACK, th = b.t1 == 1.0 ? DOM_SLACK : SLACK;
+    rugo_real d = mx(mx((b.s0 - sl) - s, s - (b.s1 + sh)), mx((b.t0 - tl) - t, t - (b.t1 + th)));
+    if (!(d > 0.0) || !isfinite(d)) return 0;
+    *r0 = 0.5 * d;
+    e->s0 = mn(b.s0, s - *r0);
+    e->s1 = mx(b.s1, s + *r0);
+    e->t0 = mn(b.t0, t - *r0);
+    e->t1 = mx(b.t1, t + *r0);
+    return e->s1 > 0.0 && e->t1 > 0.0; /* (always: b lies in [0,1]^2 and has positive width) */
+}
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Newton iterations */
@@ -609,6 +716,22 @@ static int split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g
     return 1;
 }
 
+/* Newton found a crossing (s, t) outside box b (residual res). If the tangents are not parallel
+ * anywhere on a box E spanning b and a ball about the root, E holds at most one crossing (see the
+ * top of the file), the certain one in the ball, which lies outside b: b holds none. */
+static int cross_excluded(const ctx* c, box b, rugo_real s, rugo_real t, rugo_real res) {
+    box e;
+    rugo_real r0, unit;
+    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
+    rugo_vec2 dF[3], dG[3];
+    sub_bezier_ext(c->df, 2, e.s0, e.s1, dF);
+    sub_bezier_ext(c->dg, 2, e.t0, e.t1, dG);
+    if (cone_sign(dF, dG, &unit) == 0) return 0;
+    /* cone_sign's radius holds for a residual of 16 eps; it scales with the residual */
+    const rugo_real rho = unit * (res + 16.0 * EPS) / (16.0 * EPS);
+    return rho < r0;
+}
+
 static void search_crossings(ctx* c) {
     box st[STACK_MAX];
     int ns = 0, boxes = 0;
@@ -624,7 +747,8 @@ static void search_crossings(ctx* c) {
         rugo_vec2 F[4], G[4];
         sub_bezier(c->f, 3, b.s0, b.s1, F);
         sub_bezier(c->g, 3, b.t0, b.t1, G);
-        if (hull_gap(F, G) > TAU_F) continue;
+        const int whole = is_root(b);
+        if (whole ? c->root_apart : hull_gap_above(F, G, TAU_F)) continue;
         rugo_real diam_f = poly_diam(F, 3), diam_g = poly_diam(G, 3);
         rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
         rugo_vec2 dF[3], dG[3];
@@ -642,12 +766,19 @@ static void search_crossings(ctx* c) {
             if (krawczyk_excludes(b, v, n, jc, fpx, iv_neg(gpx), fpy, iv_neg(gpy))) continue;
         }
         rugo_real rho;
-        int sign = cone_sign(dF, dG, &rho);
+        int sign;
+        if (whole) {
+            sign = root_cone(c);
+            rho = c->root_rho;
+        } else {
+            sign = cone_sign(dF, dG, &rho);
+        }
         if (sign != 0) {
             rugo_real s = sc, t = tc, res;
             /* The root must be certain to exist in the box: its uncertainty ball inside the box (a
              * numerical zero next to a touching has a ball as large as its distance to it). */
-            if (newton_cross(c, &b, &s, &t, &res) && in_box_ball(b, s, t, rho)) {
+            const int conv = newton_cross(c, &b, &s, &t, &res);
+            if (conv && in_box_ball(b, s, t, rho)) {
                 rugo_vec2 fp = bez(c->df, 2, s), gp = bez(c->dg, 2, t);
                 rugo_real cond = (rugo_v2_dot(fp, fp) + rugo_v2_dot(gp, gp)) / fabs(rugo_v2_cross(fp, gp));
                 if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, root_radius(cond), sign, 0)) {
@@ -656,6 +787,7 @@ static void search_crossings(ctx* c) {
                 }
                 continue;
             }
+            if (conv && cross_excluded(c, b, s, t, res)) continue;
         }
         if (sign == 0 && mx(b.s1 - b.s0, b.t1 - b.t0) <= H_TOUCH) {
             /* Small, tangents not separated: maybe a touching. Its point is a well-conditioned root of
@@ -785,12 +917,19 @@ static int jacobian_regular(const ival J[4], rugo_real* detmin, rugo_real* jmax)
 /* W[i][k] = C(3,i) C(2,k) / C(5,i+k): the product of degree-3 and degree-2 Bernstein polynomials. */
 static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6, 0.6}, {0.1, 0.4, 1.0}};
 
-/* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. jc: the Jacobian
- * of (H1, H2) at the box's centre, for the preconditioned tests. */
-static int stat_prune(const ctx* c, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
-                      const rugo_vec2 dG[3], const rugo_real jc[4]) {
-    if (hull_gap(F, G) > c->cutoff + TAU_F) return 1;
-    if (cone_sign(dF, dG, NULL) != 0) return 1;
+/* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. When it returns 0,
+ * *ec holds the values at the box's centre (the Jacobian of (H1, H2) there preconditions the last
+ * tests; the caller needs them too). */
+static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
+                      const rugo_vec2 dG[3], pair_eval* ec) {
+    if (is_root(bx)) {
+        /* (the hull test of the whole square is known to fail when the search runs: see solve) */
+        if (root_cone(c) != 0) return 1;
+    } else {
+        /* (cheaper first; the cone test prunes most sub-boxes) */
+        if (cone_sign(dF, dG, NULL) != 0) return 1;
+        if (hull_gap_above(F, G, c->cutoff + TAU_F)) return 1;
+    }
     rugo_vec2 D[4][4];
     rugo_real md = 0.0, mf = 0.0, mg = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -802,50 +941,73 @@ static int stat_prune(const ctx* c, const rugo_vec2 F[4], const rugo_vec2 G[4], 
         mf = mx(mf, vmax(dF[k]));
         mg = mx(mg, vmax(dG[k]));
     }
+    rugo_real tau1 = 32.0 * EPS * mf * (1.0 + md);
+    rugo_real tau2 = 32.0 * EPS * mg * (1.0 + md);
+    {
+        /* The four tests below need all their coefficients of one strict sign; the corner
+         * coefficients (the values at the box's corners, one product each, computed here with the same
+         * operations as below) decide most failures. When every test already fails at its corners the
+         * box is not pruned, without the ~200 products of the full coefficient arrays. */
+        const rugo_real a0 = rugo_v2_dot(D[0][0], dF[0]), a1 = rugo_v2_dot(D[0][3], dF[0]);
+        const rugo_real a2 = rugo_v2_dot(D[3][0], dF[2]), a3 = rugo_v2_dot(D[3][3], dF[2]);
+        const rugo_real b0 = rugo_v2_dot(D[0][0], dG[0]), b1 = rugo_v2_dot(D[0][3], dG[2]);
+        const rugo_real b2 = rugo_v2_dot(D[3][0], dG[0]), b3 = rugo_v2_dot(D[3][3], dG[2]);
+        if (!corners_one_sign(a0, a1, a2, a3, tau1) && !corners_one_sign(b0, b1, b2, b3, tau2)) {
+            *ec = eval_pair(c, 0.5 * (bx.s0 + bx.s1), 0.5 * (bx.t0 + bx.t1));
+            int maybe = 0;
+            for (int r = 0; r < 2 && !maybe; ++r) {
+                const rugo_real a = r == 0 ? ec->j22 : -ec->j21, b = r == 0 ? -ec->j12 : ec->j11;
+                /* e1 and e2 at the corners (m, n) = (0,0), (0,5), (5,0), (5,5) are the corners of H1
+                 * and H2 (degree elevation keeps end coefficients) */
+                maybe = corners_one_sign(a * a0 + b * b0, a * a1 + b * b1, a * a2 + b * b2, a * a3 + b * b3,
+                                         2.0 * (fabs(a) * tau1 + fabs(b) * tau2));
+            }
+            if (!maybe) return 0;
+        }
+    }
+    /* Bernstein products: coefficient m = i + k collects W32[i][k] x_i y_k, summed in increasing i
+     * (the loops below run i outside k, so each sum is accumulated in that order). */
     rugo_real h1[24], h2[24];
     /* H1: index m (s, degree 5) * 4 + j (t, degree 3). */
-    for (int m = 0; m < 6; ++m)
-        for (int j = 0; j < 4; ++j) {
-            rugo_real v = 0.0;
-            for (int i = 0; i < 4; ++i) {
-                int k = m - i;
-                if (k >= 0 && k <= 2) v += W32[i][k] * rugo_v2_dot(D[i][j], dF[k]);
-            }
-            h1[4 * m + j] = v;
+    for (int q = 0; q < 24; ++q)
+        h1[q] = 0.0;
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const rugo_real w = W32[i][k];
+            rugo_real* row = h1 + 4 * (i + k);
+            for (int j = 0; j < 4; ++j)
+                row[j] += w * rugo_v2_dot(D[i][j], dF[k]);
         }
-    rugo_real tau1 = 32.0 * EPS * mf * (1.0 + md);
     if (one_sign(h1, 24, tau1) != 0) return 1;
     /* H2: index i (s, degree 3) * 6 + n (t, degree 5). */
+    for (int q = 0; q < 24; ++q)
+        h2[q] = 0.0;
     for (int i = 0; i < 4; ++i)
-        for (int n = 0; n < 6; ++n) {
-            rugo_real v = 0.0;
-            for (int j = 0; j < 4; ++j) {
-                int k = n - j;
-                if (k >= 0 && k <= 2) v += W32[j][k] * rugo_v2_dot(D[i][j], dG[k]);
-            }
-            h2[6 * i + n] = v;
-        }
-    rugo_real tau2 = 32.0 * EPS * mg * (1.0 + md);
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 3; ++k)
+                h2[6 * i + j + k] += W32[j][k] * rugo_v2_dot(D[i][j], dG[k]);
     if (one_sign(h2, 24, tau2) != 0) return 1;
     /* Preconditioned: the rows of adj(J) (H1, H2), J the Jacobian at the centre, in the common degree
      * (5, 5). Each is H1 or H2 with its first-order dependence on one parameter removed, so it keeps
      * one sign on boxes that are far from a root only along a valley of nearly parallel curves, where
      * H1 and H2 alone vanish all along. (Degree elevation by 2 is the product with 1 = sum B^2_k.) */
     rugo_real e1[36], e2[36];
+    for (int q = 0; q < 36; ++q)
+        e1[q] = e2[q] = 0.0;
     for (int m = 0; m < 6; ++m)
-        for (int n = 0; n < 6; ++n) {
-            rugo_real v1 = 0.0, v2 = 0.0;
-            for (int j = 0; j < 4; ++j) {
-                int k = n - j;
-                if (k >= 0 && k <= 2) v1 += W32[j][k] * h1[4 * m + j];
-            }
-            for (int i = 0; i < 4; ++i) {
-                int k = m - i;
-                if (k >= 0 && k <= 2) v2 += W32[i][k] * h2[6 * i + n];
-            }
-            e1[6 * m + n] = v1;
-            e2[6 * m + n] = v2;
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 3; ++k)
+                e1[6 * m + j + k] += W32[j][k] * h1[4 * m + j];
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const rugo_real w = W32[i][k];
+            rugo_real* row = e2 + 6 * (i + k);
+            for (int n = 0; n < 6; ++n)
+                row[n] += w * h2[6 * i + n];
         }
+    /* (the centre's values are needed from here on only) */
+    *ec = eval_pair(c, 0.5 * (bx.s0 + bx.s1), 0.5 * (bx.t0 + bx.t1));
+    const rugo_real jc[4] = {ec->j11, ec->j12, ec->j21, ec->j22};
     rugo_real p[36];
     for (int r = 0; r < 2; ++r) {
         rugo_real a = r == 0 ? jc[3] : -jc[2], b = r == 0 ? -jc[1] : jc[0];
@@ -861,6 +1023,36 @@ static rugo_real stat_radius(const ctx* c, rugo_real s, rugo_real t) {
     rugo_real det = fabs(e.j11 * e.j22 - e.j12 * e.j21);
     rugo_real fro = e.j11 * e.j11 + e.j12 * e.j12 + e.j21 * e.j21 + e.j22 * e.j22;
     return root_radius(det > 0.0 ? fro / det : INFINITY);
+}
+
+/* Newton found a root (s, t) of the stationary system (form mode) outside box b. If
+ * the interval Jacobian is regular on a box E spanning b and a ball about the root, E holds at most
+ * one root of that system, the certain one in the ball (existence as in search_stationary), which
+ * lies outside b: b holds no stationary pair. (Every stationary pair in b is a root of the form, which
+ * was chosen for b; what the form does outside b only matters through the uniqueness on E.) Without
+ * this, a root just beyond a box edge (typically a minimum in the neighbouring segment) makes the
+ * search subdivide toward that edge down to the root's distance. */
+static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t) {
+    box e;
+    rugo_real r0;
+    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
+    rugo_vec2 F[4], G[4], dF[3], dG[3], ddF[2], ddG[2];
+    sub_bezier_ext(c->f, 3, e.s0, e.s1, F);
+    sub_bezier_ext(c->g, 3, e.t0, e.t1, G);
+    sub_bezier_ext(c->df, 2, e.s0, e.s1, dF);
+    sub_bezier_ext(c->dg, 2, e.t0, e.t1, dG);
+    sub_bezier_ext(c->ddf, 1, e.s0, e.s1, ddF);
+    sub_bezier_ext(c->ddg, 1, e.t0, e.t1, ddG);
+    ival J[4];
+    stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
+    rugo_real detmin, jmax;
+    if (!jacobian_regular(J, &detmin, &jmax)) return 0;
+    pair_eval ev = eval_pair(c, s, t);
+    rugo_real w[2], n[2], j[4];
+    stat_system(&ev, mode, w, n, j);
+    /* distance to the root <= |system|_2 / sigma_min, sigma_min >= detmin / (2 jmax) */
+    const rugo_real rho = 4.0 * (mx(fabs(w[0]), fabs(w[1])) + mx(n[0], n[1])) * jmax / detmin;
+    return rho < r0;
 }
 
 static void search_stationary(ctx* c) {
@@ -881,9 +1073,8 @@ static void search_stationary(ctx* c) {
         sub_bezier(c->df, 2, b.s0, b.s1, dF);
         sub_bezier(c->dg, 2, b.t0, b.t1, dG);
         rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
-        pair_eval ec = eval_pair(c, sc, tc);
-        rugo_real jhh[4] = {ec.j11, ec.j12, ec.j21, ec.j22};
-        if (stat_prune(c, F, G, dF, dG, jhh)) continue;
+        pair_eval ec;
+        if (stat_prune(c, b, F, G, dF, dG, &ec)) continue;
         rugo_vec2 ddF[2], ddG[2];
         sub_bezier(c->ddf, 1, b.s0, b.s1, ddF);
         sub_bezier(c->ddg, 1, b.t0, b.t1, ddG);
@@ -914,6 +1105,7 @@ static void search_stationary(ctx* c) {
                     }
                     continue;
                 }
+                if (stat_excluded(c, mode, b, s, t)) continue;
             }
         } else if (mx(b.s1 - b.s0, b.t1 - b.t0) <= H_ACC) {
             /* Small but still not certified: a (nearly) degenerate stationary pair, e.g. curves almost
@@ -1000,6 +1192,7 @@ static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist)
 
 static void fill_point(const ctx* c, rugo_real s, rugo_real t, int kind, rugo__pair_point* p) {
     rugo_vec2 a = bez(c->f, 3, s), b = bez(c->g, 3, t);
+    memset(p, 0, sizeof *p); /* padding too: results compare bytewise (the arrays are not cleared) */
     p->s = s;
     p->t = t;
     p->pa = rugo_v2_add(c->origin, rugo_v2_scale(c->scale, a));
@@ -1240,6 +1433,17 @@ static void solve(ctx* c, rugo__narrow_result* out) {
         return;
     }
 
+    /* The whole square first: both searches start there with the hull test (crossings: gap > TAU_F;
+     * stationary pairs: gap > cutoff + TAU_F, then the tangent cones). When it decides everything,
+     * the searches are skipped; when a search runs, the hull test of the stationary search on the
+     * whole square is known to fail (gap <= TAU_F, or it was tested below), so stat_prune skips it. */
+    c->root_apart = hull_gap_above(c->f, c->g, TAU_F);
+    if (c->root_apart) {
+        if (!(c->cutoff >= 0.0)) return;         /* no stationary search */
+        if (root_cone(c) != 0) return;           /* tangents nowhere parallel */
+        if (hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
+    }
+
     search_crossings(c);
     /* Classify the leaf roots by probing; certified roots carry the sign of their cone. */
     for (int i = 0; i < c->ncross; ++i)
@@ -1313,7 +1517,35 @@ static void solve(ctx* c, rugo__narrow_result* out) {
         if (c->stat[k].kind >= 0) emit_stationary(c, out, c->stat[k].s, c->stat[k].t, c->stat[k].kind);
 }
 
-static void clear_result(rugo__narrow_result* out) { memset(out, 0, sizeof *out); }
+/* scale = 2^e and inv = 2^-e with ext = m 2^e, m in [0.5, 1) (frexp), from the exponent bits when both
+ * are normal numbers (the library calls frexp and ldexp cost as much as a hull test). */
+static void pow2_frame(rugo_real ext, rugo_real* scale, rugo_real* inv) {
+    uint64_t bits;
+    memcpy(&bits, &ext, sizeof bits);
+    const int biased = (int)((bits >> 52) & 0x7FF);
+    const int e = biased - 1022;
+    if (biased > 0 && e + 1023 >= 1 && e + 1023 <= 2046 && 1023 - e >= 1 && 1023 - e <= 2046) {
+        const uint64_t bs = (uint64_t)(e + 1023) << 52, bi = (uint64_t)(1023 - e) << 52;
+        memcpy(scale, &bs, sizeof *scale);
+        memcpy(inv, &bi, sizeof *inv);
+        return;
+    }
+    int ee;
+    frexp(ext, &ee);
+    *scale = ldexp(1.0, ee);
+    *inv = ldexp(1.0, -ee);
+}
+
+/* Counts and flags only: the root arrays are written (padding included, fill_point) before they are
+ * counted, and nobody reads past the counts (clearing ~1.4 kB per call was a tenth of the cost of an
+ * apart pair). */
+static void clear_result(rugo__narrow_result* out) {
+    out->crossing_count = 0;
+    out->stationary_count = 0;
+    out->newton_iterations = 0;
+    out->fallback = 0;
+    out->overflow = 0;
+}
 
 /* Sets up the local frame from the 8 points (p: caller's frame) and runs the solver. */
 static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_vec2 q0, rugo_vec2 q1,
@@ -1333,8 +1565,12 @@ static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_
     }
     for (int i = 0; i < 8; ++i)
         if (!rugo__v2_finite(pts[i])) return;
-    ctx c;
-    memset(&c, 0, sizeof c);
+    ctx c; /* the root lists (~4 kB) are filled before they are counted: not cleared */
+    c.newton = c.fallback = c.overflow = 0;
+    c.ncross = c.nstat = 0;
+    c.root_apart = 0;
+    c.root_cone_done = c.root_cone = 0;
+    c.root_rho = INFINITY;
     rugo_real ox = 0.0, oy = 0.0;
     for (int i = 0; i < 8; ++i) {
         ox += 0.125 * pts[i].x;
@@ -1355,10 +1591,8 @@ static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_
         if (cutoff >= 0.0) emit_stationary(&c, out, 0.0, 0.0, RUGO__MINIMUM);
         return;
     }
-    int e;
-    frexp(ext, &e);
-    c.scale = ldexp(1.0, e);
-    rugo_real inv = ldexp(1.0, -e);
+    rugo_real inv;
+    pow2_frame(ext, &c.scale, &inv);
     for (int i = 0; i < 4; ++i)
         c.f[i] = rugo_v2_scale(inv, rugo_v2_sub(f[i], c.origin));
     if (g_is_line) {

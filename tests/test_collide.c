@@ -11,6 +11,7 @@
  * sampling error; a local minimum whose Newton refinement fails) are counted and reported, not
  * compared. */
 #include "internal.h"
+#include "narrow.h" /* rugo__shape_contains: containment through the tree */
 #include "test_util.h"
 
 #include <float.h>
@@ -2415,6 +2416,201 @@ START_TEST(test_query_margin) {
 }
 END_TEST
 
+
+/* ---- containment through the tree (collide.c "Containment through the tree") ------------------- */
+
+typedef struct contain_tally {
+    long cases, inside, mismatches;
+} contain_tally;
+
+/* The tree walk against the winding count over all segments (rugo_contour_contains): the same answer
+ * is required, not just a close one. */
+static void contain_check(const rugo_shape* s, int level, rugo_contour c, rugo_vec2 p, contain_tally* T) {
+    int visited = -1;
+    const int tree = rugo__shape_contains(s, level, p, &visited);
+    const int all = rugo_contour_contains(c, p);
+    ck_assert_int_ge(visited, 0);
+    ck_assert_int_le(visited, c.count);
+    T->cases++;
+    T->inside += all != 0;
+    if ((tree != 0) != (all != 0)) {
+        if (T->mismatches < 5)
+            printf("containment mismatch: level %d, p = (%.17g, %.17g): tree %d, all segments %d\n", level, p.x,
+                   p.y, tree, all);
+        T->mismatches++;
+    }
+}
+
+/* Points that stress the count: random ones around the curve; the Bezier points of every segment
+ * (joints included) and control points, and points on the same horizontal line left and right of them
+ * (rays through joints and hull corners); a random point of every segment, points 1e-15 .. 1e-3 of
+ * the size off it on both sides, and rays through it; the points where the curve has a horizontal
+ * tangent and rays touching the curve there (also one ulp above and below). Every level. */
+static void contain_stress(const rugo_shape* s, test_rng* r, contain_tally* T) {
+    for (int L = rugo_shape_coarsest_level(s); L <= rugo_shape_finest_level(s); ++L) {
+        rugo_contour c;
+        rugo_shape_level(s, L, &c);
+        rugo_vec2 lo, hi;
+        rugo_contour_bounds(c, &lo, &hi);
+        const double w = hi.x - lo.x, h = hi.y - lo.y;
+        for (int i = 0; i < 200; ++i)
+            contain_check(s, L,
+                          c, rugo_v2(test_rng_uniform(r, lo.x - 0.2 * w, hi.x + 0.2 * w),
+                                     test_rng_uniform(r, lo.y - 0.2 * h, hi.y + 0.2 * h)), T);
+        for (int k = 0; k < c.count; ++k) {
+            rugo_vec2 b[4];
+            rugo_contour_bezier(c, k, b);
+            for (int i = 0; i < 4; ++i) {
+                contain_check(s, L, c, b[i], T);
+                contain_check(s, L, c, rugo_v2(b[i].x - test_rng_uniform(r, 0, w), b[i].y), T);
+                contain_check(s, L, c, rugo_v2(b[i].x + test_rng_uniform(r, 0, w), b[i].y), T);
+            }
+            contain_check(s, L, c, c.points[k], T);
+            contain_check(s, L, c, rugo_v2(c.points[k].x - test_rng_uniform(r, 0, w), c.points[k].y), T);
+            const double t = test_rng_uniform(r, 0, 1);
+            const rugo_vec2 q = rugo_contour_point(c, k, t), n = rugo_contour_normal(c, k, t);
+            contain_check(s, L, c, q, T);
+            contain_check(s, L, c, rugo_v2(q.x - test_rng_uniform(r, 0, w), q.y), T);
+            const double e = pow(10.0, -test_rng_uniform(r, 3, 15)) * w;
+            contain_check(s, L, c, rugo_v2(q.x + e * n.x, q.y + e * n.y), T);
+            contain_check(s, L, c, rugo_v2(q.x - e * n.x, q.y - e * n.y), T);
+            /* horizontal tangents: y'(t) = (v t^2 + w t + r).y / 2 = 0 */
+            rugo_vec2 cv, cw, cr;
+            rugo_contour_derivative_coefficients(c, k, &cv, &cw, &cr);
+            const double A = cv.y, B = cw.y, C = cr.y, disc = B * B - 4.0 * A * C;
+            if (A == 0.0 || disc < 0.0) continue;
+            for (int sg = -1; sg <= 1; sg += 2) {
+                const double tt = (-B + sg * sqrt(disc)) / (2.0 * A);
+                if (!(tt >= 0.0 && tt < 1.0)) continue;
+                const rugo_vec2 qq = rugo_contour_point(c, k, tt);
+                const double x = qq.x - test_rng_uniform(r, 0, w);
+                contain_check(s, L, c, qq, T);
+                contain_check(s, L, c, rugo_v2(x, qq.y), T);
+                contain_check(s, L, c, rugo_v2(x, nextafter(qq.y, HUGE_VAL)), T);
+                contain_check(s, L, c, rugo_v2(x, nextafter(qq.y, -HUGE_VAL)), T);
+            }
+        }
+    }
+}
+
+START_TEST(test_tree_containment_matches_winding) {
+    build_shapes();
+    test_rng r = test_rng_seed(0x636f6e74);
+    contain_tally T;
+    memset(&T, 0, sizeof T);
+    /* the suite's six kinds (convex, concave, very rough, straight sides, coincident control points) */
+    for (int i = 0; i < N_SHAPES; ++i)
+        contain_stress(g_shapes[i].s, &r, &T);
+    rugo_vec2* p = (rugo_vec2*)xmalloc(1024 * sizeof *p);
+    double* tol = (double*)xmalloc(1024 * sizeof *tol);
+    /* wavy stars of 16 .. 1024 points, with tolerances (coarse levels of their own) and without */
+    for (int n = 16; n <= 1024; n *= 4)
+        for (int rep = 0; rep < 2; ++rep) {
+            test_random_star(&r, n, rugo_v2(0.3, -0.1), 1.0, 0.45, p);
+            for (int i = 0; i < n; ++i)
+                tol[i] = test_rng_uniform(&r, 0.0, 0.01);
+            rugo_shape* s = make_shape(p, n, rep ? tol : NULL);
+            contain_stress(s, &r, &T);
+            rugo_shape_destroy(s);
+        }
+    /* a staircase: horizontal pieces on the rays of their own joints */
+    for (int i = 0; i < 64; ++i) {
+        const int step = i / 8, j = i % 8;
+        const double x = step < 4 ? -1.0 + 0.5 * step + 0.0625 * j : 1.0 - 0.5 * (step - 4) - 0.0625 * j;
+        const double y = (step < 4 ? 0.25 * step : 1.5 - 0.25 * (step - 4)) + (j < 4 ? 0.0 : 0.1);
+        p[i] = rugo_v2(x, y);
+    }
+    rugo_shape* stairs = make_shape(p, 64, NULL);
+    contain_stress(stairs, &r, &T);
+    rugo_shape_destroy(stairs);
+    /* repeated corners (point-like segments, horizontal sides), at the origin and 1e6 away */
+    const rugo_vec2 corners[4] = {{-0.9, -0.6}, {0.9, -0.6}, {0.9, 0.6}, {-0.9, 0.6}};
+    for (int far = 0; far < 2; ++far) {
+        for (int i = 0; i < 16; ++i)
+            p[i] = rugo_v2(corners[i / 4].x + (far ? 1e6 : 0.0), corners[i / 4].y - (far ? 3e5 : 0.0));
+        rugo_shape* sq = make_shape(p, 16, NULL);
+        contain_stress(sq, &r, &T);
+        rugo_shape_destroy(sq);
+    }
+    free(p);
+    free(tol);
+    printf("tree containment: %ld points (%ld inside), %ld answers differ from the winding count over all "
+           "segments\n",
+           T.cases, T.inside, T.mismatches);
+    ck_assert_int_ge(T.cases, 50000);
+    ck_assert(T.inside > T.cases / 5 && T.inside < T.cases - T.cases / 5);
+    ck_assert_int_eq(T.mismatches, 0);
+}
+END_TEST
+
+/* Work against segments: one contact between two ellipses of 32 .. 4096 segments. The segment pairs
+ * stay a handful, the box tests grow by about the tree's depth per doubling, and the containment test
+ * evaluates a few segments (those the ray crosses), not all of them. */
+START_TEST(test_work_against_segments) {
+    rugo_collide_context* ctx = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &ctx), RUGO_OK);
+    rugo_vec2* p = (rugo_vec2*)xmalloc(4096 * sizeof *p);
+    test_rng r = test_rng_seed(0x776f726b);
+    long prev_tests = 0;
+    int max_visited = 0;
+    for (int n = 32; n <= 4096; n *= 2) {
+        for (int k = 0; k < n; ++k) {
+            const double th = TWO_PI * k / n;
+            p[k] = rugo_v2(0.5 * cos(th), 0.35 * sin(th));
+        }
+        rugo_shape* a = make_shape(p, n, NULL);
+        rugo_shape* b = make_shape(p, n, NULL);
+        const rugo_transform xa = rugo_make_transform(0.0, 0.0, 0.3);
+        rugo_transform xb = rugo_make_transform(0.0, 0.0, 2.0);
+        const rugo_vec2 u = rugo_v2(cos(0.7), sin(0.7));
+        double lo = 0.0, hi = 3.0; /* first touch along u, by bisection on the state */
+        for (int it = 0; it < 64; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            xb.p = rugo_v2(mid * u.x, mid * u.y);
+            int cnt = 0;
+            rugo_contact_state st;
+            ck_assert_int_eq(rugo_collide_shapes(ctx, a, xa, b, xb, NULL, NULL, 0, &cnt, &st, NULL), RUGO_OK);
+            if (st == RUGO_STATE_INTERSECTING)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        xb.p = rugo_v2((hi + 1e-7) * u.x, (hi + 1e-7) * u.y);
+        rugo_contact_query q = rugo_default_contact_query();
+        q.margin = 2e-7;
+        rugo_contact c[8];
+        int cnt = 0;
+        rugo_contact_state st;
+        rugo_query_stats qs;
+        ck_assert_int_eq(rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, 8, &cnt, &st, &qs), RUGO_OK);
+        ck_assert_int_eq(st, RUGO_STATE_CONTACT);
+        ck_assert_int_eq(cnt, 1);
+        ck_assert_near(c[0].separation, 1e-7, 1e-9);
+        ck_assert_int_le(qs.segment_pairs, 4);
+        if (prev_tests > 0) ck_assert_int_le(qs.box_tests, prev_tests + 24);
+        prev_tests = qs.box_tests;
+        /* containment from points of B's curve (B's point 0 is what a query tests) and random points */
+        rugo_contour ca;
+        rugo_shape_level(a, rugo_shape_finest_level(a), &ca);
+        for (int i = 0; i < 200; ++i) {
+            const rugo_vec2 pt = rugo_v2(test_rng_uniform(&r, -0.6, 0.6), test_rng_uniform(&r, -0.45, 0.45));
+            int visited = 0;
+            const int in = rugo__shape_contains(a, 0, pt, &visited);
+            ck_assert_int_eq(in != 0, rugo_contour_contains(ca, pt) != 0);
+            max_visited = visited > max_visited ? visited : max_visited;
+        }
+        printf("one contact, %d segments: %ld box tests, %ld segment pairs\n", n, qs.box_tests, qs.segment_pairs);
+        rugo_shape_destroy(a);
+        rugo_shape_destroy(b);
+    }
+    printf("containment through the tree: at most %d segments evaluated per point (up to 4096 segments)\n",
+           max_visited);
+    ck_assert_int_le(max_visited, 16);
+    free(p);
+    rugo_collide_context_destroy(ctx);
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("collide");
     TCase* tsh = tcase_create("shape");
@@ -2450,6 +2646,8 @@ int main(void) {
     tcase_add_test(tm, test_bad_inputs);
     tcase_add_test(tm, test_surface_values);
     tcase_add_test(tm, test_query_margin);
+    tcase_add_test(tm, test_tree_containment_matches_winding);
+    tcase_add_test(tm, test_work_against_segments);
     suite_add_tcase(s, tm);
     TCase* ta = tcase_create("acceptance");
     tcase_set_timeout(ta, 3600);

@@ -1516,6 +1516,149 @@ START_TEST(test_determinism_and_finiteness) {
 }
 END_TEST
 
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Work: pairs decided on the whole square, minima next to a piece's end */
+
+/* de Casteljau split of a piece at u: left is the piece on [0, u], right on [u, 1]. */
+static void split_piece(const rugo_vec2 p[4], double u, rugo_vec2 left[4], rugo_vec2 right[4]) {
+    rugo_vec2 w[4];
+    for (int i = 0; i < 4; ++i)
+        w[i] = p[i];
+    left[0] = w[0];
+    right[3] = w[3];
+    for (int k = 1; k <= 3; ++k) {
+        for (int i = 0; i <= 3 - k; ++i)
+            w[i] = rugo_v2((1.0 - u) * w[i].x + u * w[i + 1].x, (1.0 - u) * w[i].y + u * w[i + 1].y);
+        left[k] = w[0];
+        right[3 - k] = w[3 - k];
+    }
+}
+
+/* Pieces whose hulls are farther apart than the cutoff, and pieces within the cutoff whose tangents
+ * are nowhere parallel (no stationary pair) and whose hulls are apart (no crossing): nothing, decided
+ * without a search (no Newton step, no fallback), and the reference agrees. */
+START_TEST(test_decided_on_the_whole_square) {
+    test_rng r = test_rng_seed(0x77686f6c65ull);
+    tally T;
+    memset(&T, 0, sizeof T);
+    char label[96];
+    for (int k = 0; k < 400; ++k) {
+        const double scale = SCALES[k % 3];
+        const rugo_vec2 off = offset_choice(&r, k / 3, scale);
+        rugo_vec2 f[4], g[4];
+        rugo__narrow_result out;
+        if (k % 2 == 0) {
+            /* apart: both in a 0.4 square, g moved by more than the cutoff plus both diagonals */
+            const double cutoff = test_rng_uniform(&r, 0.0, 1.0), th = test_rng_uniform(&r, 0.0, 2.0 * PI);
+            const double d = cutoff + 1.2 + test_rng_uniform(&r, 0.0, 1.0);
+            for (int i = 0; i < 4; ++i) {
+                f[i] = rugo_v2(test_rng_uniform(&r, 0, 0.4), test_rng_uniform(&r, 0, 0.4));
+                g[i] = rugo_v2(test_rng_uniform(&r, 0, 0.4) + d * cos(th), test_rng_uniform(&r, 0, 0.4) + d * sin(th));
+            }
+            transform_piece(f, scale, off);
+            transform_piece(g, scale, off);
+            rugo__narrow_pieces(f, g, cutoff * scale, &out);
+            snprintf(label, sizeof label, "apart #%d", k);
+            run_and_check(f, g, cutoff * scale, &T, label);
+        } else {
+            /* near: f along x with a small bulge, g along y beside its end; the cutoff reaches across */
+            for (int i = 0; i < 4; ++i) {
+                f[i] = rugo_v2(i / 3.0, test_rng_uniform(&r, 0.0, 0.05));
+                g[i] = rugo_v2(1.15 + test_rng_uniform(&r, 0.0, 0.05), test_rng_uniform(&r, -0.5, -0.4) + i / 3.0);
+            }
+            transform_piece(f, scale, off);
+            transform_piece(g, scale, off);
+            rugo__narrow_pieces(f, g, 2.0 * scale, &out);
+            snprintf(label, sizeof label, "beside #%d", k);
+            run_and_check(f, g, 2.0 * scale, &T, label);
+        }
+        ck_assert_msg(out.crossing_count == 0 && out.stationary_count == 0, "%s: %d crossings, %d stationary",
+                      label, out.crossing_count, out.stationary_count);
+        ck_assert_int_eq(out.newton_iterations, 0);
+        ck_assert_int_eq(out.fallback, 0);
+        ck_assert_int_eq(out.overflow, 0);
+    }
+    print_tally("decided on the whole square", &T);
+    ck_assert_int_eq(T.pairs, 400);
+}
+END_TEST
+
+/* A minimum next to the end of a piece, as when a contact sits near a segment joint: a facing pair
+ * with one minimum, one piece split at the minimum's parameter +- delta (1e-9 .. 0.2). The part that
+ * holds the minimum reports it (the same point and distance as the whole piece), the other part
+ * reports no stationary pair; both are checked against the reference. The part without the minimum
+ * is settled with little work: at most 5 Newton steps on average (measured 1.9; a search that
+ * subdivides toward the end down to delta, as before the exclusion by an outside root, took 19.9). */
+START_TEST(test_minimum_beside_piece_end) {
+    tally T;
+    memset(&T, 0, sizeof T);
+    char label[128];
+    static const double deltas[5] = {1e-9, 1e-6, 1e-3, 0.05, 0.2};
+    long newton_without = 0, parts_without = 0;
+    for (int shape = 0; shape < 2; ++shape)
+        for (int frame = 0; frame < 3; ++frame) {
+            rugo_vec2 f[4], g[4];
+            arc_piece(rugo_v2(0, 0), 1.0, -0.4, 0.4, f);
+            if (shape == 0)
+                arc_piece(rugo_v2(2.2, 0.05), 1.1, PI + 0.35, PI - 0.35, g); /* convex facing convex */
+            else
+                arc_piece(rugo_v2(-0.05, -0.01), 1.15, -0.3, 0.5, g); /* a wider arc around f: flatter */
+            const double scale = SCALES[frame];
+            const rugo_vec2 off = frame == 2 ? rugo_v2(1e6, -1e6) : rugo_v2(0.3 * scale, -0.2 * scale);
+            transform_piece(f, scale, off);
+            transform_piece(g, scale, off);
+            const double cutoff = 0.3 * scale;
+            /* the split pieces' control points are rounded: to ~1e-10 at 1e6 from the origin */
+            const double coord = 8.0 * DBL_EPSILON * fmax(fabs(off.x), fabs(off.y));
+            rugo__narrow_result whole;
+            rugo__narrow_pieces(f, g, cutoff, &whole);
+            ck_assert_int_eq(whole.crossing_count, 0);
+            ck_assert_int_eq(whole.stationary_count, 1);
+            ck_assert_int_eq(whole.stationary[0].kind, RUGO__MINIMUM);
+            const rugo__pair_point m = whole.stationary[0];
+            for (int which = 0; which < 2; ++which)
+                for (int k = 0; k < 10; ++k) {
+                    const double delta = (k % 2 ? -1.0 : 1.0) * deltas[k / 2];
+                    const double u = (which ? m.t : m.s) + delta;
+                    rugo_vec2 left[4], right[4];
+                    split_piece(which ? g : f, u, left, right);
+                    for (int part = 0; part < 2; ++part) {
+                        const rugo_vec2* pf = which ? f : (part ? right : left);
+                        const rugo_vec2* pg = which ? (part ? right : left) : g;
+                        rugo__narrow_result out;
+                        rugo__narrow_pieces(pf, pg, cutoff, &out);
+                        snprintf(label, sizeof label, "shape %d frame %d, %s split at %+g, %s part", shape,
+                                 frame, which ? "g" : "f", delta, part ? "right" : "left");
+                        run_and_check(pf, pg, cutoff, &T, label);
+                        ck_assert_int_eq(out.crossing_count, 0);
+                        const int holds = (part == 0) == (delta > 0.0);
+                        if (holds) {
+                            ck_assert_msg(out.stationary_count == 1 && out.stationary[0].kind == RUGO__MINIMUM,
+                                          "%s: %d stationary", label, out.stationary_count);
+                            ck_assert_near(out.stationary[0].distance, m.distance, 1e-13 * scale + coord);
+                            ck_assert_near(out.stationary[0].pa.x, m.pa.x, 1e-9 * scale + coord);
+                            ck_assert_near(out.stationary[0].pa.y, m.pa.y, 1e-9 * scale + coord);
+                            ck_assert_near(out.stationary[0].pb.x, m.pb.x, 1e-9 * scale + coord);
+                            ck_assert_near(out.stationary[0].pb.y, m.pb.y, 1e-9 * scale + coord);
+                        } else {
+                            ck_assert_msg(out.stationary_count == 0, "%s: %d stationary", label,
+                                          out.stationary_count);
+                            newton_without += out.newton_iterations;
+                            ++parts_without;
+                        }
+                        ck_assert_int_eq(out.fallback, 0);
+                    }
+                }
+        }
+    print_tally("minimum beside a piece's end", &T);
+    printf("parts without the minimum: %ld, %.1f Newton steps each\n", parts_without,
+           (double)newton_without / (double)parts_without);
+    ck_assert_int_eq(parts_without, 120);
+    ck_assert(newton_without <= 5 * parts_without);
+}
+END_TEST
+
 Suite* narrow_suite(void) {
     Suite* s = suite_create("narrow");
     TCase* tk = tcase_create("known");
@@ -1531,6 +1674,11 @@ Suite* narrow_suite(void) {
     tcase_add_test(tk, test_point_cases);
     tcase_add_test(tk, test_point_known);
     suite_add_tcase(s, tk);
+    TCase* tw = tcase_create("work");
+    tcase_set_timeout(tw, 600);
+    tcase_add_test(tw, test_decided_on_the_whole_square);
+    tcase_add_test(tw, test_minimum_beside_piece_end);
+    suite_add_tcase(s, tw);
     TCase* tr = tcase_create("random");
     tcase_set_timeout(tr, 600);
     tcase_add_test(tr, test_random_generic);

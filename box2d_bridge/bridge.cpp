@@ -172,7 +172,8 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     // Room for the per-step caches of n rough bodies, reserved when a body is attached so that steps
     // do not allocate once librugo's query context has grown (docs/box2d.md): per body 8 cached
     // queries (at most half the table used), 16 contacts and the joints of 8 proxy pieces (piece of
-    // `per` joints). About 3 kB per body plus 0.4 kB per joint of a piece.
+    // `per` joints). About 4 kB per body plus 0.4 kB per joint of a piece (table rounded up to a
+    // power of two).
     size_t jointReserve = 0;
     void reserveFor(size_t n, int per) {
         jointReserve += 8 * (static_cast<size_t>(per) + 1);

@@ -12,6 +12,12 @@ CSV_DIR holds what `bench_queries` wrote (default out/bench_queries); OUT_DIR re
                               (one contact) and against the contact count (1024 segments)
 A configuration with a missed or spurious contact is drawn hollow at an error of at least D = 0.005
 (the benchmark's contact window), as the benchmark's summary counts it.
+
+If CSV_DIR (or out/bench_box2d_scenes) holds bench_box2d_scenes.csv (the stdout of
+`bench_box2d_scenes`), also written:
+    bench_box2d_scenes.svg    ms per step of the four variants (bridge auto / finest level, polygon
+                              compounds, native circles) against the body count (S = 64) and against
+                              the segment count (N = 256), log-log
 """
 
 import csv
@@ -259,6 +265,57 @@ def sweep_plot(csv_dir, out_path):
         f.write(svg_doc(left + 2 * (W + gap), ly + 16, body))
 
 
+B2_VARIANTS = [("bridge_auto", "#1f6fb4", "bridge, automatic level of detail"),
+               ("bridge_finest", "#7b3fa0", "bridge, finest level"),
+               ("polygon", "#d0502a", "Box2D convex-polygon compounds (same 5 mm error)"),
+               ("circle", "#2a9d55", "native b2CircleShape (floor)")]
+
+
+def box2d_scenes_plot(csv_path, out_path):
+    rows = [r for r in read_csv_comments(csv_path) if r.get("variant") in {v for v, _, _ in B2_VARIANTS}]
+    W, H, left, top, gap = 360, 280, 70, 40, 80
+    body = []
+    ms = [float(r["ms_per_step"]) for r in rows]
+    ylim = (10.0 ** math.floor(math.log10(min(ms))), 10.0 ** math.ceil(math.log10(max(ms))))
+    sweeps = [("N", "S", 64, "bodies N (S = 64 segments)", "N bodies, S = 64"),
+              ("S", "N", 256, "segments per body S (N = 256)", "N = 256 bodies, S segments")]
+    for k, (key, fixed, value, xlabel, title) in enumerate(sweeps):
+        rs = [r for r in rows if int(r[fixed]) == value]
+        if not rs:
+            continue
+        xs = sorted({int(r[key]) for r in rs})
+        xlim = (xs[0] / 1.5, xs[-1] * 1.5)
+        p = Panel(left + k * (W + gap), top, W, H, xlim, ylim)
+        p.frame(title, xlabel, "CPU ms per step", [(float(x), str(x)) for x in xs], decade_ticks(*ylim))
+        for v, colour, _ in B2_VARIANTS:
+            sr = sorted([r for r in rs if r["variant"] == v], key=lambda r: int(r[key]))
+            p.series([(float(r[key]), float(r["ms_per_step"])) for r in sr], colour,
+                     dashed=(v == "bridge_finest"), marker="square" if v in ("polygon", "circle") else "circle")
+        body += p.out
+    ly = top + H + 52
+    lx = left
+    for i, (v, colour, label) in enumerate(B2_VARIANTS):
+        x = lx + (i % 2) * 330
+        y = ly + (i // 2) * 18
+        dash = ' stroke-dasharray="5,3"' if v == "bridge_finest" else ""
+        body.append(f'<line x1="{x}" y1="{y}" x2="{x + 24}" y2="{y}" stroke="{colour}" stroke-width="1.6"{dash}/>')
+        body.append(f'<text x="{x + 30}" y="{y + 4}" font-size="11" fill="#222">{label}</text>')
+    note_y = ly + 44
+    body.append(f'<text x="{left}" y="{note_y}" font-size="10" fill="#555">Bodies falling and settling in a container '
+                f'at 60 Hz, 8/3 iterations; thread CPU time per step after the warm-up. Lower is better.</text>')
+    with open(out_path, "w") as f:
+        f.write(svg_doc(left + 2 * (W + gap), note_y + 16, body))
+
+
+def read_csv_comments(path):
+    """A CSV whose comment lines start with '#' and that may end with other text (a benchmark's stdout)."""
+    with open(path, newline="") as f:
+        lines = [l for l in f if l.strip() and not l.startswith("#")]
+    header = lines[0].strip().split(",")
+    return [r for r in csv.DictReader(lines) if len(r) == len(header) and None not in r.values()
+            and r.get(header[-1]) not in (None, "")]
+
+
 def main(argv):
     csv_dir = argv[1] if len(argv) > 1 else "out/bench_queries"
     out_dir = argv[2] if len(argv) > 2 else "docs/img"
@@ -272,6 +329,12 @@ def main(argv):
         path = os.path.join(out_dir, "bench_queries_sweep.svg")
         sweep_plot(csv_dir, path)
         written.append(path)
+    for d in (csv_dir, os.path.join("out", "bench_box2d_scenes")):
+        if os.path.exists(os.path.join(d, "bench_box2d_scenes.csv")):
+            path = os.path.join(out_dir, "bench_box2d_scenes.svg")
+            box2d_scenes_plot(os.path.join(d, "bench_box2d_scenes.csv"), path)
+            written.append(path)
+            break
     if not written:
         sys.stderr.write(f"plot_benchmarks.py: no benchmark CSV in {csv_dir}\n")
         return 1

@@ -1,7 +1,9 @@
 #include "internal.h"
 
 #include <stdint.h>
+#include <locale.h>
 #include <stdlib.h>
+#include <string.h>
 
 const char* rugo_status_string(rugo_status status) {
     switch (status) {
@@ -74,4 +76,33 @@ void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size) {
 void rugo__free(const rugo_allocator* a, void* p) {
     rugo_allocator al = rugo__allocator_or_default(a);
     if (p != NULL) al.free(p, al.ctx);
+}
+
+int rugo__strtod_c(const char* text, size_t n, double* out) {
+    if (n > RUGO__MAX_DECIMAL_CHARS) return 0;
+    char buf[RUGO__MAX_DECIMAL_CHARS + 16];
+    memcpy(buf, text, n);
+    buf[n] = '\0';
+    char* endp = NULL;
+    double x = strtod(buf, &endp);
+    if (endp == buf + n) {
+        *out = x;
+        return 1;
+    }
+    const char* dot = strchr(buf, '.');
+    const struct lconv* lc = localeconv();
+    const char* dp = (lc != NULL && lc->decimal_point != NULL) ? lc->decimal_point : ".";
+    size_t dplen = strlen(dp);
+    if (dot == NULL || dplen == 0 || dplen > 8 || strcmp(dp, ".") == 0) return 0;
+    char alt[RUGO__MAX_DECIMAL_CHARS + 16];
+    size_t head = (size_t)(dot - buf);
+    memcpy(alt, buf, head);
+    memcpy(alt + head, dp, dplen);
+    memcpy(alt + head + dplen, dot + 1, n - head - 1);
+    size_t alen = n - 1 + dplen;
+    alt[alen] = '\0';
+    x = strtod(alt, &endp);
+    if (endp != alt + alen) return 0;
+    *out = x;
+    return 1;
 }

@@ -31,6 +31,14 @@ rugo_allocator rugo__allocator_or_default(const rugo_allocator* a);
 void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size);
 void rugo__free(const rugo_allocator* a, void* p);
 
+/* The longest number text rugo__strtod_c converts (the JSON and SVG readers' limits are within it). */
+#define RUGO__MAX_DECIMAL_CHARS 1024
+/* strtod of text[0, n) (a number the caller's grammar already accepted), independent of the locale:
+ * strtod reads the locale's decimal point, so when a first attempt stops at the '.', a second one uses
+ * the locale's. Returns 1 on success, 0 if n > RUGO__MAX_DECIMAL_CHARS or neither attempt reads the
+ * whole text (which a conforming C library never does for grammar-checked input). */
+int rugo__strtod_c(const char* text, size_t n, double* out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -3,7 +3,6 @@
 
 #include "internal.h"
 
-#include <locale.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -404,34 +403,6 @@ static rugo_json_value* parse_string(parser* P) {
     return v;
 }
 
-/* strtod on a NUL-terminated copy of a grammar-checked number. strtod reads the locale's decimal
- * point; when that is not '.', the first attempt stops at the '.', and a second one uses the
- * locale's. Returns 0 if neither reads the whole text (which a conforming C library never does). */
-static int convert_number(const char* buf, size_t len, double* out) {
-    char* endp = NULL;
-    double x = strtod(buf, &endp);
-    if (endp == buf + len) {
-        *out = x;
-        return 1;
-    }
-    const char* dot = strchr(buf, '.');
-    const struct lconv* lc = localeconv();
-    const char* dp = (lc != NULL && lc->decimal_point != NULL) ? lc->decimal_point : ".";
-    size_t dplen = strlen(dp);
-    if (dot == NULL || dplen == 0 || dplen > 8 || strcmp(dp, ".") == 0) return 0;
-    char alt[RUGO_JSON_MAX_NUMBER_CHARS + 16];
-    size_t head = (size_t)(dot - buf);
-    memcpy(alt, buf, head);
-    memcpy(alt + head, dp, dplen);
-    memcpy(alt + head + dplen, dot + 1, len - head - 1);
-    size_t alen = len - 1 + dplen;
-    alt[alen] = '\0';
-    x = strtod(alt, &endp);
-    if (endp != alt + alen) return 0;
-    *out = x;
-    return 1;
-}
-
 static rugo_json_value* parse_number(parser* P) {
     const unsigned char* s = P->p;
     const unsigned char* q = s;
@@ -473,7 +444,7 @@ static rugo_json_value* parse_number(parser* P) {
     memcpy(buf, s, len);
     buf[len] = '\0';
     double x = 0.0;
-    if (!convert_number(buf, len, &x))
+    if (!rugo__strtod_c(buf, len, &x))
         return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "cannot convert the number");
     if (!isfinite(x)) {
         char quoted[40];

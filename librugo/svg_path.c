@@ -10,7 +10,6 @@
 #include "json.h" /* rugo_json_locate */
 
 #include <float.h>
-#include <locale.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,37 +103,6 @@ static size_t number_span(const char* s, const char* end) {
     return (size_t)(q - s);
 }
 
-/* strtod on a NUL-terminated copy of a grammar-checked number, independent of the locale: strtod reads
- * the locale's decimal point, so when a first attempt stops at the '.', a second one replaces it by
- * the locale's. Returns 1 on success. */
-static int convert_number(const char* s, size_t n, double* out) {
-    char buf[RUGO_SVG_MAX_NUMBER_CHARS + 16];
-    memcpy(buf, s, n);
-    buf[n] = '\0';
-    char* endp = NULL;
-    double x = strtod(buf, &endp);
-    if (endp == buf + n) {
-        *out = x;
-        return 1;
-    }
-    const char* dot = strchr(buf, '.');
-    const struct lconv* lc = localeconv();
-    const char* dp = (lc != NULL && lc->decimal_point != NULL) ? lc->decimal_point : ".";
-    size_t dplen = strlen(dp);
-    if (dot == NULL || dplen == 0 || dplen > 8 || strcmp(dp, ".") == 0) return 0;
-    char alt[RUGO_SVG_MAX_NUMBER_CHARS + 16];
-    size_t head = (size_t)(dot - buf);
-    memcpy(alt, buf, head);
-    memcpy(alt + head, dp, dplen);
-    memcpy(alt + head + dplen, dot + 1, n - head - 1);
-    size_t alen = n - 1 + dplen;
-    alt[alen] = '\0';
-    x = strtod(alt, &endp);
-    if (endp != alt + alen) return 0;
-    *out = x;
-    return 1;
-}
-
 /* A cursor over text[0, length) with its error locator. */
 typedef struct scanner {
     const char* text;
@@ -173,7 +141,7 @@ static rugo_status read_number(scanner* sc, double* out, const char* what) {
         return fail_at(sc->err, RUGO_ERR_PARSE, &sc->loc, sc_offset(sc, sc->p),
                        "number longer than %d characters", RUGO_SVG_MAX_NUMBER_CHARS);
     double x = 0.0;
-    if (!convert_number(sc->p, n, &x))
+    if (!rugo__strtod_c(sc->p, n, &x))
         return fail_at(sc->err, RUGO_ERR_PARSE, &sc->loc, sc_offset(sc, sc->p), "malformed number");
     if (!isfinite(x)) {
         char shown[40];

@@ -703,17 +703,22 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         uint32_t chunk = head;
         while (chunk != kNoJoints && jointChunks[chunk].node != self->node)
             chunk = jointChunks[chunk].next;
-        if (chunk == kNoJoints) {
+        // Only within the capacity reserved in Attach: beyond it the joints are computed without being
+        // kept (same results, more work), so that a step never allocates here.
+        if (chunk == kNoJoints && jointChunks.size() < jointChunks.capacity() &&
+            jointPool.size() + static_cast<size_t>(per) + 1 <= jointPool.capacity()) {
             chunk = static_cast<uint32_t>(jointChunks.size());
             jointChunks.push_back(JointChunk{self->node, head, static_cast<uint32_t>(jointPool.size())});
             head = chunk;
-            jointPool.resize(jointPool.size() + static_cast<size_t>(per) + 1); // capacity kept across steps
+            jointPool.resize(jointPool.size() + static_cast<size_t>(per) + 1);
         }
-        JointInfo* known = jointPool.data() + jointChunks[chunk].base;
+        JointInfo* known = chunk == kNoJoints ? nullptr : jointPool.data() + jointChunks[chunk].base;
+        JointInfo unkept;
         const int firstK = self->node * per;
         forJoints(S, self->node, LS, fastPair, [&](int k, b2Vec2 p, double lam, const auto& out) {
             const rugo_vec2 pl = rugo_inv_transform_point(xo, toRv(p));
-            JointInfo& ji = known[k - firstK];
+            if (known == nullptr) unkept = JointInfo();
+            JointInfo& ji = known ? known[k - firstK] : unkept;
             if (!ji.done) {
                 ji.cp = rugo_contour_closest_point(oc, pl);
                 ji.done = true;

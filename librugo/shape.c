@@ -192,6 +192,25 @@ rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tole
 }
 
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s) { return s ? s->tree : NULL; }
+rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment, rugo_real* max_error) {
+    if (max_error != NULL) *max_error = NAN;
+    if (s == NULL || max_error == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    rugo_contour coarse, finest;
+    rugo_tolerance_level tc, tf;
+    rugo_status st = rugo_shape_level(s, level, &coarse);
+    if (st == RUGO_OK) st = rugo_shape_level(s, s->finest, &finest);
+    if (st == RUGO_OK) st = rugo_shape_tolerance_level(s, level, &tc);
+    if (st == RUGO_OK) st = rugo_shape_tolerance_level(s, s->finest, &tf);
+    if (st != RUGO_OK) return st;
+    if (level == s->finest) { /* the same curve and band */
+        if (per_segment != NULL)
+            for (int k = 0; k < coarse.count; ++k) per_segment[k] = 0.0;
+        *max_error = 0.0;
+        return RUGO_OK;
+    }
+    return rugo_tolerance_level_error(coarse, tc.total, finest, tf.total, per_segment, max_error);
+}
+
 const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s) { return s ? s->pyramid : NULL; }
 
 rugo_mass_properties rugo_shape_mass(const rugo_shape* s) {

@@ -117,6 +117,34 @@ rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rug
     return v;
 }
 
+/* The Bernstein coefficients b[0..3] (in s in [0, 1]) of the piece of λ through l[0..3] (the cubic
+ * γ(u) of SPEC 6.3) restricted to u = u0 + h s. */
+static void piece_bernstein(const rugo_real l[4], rugo_real u0, rugo_real h, rugo_real b[4]) {
+    /* a = M^{-1} λ (SPEC 6.3). */
+    const rugo_real a0 = l[0];
+    const rugo_real a1 = -11.0 / 6.0 * l[0] + 3.0 * l[1] - 1.5 * l[2] + l[3] / 3.0;
+    const rugo_real a2 = l[0] - 2.5 * l[1] + 2.0 * l[2] - 0.5 * l[3];
+    const rugo_real a3 = (-l[0] + 3.0 * l[1] - 3.0 * l[2] + l[3]) / 6.0;
+    /* Taylor coefficients at u0, then Bernstein. */
+    const rugo_real c0 = a0 + u0 * (a1 + u0 * (a2 + u0 * a3));
+    const rugo_real c1 = h * (a1 + u0 * (2.0 * a2 + 3.0 * a3 * u0));
+    const rugo_real c2 = h * h * (a2 + 3.0 * a3 * u0);
+    const rugo_real c3 = h * h * h * a3;
+    b[0] = c0;
+    b[1] = c0 + c1 / 3.0;
+    b[2] = c0 + (2.0 * c1 + c2) / 3.0;
+    b[3] = c0 + c1 + c2 + c3;
+}
+
+/* The four λ values of the piece starting at segment index k - 1 (wrapping); raises *scale to their
+ * largest magnitude. */
+static void piece_values(const rugo_real* lambda, int count, int k, rugo_real l[4], rugo_real* scale) {
+    for (int i = 0; i < 4; ++i) {
+        l[i] = lambda[rugo__wrap(k - 1 + i, count)];
+        if (fabs(l[i]) > *scale) *scale = fabs(l[i]);
+    }
+}
+
 /* Upper bound of λ(t) over segment k of the finest level: Bernstein coefficients of both pieces. */
 static rugo_real finest_bound(const rugo_real* lambda, int count, int segment, rugo_real minimum) {
     rugo_real best = minimum, scale = fabs(minimum);
@@ -124,23 +152,9 @@ static rugo_real finest_bound(const rugo_real* lambda, int count, int segment, r
         int k;
         rugo_real u0;
         piece_of(segment, half == 0 ? 0.0 : 0.5, &k, &u0); /* the piece covers u0 .. u0 + 1/2 */
-        rugo_real l[4];
-        for (int i = 0; i < 4; ++i) {
-            l[i] = lambda[rugo__wrap(k - 1 + i, count)];
-            if (fabs(l[i]) > scale) scale = fabs(l[i]);
-        }
-        /* a = M^{-1} λ (SPEC 6.3). */
-        const rugo_real a0 = l[0];
-        const rugo_real a1 = -11.0 / 6.0 * l[0] + 3.0 * l[1] - 1.5 * l[2] + l[3] / 3.0;
-        const rugo_real a2 = l[0] - 2.5 * l[1] + 2.0 * l[2] - 0.5 * l[3];
-        const rugo_real a3 = (-l[0] + 3.0 * l[1] - 3.0 * l[2] + l[3]) / 6.0;
-        /* γ(u0 + h s), s in [0, 1]: Taylor coefficients at u0, then Bernstein. */
-        const rugo_real h = 0.5;
-        const rugo_real c0 = a0 + u0 * (a1 + u0 * (a2 + u0 * a3));
-        const rugo_real c1 = h * (a1 + u0 * (2.0 * a2 + 3.0 * a3 * u0));
-        const rugo_real c2 = h * h * (a2 + 3.0 * a3 * u0);
-        const rugo_real c3 = h * h * h * a3;
-        const rugo_real b[4] = {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
+        rugo_real l[4], b[4];
+        piece_values(lambda, count, k, l, &scale);
+        piece_bernstein(l, u0, 0.5, b);
         for (int i = 0; i < 4; ++i)
             if (b[i] > best) best = b[i];
     }
@@ -236,31 +250,91 @@ static rugo_real coord_magnitude(const rugo_vec2 p[4]) {
     return m;
 }
 
-static rugo_real coarse_bound(rugo_contour coarse, rugo_contour finest, int shift, int k, const rugo_real* finest_beta) {
+/* Bound of |D(u)| = |f^J_i(u) - f^j_k((s + u) / 2^shift)| over u in [0, 1] for finest segment
+ * i = k 2^shift + s (the part of coarse segment k that finest segment i refines), round-off included. */
+static rugo_real cell_distance_bound(rugo_contour coarse, rugo_contour finest, int shift, int k, int s) {
     rugo_vec2 q[4];
     rugo_contour_bezier(coarse, k, q);
+    const rugo_real inv = 1.0 / (rugo_real)(1 << shift); /* exact: a power of two */
+    const int i = (k << shift) + s;
+    rugo_vec2 p[4], sub[4], d[4];
+    rugo_contour_bezier(finest, i, p);
+    const rugo_real a = (rugo_real)s * inv, b = (rugo_real)(s + 1) * inv;
+    sub[0] = blossom(q, a, a, a);
+    sub[1] = blossom(q, a, a, b);
+    sub[2] = blossom(q, a, b, b);
+    sub[3] = blossom(q, b, b, b);
+    for (int l = 0; l < 4; ++l) d[l] = rugo_v2_sub(p[l], sub[l]);
+    rugo_real mag = coord_magnitude(p);
+    const rugo_real mq = coord_magnitude(q);
+    if (mq > mag) mag = mq;
+    /* Bezier points from control points, blossoming, subtraction, halvings: each a few ulps of the
+     * coordinates; 64 ulps covers them with room. */
+    return hull_bound(d, BOUND_SPLITS) + 64.0 * DBL_EPSILON * mag;
+}
+
+static rugo_real coarse_bound(rugo_contour coarse, rugo_contour finest, int shift, int k, const rugo_real* finest_beta) {
     const int cells = 1 << shift;
-    const rugo_real inv = 1.0 / (rugo_real)cells; /* exact: a power of two */
     rugo_real best = 0.0;
     for (int s = 0; s < cells; ++s) {
-        const int i = (k << shift) + s;
-        rugo_vec2 p[4], sub[4], d[4];
-        rugo_contour_bezier(finest, i, p);
-        const rugo_real a = (rugo_real)s * inv, b = (rugo_real)(s + 1) * inv;
-        sub[0] = blossom(q, a, a, a);
-        sub[1] = blossom(q, a, a, b);
-        sub[2] = blossom(q, a, b, b);
-        sub[3] = blossom(q, b, b, b);
-        for (int l = 0; l < 4; ++l) d[l] = rugo_v2_sub(p[l], sub[l]);
-        rugo_real mag = coord_magnitude(p);
-        const rugo_real mq = coord_magnitude(q);
-        if (mq > mag) mag = mq;
-        /* Bezier points from control points, blossoming, subtraction, halvings: each a few ulps of
-         * the coordinates; 64 ulps covers them with room. */
-        const rugo_real value = hull_bound(d, BOUND_SPLITS) + 64.0 * DBL_EPSILON * mag + finest_beta[i];
+        const rugo_real value = cell_distance_bound(coarse, finest, shift, k, s) + finest_beta[(k << shift) + s];
         if (value > best) best = value;
     }
     return best;
+}
+
+/* Bound of |λ^j(t) - λ^J(t)| over the part of coarse segment k that finest segment k 2^shift + s
+ * refines (shift >= 1: each finest half lies in one coarse piece). On each finest half both are cubic
+ * in the same variable: the largest |Bernstein coefficient| of their difference bounds it, and the
+ * clamp at a common minimum only shrinks it (|max(p, m) - max(q, m)| <= |p - q|). */
+static rugo_real cell_band_bound(const rugo_real* coarse_lambda, int coarse_count, const rugo_real* finest_lambda,
+                                 int finest_count, int shift, int k, int s) {
+    const int i = (k << shift) + s;
+    const rugo_real inv = 1.0 / (rugo_real)(1 << shift);
+    rugo_real best = 0.0, scale = 0.0;
+    for (int half = 0; half < 2; ++half) {
+        int kf, kc;
+        rugo_real uf, uc;
+        piece_of(i, half == 0 ? 0.0 : 0.5, &kf, &uf);
+        const rugo_real t0 = ((rugo_real)s + 0.5 * (rugo_real)half) * inv; /* coarse t where this half starts */
+        piece_of(k, t0, &kc, &uc); /* the half never straddles t = 1/2, a cell boundary */
+        rugo_real lf[4], lc[4], bf[4], bc[4];
+        piece_values(finest_lambda, finest_count, kf, lf, &scale);
+        piece_values(coarse_lambda, coarse_count, kc, lc, &scale);
+        piece_bernstein(lf, uf, 0.5, bf);
+        piece_bernstein(lc, uc, 0.5 * inv, bc);
+        for (int m = 0; m < 4; ++m) {
+            const rugo_real d = fabs(bf[m] - bc[m]);
+            if (!(d <= best)) best = d; /* NaN propagates */
+        }
+    }
+    return best + 512.0 * DBL_EPSILON * scale;
+}
+
+rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda, rugo_contour finest,
+                                       const rugo_real* finest_lambda, rugo_real* per_segment, rugo_real* max_error) {
+    if (max_error != NULL) *max_error = NAN;
+    if (coarse.points == NULL || finest.points == NULL || coarse_lambda == NULL || finest_lambda == NULL ||
+        max_error == NULL)
+        return RUGO_ERR_NULL_ARGUMENT;
+    if (coarse.count < 4 || finest.count < coarse.count) return RUGO_ERR_BAD_ARGUMENT;
+    int shift = 0;
+    while (shift < 30 && (coarse.count << shift) < finest.count) ++shift;
+    if ((coarse.count << shift) != finest.count) return RUGO_ERR_BAD_ARGUMENT;
+    rugo_real worst = 0.0;
+    for (int k = 0; k < coarse.count; ++k) {
+        rugo_real e = 0.0;
+        for (int s = 0; s < (1 << shift); ++s) {
+            const rugo_real v = cell_distance_bound(coarse, finest, shift, k, s) +
+                                cell_band_bound(coarse_lambda, coarse.count, finest_lambda, finest.count, shift, k, s);
+            if (!(v <= e)) e = v; /* NaN propagates */
+        }
+        if (!isfinite(e)) return RUGO_ERR_NOT_FINITE;
+        if (per_segment != NULL) per_segment[k] = e;
+        if (e > worst) worst = e;
+    }
+    *max_error = worst;
+    return RUGO_OK;
 }
 
 /* ---- creation ---------------------------------------------------------------------------------- */

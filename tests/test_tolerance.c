@@ -797,6 +797,228 @@ START_TEST(bound_never_exceeded) {
 }
 END_TEST
 
+/* ---- the level-of-detail error bound ------------------------------------------------------- */
+
+/* ACCEPTANCE: rugo_tolerance_level_error is never exceeded: at dense common parameters t,
+ * |f^j(t) - f^J(t)| + |λ^j(t) - λ^J(t)| <= per_segment[k] at every level, and the bound is within a
+ * small factor of the measured maximum (it is meant to pick levels, so it must not be loose). */
+static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, double scale, rugo_vec2 offset) {
+    const int n = n0 << levels;
+    int J = 0;
+    while ((1 << J) < n) ++J;
+    rugo_vec2* pts = xmalloc((size_t)n * sizeof *pts);
+    rough_shape(seed, n0, levels, sigma0, pts);
+    for (int i = 0; i < n; ++i) pts[i] = rugo_v2_add(offset, rugo_v2_scale(scale, pts[i]));
+    rugo_pyramid* p = make_pyramid(pts, n, 2);
+    double* lam = xmalloc((size_t)n * sizeof *lam);
+    test_rng r = test_rng_seed(seed + 77);
+    for (int i = 0; i < n; ++i) lam[i] = scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
+    rugo_tolerances* t = make_tolerances(p, lam, RUGO_ESTIMATOR_DETAIL, 2);
+    rugo_contour fin = curve_of(p, J);
+    rugo_tolerance_level top = level_of(t, J);
+    double* per = xmalloc((size_t)n * sizeof *per);
+    enum { S = 24 };
+    for (int j = J; j >= 2; --j) {
+        rugo_contour c = curve_of(p, j);
+        rugo_tolerance_level l = level_of(t, j);
+        double mx = NAN;
+        ck_assert_int_eq(rugo_tolerance_level_error(c, l.total, fin, top.total, per, &mx), RUGO_OK);
+        const int cells = 1 << (J - j);
+        double worst_all = 0.0, ratio_sum = 0.0, ratio_max = 0.0;
+        int counted = 0;
+        for (int k = 0; k < l.count; ++k) {
+            double worst = 0.0;
+            for (int s = 0; s < cells; ++s)
+                for (int q = 0; q <= S; ++q) {
+                    const double u = (double)q / S, tc = ((double)s + u) / cells;
+                    const int i = k * cells + s;
+                    /* the finest point at u, the coarse point at the same common parameter */
+                    const rugo_vec2 d = rugo_v2_sub(rugo_contour_point(fin, i, u), rugo_contour_point(c, k, tc));
+                    const double e = rugo__v2_length(d) + fabs(rugo_tolerance_at(l.total, l.count, k, tc, 0.0) -
+                                                               rugo_tolerance_at(top.total, top.count, i, u, 0.0));
+                    worst = fmax(worst, e);
+                }
+            ck_assert_msg(worst <= per[k], "level %d segment %d: measured %.17g > bound %.17g", j, k, worst, per[k]);
+            ck_assert_double_le(per[k], mx);
+            worst_all = fmax(worst_all, worst);
+            if (worst > 1e-9 * scale) {
+                ratio_sum += per[k] / worst;
+                ratio_max = fmax(ratio_max, per[k] / worst);
+                ++counted;
+            }
+        }
+        if (j == J) {
+            /* the same curve and band: only round-off pads */
+            ck_assert_double_le(mx, 1e-12 * (scale * 200.0 + fabs(offset.x) + fabs(offset.y)));
+            continue;
+        }
+        ck_assert_double_ge(mx, worst_all);
+        const double mean = counted ? ratio_sum / counted : 1.0;
+        printf("level error (seed %d, level %d of %d): max bound %.4g, measured %.4g; bound / measured mean %.3f, "
+               "max %.3f\n", (int)seed, j, J, mx, worst_all, mean, ratio_max);
+        ck_assert_msg(mx <= 1.5 * worst_all, "level %d: max bound %.6g more than 1.5x the measured %.6g", j, mx,
+                      worst_all);
+        ck_assert_msg(mean <= 2.0, "level %d: bound / measured %.3f on average", j, mean);
+    }
+    free(per);
+    rugo_tolerances_destroy(t);
+    rugo_pyramid_destroy(p);
+    free(lam);
+    free(pts);
+}
+
+START_TEST(level_error_never_exceeded) {
+    check_level_error(301, 16, 3, 4.0, 1.0, rugo_v2(0.0, 0.0));
+    check_level_error(302, 8, 4, 3.0, 1.0, rugo_v2(0.0, 0.0)); /* large coarse drift */
+    check_level_error(205, 16, 3, 4.0, 0.01, rugo_v2(1e6, -1e6));
+    check_level_error(206, 16, 3, 4.0, 1e-6, rugo_v2(3e-5, 0.0));
+    check_level_error(203, 32, 2, 6.0, 1.0, rugo_v2(0.0, 0.0)); /* rougher */
+}
+END_TEST
+
+START_TEST(level_error_bad_input) {
+    rugo_vec2 pts[16];
+    test_rng r = test_rng_seed(9);
+    test_random_star(&r, 16, rugo_v2(0.0, 0.0), 1.0, 0.2, pts);
+    double lam[16] = {0};
+    const rugo_contour c16 = {pts, 16}, c8 = {pts, 8}, c12 = {pts, 12}, c2 = {pts, 2}, none = {NULL, 16};
+    double mx = 0.0, per[16];
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c16, lam, per, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, NULL, c16, lam, per, &mx), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert(isnan(mx));
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c16, NULL, per, &mx), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(none, lam, c16, lam, per, &mx), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, none, lam, per, &mx), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(c16, lam, c8, lam, per, &mx), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c12, lam, per, &mx), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_tolerance_level_error(c2, lam, c16, lam, per, &mx), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert(isnan(mx));
+    /* per_segment may be NULL; a non-finite λ gives NOT_FINITE, never a silent NaN bound */
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c16, lam, NULL, &mx), RUGO_OK);
+    ck_assert(isfinite(mx) && mx > 0.0);
+    lam[3] = INFINITY;
+    ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c16, lam, per, &mx), RUGO_ERR_NOT_FINITE);
+    ck_assert(isnan(mx));
+}
+END_TEST
+
+/* The deepest band-adjusted separation (separation - λ_A - λ_B) of a query at `level` (0 = finest), or
+ * NAN unless the state is CONTACT (apart curves). */
+static double deepest_band_separation(rugo_collide_context* ctx, const rugo_shape* a, const rugo_shape* b,
+                                      rugo_transform xb, int level, double margin) {
+    rugo_contact_query q = rugo_default_contact_query();
+    q.level = level;
+    q.margin = margin;
+    rugo_contact c[64];
+    int count = 0;
+    rugo_contact_state state;
+    ck_assert_int_eq(rugo_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 64, &count, &state,
+                                         NULL),
+                     RUGO_OK);
+    if (state != RUGO_STATE_CONTACT || count == 0) return NAN;
+    double deepest = INFINITY;
+    for (int i = 0; i < count; ++i) deepest = fmin(deepest, c[i].separation - c[i].tolerance_a - c[i].tolerance_b);
+    return deepest;
+}
+
+static rugo_shape* level_error_shape(uint64_t seed, double* lam_scale) {
+    enum { N0 = 16, LEVELS = 3, N = N0 << LEVELS };
+    rugo_vec2 pts[N];
+    double lam[N];
+    rough_shape(seed, N0, LEVELS, 2.0, pts);
+    test_rng r = test_rng_seed(seed + 5);
+    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.2, 1.2);
+    *lam_scale = 1.2;
+    rugo_shape_def d = rugo_default_shape_def();
+    d.points = pts;
+    d.count = N;
+    d.tolerances = lam;
+    rugo_shape* s = NULL;
+    ck_assert_int_eq(rugo_shape_create(&d, &s, NULL), RUGO_OK);
+    return s;
+}
+
+/* ACCEPTANCE: what the automatic level of detail relies on: at the same poses, the deepest band-adjusted
+ * separation of a query at a coarser level differs from the finest level's by at most the sum of the
+ * two shapes' rugo_shape_level_error (apart curves; a margin makes the deepest minimum reported). */
+START_TEST(level_error_bounds_contact_separation) {
+    double la = 0.0, lb = 0.0;
+    rugo_shape* a = level_error_shape(411, &la);
+    rugo_shape* b = level_error_shape(412, &lb);
+    rugo_collide_context* ctx = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &ctx), RUGO_OK);
+    const int J = rugo_shape_finest_level(a);
+    double ea[8], eb[8];
+    for (int j = 2; j <= J; ++j) {
+        ck_assert_int_eq(rugo_shape_level_error(a, j, NULL, &ea[J - j]), RUGO_OK);
+        ck_assert_int_eq(rugo_shape_level_error(b, j, NULL, &eb[J - j]), RUGO_OK);
+    }
+    ck_assert_double_eq(ea[0], 0.0);
+    test_rng r = test_rng_seed(413);
+    const double margin = 60.0; /* star radius 100: the deepest minimum is always reported */
+    int compared = 0;
+    double worst_ratio = 0.0;
+    for (int pose = 0; pose < 60; ++pose) {
+        const double dir = test_rng_uniform(&r, 0.0, 2.0 * M_PI), rot = test_rng_uniform(&r, 0.0, 2.0 * M_PI);
+        const rugo_rot u = rugo_rot_from_angle(dir);
+        /* bisect the distance at which the finest curves first cross, then back off by up to 3 bands */
+        double lo = 0.0, hi = 400.0;
+        for (int it = 0; it < 50; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact c[8];
+            int count = 0;
+            rugo_contact_state state;
+            rugo_transform xb = rugo_make_transform(mid * u.c, mid * u.s, rot);
+            ck_assert_int_eq(rugo_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 8, &count,
+                                                 &state, NULL),
+                             RUGO_OK);
+            if (state == RUGO_STATE_INTERSECTING) lo = mid;
+            else hi = mid;
+        }
+        const double dist = hi + test_rng_uniform(&r, 0.0, 3.0 * (la + lb));
+        const rugo_transform xb = rugo_make_transform(dist * u.c, dist * u.s, rot);
+        const double s0 = deepest_band_separation(ctx, a, b, xb, 0, margin);
+        if (isnan(s0)) continue;
+        for (int rel = -1; rel >= -3; --rel) {
+            const double sj = deepest_band_separation(ctx, a, b, xb, rel, margin);
+            if (isnan(sj)) continue; /* the coarse curves cross */
+            const double allowed = ea[-rel] + eb[-rel];
+            ck_assert_msg(fabs(sj - s0) <= allowed, "pose %d level %d: |%.9g - %.9g| > %.9g", pose, rel, sj, s0, allowed);
+            worst_ratio = fmax(worst_ratio, fabs(sj - s0) / allowed);
+            ++compared;
+        }
+    }
+    printf("level error vs separations: %d comparisons, largest |s_j - s_J| / (e_A + e_B) = %.3f\n", compared,
+           worst_ratio);
+    ck_assert_int_ge(compared, 100);
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(a);
+    rugo_shape_destroy(b);
+}
+END_TEST
+
+START_TEST(shape_level_error_bad_input) {
+    double lam = 0.0;
+    rugo_shape* a = level_error_shape(421, &lam);
+    double mx = 0.0, per[128];
+    ck_assert_int_eq(rugo_shape_level_error(NULL, 3, per, &mx), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert(isnan(mx));
+    ck_assert_int_eq(rugo_shape_level_error(a, 3, per, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_level_error(a, 1, per, &mx), RUGO_ERR_BAD_LEVEL);
+    ck_assert_int_eq(rugo_shape_level_error(a, rugo_shape_finest_level(a) + 1, per, &mx), RUGO_ERR_BAD_LEVEL);
+    ck_assert(isnan(mx));
+    ck_assert_int_eq(rugo_shape_level_error(a, 3, per, &mx), RUGO_OK);
+    double m = 0.0;
+    for (int k = 0; k < 8; ++k) m = fmax(m, per[k]);
+    ck_assert_double_eq(m, mx);
+    ck_assert_int_eq(rugo_shape_level_error(a, rugo_shape_finest_level(a), per, &mx), RUGO_OK);
+    ck_assert_double_eq(mx, 0.0);
+    ck_assert_double_eq(per[127], 0.0);
+    rugo_shape_destroy(a);
+}
+END_TEST
+
 /* ---- determinism ----------------------------------------------------------------------------- */
 
 START_TEST(determinism) {
@@ -1004,6 +1226,10 @@ int main(void) {
     TCase* tb = tcase_create("bound");
     tcase_set_timeout(tb, 300);
     tcase_add_test(tb, bound_never_exceeded);
+    tcase_add_test(tb, level_error_never_exceeded);
+    tcase_add_test(tb, level_error_bad_input);
+    tcase_add_test(tb, level_error_bounds_contact_separation);
+    tcase_add_test(tb, shape_level_error_bad_input);
     suite_add_tcase(s, tb);
     TCase* tf = tcase_create("friction_restitution");
     tcase_add_test(tf, friction_map);

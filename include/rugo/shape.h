@@ -68,6 +68,12 @@ rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out);
 /** The tolerances λ, own estimates and hard bounds β of a level (views valid for the shape's
  * lifetime, length units; all zero for a smooth shape). Errors: NULL_ARGUMENT, BAD_LEVEL. */
 rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out);
+/** The certified level-of-detail error of `level` against the finest level (rugo_tolerance_level_error
+ * on the shape's curves and λ): *max_error bounds how far the level's curve-plus-band lies from the
+ * finest one's anywhere, so a contact computed at this level has a band-adjusted separation within the
+ * sum of the two bodies' values of the finest level's. per_segment (may be NULL) gets 2^level values.
+ * 0 at the finest level. Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_LEVEL. */
+rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment, rugo_real* max_error);
 /** The shape's MOBBtree (owned by the shape); NULL for NULL. */
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
 /** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */

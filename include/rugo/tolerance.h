@@ -99,6 +99,23 @@ rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rug
  * pieces plus a round-off pad. Within ~1.5% of the true maximum. NaN for NULL lambda or count < 1. */
 rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum);
 
+/** A certified bound of the error of a coarser level of detail against the finest, per coarse segment:
+ * with t the common parameter (coarse segment k over t in [0, 1] is refined by finest segments
+ * k 2^r .. k 2^r + 2^r - 1, r = log2(finest.count / coarse.count)),
+ *     per_segment[k] >= max over segment k of |f^j(t) - f^J(t)| + |λ^j(t) - λ^J(t)|,
+ * λ as rugo_tolerance_at interpolates it (any common clamp). The disc of radius λ about each curve
+ * point then moves by at most per_segment[k] between the levels, so the band-adjusted distance of two
+ * bodies (the smallest |f_A - f_B| - λ_A - λ_B) changes by at most the sum of their bounds. Computed as
+ * the tolerance module's β (SPEC 6.2): Bezier hull bounds of the difference curve and Bernstein bounds
+ * of the difference of the two λ pieces, plus round-off pads; never below the true value.
+ * `coarse_lambda` and `finest_lambda` hold coarse.count and finest.count values; per_segment (may be
+ * NULL) receives coarse.count values and *max_error the largest (round-off pads only when the levels
+ * coincide).
+ * Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_ARGUMENT (coarse.count < 4, or finest.count not
+ * coarse.count times a power of two), NOT_FINITE (the bound overflows). */
+rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda, rugo_contour finest,
+                                       const rugo_real* finest_lambda, rugo_real* per_segment, rugo_real* max_error);
+
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
 /** The friction map of a surface: μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise: the

@@ -410,26 +410,6 @@ START_TEST(bad_path_data) {
 }
 END_TEST
 
-/* An allocator that fails after `budget` allocations and counts live blocks. */
-typedef struct budget_ctx {
-    long budget;
-    long live;
-} budget_ctx;
-
-static void* budget_alloc(size_t n, void* ctx) {
-    budget_ctx* b = (budget_ctx*)ctx;
-    if (b->budget <= 0) return NULL;
-    --b->budget;
-    void* p = malloc(n);
-    if (p != NULL) ++b->live;
-    return p;
-}
-
-static void budget_free(void* p, void* ctx) {
-    budget_ctx* b = (budget_ctx*)ctx;
-    if (p != NULL) --b->live;
-    free(p);
-}
 
 /* Every allocation failure is OUT_OF_MEMORY with nothing leaked, for parsing and sampling; the
  * allocator given is the one used. */
@@ -441,8 +421,8 @@ START_TEST(allocation_failures) {
     strcat(d, " Z");
     int ok_parse = 0, ok_sample = 0;
     for (long budget = 0; budget < 64 && !(ok_parse && ok_sample); ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_path p;
         rugo_status st = rugo_path_parse(d, strlen(d), &a, &p, NULL);
         if (st != RUGO_OK) {

@@ -122,26 +122,6 @@ static char* read_data(const char* name, size_t* length) {
     return text;
 }
 
-/* An allocator that fails after `budget` allocations and counts live blocks. */
-typedef struct budget_ctx {
-    long budget;
-    long live;
-} budget_ctx;
-
-static void* budget_alloc(size_t n, void* ctx) {
-    budget_ctx* b = (budget_ctx*)ctx;
-    if (b->budget <= 0) return NULL;
-    --b->budget;
-    void* p = malloc(n);
-    if (p != NULL) ++b->live;
-    return p;
-}
-
-static void budget_free(void* p, void* ctx) {
-    budget_ctx* b = (budget_ctx*)ctx;
-    if (p != NULL) --b->live;
-    free(p);
-}
 
 /* ------------------------------------------------------------------------------------------------ */
 /* JSON reader */
@@ -479,8 +459,8 @@ START_TEST(json_out_of_memory) {
     char* text = read_data("star32.json", &length);
     /* Every allocation failure is reported, leaves nothing allocated, and enough budget succeeds. */
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_json_doc doc;
         rugo_json_error err;
         rugo_status st = rugo_json_parse(text, length, &a, NULL, &doc, &err);
@@ -495,8 +475,8 @@ START_TEST(json_out_of_memory) {
         ck_assert_int_lt(budget, 100);
     }
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_shape_desc desc;
         rugo_status st = rugo_shape_desc_parse(text, length, &a, &desc, NULL);
         if (st == RUGO_OK) {
@@ -507,8 +487,8 @@ START_TEST(json_out_of_memory) {
             size_t out_len = 0;
             /* The writer too. */
             for (long wb = 0;; ++wb) {
-                budget_ctx wctx = {wb, 0};
-                rugo_allocator wa = {budget_alloc, budget_free, &wctx};
+                test_budget_ctx wctx = {wb, 0};
+                rugo_allocator wa = {test_budget_alloc, test_budget_free, &wctx};
                 rugo_shape_desc d2 = desc;
                 rugo_vec2 pts[32];
                 test_rng r = test_rng_seed(5);
@@ -839,8 +819,8 @@ START_TEST(shape_parse_valid) {
     rugo_text_free(NULL, text);
 
     /* A custom allocator is recorded and used to free. */
-    budget_ctx ctx = {1000, 0};
-    rugo_allocator a = {budget_alloc, budget_free, &ctx};
+    test_budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
     ck_assert_int_eq(rugo_shape_desc_parse(t, strlen(t), &a, &desc, NULL), RUGO_OK);
     ck_assert_int_eq(ctx.live, 1);
     ck_assert_ptr_eq(desc.allocator.ctx, &ctx);
@@ -1311,8 +1291,8 @@ START_TEST(roughness_parse_valid) {
     rugo_shape_desc_free(&d);
 
     /* A custom allocator holds the points, the tolerances and the perturbation, and frees them. */
-    budget_ctx ctx = {1000, 0};
-    rugo_allocator a = {budget_alloc, budget_free, &ctx};
+    test_budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
     char buf[1024];
     rough_text("\"tolerances\": [1, 2, 3, 4], \"perturbation\": {\"method\": \"local\", \"levels\": 1, "
                "\"control_points\": [[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]}",
@@ -1929,8 +1909,8 @@ START_TEST(roughness_out_of_memory) {
                "\"control_points\": [[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]]}",
                buf, sizeof buf);
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_shape_desc desc;
         rugo_parse_error err;
         rugo_status st = rugo_shape_desc_parse(buf, strlen(buf), &a, &desc, &err);
@@ -2035,8 +2015,8 @@ START_TEST(read_file_cases) {
     /* Allocation failures while reading */
     data_path("star32.json", path, sizeof path);
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_status st = rugo_read_file(path, &a, &text, &len);
         if (st == RUGO_OK) {
             rugo_text_free(&a, text);
@@ -2740,8 +2720,8 @@ START_TEST(arc_parse_and_write) {
     rugo_text_free(NULL, text);
     rugo_shape_desc_free(&d);
     /* A custom allocator holds the arrays and frees them. */
-    budget_ctx ctx = {1000, 0};
-    rugo_allocator a = {budget_alloc, budget_free, &ctx};
+    test_budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
     char buf[1024];
     rugo_parse_error err;
     rough_text("\"ranges\": [{\"from\": 0, \"to\": 0.5, \"tolerance\": 1}]", buf, sizeof buf);
@@ -2998,8 +2978,8 @@ START_TEST(arc_resolve_errors) {
     ck_assert_int_eq(rugo_roughness_tolerances_on_contour(&r, c, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
     /* Out of memory at every allocation: the status, nothing leaked, then success. */
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         for (int j = 0; j < 4; ++j)
             out[j] = -7.0;
         rugo_status st = rugo_roughness_tolerances_on_contour(&r, c, &a, out);
@@ -3221,8 +3201,8 @@ START_TEST(profile_csv_limits_and_memory) {
     /* Out of memory at every allocation, nothing leaks. */
     const char* t = "s,lambda\n0,0.1\n0.25,0.2\n0.5,0.3\n";
     for (long budget = 0;; ++budget) {
-        budget_ctx ctx = {budget, 0};
-        rugo_allocator a = {budget_alloc, budget_free, &ctx};
+        test_budget_ctx ctx = {budget, 0};
+        rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), &a, &p, &count, &e);
         if (st == RUGO_OK) {
             ck_assert_int_eq(count, 3);

@@ -72,3 +72,18 @@ int test_run_suite(Suite* s) {
     srunner_free(sr);
     return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+
+void* test_budget_alloc(size_t n, void* ctx) {
+    test_budget_ctx* b = (test_budget_ctx*)ctx;
+    if (b->budget <= 0) return NULL;
+    --b->budget;
+    void* p = malloc(n);
+    if (p != NULL) ++b->live;
+    return p;
+}
+
+void test_budget_free(void* p, void* ctx) {
+    test_budget_ctx* b = (test_budget_ctx*)ctx;
+    if (p != NULL) --b->live;
+    free(p);
+}

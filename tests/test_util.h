@@ -39,6 +39,15 @@ double test_max_abs(const rugo_vec2* a, int n);
                       #a, ck_a_, #b, ck_b_, fabs(ck_a_ - ck_b_), ck_t_);                           \
     } while (0)
 
+/* An allocator (ctx: a test_budget_ctx) that fails once `budget` allocations have been made and
+ * counts the blocks still live: for out-of-memory paths and leak checks. */
+typedef struct test_budget_ctx {
+    long budget;
+    long live;
+} test_budget_ctx;
+void* test_budget_alloc(size_t n, void* ctx);
+void test_budget_free(void* p, void* ctx);
+
 /* Runs one suite and returns the process exit code. */
 int test_run_suite(Suite* s);
 

@@ -316,20 +316,19 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     }
 
     // ---- levels --------------------------------------------------------------------------------
+    // The coarsest level whose certified level-of-detail error (rugo_shape_level_error: how far its
+    // curve-plus-band can lie from the finest one's, anywhere on the outline) is within the budget at
+    // it and at every finer level, so a pair evaluated at the finer of its two levels keeps each body's
+    // share of the error within its budget too.
     static int autoLevel(const rugo_shape* s, double budget) {
         const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-        auto maxBound = [s](int j) {
-            rugo_tolerance_level tl;
-            if (rugo_shape_tolerance_level(s, j, &tl) != RUGO_OK) return 0.0;
-            double m = 0.0;
-            for (int k = 0; k < tl.count; ++k)
-                m = std::max(m, tl.bound[k]);
-            return m;
-        };
-        const double bJ = maxBound(J);
-        for (int j = Jmin; j < J; ++j)
-            if (maxBound(j) - bJ <= budget) return j;
-        return J;
+        int level = J;
+        for (int j = J - 1; j >= Jmin; --j) {
+            double e = 0.0;
+            if (rugo_shape_level_error(s, j, nullptr, &e) != RUGO_OK || !(e <= budget)) break;
+            level = j;
+        }
+        return level;
     }
 
     // Largest excess of λ(t) over the segment value λ^j_k at levels from..J: queries at those levels
@@ -604,6 +603,7 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         float len = 0.0f, radius = 0.0f;
         bool convex1 = false, convex2 = false;
         bool hasPrev = false, hasNext = false; // a real neighbouring child, not only a ghost vertex
+        bool roundEnds = false; // a two-sided edge: beyond its ends, its round caps
     };
     OneSided oneSided; // of the fixture child being gathered (gatherPrimitive)
 
@@ -629,6 +629,30 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         return o;
     }
 
+    // A two-sided b2EdgeShape as the one-sided edge facing the body's centroid (the side Box2D's
+    // polygons collide with unless they are past the line), with round caps and no ghost vertices. Per
+    // body, not per contact: a thin tip that crossed the line is pushed back, not through (with a side
+    // per point, the crossed part of the curve got normals pushing it on through the edge).
+    static OneSided makeTwoSided(const b2EdgeShape& e, const b2Transform& x, b2Vec2 centroid) {
+        OneSided o;
+        o.on = true;
+        o.roundEnds = true;
+        o.v1 = b2Mul(x, e.m_vertex1);
+        o.v2 = b2Mul(x, e.m_vertex2);
+        b2Vec2 d1 = o.v2 - o.v1;
+        o.len = d1.Normalize();
+        o.n1.Set(d1.y, -d1.x);
+        if (b2Dot(o.n1, centroid - o.v1) < 0.0f) { // face the centroid: run the edge the other way
+            std::swap(o.v1, o.v2);
+            d1 = -d1;
+            o.n1 = -o.n1;
+        }
+        o.e0 = o.e1 = d1;
+        o.n0 = o.n2 = o.n1;
+        o.radius = e.m_radius;
+        return o;
+    }
+
     // A curve point p (world) against the one-sided edge: false if another child reports it; else the
     // normal out of the edge toward p (*m) and p's signed distance along it from the edge's skin.
     static bool resolveOneSided(const OneSided& o, b2Vec2 p, b2Vec2* m, double* dist) {
@@ -637,14 +661,20 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         *m = o.n1;
         if (along < 0.0f) {
             if (o.hasPrev && b2Dot(p - o.v1, o.e0) < 0.0f) return false; // on the previous child's face
-            if (o.convex1) {
+            if (o.roundEnds) {
+                b2Vec2 d = p - o.v1;
+                if (d.Normalize() > 0.0f) *m = d;
+            } else if (o.convex1) {
                 b2Vec2 d = p - o.v1;
                 if (d.Normalize() > 0.0f) *m = b2Cross(o.n0, d) < 0.0f ? o.n0 : (b2Cross(d, o.n1) < 0.0f ? o.n1 : d);
             }
         } else if (along >= o.len) {
             if (o.hasNext) return false; // the next child's (its t = 0)
             base = o.v2;
-            if (o.convex2) {
+            if (o.roundEnds) {
+                b2Vec2 d = p - o.v2;
+                if (d.Normalize() > 0.0f) *m = d;
+            } else if (o.convex2) {
                 b2Vec2 d = p - o.v2;
                 if (d.Normalize() > 0.0f) *m = b2Cross(o.n1, d) < 0.0f ? o.n1 : (b2Cross(d, o.n2) < 0.0f ? o.n2 : d);
             }
@@ -947,8 +977,9 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             dropEnd = loop || child + 1 < ch->GetChildCount();
             dropEndFlag = dropEnd;
             oneSided = makeOneSided(edge, xo, loop || child > 0, dropEnd);
-        } else if (sh->GetType() == b2Shape::e_edge && static_cast<const b2EdgeShape*>(sh)->m_oneSided) {
-            oneSided = makeOneSided(*static_cast<const b2EdgeShape*>(sh), xo, false, false);
+        } else if (sh->GetType() == b2Shape::e_edge) {
+            const b2EdgeShape& es = *static_cast<const b2EdgeShape*>(sh);
+            oneSided = es.m_oneSided ? makeOneSided(es, xo, false, false) : makeTwoSided(es, xo, R->body->GetWorldCenter());
         }
         // Box2D skips a one-sided edge when the other body's centroid is behind it.
         if (oneSided.on && b2Dot(oneSided.n1, R->body->GetWorldCenter() - oneSided.v1) < 0.0f) return;

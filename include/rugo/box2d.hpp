@@ -49,13 +49,15 @@ constexpr int kAutoLevel = -1000000;
 
 /// Settings of a Bridge, given to its constructor.
 struct BridgeDef {
-    /// Automatic level of detail: the coarsest level whose extra geometric error (largest hard bound β
-    /// of the level minus that of the finest level, in metres) is at most this. Per body, see
-    /// RoughBodyDef::errorBudget.
+    /// Automatic level of detail: the coarsest level whose certified error against the finest level
+    /// (rugo_shape_level_error: how far its curve plus band can lie from the finest curve plus band,
+    /// anywhere on the outline, in metres) is at most this, at it and every finer level. A contact's
+    /// band-adjusted separation then differs from the finest level's by at most the sum of the two
+    /// bodies' budgets. Per body, see RoughBodyDef::errorBudget.
     double errorBudget = 0.005;
     /// Automatic proxy level: at most 2^maxProxyLevel proxies per body (never finer than the body's
     /// contact level, never coarser than the tree's coarsest level).
-    int maxProxyLevel = 4;
+    int maxProxyLevel = 3;
     /// Continuous collision policy (docs/box2d.md): a proxy pair whose curves are apart by a gap that
     /// the bodies' approach speed closes within the step gets that closest pair as a speculative point
     /// (positive separation), so fast rough bodies do not tunnel and stop at most that gap short.

@@ -402,6 +402,13 @@ struct Stats {
     double maxBudgetRatio = -1.0; // auto only: max |s_auto - s_finest| / (budget_A + budget_B)
     double maxBudgetRatioShallow = -1.0; // the same over pairs whose finest-level penetration is <= 1 cm
     double maxBudgetDiff = 0.0;   // m
+    // Pairs whose curves are apart at both levels (CONTACT): the band gap, the smallest
+    // |a - b| - λ_A - λ_B over dense samples near the contacts, at the auto level against the finest,
+    // relative to the budget (the quantity rugo_shape_level_error certifies), and how far the reported
+    // deepest contact's band-adjusted separation sits above the band gap at the finest level (m).
+    double maxGapRatio = -1.0;
+    double maxContactAboveGap = 0.0;
+    long gapPairs = 0;
     long budgetPairs = 0, overBudget = 0;
     double deepest = 0.0;         // m: deepest manifold penetration of a touching contact, timed steps
     double keFinal = 0.0;        // J, kinetic energy at the end (settling)
@@ -413,7 +420,8 @@ struct Stats {
 // The deepest band-adjusted separation between a rough body and another rough body / a box, at a
 // relative level; margin so that apart pairs still report their closest points. false: no contact.
 bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2Transform& xa, const rugo_shape* b,
-                       const b2Transform& xb, const b2PolygonShape* box, int level, std::vector<rugo_contact>* buf, double* s) {
+                       const b2Transform& xb, const b2PolygonShape* box, int level, std::vector<rugo_contact>* buf, double* s,
+                       rugo_contact_state* stateOut, int* countOut) {
     rugo_contact_query q = rugo_default_contact_query();
     q.level = level;
     q.margin = 0.05;
@@ -452,7 +460,92 @@ bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2T
         best = std::min(best, k.separation - k.tolerance_a - k.tolerance_b);
     }
     *s = best;
+    *stateOut = state;
+    *countOut = n;
     return true;
+}
+
+// The band gap near the contacts in buf[0, n) of a query (CONTACT state): the smallest
+// |a - b| - λ_A(a) - λ_B(b) over samples of each contact's segment and two neighbours on each side at
+// the query's level (kGapSamples per segment), b on B's curve or, against a box, the closest point of its
+// skin (signed: negative inside). What rugo_shape_level_error bounds between levels; the contacts
+// themselves sit at minima of the curve distance, where λ need not be smallest.
+constexpr int kGapSamples = 8;
+constexpr int kGapReach = 2;
+
+struct GapSide {
+    rugo_contour c;
+    rugo_tolerance_level tl;
+    rugo_transform x;
+};
+
+void GapSamples(const GapSide& g, int segment, std::vector<rugo_vec2>* pts, std::vector<double>* lam) {
+    pts->clear();
+    lam->clear();
+    for (int d = -kGapReach; d <= kGapReach; ++d) {
+        const int k = ((segment + d) % g.c.count + g.c.count) % g.c.count;
+        for (int i = 0; i < kGapSamples; ++i) {
+            const double t = static_cast<double>(i) / kGapSamples;
+            pts->push_back(rugo_transform_point(g.x, rugo_contour_point(g.c, k, t)));
+            lam->push_back(rugo_tolerance_at(g.tl.total, g.tl.count, k, t, 0.0));
+        }
+    }
+}
+
+double SignedDistanceToBox(rugo_vec2 p, const b2PolygonShape& box, const b2Transform& xb) {
+    const b2Vec2 q = b2MulT(xb, b2Vec2(static_cast<float>(p.x), static_cast<float>(p.y)));
+    // In the box's frame (float rounding of p is far below the sampling error).
+    double inside = -1e30, outside = 1e30;
+    bool in = true;
+    for (int i = 0; i < box.m_count; ++i) {
+        const b2Vec2 v1 = box.m_vertices[i], v2 = box.m_vertices[(i + 1) % box.m_count], n = box.m_normals[i];
+        const double side = static_cast<double>(b2Dot(n, q - v1));
+        if (side > 0.0) in = false;
+        inside = std::max(inside, side);
+        const b2Vec2 e = v2 - v1;
+        double t = static_cast<double>(b2Dot(q - v1, e)) / static_cast<double>(b2Dot(e, e));
+        t = std::min(1.0, std::max(0.0, t));
+        const double dx = static_cast<double>(q.x) - (static_cast<double>(v1.x) + t * e.x);
+        const double dy = static_cast<double>(q.y) - (static_cast<double>(v1.y) + t * e.y);
+        outside = std::min(outside, std::hypot(dx, dy));
+    }
+    return (in ? inside : outside) - static_cast<double>(box.m_radius);
+}
+
+double BandGap(const rugo_shape* a, const b2Transform& xa, const rugo_shape* b, const b2Transform& xb,
+               const b2PolygonShape* box, const std::vector<rugo_contact>& buf, int n) {
+    auto tr = [](const b2Transform& x) {
+        rugo_transform t;
+        t.p = rugo_v2(x.p.x, x.p.y);
+        const double len = std::hypot(static_cast<double>(x.q.c), static_cast<double>(x.q.s));
+        t.q.c = x.q.c / len;
+        t.q.s = x.q.s / len;
+        return t;
+    };
+    std::vector<rugo_vec2> pa, pb;
+    std::vector<double> la, lb;
+    double gap = 1e30;
+    for (int i = 0; i < n; ++i) {
+        const rugo_contact& k = buf[static_cast<size_t>(i)];
+        GapSide ga;
+        rugo_shape_level(a, k.level_a, &ga.c);
+        rugo_shape_tolerance_level(a, k.level_a, &ga.tl);
+        ga.x = tr(xa);
+        GapSamples(ga, k.segment_a, &pa, &la);
+        if (box) {
+            for (size_t u = 0; u < pa.size(); ++u) gap = std::min(gap, SignedDistanceToBox(pa[u], *box, xb) - la[u]);
+            continue;
+        }
+        GapSide gb;
+        rugo_shape_level(b, k.level_b, &gb.c);
+        rugo_shape_tolerance_level(b, k.level_b, &gb.tl);
+        gb.x = tr(xb);
+        GapSamples(gb, k.segment_b, &pb, &lb);
+        for (size_t u = 0; u < pa.size(); ++u)
+            for (size_t v = 0; v < pb.size(); ++v)
+                gap = std::min(gap, std::hypot(pa[u].x - pb[v].x, pa[u].y - pb[v].y) - la[u] - lb[v]);
+    }
+    return gap;
 }
 
 // The thread's CPU time (s): on a shared machine, time spent descheduled is not the step's.
@@ -651,14 +744,29 @@ Stats RunScene(Variant var, int n, const ShapeSet& set, const Options& opt, int 
                 const int rel = bothRough ? std::max(relA, bridge->GetLevel(other->GetBody()) - rugo_shape_finest_level(sb)) : relA;
                 const b2PolygonShape* box = bothRough ? nullptr : static_cast<const b2PolygonShape*>(other->GetShape());
                 double sAuto = 0.0, sFine = 0.0;
-                if (!DeepestSeparation(ctx, sa, A->GetTransform(), sb, other->GetBody()->GetTransform(), box, rel, &buf, &sAuto) ||
-                    !DeepestSeparation(ctx, sa, A->GetTransform(), sb, other->GetBody()->GetTransform(), box, 0, &buf, &sFine))
-                    continue;
+                rugo_contact_state stAuto = RUGO_STATE_APART, stFine = RUGO_STATE_APART;
+                int nAuto = 0, nFine = 0;
+                const b2Transform& xa = A->GetTransform();
+                const b2Transform& xo = other->GetBody()->GetTransform();
+                if (!DeepestSeparation(ctx, sa, xa, sb, xo, box, rel, &buf, &sAuto, &stAuto, &nAuto)) continue;
+                const double gapAuto = stAuto == RUGO_STATE_CONTACT ? BandGap(sa, xa, sb, xo, box, buf, nAuto) : 0.0;
+                if (!DeepestSeparation(ctx, sa, xa, sb, xo, box, 0, &buf, &sFine, &stFine, &nFine)) continue;
+                if (stAuto == RUGO_STATE_CONTACT && stFine == RUGO_STATE_CONTACT) {
+                    const double gapFine = BandGap(sa, xa, sb, xo, box, buf, nFine);
+                    const double ratio = std::fabs(gapAuto - gapFine) / (bothRough ? 2.0 * kBudget : kBudget);
+                    if (ratio > st.maxGapRatio && opt.verbose)
+                        std::fprintf(stderr, "gap check step %d: %s pair, level %d: gap_auto %.5f m, gap_finest %.5f m\n", step,
+                                     bothRough ? "rough-rough" : "rough-box", rel, gapAuto, gapFine);
+                    st.maxGapRatio = std::max(st.maxGapRatio, ratio);
+                    st.maxContactAboveGap = std::max(st.maxContactAboveGap, sFine - gapFine);
+                    ++st.gapPairs;
+                }
                 const double allowed = bothRough ? 2.0 * kBudget : kBudget;
                 const double diff = std::fabs(sAuto - sFine);
                 if (diff / allowed > st.maxBudgetRatio && opt.verbose)
-                    std::fprintf(stderr, "lod check step %d: %s pair, level %d: s_auto %.5f m, s_finest %.5f m\n", step,
-                                 bothRough ? "rough-rough" : "rough-box", rel, sAuto, sFine);
+                    std::fprintf(stderr, "lod check step %d: %s pair, level %d: s_auto %.5f m (%s), s_finest %.5f m (%s)\n", step,
+                                 bothRough ? "rough-rough" : "rough-box", rel, sAuto, rugo_contact_state_name(stAuto), sFine,
+                                 rugo_contact_state_name(stFine));
                 st.maxBudgetDiff = std::max(st.maxBudgetDiff, diff);
                 st.maxBudgetRatio = std::max(st.maxBudgetRatio, diff / allowed);
                 // Deep overlaps (a pile's bodies pushed into each other) have no well-defined "deepest
@@ -818,7 +926,8 @@ int main(int argc, char** argv) {
     std::printf("variant,N,S,steps,ms_per_step,allocs_per_step,box2d_allocs_per_step,steps_with_allocs,bytes_per_body,"
                 "bytes_per_shape,fixtures_per_body,level,contacts,points,world_contacts,deepest_mm,max_budget_ratio,"
                 "max_budget_ratio_shallow,over_budget_pct,max_budget_diff_mm,budget_pairs,queries_per_step,cache_hits_per_step,"
-                "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash\n");
+                "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_above_gap_mm,"
+                "gap_pairs\n");
     std::fflush(stdout);
 
     std::vector<Row> rows;
@@ -872,14 +981,15 @@ int main(int argc, char** argv) {
             const double ts = row.steps;
             const double all = ts + warmup;
             std::printf("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%.1f,%.1f,%.1f,"
-                        "%.1f,%.4g,%016" PRIx64 "\n",
+                        "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld\n",
                         kVariantName[v], n, s, row.steps, st.ms, st.allocOwn, st.allocBox2d, st.stepsWithOwnAlloc,
                         st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points, st.worldContacts,
                         1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
                         st.budgetPairs > 0 ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs) : 0.0,
                         1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
                         static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
-                        static_cast<double>(st.bs.toiPreSolves) / all, st.keFinal, st.hash);
+                        static_cast<double>(st.bs.toiPreSolves) / all, st.keFinal, st.hash, st.maxGapRatio,
+                        1e3 * st.maxContactAboveGap, st.gapPairs);
             std::fflush(stdout);
             if (!st.contained) allOk = false;
         }
@@ -889,7 +999,7 @@ int main(int argc, char** argv) {
     // Summary: the three goals at N = 256, S = 64 (or the first row when that size was not run).
     const Row* g = FindRow(rows, 256, 64);
     if (g == nullptr && !rows.empty()) g = &rows.front();
-    double maxOwn = 0.0, maxB2 = 0.0, maxRatio = -1.0, maxShallow = -1.0;
+    double maxOwn = 0.0, maxB2 = 0.0, maxRatio = -1.0, maxShallow = -1.0, maxGap = -1.0, maxAbove = 0.0;
     for (const Row& r : rows)
         for (int v = 0; v < kVariants; ++v) {
             if (!r.ran[v]) continue;
@@ -898,6 +1008,8 @@ int main(int argc, char** argv) {
             if (v == kAuto) {
                 maxRatio = std::max(maxRatio, r.st[v].maxBudgetRatio);
                 maxShallow = std::max(maxShallow, r.st[v].maxBudgetRatioShallow);
+                maxGap = std::max(maxGap, r.st[v].maxGapRatio);
+                maxAbove = std::max(maxAbove, r.st[v].maxContactAboveGap);
             }
         }
     if (g && g->ran[kAuto] && g->ran[kFinest] && g->ran[kCircle]) {
@@ -907,14 +1019,15 @@ int main(int argc, char** argv) {
         if (g->ran[kPolygon])
             std::snprintf(polyText, sizeof polyText, ", polygon / circle = %.2f", g->st[kPolygon].ms / g->st[kCircle].ms);
         std::printf("summary: N=%d S=%d: auto is %.2fx faster than finest (goal >= 1.5: %s); auto / circle floor = %.2f, finest / "
-                    "circle = %.2f%s (goal auto <= 3: %s); LOD error max |ds| / budget over all sizes: resting contacts %.2f, all %.2f "
-                    "(goal <= 1: %s); "
+                    "circle = %.2f%s (goal auto <= 3: %s); LOD error over all sizes, band gap of pairs apart at both levels: "
+                    "max |d gap| / budget %.2f (goal <= 1: %s); deepest reported contact's band-adjusted separation: max |ds| / "
+                    "budget resting %.2f, all %.2f (it sits up to %.2f mm above the band gap at the finest level); "
                     "bridge+librugo allocations per step after warm-up: max %.3f (goal 0: %s), Box2D's own: max %.3f\n",
                     g->n, g->s, speedup, speedup >= 1.5 ? "met" : "NOT met", floorRatio,
                     g->st[kFinest].ms / g->st[kCircle].ms,
                     polyText,
-                    floorRatio <= 3.0 ? "met" : "NOT met", maxShallow, maxRatio,
-                    maxRatio < 0.0 ? "not measured" : (maxRatio <= 1.0 ? "met" : "NOT met"),
+                    floorRatio <= 3.0 ? "met" : "NOT met", maxGap,
+                    maxGap < 0.0 ? "not measured" : (maxGap <= 1.0 ? "met" : "NOT met"), maxShallow, maxRatio, 1e3 * maxAbove,
                     BENCH_COUNT_ALLOCATIONS ? maxOwn : -1.0,
                     BENCH_COUNT_ALLOCATIONS ? (maxOwn == 0.0 ? "met" : "NOT met") : "not measured under ASan", maxB2);
     }

@@ -417,6 +417,16 @@ struct Stats {
     rugo::BridgeStats bs;
 };
 
+// A Box2D transform in librugo's form (the float rotation renormalised).
+rugo_transform ToRugo(const b2Transform& x) {
+    rugo_transform t;
+    t.p = rugo_v2(x.p.x, x.p.y);
+    const double len = std::hypot(static_cast<double>(x.q.c), static_cast<double>(x.q.s));
+    t.q.c = x.q.c / len;
+    t.q.s = x.q.s / len;
+    return t;
+}
+
 // The deepest band-adjusted separation between a rough body and another rough body / a box, at a
 // relative level; margin so that apart pairs still report their closest points. false: no contact.
 bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2Transform& xa, const rugo_shape* b,
@@ -425,14 +435,6 @@ bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2T
     rugo_contact_query q = rugo_default_contact_query();
     q.level = level;
     q.margin = 0.05;
-    auto tr = [](const b2Transform& x) {
-        rugo_transform t;
-        t.p = rugo_v2(x.p.x, x.p.y);
-        const double len = std::hypot(static_cast<double>(x.q.c), static_cast<double>(x.q.s));
-        t.q.c = x.q.c / len;
-        t.q.s = x.q.s / len;
-        return t;
-    };
     int n = 0;
     rugo_contact_state state;
     rugo_query_stats qs;
@@ -444,10 +446,10 @@ bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2T
                 const b2Vec2 w = b2Mul(xb, box->m_vertices[i]);
                 v[i] = rugo_v2(w.x, w.y);
             }
-            st = rugo_collide_polygon(ctx, a, tr(xa), v, box->m_count, box->m_radius, &q, buf->data(),
+            st = rugo_collide_polygon(ctx, a, ToRugo(xa), v, box->m_count, box->m_radius, &q, buf->data(),
                                       static_cast<int>(buf->size()), &n, &state, &qs);
         } else {
-            st = rugo_collide_shapes(ctx, a, tr(xa), b, tr(xb), &q, buf->data(), static_cast<int>(buf->size()), &n, &state, &qs);
+            st = rugo_collide_shapes(ctx, a, ToRugo(xa), b, ToRugo(xb), &q, buf->data(), static_cast<int>(buf->size()), &n, &state, &qs);
         }
         if (st != RUGO_OK) return false;
         if (qs.contacts_found <= static_cast<int>(buf->size())) break;
@@ -514,14 +516,6 @@ double SignedDistanceToBox(rugo_vec2 p, const b2PolygonShape& box, const b2Trans
 
 double BandGap(const rugo_shape* a, const b2Transform& xa, const rugo_shape* b, const b2Transform& xb,
                const b2PolygonShape* box, const std::vector<rugo_contact>& buf, int n) {
-    auto tr = [](const b2Transform& x) {
-        rugo_transform t;
-        t.p = rugo_v2(x.p.x, x.p.y);
-        const double len = std::hypot(static_cast<double>(x.q.c), static_cast<double>(x.q.s));
-        t.q.c = x.q.c / len;
-        t.q.s = x.q.s / len;
-        return t;
-    };
     std::vector<rugo_vec2> pa, pb;
     std::vector<double> la, lb;
     double gap = 1e30;
@@ -530,7 +524,7 @@ double BandGap(const rugo_shape* a, const b2Transform& xa, const rugo_shape* b, 
         GapSide ga;
         rugo_shape_level(a, k.level_a, &ga.c);
         rugo_shape_tolerance_level(a, k.level_a, &ga.tl);
-        ga.x = tr(xa);
+        ga.x = ToRugo(xa);
         GapSamples(ga, k.segment_a, &pa, &la);
         if (box) {
             for (size_t u = 0; u < pa.size(); ++u) gap = std::min(gap, SignedDistanceToBox(pa[u], *box, xb) - la[u]);
@@ -539,7 +533,7 @@ double BandGap(const rugo_shape* a, const b2Transform& xa, const rugo_shape* b, 
         GapSide gb;
         rugo_shape_level(b, k.level_b, &gb.c);
         rugo_shape_tolerance_level(b, k.level_b, &gb.tl);
-        gb.x = tr(xb);
+        gb.x = ToRugo(xb);
         GapSamples(gb, k.segment_b, &pb, &lb);
         for (size_t u = 0; u < pa.size(); ++u)
             for (size_t v = 0; v < pb.size(); ++v)

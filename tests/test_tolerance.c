@@ -708,6 +708,24 @@ END_TEST
 
 /* ---- the hard bound β ------------------------------------------------------------------------ */
 
+/* A rough outline of n0 << levels points scaled about the origin and moved by offset, its pyramid
+ * (finest level *J) and random finest tolerances (seeded by lambda_seed, scaled; every fifth small).
+ * *pts and *lam are the caller's to free. */
+static rugo_pyramid* scaled_rough_pyramid(uint64_t seed, int n0, int levels, double sigma0, double scale,
+                                          rugo_vec2 offset, uint64_t lambda_seed, int* J, rugo_vec2** pts,
+                                          double** lam) {
+    const int n = n0 << levels;
+    *J = 0;
+    while ((1 << *J) < n) ++*J;
+    *pts = xmalloc((size_t)n * sizeof **pts);
+    rough_shape(seed, n0, levels, sigma0, *pts);
+    for (int i = 0; i < n; ++i) (*pts)[i] = rugo_v2_add(offset, rugo_v2_scale(scale, (*pts)[i]));
+    *lam = xmalloc((size_t)n * sizeof **lam);
+    test_rng r = test_rng_seed(lambda_seed);
+    for (int i = 0; i < n; ++i) (*lam)[i] = scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
+    return make_pyramid(*pts, n, 2);
+}
+
 /* ACCEPTANCE: β is never exceeded: for dense samples of the finest curve inside coarse segment k,
  * (distance to coarse segment k) + λ^J(t) <= β^j_k at every level; with λ = 0 it bounds the pure
  * geometric distance; β^J_k >= max λ(t) on the segment. Prints the tightness (β / measured max). */
@@ -715,15 +733,11 @@ static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int ze
                         rugo_vec2 offset) {
     const int n = n0 << levels;
     int J = 0;
-    while ((1 << J) < n) ++J;
-    rugo_vec2* pts = xmalloc((size_t)n * sizeof *pts);
-    rough_shape(seed, n0, levels, sigma0, pts);
-    for (int i = 0; i < n; ++i) pts[i] = rugo_v2_add(offset, rugo_v2_scale(scale, pts[i]));
-    rugo_pyramid* p = make_pyramid(pts, n, 2);
-    double* lam = xmalloc((size_t)n * sizeof *lam);
-    test_rng r = test_rng_seed(seed + 1000);
-    for (int i = 0; i < n; ++i)
-        lam[i] = zero_lambda ? 0.0 : scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
+    rugo_vec2* pts = NULL;
+    double* lam = NULL;
+    rugo_pyramid* p = scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 1000, &J, &pts, &lam);
+    if (zero_lambda)
+        for (int i = 0; i < n; ++i) lam[i] = 0.0;
     minimum *= scale;
     rugo_tolerance_def def = rugo_default_tolerance_def();
     def.pyramid = p;
@@ -805,14 +819,9 @@ END_TEST
 static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, double scale, rugo_vec2 offset) {
     const int n = n0 << levels;
     int J = 0;
-    while ((1 << J) < n) ++J;
-    rugo_vec2* pts = xmalloc((size_t)n * sizeof *pts);
-    rough_shape(seed, n0, levels, sigma0, pts);
-    for (int i = 0; i < n; ++i) pts[i] = rugo_v2_add(offset, rugo_v2_scale(scale, pts[i]));
-    rugo_pyramid* p = make_pyramid(pts, n, 2);
-    double* lam = xmalloc((size_t)n * sizeof *lam);
-    test_rng r = test_rng_seed(seed + 77);
-    for (int i = 0; i < n; ++i) lam[i] = scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
+    rugo_vec2* pts = NULL;
+    double* lam = NULL;
+    rugo_pyramid* p = scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 77, &J, &pts, &lam);
     rugo_tolerances* t = make_tolerances(p, lam, RUGO_ESTIMATOR_DETAIL, 2);
     rugo_contour fin = curve_of(p, J);
     rugo_tolerance_level top = level_of(t, J);

@@ -803,6 +803,10 @@ rugo_status rugo_path_from_points(const rugo_vec2* points, int count, const rugo
         seg[n].offset = (size_t)i;
         ++n;
     }
+    if (n == 0) { /* every point the same: no segments, and no array (as for a bare moveto) */
+        rugo__free(&al, seg);
+        seg = NULL;
+    }
     sub->first = 0;
     sub->count = n;
     sub->start = n > 0 ? seg[0].p[0] : points[0];

@@ -6,7 +6,10 @@
 #   scripts/fuzz.sh 20 fuzz_baked only the named targets
 # New inputs go to build-fuzz/corpus/<target> (the checked-in seeds in fuzz/corpus/<target> are only
 # read); a crash leaves build-fuzz/artifacts/<target>-crash-* and makes this script fail.
-# Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), RUGO_FUZZ_JOBS (default 2).
+# Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), RUGO_FUZZ_JOBS (default 2),
+# RUGO_FUZZ_SEED (libFuzzer's -seed; unset: a new seed each run). With a seed, -runs=N and a fresh
+# build-fuzz/corpus, a run is reproducible: scripts/test.sh uses that so the suite's verdict does not
+# depend on luck or machine speed.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RUGO_FUZZ_BUILD:-$root/build-fuzz}
@@ -18,6 +21,18 @@ case $limit in
     *[!0-9]*|''|0) echo "usage: $0 [SECONDS | -runs=N] [TARGET...]" >&2; exit 2 ;;
     *) budget=-max_total_time=$limit ;;
 esac
+seed=
+norand=
+if [ -n "${RUGO_FUZZ_SEED:-}" ]; then
+    seed="-seed=$RUGO_FUZZ_SEED -reload=0" # (-reload: a timer)
+    # Coverage also depends on heap addresses (e.g. which of two buffers lies lower), so a seed alone
+    # does not repeat a run: turn off address randomisation where the machine allows it.
+    if setarch "$(uname -m)" -R true 2>/dev/null; then
+        norand="setarch $(uname -m) -R"
+    else
+        echo "fuzz: setarch -R not permitted here; the seeded run may differ from run to run" >&2
+    fi
+fi
 cc=${CC:-clang}
 command -v "$cc" >/dev/null 2>&1 || { echo "fuzz: $cc not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 
@@ -27,9 +42,9 @@ cmake --build "$build" -j "${RUGO_FUZZ_JOBS:-2}" --target $targets
 status=0
 for t in $targets; do
     mkdir -p "$build/corpus/$t" "$build/artifacts"
-    echo "fuzz: $t ($budget)"
+    echo "fuzz: $t ($budget${seed:+ $seed})"
     # -max_len: the seeds are small; larger inputs mostly cost time. -timeout: a hang is a finding.
-    if ! "$build/$t" "$build/corpus/$t" "$root/fuzz/corpus/$t" "$budget" -max_len=16384 -timeout=20 \
+    if ! $norand "$build/$t" "$build/corpus/$t" "$root/fuzz/corpus/$t" "$budget" $seed -max_len=16384 -timeout=20 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" \
         >"$build/$t.log" 2>&1; then
         echo "fuzz: $t FAILED; see $build/$t.log and $build/artifacts/" >&2

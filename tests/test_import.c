@@ -1066,6 +1066,28 @@ START_TEST(path_from_points) {
 }
 END_TEST
 
+/* Found by fuzz_import in CI: points that are all the same made no segment but kept the array, breaking
+ * "segment_count == 0 exactly when segments == NULL", which every path reader relies on. */
+START_TEST(path_from_points_all_equal) {
+    const rugo_vec2 pts[] = {{0, 1}, {0, 1}, {0, 1}, {0, 1}};
+    rugo_path p;
+    ck_assert_int_eq(rugo_path_from_points(pts, 4, NULL, &p), RUGO_OK);
+    ck_assert_int_eq(p.segment_count, 0);
+    ck_assert_ptr_null(p.segments);
+    ck_assert_int_eq(p.subpath_count, 1);
+    ck_assert_int_eq(p.subpaths[0].count, 0);
+    ck_assert_vec_near(p.subpaths[0].start, 0, 1, 0);
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    sd.path = &p;
+    rugo_outline_samples s;
+    rugo_parse_error e;
+    ck_assert_int_ne(rugo_outline_sample(&sd, &s, &e), RUGO_OK); /* nothing to sample: an error, */
+    ck_assert_ptr_null(s.points);                                  /* not a crash */
+    ck_assert_int_eq(s.count, 0);
+    rugo_path_free(&p);
+}
+END_TEST
+
 /* ---- the Inkscape rock ------------------------------------------------------------------------------ */
 
 /* tests/data/rock_inkscape.svg: a path of relative c/s/l commands closed by z, inside a layer with
@@ -1392,6 +1414,7 @@ static Suite* import_suite(void) {
     tcase_add_test(ts, points_text);
     tcase_add_test(ts, bad_points_text);
     tcase_add_test(ts, path_from_points);
+    tcase_add_test(ts, path_from_points_all_equal);
     suite_add_tcase(s, ts);
 
 #ifdef RUGO_HAVE_FIT

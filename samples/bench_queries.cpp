@@ -1416,7 +1416,10 @@ int main(int argc, char** argv) {
             quick = true;
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
-        else
+        else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
+            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR]\n", argv[0]);
+            return 2;
+        } else
             dir = argv[i];
     }
     if (sample_mkdir(dir) != 0) {

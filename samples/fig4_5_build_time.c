@@ -163,7 +163,10 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0)
             quick = 1;
-        else
+        else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
+            fprintf(stderr, "usage: %s [--quick] [OUTDIR]\n", argv[0]);
+            return 2;
+        } else
             dir = argv[i];
     }
     if (sample_mkdir(dir) != 0) {

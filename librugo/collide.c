@@ -77,7 +77,8 @@ typedef struct buffer {
 
 typedef struct tnode {
     int la, ka, lb, kb; /* level -1: the root */
-    rugo_obb ba, bb;    /* their boxes as tested (B's in A's frame, both grown by their slack) */
+    int ia, ib;         /* their boxes as tested, in the box pool (see traverse) */
+    int mark;           /* the pool's size when this node was pushed */
 } tnode;
 
 /* A crossing or a stationary pair found by the narrow phase, in global parameters. */
@@ -106,7 +107,7 @@ typedef struct seginfo {
 struct rugo_collide_context {
     rugo_allocator al;
     buffer stack; /* tnode */
-    buffer kids;  /* rugo_obb: B's children of the node pair being expanded */
+    buffer kids;  /* tbx: the box pool of a traversal */
     buffer pairs; /* rugo_node_pair */
     buffer xs;    /* hit: crossings */
     buffer ss;    /* hit: stationary pairs of the first pass */
@@ -115,6 +116,10 @@ struct rugo_collide_context {
     buffer marks; /* unsigned char: segment marks of A then B */
     buffer segs;  /* seginfo: segments of one region */
     buffer out;   /* rugo_contact: contacts before truncation */
+    buffer ptab;  /* rugo_vec2[4]: Bezier pieces of a query's segments, A's then B's (pair_geo) */
+    buffer pstamp; /* uint32_t: the query (epoch) whose piece a ptab entry holds */
+    size_t pstamp_zeroed; /* pstamp entries initialised */
+    uint32_t epoch;
 };
 
 static int reserve(rugo_collide_context* c, buffer* b, size_t need, size_t elem) {
@@ -149,8 +154,8 @@ rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_co
 
 void rugo_collide_context_destroy(rugo_collide_context* c) {
     if (c == NULL) return;
-    buffer* all[] = {&c->stack, &c->kids, &c->pairs, &c->xs,    &c->ss,
-                     &c->ss2,   &c->ints, &c->marks, &c->segs, &c->out};
+    buffer* all[] = {&c->stack, &c->kids, &c->pairs, &c->xs,  &c->ss,   &c->ss2,
+                     &c->ints,  &c->marks, &c->segs, &c->out, &c->ptab, &c->pstamp};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
         rugo__free(&c->al, all[i]->data);
     rugo_allocator al = c->al;
@@ -234,24 +239,29 @@ static void bez_bounds(const rugo_vec2 b[4], rugo_vec2* lo, rugo_vec2* hi) {
 
 /* The cone of tangent directions of a Bezier piece: the hodograph's control points span it. */
 static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* half) {
-    rugo_vec2 u[3];
+    rugo_vec2 u[3], d[3];
+    rugo_real len[3];
     int m = 0;
     rugo_real size = 0.0;
-    for (int i = 0; i < 3; ++i)
-        size = fmax(size, v2_len(rugo_v2_sub(b[i + 1], b[i])));
+    /* each length once (v2_unit would recompute the same value) */
+    for (int i = 0; i < 3; ++i) {
+        d[i] = rugo_v2_sub(b[i + 1], b[i]);
+        len[i] = v2_len(d[i]);
+        size = fmax(size, len[i]);
+    }
     rugo_vec2 sum = rugo_v2(0.0, 0.0);
     for (int i = 0; i < 3; ++i) {
-        rugo_vec2 d = rugo_v2_sub(b[i + 1], b[i]);
-        if (v2_len(d) > 1e-9 * size) {
-            u[m] = v2_unit(d);
+        if (len[i] > 1e-9 * size) {
+            u[m] = len[i] > 0.0 ? rugo_v2(d[i].x / len[i], d[i].y / len[i]) : rugo_v2(0.0, 0.0); /* v2_unit */
             sum = rugo_v2_add(sum, u[m]);
             ++m;
         }
     }
     *centre = rugo_v2(1.0, 0.0);
     *half = 4.0; /* > pi: no information */
-    if (m == 0 || v2_len(sum) < 1e-6) return;
-    *centre = v2_unit(sum);
+    const rugo_real ls = v2_len(sum);
+    if (m == 0 || ls < 1e-6) return;
+    *centre = ls > 0.0 ? rugo_v2(sum.x / ls, sum.y / ls) : rugo_v2(0.0, 0.0); /* v2_unit(sum) */
     rugo_real h = 0.0;
     for (int i = 0; i < m; ++i) {
         rugo_real c = rugo_v2_dot(*centre, u[i]);
@@ -271,6 +281,16 @@ static rugo_real local_extent(rugo_contour c, int seg) {
     return e;
 }
 
+/* Whether len > 1e-9 (|v| + |w| + |r|) (the lengths as v2_len computes them), without the three
+ * lengths when an upper bound of their sum already decides it: |a| <= |a.x| + |a.y|, so the sum of
+ * the lengths is at most the sum of the absolute coordinates (padded against its rounding), and len
+ * above 1e-9 times that is above 1e-9 times the sum. Otherwise the lengths decide, as before. */
+static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
+    const rugo_real l1 = (fabs(v.x) + fabs(v.y)) + (fabs(w.x) + fabs(w.y)) + (fabs(r.x) + fabs(r.y));
+    if (len > 1e-9 * (l1 * (1.0 + 1e-9))) return 1;
+    return len > 1e-9 * (v2_len(v) + v2_len(w) + v2_len(r));
+}
+
 /* Outward normal of a counter-clockwise curve at (seg, t). Where the speed vanishes (coincident
  * control points: a sharp corner, or a segment shrunk to a point) the normal is that of a chord
  * across the spot, i.e. the middle of the corner's normal cone. */
@@ -278,9 +298,8 @@ static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
     const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
-    const rugo_real scale = v2_len(v) + v2_len(w) + v2_len(r);
     const rugo_real len = v2_len(d);
-    if (len > 1e-9 * scale && len > 0.0) return rugo_v2(d.y / len, -d.x / len);
+    if (speed_regular(len, v, w, r) && len > 0.0) return rugo_v2(d.y / len, -d.x / len);
     const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, tiny = 1e-8 * local_extent(c, seg);
     for (rugo_real h = 1e-4; h < (rugo_real)c.count; h *= 2.0) {
         const rugo_vec2 p1 = rugo_contour_point_at(c, u + h);
@@ -326,6 +345,16 @@ static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in,
  * corner has no such direction. rot turns the curve's frame into the query's. */
 static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_rot rot) {
     rugo_vec2 a, b;
+    {
+        /* A regular point (the usual case): corner_normals returns 0 and curve_normal the normal of
+         * the derivative, from the same values computed here once. */
+        rugo_vec2 v, w, r;
+        rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
+        const rugo_vec2 e = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+        const rugo_real len = v2_len(e);
+        if (speed_regular(len, v, w, r) && len > 0.0)
+            return rugo_v2_dot(rugo_rotate(rot, rugo_v2(e.y / len, -e.x / len)), d) >= 0.0;
+    }
     if (!corner_normals(c, seg, t, &a, &b))
         return rugo_v2_dot(rugo_rotate(rot, curve_normal(c, seg, t)), d) >= 0.0;
     a = rugo_rotate(rot, a);
@@ -479,33 +508,117 @@ static void tchildren(const tside* s, int l, int k, int* cl, int* k0, int* nk) {
     }
 }
 
-static rugo_obb tbox(const tside* s, int l, int k, int moved, rugo_transform rel) {
-    if (s->tree == NULL) return s->box;
-    const rugo_obb* b = l < 0 ? rugo_mobb_tree_root(s->tree) : rugo_mobb_tree_node(s->tree, l, k);
-    rugo_obb r = moved ? rugo_obb_transform(rel, b) : *b;
-    return s->slack > 0.0 ? grow_box(r, s->slack) : r;
+/* A box as tested, with the parts of rugo_obb_overlap's separating-axis test that depend on it alone
+ * (mobb.c): its projected radius on its own two axes and its largest centre coordinate. */
+typedef struct tbx {
+    rugo_obb b;
+    rugo_real self0, self1; /* projected_radius(b, axis[0]), projected_radius(b, axis[1]) */
+    rugo_real pos;          /* fmax(|centre.x|, |centre.y|) */
+} tbx;
+
+/* fmax as the C library defines it (a NaN argument gives the other one), without the library call. */
+static rugo_real fmax_c(rugo_real a, rugo_real b) {
+    if (a != a) return b;
+    if (b != b) return a;
+    return a > b ? a : b;
+}
+
+/* The box of node (l, k) of side s as tested (tree == NULL: the side's fixed box), into t: B's moved
+ * by rel (rugo_obb_transform's operations), grown by the side's slack, with its own terms of the
+ * test: projected_radius(b, l) = half[0] |axis[0]·l| + half[1] |axis[1]·l| (mobb.c), same operations. */
+static inline void tbx_make(tbx* t, const tside* s, const rugo_obb* const* base, int l, int k, int moved,
+                     rugo_transform rel) {
+    rugo_obb* b = &t->b;
+    if (s->tree == NULL) {
+        *b = s->box;
+    } else {
+        const rugo_obb* src = l < 0 ? rugo_mobb_tree_root(s->tree) : base[l] + k;
+        if (moved) {
+            b->center = rugo_transform_point(rel, src->center);
+            b->axis[0] = rugo_rotate(rel.q, src->axis[0]);
+            b->axis[1] = rugo_rotate(rel.q, src->axis[1]);
+            b->half[0] = src->half[0];
+            b->half[1] = src->half[1];
+        } else {
+            *b = *src;
+        }
+        if (s->slack > 0.0) {
+            b->half[0] += s->slack;
+            b->half[1] += s->slack;
+        }
+    }
+    const rugo_real d00 = rugo_v2_dot(b->axis[0], b->axis[0]), d10 = rugo_v2_dot(b->axis[1], b->axis[0]);
+    const rugo_real d01 = rugo_v2_dot(b->axis[0], b->axis[1]), d11 = rugo_v2_dot(b->axis[1], b->axis[1]);
+    t->self0 = b->half[0] * fabs(d00) + b->half[1] * fabs(d10);
+    t->self1 = b->half[0] * fabs(d01) + b->half[1] * fabs(d11);
+    t->pos = fmax_c(fabs(b->center.x), fabs(b->center.y));
+}
+
+#define TBX_SAT_SLACK (16.0 * DBL_EPSILON) /* mobb.c's SAT_SLACK */
+
+/* rugo_obb_overlap(&a->b, &b->b), the same decision bit for bit: every axis's distance and reach are
+ * computed with the same operations (a dot product is the same either way round: its products are
+ * exact to swap), the box-only terms come precomputed, and the four axes' cross terms are shared. */
+static int tbx_overlap(const tbx* a, const tbx* b) {
+    const rugo_vec2 t = rugo_v2_sub(b->b.center, a->b.center);
+    const rugo_real position = fmax_c(a->pos, b->pos);
+    const rugo_vec2 a0 = a->b.axis[0], a1 = a->b.axis[1], b0 = b->b.axis[0], b1 = b->b.axis[1];
+    const rugo_real c00 = fabs(rugo_v2_dot(b0, a0)), c10 = fabs(rugo_v2_dot(b1, a0));
+    const rugo_real c01 = fabs(rugo_v2_dot(b0, a1)), c11 = fabs(rugo_v2_dot(b1, a1));
+    const rugo_real dist0 = fabs(rugo_v2_dot(t, a0)), dist1 = fabs(rugo_v2_dot(t, a1));
+    const rugo_real dist2 = fabs(rugo_v2_dot(t, b0)), dist3 = fabs(rugo_v2_dot(t, b1));
+    const rugo_real reach0 = a->self0 + (b->b.half[0] * c00 + b->b.half[1] * c10);
+    const rugo_real reach1 = a->self1 + (b->b.half[0] * c01 + b->b.half[1] * c11);
+    const rugo_real reach2 = (a->b.half[0] * c00 + a->b.half[1] * c01) + b->self0;
+    const rugo_real reach3 = (a->b.half[0] * c10 + a->b.half[1] * c11) + b->self1;
+    /* all four axes, one branch (the answer is unpredictable) */
+    const int sep = (dist0 - reach0 > TBX_SAT_SLACK * (dist0 + reach0 + position)) |
+                    (dist1 - reach1 > TBX_SAT_SLACK * (dist1 + reach1 + position)) |
+                    (dist2 - reach2 > TBX_SAT_SLACK * (dist2 + reach2 + position)) |
+                    (dist3 - reach3 > TBX_SAT_SLACK * (dist3 + reach3 + position));
+    return !sep;
 }
 
 /* Node pairs at the stop levels whose boxes overlap, into ctx->pairs; B's boxes are moved by rel.
- * Each box is computed (moved, grown) once, when its node is pushed, not for every pair it is tested
- * in: an expansion that descends both trees tests 2 x 2 pairs from 2 + 2 boxes. */
+ * Each box is computed (moved, grown, its own terms of the test) once, when its node is pushed, into
+ * a pool (ctx->kids) that the stack's entries index: an expansion that descends both trees tests
+ * 2 x 2 pairs from 2 + 2 boxes. The pool holds the boxes of the open expansions only (a few per tree
+ * level), not every box of the query. */
 static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tside* B, rugo_transform rel,
                             long* tests, size_t* count) {
-    size_t top = 0, found = 0;
+    size_t top = 0, found = 0, nbox = 0;
     long n_tests = 0;
-    if (!reserve(ctx, &ctx->stack, 64, sizeof(tnode))) return RUGO_ERR_OUT_OF_MEMORY;
+    /* per-level node arrays (a level's nodes are contiguous: rugo_mobb_tree_node(l, k) = base[l] + k;
+     * levels stay below 21, as RUGO_MAX_CONTROL_POINTS is 2^20) */
+    const rugo_obb* base_a[32];
+    const rugo_obb* base_b[32];
+    if (A->tree != NULL)
+        for (int l = A->jmin; l <= A->stop && l < 32; ++l) base_a[l] = rugo_mobb_tree_node(A->tree, l, 0);
+    if (B->tree != NULL)
+        for (int l = B->jmin; l <= B->stop && l < 32; ++l) base_b[l] = rugo_mobb_tree_node(B->tree, l, 0);
+    if (!reserve(ctx, &ctx->stack, 64, sizeof(tnode)) || !reserve(ctx, &ctx->kids, 64, sizeof(tbx)))
+        return RUGO_ERR_OUT_OF_MEMORY;
     tnode* st = (tnode*)ctx->stack.data;
+    tbx* pool = (tbx*)ctx->kids.data;
     st[top].la = -1;
     st[top].ka = 0;
     st[top].lb = -1;
     st[top].kb = 0;
-    st[top].ba = tbox(A, -1, 0, 0, rel);
-    st[top].bb = tbox(B, -1, 0, 1, rel);
-    ++top;
+    tbx_make(&pool[nbox], A, base_a, -1, 0, 0, rel);
+    st[top].ia = (int)nbox++;
+    tbx_make(&pool[nbox], B, base_b, -1, 0, 1, rel);
+    st[top].ib = (int)nbox++;
+    st[top].mark = (int)nbox;
+    /* Each pair is tested when its parent is expanded, and only overlapping pairs are pushed: the
+     * same tests, and the same pairs in the same order, as testing each when it is popped; the tests
+     * of one expansion are independent of each other and the push needs no branch. */
+    ++n_tests;
+    top += (size_t)tbx_overlap(&pool[st[0].ia], &pool[st[0].ib]);
     while (top > 0) {
         const tnode t = st[--top];
-        ++n_tests;
-        if (!rugo_obb_overlap(&t.ba, &t.bb)) continue;
+        /* The pool is a stack too: the boxes made after t was pushed belong to the expansions of its
+         * siblings popped before it, and no node left on the stack refers to them. */
+        nbox = (size_t)t.mark;
         const int ha = theight(A, t.la), hb = theight(B, t.lb);
         if (ha == 0 && hb == 0) {
             if (!reserve(ctx, &ctx->pairs, found + 1, sizeof(rugo_node_pair))) return RUGO_ERR_OUT_OF_MEMORY;
@@ -519,25 +632,34 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
         if (ha >= hb) tchildren(A, t.la, t.ka, &cla, &ka0, &nka);
         if (hb >= ha) tchildren(B, t.lb, t.kb, &clb, &kb0, &nkb);
         if (!reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(tnode)) ||
-            !reserve(ctx, &ctx->kids, (size_t)nkb, sizeof(rugo_obb)))
+            !reserve(ctx, &ctx->kids, nbox + (size_t)nka + (size_t)nkb, sizeof(tbx)))
             return RUGO_ERR_OUT_OF_MEMORY;
         st = (tnode*)ctx->stack.data;
-        rugo_obb* kb = (rugo_obb*)ctx->kids.data;
-        for (int j = 0; j < nkb; ++j)
-            kb[j] = hb >= ha ? tbox(B, clb, kb0 + j, 1, rel) : t.bb;
+        pool = (tbx*)ctx->kids.data;
+        /* children's boxes: B's at ib0 + j, A's at ia0 + i (or the parent's box where a side stays) */
+        const size_t ib0 = nbox;
+        if (hb >= ha) {
+            for (int j = 0; j < nkb; ++j) tbx_make(&pool[nbox++], B, base_b, clb, kb0 + j, 1, rel);
+        }
+        const size_t ia0 = nbox;
+        if (ha >= hb) {
+            for (int i = 0; i < nka; ++i) tbx_make(&pool[nbox++], A, base_a, cla, ka0 + i, 0, rel);
+        }
         /* Pushed in reverse so that pairs come out in increasing order. */
         for (int i = nka - 1; i >= 0; --i) {
-            const rugo_obb ba = ha >= hb ? tbox(A, cla, ka0 + i, 0, rel) : t.ba;
+            const int ia = ha >= hb ? (int)ia0 + i : t.ia;
             for (int j = nkb - 1; j >= 0; --j) {
                 st[top].la = cla;
                 st[top].ka = ka0 + i;
                 st[top].lb = clb;
                 st[top].kb = kb0 + j;
-                st[top].ba = ba;
-                st[top].bb = kb[j];
-                ++top;
+                st[top].ia = ia;
+                st[top].ib = hb >= ha ? (int)ib0 + j : t.ib;
+                st[top].mark = (int)nbox;
+                top += (size_t)tbx_overlap(&pool[ia], &pool[st[top].ib]);
             }
         }
+        n_tests += (long)nka * (long)nkb;
     }
     *tests += n_tests;
     *count = found;
@@ -910,6 +1032,10 @@ typedef struct pair_geo {
     int src;
     int coincident; /* some pieces coincide */
     rugo_real margin; /* query margin: minima up to band + margin count */
+    /* Bezier pieces computed at most once per query and segment (NULL: not set up, see piece_table) */
+    rugo_vec2 (*tab)[4]; /* A's n pieces, then B's n (in A's frame) */
+    uint32_t* stamp;     /* entry valid iff stamp == epoch */
+    uint32_t epoch;
 } pair_geo;
 
 static void piece_b(const pair_geo* g, int k, rugo_vec2 out[4]) {
@@ -935,7 +1061,26 @@ static void piece_cache_init(piece_cache* pc) {
         pc->kb[i] = -1;
 }
 
+/* Pieces from the query's table (g->tab set: piece_table). */
+static const rugo_vec2* tab_piece_a(const pair_geo* g, int k) {
+    if (g->stamp[k] != g->epoch) {
+        rugo_contour_bezier(g->A->curve, k, g->tab[k]);
+        g->stamp[k] = g->epoch;
+    }
+    return g->tab[k];
+}
+
+static const rugo_vec2* tab_piece_b(const pair_geo* g, int k) {
+    const size_t e = (size_t)g->A->n + (size_t)k;
+    if (g->stamp[e] != g->epoch) {
+        piece_b(g, k, g->tab[e]);
+        g->stamp[e] = g->epoch;
+    }
+    return g->tab[e];
+}
+
 static const rugo_vec2* cached_piece_a(piece_cache* pc, const pair_geo* g, int k) {
+    if (g->tab != NULL) return tab_piece_a(g, k);
     if (pc->ka != k) {
         rugo_contour_bezier(g->A->curve, k, pc->fa);
         pc->ka = k;
@@ -944,12 +1089,35 @@ static const rugo_vec2* cached_piece_a(piece_cache* pc, const pair_geo* g, int k
 }
 
 static const rugo_vec2* cached_piece_b(piece_cache* pc, const pair_geo* g, int k) {
+    if (g->tab != NULL) return tab_piece_b(g, k);
     const int slot = k & (PIECE_CACHE - 1);
     if (pc->kb[slot] != k) {
         piece_b(g, k, pc->gb[slot]);
         pc->kb[slot] = k;
     }
     return pc->gb[slot];
+}
+
+/* Sets up g's piece table in ctx for the query (A->n + B->n entries); 0 if out of memory. A new epoch
+ * invalidates every entry without clearing; stamps are zeroed once when first allocated, and all of
+ * them when the epoch wraps. */
+static int piece_table(rugo_collide_context* ctx, pair_geo* g) {
+    const size_t n = (size_t)g->A->n + (size_t)g->B->n;
+    if (!reserve(ctx, &ctx->ptab, n, sizeof(rugo_vec2[4])) || !reserve(ctx, &ctx->pstamp, n, sizeof(uint32_t)))
+        return 0;
+    uint32_t* stamp = (uint32_t*)ctx->pstamp.data;
+    if (ctx->pstamp_zeroed < n) {
+        memset(stamp + ctx->pstamp_zeroed, 0, (n - ctx->pstamp_zeroed) * sizeof(uint32_t));
+        ctx->pstamp_zeroed = n;
+    }
+    if (++ctx->epoch == 0) {
+        memset(stamp, 0, ctx->pstamp_zeroed * sizeof(uint32_t));
+        ctx->epoch = 1;
+    }
+    g->tab = (rugo_vec2(*)[4])ctx->ptab.data;
+    g->stamp = stamp;
+    g->epoch = ctx->epoch;
+    return 1;
 }
 
 static rugo_vec2 normal_a(const pair_geo* g, int seg, rugo_real t) {
@@ -1224,7 +1392,9 @@ static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const 
             if (!reserve(ctx, &ctx->segs, *nseg + 1, sizeof(seginfo))) return 0;
             seginfo* si = (seginfo*)ctx->segs.data + (*nseg)++;
             si->k = kk;
-            if (which == 0)
+            if (g->tab != NULL)
+                memcpy(si->b, which == 0 ? tab_piece_a(g, kk) : tab_piece_b(g, kk), sizeof si->b);
+            else if (which == 0)
                 rugo_contour_bezier(s->curve, kk, si->b);
             else
                 piece_b(g, kk, si->b);
@@ -1373,6 +1543,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), box_size(rugo_mobb_tree_root(B.tree)));
     g.stats = stats;
     g.margin = q->margin;
+    if (!piece_table(ctx, &g)) return RUGO_ERR_OUT_OF_MEMORY;
     out_ctx o;
     memset(&o, 0, sizeof o);
     o.ctx = ctx;

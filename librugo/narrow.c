@@ -72,7 +72,12 @@
  * (crossings: the tangent cones stay apart), because then that root is the only one there: without
  * this a minimum just across a segment joint made the search subdivide toward the joint. Each
  * shortcut decides a box as before or drops a box that provably holds no root, so the results do not
- * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). */
+ * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). Work is
+ * not repeated: a search keeps the sub-pieces of the last box's parameter ranges (piece_memo: the
+ * next box usually keeps one of them), Newton starts from the values the box tests already computed at
+ * the centre and hands back those at its root, cone_sign skips the lengths when the cross products
+ * are not even of one sign, and stat_prune runs its rarely pruning hull test last (the tests are pure:
+ * their order does not change the answer). Same bits as before (issue 7). */
 #include "narrow.h"
 
 #include "internal.h"
@@ -131,6 +136,7 @@ typedef struct ctx {
     int root_apart; /* the hulls of f and g are more than TAU_F apart: no crossing */
     int root_cone_done, root_cone;
     rugo_real root_rho;
+    rugo_real root_cross[9]; /* cross(df[i], dg[j]) at 3 i + j (solve) */
     root cross[TMP_CROSS]; /* (the lists last: they are not cleared) */
     root stat[TMP_STAT];
 } ctx;
@@ -320,17 +326,25 @@ static int one_sign(const rugo_real* v, int n, rugo_real tau) {
 
 /* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
  * (0 if not one-signed). */
-static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
-    rugo_real c[9], mf = 0.0, mg = 0.0, cmin = INFINITY;
+static int cone_sign_of(const rugo_real c[9], const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
+    rugo_real mf = 0.0, mg = 0.0, cmin = INFINITY;
+    int pos = 0, neg = 0;
+    for (int i = 0; i < 9; ++i) {
+        pos += c[i] > 0.0;
+        neg += c[i] < 0.0;
+    }
+    /* Not all of one strict sign: one_sign below gives 0 for any tau >= 0, without the lengths. */
+    if (pos != 9 && neg != 9) {
+        if (radius) *radius = INFINITY;
+        return 0;
+    }
     for (int i = 0; i < 3; ++i) {
         /* squared lengths: sqrt is monotone and correctly rounded, so the max of the roots is the
          * root of the max, bit for bit */
         mf = mx(mf, rugo_v2_dot(dF[i], dF[i]));
         mg = mx(mg, rugo_v2_dot(dG[i], dG[i]));
-        for (int j = 0; j < 3; ++j) {
-            c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
+        for (int j = 0; j < 3; ++j)
             cmin = mn(cmin, fabs(c[3 * i + j]));
-        }
     }
     mf = sqrt(mf);
     mg = sqrt(mg);
@@ -341,6 +355,14 @@ static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* ra
     return sign;
 }
 
+static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
+    rugo_real c[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
+    return cone_sign_of(c, dF, dG, radius);
+}
+
 /* The whole parameter square, where both searches start. */
 static int is_root(box b) { return b.s0 == 0.0 && b.s1 == 1.0 && b.t0 == 0.0 && b.t1 == 1.0; }
 
@@ -348,7 +370,7 @@ static int is_root(box b) { return b.s0 == 0.0 && b.s1 == 1.0 && b.t0 == 0.0 && 
  * square are the hodographs themselves). */
 static int root_cone(ctx* c) {
     if (!c->root_cone_done) {
-        c->root_cone = cone_sign(c->df, c->dg, &c->root_rho);
+        c->root_cone = cone_sign_of(c->root_cross, c->df, c->dg, &c->root_rho);
         c->root_cone_done = 1;
     }
     return c->root_cone;
@@ -530,12 +552,13 @@ static int wandered(const box* lim, rugo_real s, rugo_real t) {
 /* Newton on F = f(s) - g(t) (6.12). Returns 1 if it converged (residual at round-off or a step at
  * round-off); (s, t) is then the root. Otherwise (s, t) is the iterate with the smallest |F| and *res
  * its residual (max-norm, local frame). */
-static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res) {
-    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
+static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res, const rugo_vec2* start) {
+    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY, rr = INFINITY;
     int conv = 0, tiny = 0;
     for (int it = 0;; ++it) {
-        rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y));
-        rugo_real rr = vmax(r);
+        /* start (may be NULL): F, f', g' already evaluated at the starting point, as below */
+        rugo_vec2 r = it == 0 && start ? start[0] : rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y));
+        rr = vmax(r);
         if (!(rr == rr)) break;
         if (rr < bres) {
             bres = rr;
@@ -547,7 +570,8 @@ static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo
             break;
         }
         if (it >= NEWTON_MAX) break;
-        rugo_vec2 a = bez(c->df, 2, x), b = rugo_v2_scale(-1.0, bez(c->dg, 2, y));
+        rugo_vec2 a = it == 0 && start ? start[1] : bez(c->df, 2, x);
+        rugo_vec2 b = rugo_v2_scale(-1.0, it == 0 && start ? start[2] : bez(c->dg, 2, y));
         rugo_real det = rugo_v2_cross(a, b);
         if (!(fabs(det) > 0.0)) break;
         rugo_vec2 m = rugo_v2_scale(-1.0, r);
@@ -560,9 +584,10 @@ static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo
         if (wandered(lim, x, y)) break;
     }
     if (conv) {
+        /* (converged right after evaluating F at (x, y)) */
         *s = x;
         *t = y;
-        *res = vmax(rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y)));
+        *res = rr;
     } else {
         *s = bx;
         *t = by;
@@ -630,11 +655,15 @@ static void stat_system(const pair_eval* e, int mode, rugo_real v[2], rugo_real 
 
 /* Newton on the stationary system in the given form, J u = -H. Same contract as newton_cross; *res
  * is the residual in units of its round-off level (0 when converged). */
-static int newton_stat(ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res) {
+static int newton_stat(ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res,
+                       const pair_eval* start, pair_eval* last) {
     rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
     int conv = 0, tiny = 0;
     for (int it = 0;; ++it) {
-        pair_eval e = eval_pair(c, x, y);
+        /* start (may be NULL): eval_pair at the starting point; last (may be NULL): gets the values at
+         * the root when converged (the loop stops right after evaluating there) */
+        pair_eval e = it == 0 && start ? *start : eval_pair(c, x, y);
+        if (last) *last = e;
         rugo_real v[2], n[2], j[4];
         stat_system(&e, mode, v, n, j);
         rugo_real rr = mx(fabs(v[0]) / mx(n[0], DBL_MIN), fabs(v[1]) / mx(n[1], DBL_MIN));
@@ -678,12 +707,45 @@ static int hodograph_nonzero(const rugo_vec2 d[3]) {
     for (int k = 0; k < 4; ++k) {
         rugo_real l = vlen(dirs[k]);
         if (!(l > 0.0)) continue;
+        /* min_i (x_i / l) = (min_i x_i) / l for l > 0, as rounded division is monotone: one division
+         * instead of three, the same value (up to the sign of an underflowed zero, which the test
+         * below cannot see) */
         rugo_real lo = INFINITY;
         for (int i = 0; i < 3; ++i)
-            lo = mn(lo, rugo_v2_dot(dirs[k], d[i]) / l);
+            lo = mn(lo, rugo_v2_dot(dirs[k], d[i]));
+        lo = lo / l;
         if (lo > 1e-9 * m) return 1;
     }
     return 0;
+}
+
+/* The sub-pieces of one piece on the parameter range [a, b] of the last box (a depth-first search
+ * splits one parameter at a time, so the next box often keeps the other's range): sub_bezier of the
+ * piece (P), its hodograph (dP) and, once asked for, its second derivative (ddP). */
+typedef struct piece_memo {
+    rugo_real a, b;
+    int have_dd;
+    rugo_vec2 P[4], dP[3], ddP[2];
+} piece_memo;
+
+static void memo_init(piece_memo* m) {
+    m->a = m->b = -1.0; /* no box has this range */
+    m->have_dd = 0;
+}
+
+static void memo_range(piece_memo* m, const rugo_vec2 p[4], const rugo_vec2 dp[3], rugo_real a, rugo_real b) {
+    if (a == m->a && b == m->b) return;
+    sub_bezier(p, 3, a, b, m->P);
+    sub_bezier(dp, 2, a, b, m->dP);
+    m->a = a;
+    m->b = b;
+    m->have_dd = 0;
+}
+
+static void memo_dd(piece_memo* m, const rugo_vec2 ddp[2]) {
+    if (m->have_dd) return;
+    sub_bezier(ddp, 1, m->a, m->b, m->ddP);
+    m->have_dd = 1;
 }
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -735,6 +797,9 @@ static int cross_excluded(const ctx* c, box b, rugo_real s, rugo_real t, rugo_re
 static void search_crossings(ctx* c) {
     box st[STACK_MAX];
     int ns = 0, boxes = 0;
+    piece_memo mf, mg;
+    memo_init(&mf);
+    memo_init(&mg);
     push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
     while (ns > 0) {
         box b = st[--ns];
@@ -744,23 +809,24 @@ static void search_crossings(ctx* c) {
             ++c->fallback;
             return;
         }
-        rugo_vec2 F[4], G[4];
-        sub_bezier(c->f, 3, b.s0, b.s1, F);
-        sub_bezier(c->g, 3, b.t0, b.t1, G);
+        memo_range(&mf, c->f, c->df, b.s0, b.s1);
+        memo_range(&mg, c->g, c->dg, b.t0, b.t1);
+        const rugo_vec2 *F = mf.P, *G = mg.P;
         const int whole = is_root(b);
         if (whole ? c->root_apart : hull_gap_above(F, G, TAU_F)) continue;
         rugo_real diam_f = poly_diam(F, 3), diam_g = poly_diam(G, 3);
         rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
-        rugo_vec2 dF[3], dG[3];
-        sub_bezier(c->df, 2, b.s0, b.s1, dF);
-        sub_bezier(c->dg, 2, b.t0, b.t1, dG);
+        const rugo_vec2 *dF = mf.dP, *dG = mg.dP;
+        rugo_vec2 centre[3]; /* F, f', g' at the centre (sc, tc) */
         {
             /* interval Newton: J = [f' -g'] over the box */
             ival fpx, fpy, gpx, gpy;
             iv_range(dF, 2, &fpx, &fpy);
             iv_range(dG, 2, &gpx, &gpy);
-            rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, sc), bez(c->g, 3, tc));
-            rugo_vec2 fp = bez(c->df, 2, sc), gp = bez(c->dg, 2, tc);
+            centre[0] = rugo_v2_sub(bez(c->f, 3, sc), bez(c->g, 3, tc));
+            centre[1] = bez(c->df, 2, sc);
+            centre[2] = bez(c->dg, 2, tc);
+            const rugo_vec2 r = centre[0], fp = centre[1], gp = centre[2];
             rugo_real v[2] = {r.x, r.y}, n[2] = {8.0 * EPS, 8.0 * EPS};
             rugo_real jc[4] = {fp.x, -gp.x, fp.y, -gp.y};
             if (krawczyk_excludes(b, v, n, jc, fpx, iv_neg(gpx), fpy, iv_neg(gpy))) continue;
@@ -777,7 +843,7 @@ static void search_crossings(ctx* c) {
             rugo_real s = sc, t = tc, res;
             /* The root must be certain to exist in the box: its uncertainty ball inside the box (a
              * numerical zero next to a touching has a ball as large as its distance to it). */
-            const int conv = newton_cross(c, &b, &s, &t, &res);
+            const int conv = newton_cross(c, &b, &s, &t, &res, centre);
             if (conv && in_box_ball(b, s, t, rho)) {
                 rugo_vec2 fp = bez(c->df, 2, s), gp = bez(c->dg, 2, t);
                 rugo_real cond = (rugo_v2_dot(fp, fp) + rugo_v2_dot(gp, gp)) / fabs(rugo_v2_cross(fp, gp));
@@ -795,7 +861,7 @@ static void search_crossings(ctx* c) {
              * probing) and everything within R_FALLBACK of it is resolved. */
             int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
             rugo_real s = sc, t = tc, res;
-            if (newton_stat(c, mode, &b, &s, &t, &res) && in_domain(s, t) &&
+            if (newton_stat(c, mode, &b, &s, &t, &res, NULL, NULL) && in_domain(s, t) &&
                 vmax(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t))) <= TAU_TOUCH) {
                 ++c->fallback;
                 if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
@@ -810,7 +876,7 @@ static void search_crossings(ctx* c) {
         ++c->fallback;
         if (near_root(c->cross, c->ncross, sc, tc, R_FALLBACK)) continue;
         rugo_real s = sc, t = tc, res;
-        newton_cross(c, &b, &s, &t, &res);
+        newton_cross(c, &b, &s, &t, &res, centre);
         if (res <= TAU_TOUCH && in_domain(s, t)) {
             if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
                 c->overflow = 1;
@@ -922,14 +988,13 @@ static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6,
  * tests; the caller needs them too). */
 static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
                       const rugo_vec2 dG[3], pair_eval* ec) {
-    if (is_root(bx)) {
-        /* (the hull test of the whole square is known to fail when the search runs: see solve) */
-        if (root_cone(c) != 0) return 1;
-    } else {
-        /* (cheaper first; the cone test prunes most sub-boxes) */
-        if (cone_sign(dF, dG, NULL) != 0) return 1;
-        if (hull_gap_above(F, G, c->cutoff + TAU_F)) return 1;
-    }
+    /* The box is pruned if any test below proves it empty; they are pure, so their order does not
+     * change the answer. The cone test prunes most sub-boxes and is cheap: first. The hull test
+     * (cutoff) rarely prunes: it runs last, only for a box that the others leave (hull_left). (The
+     * hull test of the whole square is known to fail when the search runs: see solve.) */
+    const int whole = is_root(bx);
+    if (whole ? root_cone(c) != 0 : cone_sign(dF, dG, NULL) != 0) return 1;
+#define hull_left() (!whole && hull_gap_above(F, G, c->cutoff + TAU_F))
     rugo_vec2 D[4][4];
     rugo_real md = 0.0, mf = 0.0, mg = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -962,7 +1027,7 @@ static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4]
                 maybe = corners_one_sign(a * a0 + b * b0, a * a1 + b * b1, a * a2 + b * b2, a * a3 + b * b3,
                                          2.0 * (fabs(a) * tau1 + fabs(b) * tau2));
             }
-            if (!maybe) return 0;
+            if (!maybe) return hull_left();
         }
     }
     /* Bernstein products: coefficient m = i + k collects W32[i][k] x_i y_k, summed in increasing i
@@ -1015,13 +1080,14 @@ static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4]
             p[k] = a * e1[k] + b * e2[k];
         if (one_sign(p, 36, 2.0 * (fabs(a) * tau1 + fabs(b) * tau2)) != 0) return 1;
     }
-    return 0;
+    return hull_left();
+#undef hull_left
 }
 
-static rugo_real stat_radius(const ctx* c, rugo_real s, rugo_real t) {
-    pair_eval e = eval_pair(c, s, t);
-    rugo_real det = fabs(e.j11 * e.j22 - e.j12 * e.j21);
-    rugo_real fro = e.j11 * e.j11 + e.j12 * e.j12 + e.j21 * e.j21 + e.j22 * e.j22;
+/* Dedupe radius of a stationary root from the values e there. */
+static rugo_real stat_radius_of(const pair_eval* e) {
+    rugo_real det = fabs(e->j11 * e->j22 - e->j12 * e->j21);
+    rugo_real fro = e->j11 * e->j11 + e->j12 * e->j12 + e->j21 * e->j21 + e->j22 * e->j22;
     return root_radius(det > 0.0 ? fro / det : INFINITY);
 }
 
@@ -1032,7 +1098,7 @@ static rugo_real stat_radius(const ctx* c, rugo_real s, rugo_real t) {
  * was chosen for b; what the form does outside b only matters through the uniqueness on E.) Without
  * this, a root just beyond a box edge (typically a minimum in the neighbouring segment) makes the
  * search subdivide toward that edge down to the root's distance. */
-static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t) {
+static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t, const pair_eval* ev) {
     box e;
     rugo_real r0;
     if (!exclusion_box(b, s, t, &e, &r0)) return 0;
@@ -1047,9 +1113,8 @@ static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t
     stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
     rugo_real detmin, jmax;
     if (!jacobian_regular(J, &detmin, &jmax)) return 0;
-    pair_eval ev = eval_pair(c, s, t);
     rugo_real w[2], n[2], j[4];
-    stat_system(&ev, mode, w, n, j);
+    stat_system(ev, mode, w, n, j);
     /* distance to the root <= |system|_2 / sigma_min, sigma_min >= detmin / (2 jmax) */
     const rugo_real rho = 4.0 * (mx(fabs(w[0]), fabs(w[1])) + mx(n[0], n[1])) * jmax / detmin;
     return rho < r0;
@@ -1058,6 +1123,9 @@ static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t
 static void search_stationary(ctx* c) {
     box st[STACK_MAX];
     int ns = 0, boxes = 0;
+    piece_memo mf, mg;
+    memo_init(&mf);
+    memo_init(&mg);
     push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
     while (ns > 0) {
         box b = st[--ns];
@@ -1067,17 +1135,15 @@ static void search_stationary(ctx* c) {
             ++c->fallback;
             return;
         }
-        rugo_vec2 F[4], G[4], dF[3], dG[3];
-        sub_bezier(c->f, 3, b.s0, b.s1, F);
-        sub_bezier(c->g, 3, b.t0, b.t1, G);
-        sub_bezier(c->df, 2, b.s0, b.s1, dF);
-        sub_bezier(c->dg, 2, b.t0, b.t1, dG);
+        memo_range(&mf, c->f, c->df, b.s0, b.s1);
+        memo_range(&mg, c->g, c->dg, b.t0, b.t1);
+        const rugo_vec2 *F = mf.P, *G = mg.P, *dF = mf.dP, *dG = mg.dP;
         rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
         pair_eval ec;
         if (stat_prune(c, b, F, G, dF, dG, &ec)) continue;
-        rugo_vec2 ddF[2], ddG[2];
-        sub_bezier(c->ddf, 1, b.s0, b.s1, ddF);
-        sub_bezier(c->ddg, 1, b.t0, b.t1, ddG);
+        memo_dd(&mf, c->ddf);
+        memo_dd(&mg, c->ddg);
+        const rugo_vec2 *ddF = mf.ddP, *ddG = mg.ddP;
         int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
         ival J[4];
         stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
@@ -1089,9 +1155,9 @@ static void search_stationary(ctx* c) {
         rugo_real detmin, jmax;
         if (jacobian_regular(J, &detmin, &jmax)) {
             rugo_real s = sc, t = tc, res;
-            if (newton_stat(c, mode, &b, &s, &t, &res)) {
+            pair_eval e; /* eval_pair(c, s, t) at the root */
+            if (newton_stat(c, mode, &b, &s, &t, &res, &ec, &e)) {
                 /* existence: |system| <= 2 n at the root and sigma_min(J) >= detmin / (2 jmax) */
-                pair_eval e = eval_pair(c, s, t);
                 rugo_real v[2], n[2], j[4];
                 stat_system(&e, mode, v, n, j);
                 rugo_real rho = 4.0 * mx(n[0], n[1]) * jmax / detmin;
@@ -1099,20 +1165,20 @@ static void search_stationary(ctx* c) {
                  * the ball is small against the box) */
                 if (in_box_ball(b, s, t, rho) ||
                     (in_box(b, s, t) && rho <= 0.125 * mn(b.s1 - b.s0, b.t1 - b.t0))) {
-                    if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius(c, s, t), 0, 0)) {
+                    if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius_of(&e), 0, 0)) {
                         c->overflow = 1;
                         return;
                     }
                     continue;
                 }
-                if (stat_excluded(c, mode, b, s, t)) continue;
+                if (stat_excluded(c, mode, b, s, t, &e)) continue;
             }
         } else if (mx(b.s1 - b.s0, b.t1 - b.t0) <= H_ACC) {
             /* Small but still not certified: a (nearly) degenerate stationary pair, e.g. curves almost
              * touching, where the Hessian is nearly singular along a long valley. Accept the Newton
              * root if it lies in the box, and consider everything within R_MERGE resolved. */
             rugo_real s = sc, t = tc, res;
-            if (newton_stat(c, mode, &b, &s, &t, &res) && in_box(b, s, t)) {
+            if (newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL) && in_box(b, s, t)) {
                 ++c->fallback;
                 if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                     c->overflow = 1;
@@ -1125,7 +1191,7 @@ static void search_stationary(ctx* c) {
         /* A leaf. */
         ++c->fallback;
         rugo_real s = sc, t = tc, res;
-        newton_stat(c, mode, &b, &s, &t, &res);
+        newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL);
         if (res <= 1024.0 && in_domain(s, t)) {
             if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                 c->overflow = 1;
@@ -1417,8 +1483,10 @@ static void solve(ctx* c, rugo__narrow_result* out) {
     for (int i = 0; i < 3; ++i) {
         mf = mx(mf, vmax(c->df[i]));
         mg = mx(mg, vmax(c->dg[i]));
-        for (int j = 0; j < 3; ++j)
-            cmax = mx(cmax, fabs(rugo_v2_cross(c->df[i], c->dg[j])));
+        for (int j = 0; j < 3; ++j) {
+            c->root_cross[3 * i + j] = rugo_v2_cross(c->df[i], c->dg[j]);
+            cmax = mx(cmax, fabs(c->root_cross[3 * i + j]));
+        }
     }
     if (piece_extent(c->g) <= POINT_TOL) {
         point_piece_path(c, 1, out);

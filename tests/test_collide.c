@@ -1839,6 +1839,105 @@ START_TEST(test_tree_pairs_against_all_pairs) {
 }
 END_TEST
 
+/* The traversal as it was first written (collide.c before issue 7's speed work): depth first from the
+ * roots, each node pair tested with rugo_obb_overlap when it is popped, B's boxes moved by
+ * rugo_obb_transform, both trees descended when their heights are equal, children pushed in reverse.
+ * rugo_tree_pairs must give the same pairs in the same order with the same number of tests (its test
+ * shares work between the four axes but computes each axis's distance and reach with the same
+ * operations). */
+static int ref_tree_pairs(const rugo_mobb_tree* ta, int stop_a, const rugo_mobb_tree* tb, int stop_b,
+                          rugo_transform rel, rugo_node_pair* out, int cap, long* tests) {
+    typedef struct {
+        int la, ka, lb, kb;
+    } rn;
+    enum { STACK = 4096 };
+    static rn st[STACK];
+    const int ja = rugo_mobb_tree_coarsest_level(ta), jb = rugo_mobb_tree_coarsest_level(tb);
+    int top = 0, n = 0;
+    st[top++] = (rn){-1, 0, -1, 0};
+    *tests = 0;
+    while (top > 0) {
+        const rn t = st[--top];
+        ++*tests;
+        const rugo_obb* a = t.la < 0 ? rugo_mobb_tree_root(ta) : rugo_mobb_tree_node(ta, t.la, t.ka);
+        const rugo_obb bb =
+            rugo_obb_transform(rel, t.lb < 0 ? rugo_mobb_tree_root(tb) : rugo_mobb_tree_node(tb, t.lb, t.kb));
+        if (!rugo_obb_overlap(a, &bb)) continue;
+        const int ha = t.la < 0 ? stop_a - ja + 1 : stop_a - t.la, hb = t.lb < 0 ? stop_b - jb + 1 : stop_b - t.lb;
+        if (ha == 0 && hb == 0) {
+            if (n < cap) out[n] = (rugo_node_pair){t.ka, t.kb};
+            ++n;
+            continue;
+        }
+        int cla = t.la, ka0 = t.ka, nka = 1, clb = t.lb, kb0 = t.kb, nkb = 1;
+        if (ha >= hb) {
+            cla = t.la < 0 ? ja : t.la + 1;
+            ka0 = t.la < 0 ? 0 : 2 * t.ka;
+            nka = t.la < 0 ? 1 << ja : 2;
+        }
+        if (hb >= ha) {
+            clb = t.lb < 0 ? jb : t.lb + 1;
+            kb0 = t.lb < 0 ? 0 : 2 * t.kb;
+            nkb = t.lb < 0 ? 1 << jb : 2;
+        }
+        for (int i = nka - 1; i >= 0; --i)
+            for (int j = nkb - 1; j >= 0; --j) {
+                ck_assert_int_lt(top, STACK);
+                st[top++] = (rn){cla, ka0 + i, clb, kb0 + j};
+            }
+    }
+    return n;
+}
+
+START_TEST(test_tree_pairs_match_reference_traversal) {
+    build_shapes();
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    test_rng r = test_rng_seed(77);
+    enum { CAP = 8192 };
+    rugo_node_pair* pairs = xmalloc(CAP * sizeof *pairs);
+    rugo_node_pair* ref = xmalloc(CAP * sizeof *ref);
+    long total_tests = 0, total_pairs = 0;
+    for (int k = 0; k < 300; ++k) {
+        const tshape* A = &g_shapes[k % N_SHAPES];
+        const tshape* B = &g_shapes[(k / N_SHAPES) % N_SHAPES];
+        rugo_transform xa, xb;
+        random_poses(&r, A, B, 0, -1.0, ctx, &xa, &xb);
+        /* far from the origin too: the overlap test's slack grows with the position */
+        const double far = k % 3 == 0 ? 0.0 : (k % 3 == 1 ? 1e3 : 1e7);
+        xa.p = rugo_v2(xa.p.x + far, xa.p.y - 0.5 * far);
+        xb.p = rugo_v2(xb.p.x + far, xb.p.y - 0.5 * far);
+        const rugo_mobb_tree* ta = rugo_shape_tree(A->s);
+        const rugo_mobb_tree* tb = rugo_shape_tree(B->s);
+        const int la = rugo_mobb_tree_coarsest_level(ta) + (int)(test_rng_next(&r) % 7);
+        const int lb = rugo_mobb_tree_coarsest_level(tb) + (int)(test_rng_next(&r) % 7);
+        const int sa = la > rugo_mobb_tree_finest_level(ta) ? rugo_mobb_tree_finest_level(ta) : la;
+        const int sb = lb > rugo_mobb_tree_finest_level(tb) ? rugo_mobb_tree_finest_level(tb) : lb;
+        rugo_transform rel;
+        rel.q.c = xa.q.c * xb.q.c + xa.q.s * xb.q.s;
+        rel.q.s = xa.q.c * xb.q.s - xa.q.s * xb.q.c;
+        rel.p = rugo_inv_rotate(xa.q, rugo_v2_sub(xb.p, xa.p));
+        int n = -1;
+        long tests = -1, ref_tests = -1;
+        ck_assert_int_eq(rugo_tree_pairs(ctx, ta, xa, la, tb, xb, lb, pairs, CAP, &n, &tests), RUGO_OK);
+        const int nr = ref_tree_pairs(ta, sa, tb, sb, rel, ref, CAP, &ref_tests);
+        ck_assert_int_eq(n, nr);
+        ck_assert_int_eq(tests, ref_tests);
+        for (int m = 0; m < n && m < CAP; ++m) {
+            ck_assert_int_eq(pairs[m].k_a, ref[m].k_a);
+            ck_assert_int_eq(pairs[m].k_b, ref[m].k_b);
+        }
+        total_tests += tests;
+        total_pairs += n;
+    }
+    printf("tree pairs against the reference traversal: %ld pairs, %ld box tests, same order\n", total_pairs,
+           total_tests);
+    free(ref);
+    free(pairs);
+    rugo_collide_context_destroy(ctx);
+}
+END_TEST
+
 /* ---- manifold reduction ---------------------------------------------------------------------------- */
 
 static rugo_contact mk(double x, double sep, int region) {
@@ -2641,6 +2740,7 @@ int main(void) {
     TCase* tm = tcase_create("misc");
     tcase_set_timeout(tm, 600);
     tcase_add_test(tm, test_tree_pairs_against_all_pairs);
+    tcase_add_test(tm, test_tree_pairs_match_reference_traversal);
     tcase_add_test(tm, test_reduce_manifold);
     tcase_add_test(tm, test_context_and_truncation);
     tcase_add_test(tm, test_bad_inputs);

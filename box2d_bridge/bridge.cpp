@@ -84,6 +84,9 @@ constexpr float kJointRegionCos = 0.985f;
 constexpr double kMaxSpeculativeRestitution = 1000.0;
 // Rotation per step (radians) from which a pair counts as fast for the TOI rule (docs/box2d.md).
 constexpr double kFastTurn = 0.3;
+// Contacts per query the librugo context is sized for when a body is attached (a body pair's query
+// reports a handful; a pile's deepest pairs a few more): past it, librugo grows the context in a step.
+constexpr int kQueryReserveContacts = 16;
 
 inline uint32 hashId(uint64_t id) {
     // splitmix64 finaliser folded to 32 bits: distinct librugo ids rarely collide in a manifold.
@@ -1281,6 +1284,10 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
         if (def.proxyLevel < Jmin || def.proxyLevel > J || def.proxyLevel > level) return RUGO_ERR_BAD_ARGUMENT;
         proxyLevel = def.proxyLevel;
     }
+    // The query context's room for this shape's queries, now rather than during a step (librugo grows
+    // the context to a new high-water mark otherwise). kQueryReserveContacts: see its comment.
+    const rugo_status reserved = rugo_collide_context_reserve(I.ctx, s, kQueryReserveContacts);
+    if (reserved != RUGO_OK) return reserved;
     const rugo_mobb_tree* tree = rugo_shape_tree(s);
     BodyRec* r = new (std::nothrow) BodyRec;
     if (r == nullptr) return RUGO_ERR_OUT_OF_MEMORY;

@@ -666,6 +666,36 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
     return RUGO_OK;
 }
 
+/* Room for the queries between two shapes the size of s (the same coarsest and finest levels, or
+ * smaller) with up to `contacts` contacts. The traversal's stack holds at most the root's children
+ * (2^j0 x 2^j0) plus 3 per level descended on either side (each later expansion pops one node and pushes
+ * at most 2 x 2), and its box pool 2 + 2 x 2^j0 boxes plus 4 per level on either side (see traverse);
+ * the per-segment tables take both shapes' segments. What grows with the contacts is sized from what
+ * the benchmarks measure per contact (about 25 segment pairs near one contact at the finest level, a
+ * few hits each), with room to spare, and the pair list holds every segment pair when there are at
+ * most 8192; a query beyond that (large shapes deeply overlapping) still grows. */
+rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* s, int contacts) {
+    if (ctx == NULL || s == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (contacts < 0 || contacts > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_ARGUMENT;
+    const rugo_mobb_tree* t = rugo_shape_tree(s);
+    if (t == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    const int j0 = rugo_mobb_tree_coarsest_level(t), levels = rugo_mobb_tree_finest_level(t) - j0 + 1;
+    const size_t fan = (size_t)1 << j0, seg = (size_t)2 << rugo_mobb_tree_finest_level(t); /* both shapes */
+    const size_t c = contacts > 0 ? (size_t)contacts : 1;
+    /* every segment pair of two such shapes, when that is at most 8192 (64 kB): deeply overlapping
+     * small shapes (a pile's worst pairs) then fit too */
+    const size_t half = seg / 2, all_pairs = half <= 90 ? half * half : 8192;
+    const int ok = reserve(ctx, &ctx->stack, fan * fan + 6 * (size_t)levels + 1, sizeof(tnode)) &&
+                   reserve(ctx, &ctx->kids, 2 + 2 * fan + 8 * (size_t)levels, sizeof(tbx)) &&
+                   reserve(ctx, &ctx->pairs, all_pairs > 64 * c ? all_pairs : 64 * c, sizeof(rugo_node_pair)) &&
+                   reserve(ctx, &ctx->xs, 4 * c, sizeof(hit)) && reserve(ctx, &ctx->ss, 8 * c, sizeof(hit)) &&
+                   reserve(ctx, &ctx->ss2, 8 * c, sizeof(hit)) && reserve(ctx, &ctx->ints, 24 * c, sizeof(int)) &&
+                   reserve(ctx, &ctx->marks, seg > (4 * c + 2) * sizeof(rugo_real) ? seg : (4 * c + 2) * sizeof(rugo_real), 1) &&
+                   reserve(ctx, &ctx->segs, seg, sizeof(seginfo)) && reserve(ctx, &ctx->out, 4 * c, sizeof(rugo_contact)) &&
+                   reserve(ctx, &ctx->ptab, seg, sizeof(rugo_vec2[4])) && reserve(ctx, &ctx->pstamp, seg, sizeof(uint32_t));
+    return ok ? RUGO_OK : RUGO_ERR_OUT_OF_MEMORY;
+}
+
 rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
                             int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
                             rugo_node_pair* pairs, int capacity, int* count, long* box_tests) {
@@ -1994,7 +2024,7 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
     rugo_real ts[64];
     size_t nt = 0;
     /* Edge parameters of the crossings, sorted (feature 1 = the edge: w - 1). */
-    if (!reserve(ctx, &ctx->marks, (m + 2) * sizeof(rugo_real), 1)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (m + 2 > 64 && !reserve(ctx, &ctx->marks, (m + 2) * sizeof(rugo_real), 1)) return RUGO_ERR_OUT_OF_MEMORY;
     rugo_real* t = m + 2 <= 64 ? ts : (rugo_real*)ctx->marks.data;
     t[nt++] = 0.0;
     for (size_t i = 0; i < m; ++i)

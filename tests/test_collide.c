@@ -1938,6 +1938,79 @@ START_TEST(test_tree_pairs_match_reference_traversal) {
 }
 END_TEST
 
+/* rugo_collide_context_reserve: reserved for each test shape (as the bridge does when it attaches a
+ * body), near-contact queries between them at levels 0..-2 allocate nothing; the same queries on a
+ * context without the reserve do allocate (so the count can fail). */
+START_TEST(test_context_reserve) {
+    build_shapes();
+    rugo_collide_context* pose_ctx = NULL; /* random_poses queries too: its own context */
+    ck_assert_int_eq(rugo_collide_context_create(NULL, &pose_ctx), RUGO_OK);
+    test_budget_ctx with = {1L << 40, 0}, without = {1L << 40, 0};
+    const rugo_allocator aw = {test_budget_alloc, test_budget_free, &with};
+    const rugo_allocator ao = {test_budget_alloc, test_budget_free, &without};
+    rugo_collide_context *cw = NULL, *co = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(&aw, &cw), RUGO_OK);
+    ck_assert_int_eq(rugo_collide_context_create(&ao, &co), RUGO_OK);
+    enum { CONTACTS = 16 };
+    for (int k = 0; k < N_SHAPES; ++k) ck_assert_int_eq(rugo_collide_context_reserve(cw, g_shapes[k].s, CONTACTS), RUGO_OK);
+    const long reserved = (1L << 40) - with.budget, base_without = (1L << 40) - without.budget;
+    test_rng r = test_rng_seed(2026);
+    int most = 0, touching = 0;
+    for (int k = 0; k < 300; ++k) {
+        const tshape* A = &g_shapes[k % N_SHAPES];
+        const tshape* B = &g_shapes[(k / N_SHAPES) % N_SHAPES];
+        rugo_transform xa, xb;
+        random_poses(&r, A, B, 0, -1.0, pose_ctx, &xa, &xb);
+        rugo_contact_query q = rugo_default_contact_query();
+        q.level = -(k % 3);
+        rugo_contact cs[CONTACTS];
+        int n = 0;
+        rugo_contact_state state;
+        rugo_query_stats st;
+        ck_assert_int_eq(rugo_collide_shapes(cw, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, &st), RUGO_OK);
+        most = st.contacts_found > most ? st.contacts_found : most;
+        touching += n > 0;
+        ck_assert_int_eq(rugo_collide_shapes(co, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, NULL), RUGO_OK);
+    }
+    const long after_reserve = (1L << 40) - with.budget - reserved;
+    const long grown = (1L << 40) - without.budget - base_without;
+    printf("context reserve: %ld allocations to reserve for %d shapes; 300 queries (%d touching, at most %d "
+           "contacts): %ld allocations after the reserve, %ld without it\n",
+           reserved, N_SHAPES, touching, most, after_reserve, grown);
+    ck_assert_int_ge(touching, 150);
+    ck_assert_int_le(most, CONTACTS);
+    ck_assert_int_eq(after_reserve, 0);
+    ck_assert_int_gt(grown, 0);
+    rugo_collide_context_destroy(cw);
+    rugo_collide_context_destroy(co);
+    ck_assert_int_eq(with.live, 0);
+    ck_assert_int_eq(without.live, 0);
+
+    /* bad input, and out of memory: the context keeps what it had and still answers */
+    ck_assert_int_eq(rugo_collide_context_reserve(NULL, g_shapes[0].s, 1), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_collide_context_reserve(pose_ctx, NULL, 1), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_collide_context_reserve(pose_ctx, g_shapes[0].s, -1), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_collide_context_reserve(pose_ctx, g_shapes[0].s, RUGO_MAX_CONTROL_POINTS + 1),
+                     RUGO_ERR_BAD_ARGUMENT);
+    test_budget_ctx tight = {1, 0};
+    const rugo_allocator at = {test_budget_alloc, test_budget_free, &tight};
+    rugo_collide_context* ct = NULL;
+    ck_assert_int_eq(rugo_collide_context_create(&at, &ct), RUGO_OK); /* the one allocation */
+    ck_assert_int_eq(rugo_collide_context_reserve(ct, g_shapes[0].s, CONTACTS), RUGO_ERR_OUT_OF_MEMORY);
+    tight.budget = 1L << 40;
+    rugo_contact cs[CONTACTS];
+    int n = -1;
+    rugo_contact_state state;
+    rugo_contact_query q = rugo_default_contact_query();
+    ck_assert_int_eq(rugo_collide_shapes(ct, g_shapes[0].s, rugo_make_transform(0, 0, 0), g_shapes[0].s,
+                                         rugo_make_transform(0.5, 0, 0), &q, cs, CONTACTS, &n, &state, NULL),
+                     RUGO_OK);
+    rugo_collide_context_destroy(ct);
+    ck_assert_int_eq(tight.live, 0);
+    rugo_collide_context_destroy(pose_ctx);
+}
+END_TEST
+
 /* ---- manifold reduction ---------------------------------------------------------------------------- */
 
 static rugo_contact mk(double x, double sep, int region) {
@@ -2741,6 +2814,7 @@ int main(void) {
     tcase_set_timeout(tm, 600);
     tcase_add_test(tm, test_tree_pairs_against_all_pairs);
     tcase_add_test(tm, test_tree_pairs_match_reference_traversal);
+    tcase_add_test(tm, test_context_reserve);
     tcase_add_test(tm, test_reduce_manifold);
     tcase_add_test(tm, test_context_and_truncation);
     tcase_add_test(tm, test_bad_inputs);

@@ -114,6 +114,14 @@ typedef struct rugo_collide_context rugo_collide_context;
 rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out);
 /** Frees the context and its buffers; NULL is allowed. */
 void rugo_collide_context_destroy(rugo_collide_context* ctx);
+/** Allocates now the room that queries between two shapes no larger than `shape` (its coarsest and
+ * finest levels) with up to `contacts` contacts would grow the context to, so that such queries do
+ * not allocate later (e.g. call it when a body is added, not during a step). Queries at coarser
+ * levels, and against circles, capsules, segments and polygons, need less. A query beyond it (shapes
+ * deeply overlapping, many more contacts) still grows the context. Calls add up to the largest
+ * sizes asked for; the context never shrinks. Errors: NULL_ARGUMENT, BAD_ARGUMENT (contacts < 0 or
+ * beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY (the context keeps what it had). */
+rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* shape, int contacts);
 
 /** Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
  * first within each region, regions in a stable order), the number written to *count, the state to

@@ -7,12 +7,14 @@
 # New inputs go to build-fuzz/corpus/<target> (the checked-in seeds in fuzz/corpus/<target> are only
 # read); a crash leaves build-fuzz/artifacts/<target>-crash-* and makes this script fail.
 # Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), RUGO_FUZZ_JOBS (default 2),
+# RUGO_FUZZ_CORPUS (where new inputs go, default build-fuzz/corpus; one directory per target),
 # RUGO_FUZZ_SEED (libFuzzer's -seed; unset: a new seed each run). With a seed, -runs=N and a fresh
-# build-fuzz/corpus, a run is reproducible: scripts/test.sh uses that so the suite's verdict does not
+# corpus, a run is reproducible: scripts/test.sh uses that so the suite's verdict does not
 # depend on luck or machine speed.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RUGO_FUZZ_BUILD:-$root/build-fuzz}
+corpus=${RUGO_FUZZ_CORPUS:-$build/corpus}
 limit=${1:-20}
 [ $# -gt 0 ] && shift
 targets=${*:-fuzz_shape_json fuzz_baked fuzz_contacts fuzz_import}
@@ -41,10 +43,10 @@ cmake --build "$build" -j "${RUGO_FUZZ_JOBS:-2}" --target $targets
 
 status=0
 for t in $targets; do
-    mkdir -p "$build/corpus/$t" "$build/artifacts"
+    mkdir -p "$corpus/$t" "$build/artifacts"
     echo "fuzz: $t ($budget${seed:+ $seed})"
     # -max_len: the seeds are small; larger inputs mostly cost time. -timeout: a hang is a finding.
-    if ! $norand "$build/$t" "$build/corpus/$t" "$root/fuzz/corpus/$t" "$budget" $seed -max_len=16384 -timeout=20 \
+    if ! $norand "$build/$t" "$corpus/$t" "$root/fuzz/corpus/$t" "$budget" $seed -max_len=16384 -timeout=20 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" \
         >"$build/$t.log" 2>&1; then
         echo "fuzz: $t FAILED; see $build/$t.log and $build/artifacts/" >&2

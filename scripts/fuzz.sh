@@ -9,8 +9,8 @@
 # Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), RUGO_FUZZ_JOBS (default 2),
 # RUGO_FUZZ_CORPUS (where new inputs go, default build-fuzz/corpus; one directory per target),
 # RUGO_FUZZ_SEED (libFuzzer's -seed; unset: a new seed each run). With a seed, -runs=N and a fresh
-# corpus, a run is reproducible: scripts/test.sh uses that so the suite's verdict does not
-# depend on luck or machine speed.
+# corpus, a run repeats on the same machine and checkout: scripts/test.sh uses that so the suite's
+# verdict does not depend on luck or machine speed.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RUGO_FUZZ_BUILD:-$root/build-fuzz}

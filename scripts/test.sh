@@ -19,7 +19,7 @@ for variant in normal sanitize; do
 done
 echo "=== fuzz (short run) ==="
 # Seeded and counted, on a fresh corpus of its own (build-fuzz/corpus, the long runs', is kept): the
-# same inputs on every machine (docs/fuzzing.md).
+# same inputs on each run in the same checkout (docs/fuzzing.md).
 rm -rf build-fuzz/suite-corpus
 RUGO_FUZZ_CORPUS=build-fuzz/suite-corpus RUGO_FUZZ_SEED=1 sh scripts/fuzz.sh -runs=30000 || status=1
 exit $status

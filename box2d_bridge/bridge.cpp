@@ -753,12 +753,16 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             if (known == nullptr) unkept = JointInfo();
             JointInfo& ji = known ? known[k - firstK] : unkept;
             if (!ji.done) {
-                ji.cp = rugo_contour_closest_point(oc, pl);
+                rugo_shape_closest_point(O->shape, LO, pl, &ji.cp); // = rugo_contour_closest_point(oc, pl), via the tree
                 ji.done = true;
             }
             const rugo_curve_point cp = ji.cp;
             if ((cp.segment >> (LO - O->proxyLevel)) != oth->node) return; // another proxy pair's point
-            if (ji.inside < 0) ji.inside = rugo_contour_contains(oc, pl) != 0 ? 1 : 0;
+            if (ji.inside < 0) {
+                int in = 0;
+                rugo_shape_contains(O->shape, LO, pl, &in); // = rugo_contour_contains(oc, pl), via the tree
+                ji.inside = in != 0 ? 1 : 0;
+            }
             const bool inside = ji.inside != 0;
             const double lamO = rugo_tolerance_at(otl.total, otl.count, cp.segment, cp.t, 0.0);
             const double s = (inside ? -cp.distance : cp.distance) - lam - lamO;
@@ -1488,9 +1492,10 @@ bool Bridge::RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const {
 bool Bridge::TestPoint(const b2Body* body, const b2Vec2& p) const {
     const BodyRec* r = m_impl->rec(body);
     if (r == nullptr) return false;
-    rugo_contour curve;
-    if (rugo_shape_level(r->shape, r->level, &curve) != RUGO_OK) return false;
-    return rugo_contour_contains(curve, rugo_inv_transform_point(toRugo(body->GetTransform()), toRv(p))) != 0;
+    int inside = 0;
+    if (rugo_shape_contains(r->shape, r->level, rugo_inv_transform_point(toRugo(body->GetTransform()), toRv(p)), &inside) != RUGO_OK)
+        return false;
+    return inside != 0;
 }
 
 void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& callback) const {

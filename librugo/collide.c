@@ -406,79 +406,22 @@ static rugo_real side_lambda(const side* s, int seg, rugo_real t, rugo_real over
     return rugo_tolerance_at(s->lambda, s->n, seg, t, 0.0);
 }
 
-/* ---------------------------------------------------------------------------------------------------
- * Containment through the tree.
- *
- * rugo_contour_contains sums, over all segments, the changes of the curve between below and above the
- * horizontal line through p that happen right of p (the ray from p towards +x); p is inside iff the
- * sum is not 0 (contour.c). side_contains computes the same sum but visits only the segments under
- * tree boxes that the ray may meet, and gets each one's term from the same function
- * (rugo__contour_winding_segment), so the answer is the same integer sum, bit for bit, on every input.
- * A skipped segment's term is certainly 0: its curve lies in a box that keeps more than CONTAIN_PAD
- * (relative to the shape's size and p's distance) above, below or left of p. The segment's count is
- * computed relative to p from its control points with an error of a few ulps of their distance from p
- * (bounded by that size and distance), far below the pad. Above (below): every computed y - p.y is
- * positive (negative), so no change is counted. Left: every x at which a change is counted is
- * negative, so none counts. The tree's boxes hold the query level's segments: node (j, k) contains its
- * descendants' boxes down to that level, and each of those its own segment (mobb.h), with round-off
- * pads of their own. So containment costs the boxes along the ray and the segments at its crossings,
- * not a pass over all segments. */
+/* Containment through the tree (point_query.c): the same answer as rugo_contour_contains on the side's
+ * curve, from the segments under the boxes the ray from p towards +x may meet. */
+static int side_contains(const side* s, rugo_vec2 p) { return rugo__level_contains(s->shape, s->level, p, NULL); }
 
-#define CONTAIN_PAD 1e-8
-
-/* 1 if box b keeps more than m above, below or left of p (its axis-aligned bounds). */
-static int clear_of_ray(const rugo_obb* b, rugo_vec2 p, rugo_real m) {
-    const rugo_real ex = b->half[0] * fabs(b->axis[0].x) + b->half[1] * fabs(b->axis[1].x);
-    const rugo_real ey = b->half[0] * fabs(b->axis[0].y) + b->half[1] * fabs(b->axis[1].y);
-    return b->center.y - ey > p.y + m || b->center.y + ey < p.y - m || b->center.x + ex < p.x - m;
+/* rugo_contour_closest_point on the side's curve, through the tree (point_query.c): the same answer
+ * (non-finite p, which the tree version refuses, takes the pass over all segments). */
+static rugo_curve_point side_closest(const side* s, rugo_vec2 p) {
+    rugo_curve_point cp;
+    if (rugo_shape_closest_point(s->shape, s->level, p, &cp) != RUGO_OK) return rugo_contour_closest_point(s->curve, p);
+    return cp;
 }
-
-/* rugo_contour_contains(s->curve, p) (p in the side's local frame), through the tree; *visited (may
- * be NULL) gets the number of segments whose term was computed. */
-static int side_contains_count(const side* s, rugo_vec2 p, int* visited) {
-    const rugo_obb* root = rugo_mobb_tree_root(s->tree);
-    const rugo_real m =
-        CONTAIN_PAD * (box_size(root) + fabs(p.x - root->center.x) + fabs(p.y - root->center.y));
-    if (visited != NULL) *visited = 0;
-    /* Non-finite input goes the long way (which decides it the same way); a level range that the
-     * fixed stack below cannot hold cannot happen (a level has 2^level segments). */
-    if (!(m < HUGE_VAL) || s->level - s->jmin > 60) {
-        if (visited != NULL) *visited = s->n;
-        return rugo_contour_contains(s->curve, p);
-    }
-    if (clear_of_ray(root, p, m)) return 0;
-    int winding = 0, seen = 0;
-    int lv[64], kk[64];
-    for (int k0 = 0; k0 < (1 << s->jmin); ++k0) {
-        int top = 0;
-        lv[top] = s->jmin;
-        kk[top++] = k0;
-        while (top > 0) {
-            const int l = lv[--top], k = kk[top];
-            if (clear_of_ray(rugo_mobb_tree_node(s->tree, l, k), p, m)) continue;
-            if (l == s->level) {
-                winding += rugo__contour_winding_segment(s->curve, k, p);
-                ++seen;
-                continue;
-            }
-            lv[top] = l + 1; /* at most one entry per level plus one: depth-first */
-            kk[top++] = 2 * k + 1;
-            lv[top] = l + 1;
-            kk[top++] = 2 * k;
-        }
-    }
-    if (visited != NULL) *visited = seen;
-    return winding != 0;
-}
-
-static int side_contains(const side* s, rugo_vec2 p) { return side_contains_count(s, p, NULL); }
 
 int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited) {
     if (visited != NULL) *visited = 0;
     if (shape == NULL) return 0;
-    side s;
-    side_init(&s, shape, level, -1.0);
-    return side_contains_count(&s, p, visited);
+    return rugo__level_contains(shape, resolve_level(shape, level), p, visited);
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -1313,10 +1256,10 @@ static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, c
     rugo_curve_point cp;
     if (b_inside_a) {
         p0 = sh_point_b(g, 0.0);
-        cp = rugo_contour_closest_point(g->A->curve, p0);
+        cp = side_closest(g->A, p0);
     } else {
         p0 = sh_point_a(g, 0.0);
-        cp = rugo_contour_closest_point(g->B->curve, rugo_inv_transform_point(g->rel, p0));
+        cp = side_closest(g->B, rugo_inv_transform_point(g->rel, p0));
     }
     rugo_status st = closest_pair(ctx, g, ta, tb, cp.distance, &best, &found);
     if (st != RUGO_OK) return st;
@@ -1513,7 +1456,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
                 if (which == 0) {
                     const rugo_vec2 p = sh_point_a(g, u);
                     rugo_curve_point cp =
-                        rugo_contour_closest_point(g->B->curve, rugo_inv_transform_point(g->rel, p));
+                        side_closest(g->B, rugo_inv_transform_point(g->rel, p));
                     if (cp.distance > far) {
                         far = cp.distance;
                         fpa = p;
@@ -1525,7 +1468,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
                     }
                 } else {
                     const rugo_vec2 p = sh_point_b(g, u);
-                    rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, p);
+                    rugo_curve_point cp = side_closest(g->A, p);
                     if (cp.distance > far) {
                         far = cp.distance;
                         fpb = p;
@@ -2047,7 +1990,7 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
         memset(&bcp, 0, sizeof bcp);
         for (int s = 0; s <= EDGE_SAMPLES; ++s) {
             const rugo_real tt = t0 + (t1 - t0) * (rugo_real)s / (rugo_real)EDGE_SAMPLES;
-            rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], tt));
+            rugo_curve_point cp = side_closest(g->A, lerp2(P->v[0], P->v[1], tt));
             if (cp.distance > best) {
                 best = cp.distance;
                 bt = tt;
@@ -2061,16 +2004,16 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
         for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
             const rugo_real x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
             const rugo_real d1 =
-                rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], x1)).distance;
+                side_closest(g->A, lerp2(P->v[0], P->v[1], x1)).distance;
             const rugo_real d2 =
-                rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], x2)).distance;
+                side_closest(g->A, lerp2(P->v[0], P->v[1], x2)).distance;
             if (d1 >= d2)
                 hi = x2;
             else
                 lo = x1;
         }
         const rugo_real tm = 0.5 * (lo + hi);
-        rugo_curve_point cp = rugo_contour_closest_point(g->A->curve, lerp2(P->v[0], P->v[1], tm));
+        rugo_curve_point cp = side_closest(g->A, lerp2(P->v[0], P->v[1], tm));
         if (cp.distance >= best) {
             bcp = cp;
             bt = tm;
@@ -2249,7 +2192,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                             }
                         } else {
                             const rugo_vec2 p = prim_point(P, u);
-                            rugo_curve_point cp = rugo_contour_closest_point(A.curve, p);
+                            rugo_curve_point cp = side_closest(&A, p);
                             if (cp.distance > far) {
                                 far = cp.distance;
                                 fpb = p;
@@ -2295,7 +2238,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             *state = RUGO_STATE_INTERSECTING;
             /* Closest pair of A's curve and B's boundary, searched within the distance from one
              * point of B to A. */
-            rugo_curve_point cp = rugo_contour_closest_point(A.curve, pb0);
+            rugo_curve_point cp = side_closest(&A, pb0);
             tside tb2 = tb;
             tb2.box = grow_box(tb.box, cp.distance * (1.0 + 1e-9) + CUTOFF_PAD * g.scale);
             size_t np2 = 0;

@@ -418,18 +418,22 @@ void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper) {
 /* ---------------------------------------------------------------------------------------------------
  * Closest point. */
 
-rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
+/* Segment j's index among the candidates: all segments (segs == NULL) or segs[i] (increasing). */
+static int candidate_segment(const int* segs, int i) { return segs == NULL ? i : segs[i]; }
+
+rugo_curve_point rugo__contour_closest_among(rugo_contour c, rugo_vec2 p, const int* segs, int count) {
     rugo_curve_point res;
     res.segment = 0;
     res.t = 0.0;
     res.point = p;
     res.distance = HUGE_VAL;
-    if (c.points == NULL || c.count < 1) return res;
+    if (c.points == NULL || c.count < 1 || count < 1) return res;
     /* Work relative to p. The joints give an upper bound quickly; then a segment is solved only if
      * its Bezier hull's box could hold a closer point. */
     rugo_real best = HUGE_VAL, best_t = 0.0;
     int best_j = 0;
-    for (int j = 0; j < c.count; ++j) {
+    for (int i = 0; i < count; ++i) {
+        const int j = candidate_segment(segs, i);
         rugo_vec2 q[4], k[4];
         segment_points_rel(c, j, p, q);
         power_from_points(q, k);
@@ -439,7 +443,8 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
             best_j = j;
         }
     }
-    for (int j = 0; j < c.count; ++j) {
+    for (int i = 0; i < count; ++i) {
+        const int j = candidate_segment(segs, i);
         rugo_vec2 q[4], b[4], k[4];
         segment_points_rel(c, j, p, q);
         bezier_from_points(q, b);
@@ -462,14 +467,14 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
         g[5] = 3.0 * rugo_v2_dot(A, A);
         rugo_real roots[RUGO__POLY_MAX_ROOTS];
         int nr = rugo__poly_roots(g, 5, 0.0, 1.0, 0.0, roots);
-        for (int i = 0; i < nr; ++i) {
-            if (!(roots[i] < 1.0)) continue; /* t = 1 is the next segment's start, seen as a joint */
-            rugo_vec2 f = power_point(k, roots[i]);
+        for (int r = 0; r < nr; ++r) {
+            if (!(roots[r] < 1.0)) continue; /* t = 1 is the next segment's start, seen as a joint */
+            rugo_vec2 f = power_point(k, roots[r]);
             rugo_real d2 = rugo_v2_dot(f, f);
             if (d2 < best) {
                 best = d2;
                 best_j = j;
-                best_t = roots[i];
+                best_t = roots[r];
             }
         }
     }
@@ -478,6 +483,10 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
     res.point = rugo_contour_point(c, best_j, best_t);
     res.distance = sqrt(best);
     return res;
+}
+
+rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
+    return rugo__contour_closest_among(c, p, NULL, c.count);
 }
 
 /* ---------------------------------------------------------------------------------------------------

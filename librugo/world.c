@@ -380,7 +380,8 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
             rugo_vec2 ns = rugo_rotate(S->xf.q, rugo_contour_normal(cs, j, t));
             if (rugo_v2_dot(ns, n_out) < FACE_COS) continue;
             rugo_vec2 q = rugo_transform_point(S->xf, rugo_contour_point(cs, j, t));
-            rugo_curve_point cp = rugo_contour_closest_point(co, rugo_inv_transform_point(O->xf, q));
+            rugo_curve_point cp; /* rugo_contour_closest_point on co, through the tree */
+            if (rugo_shape_closest_point(O->shape, lev_o, rugo_inv_transform_point(O->xf, q), &cp) != RUGO_OK) continue;
             rugo_vec2 no = rugo_rotate(O->xf.q, rugo_contour_normal(co, cp.segment, cp.t));
             if (rugo_v2_dot(no, n_out) > -FACE_COS) continue;
             rugo_vec2 cw = rugo_transform_point(O->xf, cp.point);

@@ -2592,24 +2592,37 @@ END_TEST
 /* ---- containment through the tree (collide.c "Containment through the tree") ------------------- */
 
 typedef struct contain_tally {
-    long cases, inside, mismatches;
+    long cases, inside, mismatches, closest_mismatches;
 } contain_tally;
 
-/* The tree walk against the winding count over all segments (rugo_contour_contains): the same answer
- * is required, not just a close one. */
+/* The tree walks (point_query.c) against the passes over all segments (rugo_contour_contains,
+ * rugo_contour_closest_point): the same answers are required, bit for bit, not just close ones. */
 static void contain_check(const rugo_shape* s, int level, rugo_contour c, rugo_vec2 p, contain_tally* T) {
     int visited = -1;
     const int tree = rugo__shape_contains(s, level, p, &visited);
     const int all = rugo_contour_contains(c, p);
     ck_assert_int_ge(visited, 0);
     ck_assert_int_le(visited, c.count);
+    int pub = -1;
+    ck_assert_int_eq(rugo_shape_contains(s, level, p, &pub), RUGO_OK);
     T->cases++;
     T->inside += all != 0;
-    if ((tree != 0) != (all != 0)) {
+    if ((tree != 0) != (all != 0) || (pub != 0) != (all != 0)) {
         if (T->mismatches < 5)
-            printf("containment mismatch: level %d, p = (%.17g, %.17g): tree %d, all segments %d\n", level, p.x,
-                   p.y, tree, all);
+            printf("containment mismatch: level %d, p = (%.17g, %.17g): tree %d, public %d, all segments %d\n",
+                   level, p.x, p.y, tree, pub, all);
         T->mismatches++;
+    }
+    const rugo_curve_point ref = rugo_contour_closest_point(c, p);
+    rugo_curve_point cp;
+    ck_assert_int_eq(rugo_shape_closest_point(s, level, p, &cp), RUGO_OK);
+    if (cp.segment != ref.segment || cp.t != ref.t || cp.point.x != ref.point.x || cp.point.y != ref.point.y ||
+        cp.distance != ref.distance) {
+        if (T->closest_mismatches < 5)
+            printf("closest point mismatch: level %d, p = (%.17g, %.17g): tree (%d, %.17g, %.17g), all segments "
+                   "(%d, %.17g, %.17g)\n",
+                   level, p.x, p.y, cp.segment, cp.t, cp.distance, ref.segment, ref.t, ref.distance);
+        T->closest_mismatches++;
     }
 }
 
@@ -2707,11 +2720,52 @@ START_TEST(test_tree_containment_matches_winding) {
     free(p);
     free(tol);
     printf("tree containment: %ld points (%ld inside), %ld answers differ from the winding count over all "
-           "segments\n",
-           T.cases, T.inside, T.mismatches);
+           "segments; closest point through the tree: %ld differ from the pass over all segments\n",
+           T.cases, T.inside, T.mismatches, T.closest_mismatches);
     ck_assert_int_ge(T.cases, 50000);
     ck_assert(T.inside > T.cases / 5 && T.inside < T.cases - T.cases / 5);
     ck_assert_int_eq(T.mismatches, 0);
+    ck_assert_int_eq(T.closest_mismatches, 0);
+}
+END_TEST
+
+/* rugo_shape_closest_point and rugo_shape_contains: statuses and outputs on bad input. */
+START_TEST(test_point_queries_bad_input) {
+    build_shapes();
+    const rugo_shape* s = g_shapes[1].s;
+    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
+    rugo_curve_point cp;
+    int in = 7;
+    const rugo_vec2 p = rugo_v2(0.1, 0.2);
+    ck_assert_int_eq(rugo_shape_closest_point(NULL, J, p, &cp), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert(cp.distance == HUGE_VAL && cp.point.x == p.x && cp.point.y == p.y && cp.segment == 0);
+    ck_assert_int_eq(rugo_shape_closest_point(s, J, p, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_contains(NULL, J, p, &in), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(in, 0);
+    ck_assert_int_eq(rugo_shape_contains(s, J, p, NULL), RUGO_ERR_NULL_ARGUMENT);
+    const int bad_levels[4] = {J + 1, Jmin - 1, 0, -1};
+    for (int i = 0; i < 4; ++i) {
+        cp.distance = 0.0;
+        in = 7;
+        ck_assert_int_eq(rugo_shape_closest_point(s, bad_levels[i], p, &cp), RUGO_ERR_BAD_LEVEL);
+        ck_assert(cp.distance == HUGE_VAL);
+        ck_assert_int_eq(rugo_shape_contains(s, bad_levels[i], p, &in), RUGO_ERR_BAD_LEVEL);
+        ck_assert_int_eq(in, 0);
+    }
+    const rugo_vec2 bad_points[3] = {{NAN, 0.0}, {0.0, INFINITY}, {-INFINITY, NAN}};
+    for (int i = 0; i < 3; ++i) {
+        ck_assert_int_eq(rugo_shape_closest_point(s, J, bad_points[i], &cp), RUGO_ERR_NOT_FINITE);
+        ck_assert(cp.distance == HUGE_VAL);
+        ck_assert_int_eq(rugo_shape_contains(s, J, bad_points[i], &in), RUGO_ERR_NOT_FINITE);
+        ck_assert_int_eq(in, 0);
+    }
+    /* and valid input still answers: a point far outside, the centroid inside */
+    ck_assert_int_eq(rugo_shape_contains(s, J, rugo_v2(1e3, 0.0), &in), RUGO_OK);
+    ck_assert_int_eq(in, 0);
+    ck_assert_int_eq(rugo_shape_contains(s, J, rugo_shape_mass(s).centroid, &in), RUGO_OK);
+    ck_assert_int_eq(in, 1);
+    ck_assert_int_eq(rugo_shape_closest_point(s, Jmin, rugo_v2(1e3, 0.0), &cp), RUGO_OK);
+    ck_assert(cp.distance > 900.0 && cp.distance < 1e3 + 10.0);
 }
 END_TEST
 
@@ -2821,6 +2875,7 @@ int main(void) {
     tcase_add_test(tm, test_surface_values);
     tcase_add_test(tm, test_query_margin);
     tcase_add_test(tm, test_tree_containment_matches_winding);
+    tcase_add_test(tm, test_point_queries_bad_input);
     tcase_add_test(tm, test_work_against_segments);
     suite_add_tcase(s, tm);
     TCase* ta = tcase_create("acceptance");

@@ -74,6 +74,17 @@ rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tole
  * sum of the two bodies' values of the finest level's. per_segment (may be NULL) gets 2^level values.
  * 0 at the finest level. Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_LEVEL. */
 rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment, rugo_real* max_error);
+/** Closest point on the curve of `level` (J_min..J) to p (shape's local frame) into *out: the same
+ * answer, bit for bit, as rugo_contour_closest_point on that level's curve, computed through the
+ * MOBBtree (the boxes near p and the few segments under them instead of a pass over all segments).
+ * Re-entrant, no allocation. On error *out (if not NULL) is p itself with distance HUGE_VAL. Errors:
+ * NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
+rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p, rugo_curve_point* out);
+/** *inside = rugo_contour_contains on the curve of `level` (J_min..J) at p (shape's local frame): the
+ * same answer on every input, computed through the MOBBtree (the boxes along the ray from p towards
+ * +x and the segments under them). Re-entrant, no allocation. On error *inside (if not NULL) is 0.
+ * Errors: NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
+rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside);
 /** The shape's MOBBtree (owned by the shape); NULL for NULL. */
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
 /** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */

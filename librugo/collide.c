@@ -202,10 +202,12 @@ static rugo_vec2 bez_point(const rugo_vec2 b[4], rugo_real t) {
 
 static rugo_real v2_len(rugo_vec2 v) { return rugo__v2_length(v); }
 
-static rugo_vec2 v2_unit(rugo_vec2 v) {
-    const rugo_real l = v2_len(v);
+/* v / l for l = v2_len(v) computed by the caller (0 for l = 0). */
+static rugo_vec2 v2_unit_len(rugo_vec2 v, rugo_real l) {
     return l > 0.0 ? rugo_v2(v.x / l, v.y / l) : rugo_v2(0.0, 0.0);
 }
+
+static rugo_vec2 v2_unit(rugo_vec2 v) { return v2_unit_len(v, v2_len(v)); }
 
 static rugo_transform relative_transform(rugo_transform xa, rugo_transform xb) {
     rugo_transform r;
@@ -243,7 +245,7 @@ static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* hal
     rugo_real len[3];
     int m = 0;
     rugo_real size = 0.0;
-    /* each length once (v2_unit would recompute the same value) */
+    /* each length once */
     for (int i = 0; i < 3; ++i) {
         d[i] = rugo_v2_sub(b[i + 1], b[i]);
         len[i] = v2_len(d[i]);
@@ -252,7 +254,7 @@ static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* hal
     rugo_vec2 sum = rugo_v2(0.0, 0.0);
     for (int i = 0; i < 3; ++i) {
         if (len[i] > 1e-9 * size) {
-            u[m] = len[i] > 0.0 ? rugo_v2(d[i].x / len[i], d[i].y / len[i]) : rugo_v2(0.0, 0.0); /* v2_unit */
+            u[m] = v2_unit_len(d[i], len[i]);
             sum = rugo_v2_add(sum, u[m]);
             ++m;
         }
@@ -261,7 +263,7 @@ static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* hal
     *half = 4.0; /* > pi: no information */
     const rugo_real ls = v2_len(sum);
     if (m == 0 || ls < 1e-6) return;
-    *centre = ls > 0.0 ? rugo_v2(sum.x / ls, sum.y / ls) : rugo_v2(0.0, 0.0); /* v2_unit(sum) */
+    *centre = v2_unit_len(sum, ls);
     rugo_real h = 0.0;
     for (int i = 0; i < m; ++i) {
         rugo_real c = rugo_v2_dot(*centre, u[i]);
@@ -291,15 +293,24 @@ static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
     return len > 1e-9 * (v2_len(v) + v2_len(w) + v2_len(r));
 }
 
-/* Outward normal of a counter-clockwise curve at (seg, t). Where the speed vanishes (coincident
- * control points: a sharp corner, or a segment shrunk to a point) the normal is that of a chord
- * across the spot, i.e. the middle of the corner's normal cone. */
-static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
+/* At a regular point of the curve (speed not vanishing against the segment's size), 1 and the
+ * outward normal of the derivative in *n; 0 (n untouched) at a zero-speed point. */
+static int regular_normal(rugo_contour c, int seg, rugo_real t, rugo_vec2* n) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
     const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
     const rugo_real len = v2_len(d);
-    if (speed_regular(len, v, w, r) && len > 0.0) return rugo_v2(d.y / len, -d.x / len);
+    if (!(speed_regular(len, v, w, r) && len > 0.0)) return 0;
+    *n = rugo_v2(d.y / len, -d.x / len);
+    return 1;
+}
+
+/* Outward normal of a counter-clockwise curve at (seg, t). Where the speed vanishes (coincident
+ * control points: a sharp corner, or a segment shrunk to a point) the normal is that of a chord
+ * across the spot, i.e. the middle of the corner's normal cone. */
+static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
+    rugo_vec2 nr;
+    if (regular_normal(c, seg, t, &nr)) return nr;
     const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, tiny = 1e-8 * local_extent(c, seg);
     for (rugo_real h = 1e-4; h < (rugo_real)c.count; h *= 2.0) {
         const rugo_vec2 p1 = rugo_contour_point_at(c, u + h);
@@ -345,16 +356,8 @@ static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in,
  * corner has no such direction. rot turns the curve's frame into the query's. */
 static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_rot rot) {
     rugo_vec2 a, b;
-    {
-        /* A regular point (the usual case): corner_normals returns 0 and curve_normal the normal of
-         * the derivative, from the same values computed here once. */
-        rugo_vec2 v, w, r;
-        rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-        const rugo_vec2 e = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
-        const rugo_real len = v2_len(e);
-        if (speed_regular(len, v, w, r) && len > 0.0)
-            return rugo_v2_dot(rugo_rotate(rot, rugo_v2(e.y / len, -e.x / len)), d) >= 0.0;
-    }
+    /* A regular point (the usual case): corner_normals would return 0 and curve_normal this normal. */
+    if (regular_normal(c, seg, t, &a)) return rugo_v2_dot(rugo_rotate(rot, a), d) >= 0.0;
     if (!corner_normals(c, seg, t, &a, &b))
         return rugo_v2_dot(rugo_rotate(rot, curve_normal(c, seg, t)), d) >= 0.0;
     a = rugo_rotate(rot, a);

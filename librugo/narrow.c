@@ -983,6 +983,12 @@ static int jacobian_regular(const ival J[4], rugo_real* detmin, rugo_real* jmax)
 /* W[i][k] = C(3,i) C(2,k) / C(5,i+k): the product of degree-3 and degree-2 Bernstein polynomials. */
 static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6, 0.6}, {0.1, 0.4, 1.0}};
 
+/* The last test of stat_prune: 1 if the hulls keep more than the cutoff apart (never for the whole
+ * square, whose hull test solve has already made). */
+static int hull_left(const ctx* c, int whole, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
+    return !whole && hull_gap_above(F, G, c->cutoff + TAU_F);
+}
+
 /* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. When it returns 0,
  * *ec holds the values at the box's centre (the Jacobian of (H1, H2) there preconditions the last
  * tests; the caller needs them too). */
@@ -994,7 +1000,6 @@ static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4]
      * hull test of the whole square is known to fail when the search runs: see solve.) */
     const int whole = is_root(bx);
     if (whole ? root_cone(c) != 0 : cone_sign(dF, dG, NULL) != 0) return 1;
-#define hull_left() (!whole && hull_gap_above(F, G, c->cutoff + TAU_F))
     rugo_vec2 D[4][4];
     rugo_real md = 0.0, mf = 0.0, mg = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -1027,7 +1032,7 @@ static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4]
                 maybe = corners_one_sign(a * a0 + b * b0, a * a1 + b * b1, a * a2 + b * b2, a * a3 + b * b3,
                                          2.0 * (fabs(a) * tau1 + fabs(b) * tau2));
             }
-            if (!maybe) return hull_left();
+            if (!maybe) return hull_left(c, whole, F, G);
         }
     }
     /* Bernstein products: coefficient m = i + k collects W32[i][k] x_i y_k, summed in increasing i
@@ -1080,8 +1085,7 @@ static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4]
             p[k] = a * e1[k] + b * e2[k];
         if (one_sign(p, 36, 2.0 * (fabs(a) * tau1 + fabs(b) * tau2)) != 0) return 1;
     }
-    return hull_left();
-#undef hull_left
+    return hull_left(c, whole, F, G);
 }
 
 /* Dedupe radius of a stationary root from the values e there. */

@@ -27,6 +27,7 @@ struct BodyRec {
     b2MassData applied;     // what GetMassData returned right after the bridge set the mass
     bool massValid = false;
     b2Transform stepStart;  // the pose when Bridge::Step began (a moved body means Box2D's TOI phase)
+    std::vector<double> bandMax; // per absolute level J_min..J (index level - J_min): certified max of λ(t)
 };
 
 struct ProxyRef {
@@ -345,6 +346,27 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
                 e = std::max(e, rugo_tolerance_bound_on_segment(tl.total, tl.count, k, 0.0) - tl.total[k]);
         }
         return e;
+    }
+
+    // Distance from p to box b (0 inside), in the box's frame.
+    static double obbDistance(const rugo_obb* b, rugo_vec2 p) {
+        const rugo_vec2 d = rugo_v2_sub(p, b->center);
+        const double u = std::max(std::fabs(rugo_v2_dot(d, b->axis[0])) - b->half[0], 0.0);
+        const double v = std::max(std::fabs(rugo_v2_dot(d, b->axis[1])) - b->half[1], 0.0);
+        return std::hypot(u, v);
+    }
+
+    // Certified largest λ(t) over each level's curve, levels J_min..J (index level - J_min).
+    static std::vector<double> bandMaxima(const rugo_shape* s) {
+        const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
+        std::vector<double> m(static_cast<size_t>(J - Jmin + 1), 0.0);
+        for (int j = Jmin; j <= J; ++j) {
+            rugo_tolerance_level tl;
+            if (rugo_shape_tolerance_level(s, j, &tl) != RUGO_OK) continue;
+            for (int k = 0; k < tl.count; ++k)
+                m[static_cast<size_t>(j - Jmin)] = std::max(m[static_cast<size_t>(j - Jmin)], rugo_tolerance_bound_on_segment(tl.total, tl.count, k, 0.0));
+        }
+        return m;
     }
 
     // ---- query cache --------------------------------------------------------------------------
@@ -748,10 +770,27 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         JointInfo* known = chunk == kNoJoints ? nullptr : jointPool.data() + jointChunks[chunk].base;
         JointInfo unkept;
         const int firstK = self->node * per;
+        // A joint outside O and farther from the other piece's box than the bands plus the margin a
+        // pushed joint may have cannot be pushed below (its closest point is on another piece, or on
+        // this one and apart): its closest point is not needed for this proxy pair. The box holds the
+        // piece's curve at level LO (mobb.h); the pad covers rounding.
+        const rugo_obb* othBox = rugo_mobb_tree_node(rugo_shape_tree(O->shape), O->proxyLevel, oth->node);
+        const double reachO = (fastPair ? std::max(curMargin, 0.0) : 0.0) + O->bandMax[static_cast<size_t>(LO - rugo_shape_coarsest_level(O->shape))];
         forJoints(S, self->node, LS, fastPair, [&](int k, b2Vec2 p, double lam, const auto& out) {
             const rugo_vec2 pl = rugo_inv_transform_point(xo, toRv(p));
             if (known == nullptr) unkept = JointInfo();
             JointInfo& ji = known ? known[k - firstK] : unkept;
+            if (!ji.done && othBox != nullptr) {
+                const double reach = (reachO + lam) * (1.0 + 1e-9) + 1e-9 * (othBox->half[0] + othBox->half[1]);
+                if (obbDistance(othBox, pl) > reach) {
+                    if (ji.inside < 0) {
+                        int in = 0;
+                        rugo_shape_contains(O->shape, LO, pl, &in);
+                        ji.inside = in != 0 ? 1 : 0;
+                    }
+                    if (ji.inside == 0) return;
+                }
+            }
             if (!ji.done) {
                 rugo_shape_closest_point(O->shape, LO, pl, &ji.cp); // = rugo_contour_closest_point(oc, pl), via the tree
                 ji.done = true;
@@ -1302,6 +1341,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     r->level = level;
     r->relLevel = level - J;
     r->proxyLevel = proxyLevel;
+    r->bandMax = Impl::bandMaxima(s);
     rugo_obb_corners(rugo_mobb_tree_root(tree), r->rootCorners);
     const double excess = Impl::bandExcess(s, proxyLevel);
     const int nk = 1 << proxyLevel;

@@ -25,6 +25,40 @@ static rugo_real point_pad(const rugo_obb* root, rugo_vec2 p) {
     return POINT_PAD * (box_size(root) + fabs(p.x - root->center.x) + fabs(p.y - root->center.y));
 }
 
+/* Depth-first walk over the tree's nodes from the coarsest level down, in increasing segment order at
+ * every level: walk_next gives the next node to look at, and walk_descend queues its two children
+ * (the caller decides which nodes to open). The stack holds at most one entry per level plus one. */
+typedef struct node_walk {
+    int jmin, next_root, top;
+    int lv[64], kk[64];
+} node_walk;
+
+static void walk_start(node_walk* w, int jmin) {
+    w->jmin = jmin;
+    w->next_root = 0;
+    w->top = 0;
+}
+
+static int walk_next(node_walk* w, int* l, int* k) {
+    if (w->top == 0) {
+        if (w->next_root >= (1 << w->jmin)) return 0;
+        *l = w->jmin;
+        *k = w->next_root++;
+        return 1;
+    }
+    --w->top;
+    *l = w->lv[w->top];
+    *k = w->kk[w->top];
+    return 1;
+}
+
+static void walk_descend(node_walk* w, int l, int k) {
+    w->lv[w->top] = l + 1;
+    w->kk[w->top++] = 2 * k + 1;
+    w->lv[w->top] = l + 1;
+    w->kk[w->top++] = 2 * k;
+}
+
 /* ---------------------------------------------------------------------------------------------------
  * Containment.
  *
@@ -59,24 +93,16 @@ int rugo__level_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* v
         return rugo_contour_contains(curve, p);
     }
     if (clear_of_ray(root, p, m)) return 0;
-    int winding = 0, seen = 0;
-    int lv[64], kk[64];
-    for (int k0 = 0; k0 < (1 << jmin); ++k0) {
-        int top = 0;
-        lv[top] = jmin;
-        kk[top++] = k0;
-        while (top > 0) {
-            const int l = lv[--top], k = kk[top];
-            if (clear_of_ray(rugo_mobb_tree_node(tree, l, k), p, m)) continue;
-            if (l == level) {
-                winding += rugo__contour_winding_segment(curve, k, p);
-                ++seen;
-                continue;
-            }
-            lv[top] = l + 1; /* at most one entry per level plus one: depth-first */
-            kk[top++] = 2 * k + 1;
-            lv[top] = l + 1;
-            kk[top++] = 2 * k;
+    int winding = 0, seen = 0, l, k;
+    node_walk w;
+    walk_start(&w, jmin);
+    while (walk_next(&w, &l, &k)) {
+        if (clear_of_ray(rugo_mobb_tree_node(tree, l, k), p, m)) continue;
+        if (l == level) {
+            winding += rugo__contour_winding_segment(curve, k, p);
+            ++seen;
+        } else {
+            walk_descend(&w, l, k);
         }
     }
     if (visited != NULL) *visited = seen;
@@ -113,24 +139,16 @@ static rugo_real joint_distance2(rugo_contour c, int j, rugo_vec2 p) {
 /* Fills segs with the segments of `level` whose boxes come within r2 of p, in increasing order;
  * returns their number, or -1 when there are more than MAX_CANDIDATES. */
 static int near_segments(const rugo_mobb_tree* tree, int jmin, int level, rugo_vec2 p, rugo_real r2, int* segs) {
-    int count = 0;
-    int lv[64], kk[64];
-    for (int k0 = 0; k0 < (1 << jmin); ++k0) {
-        int top = 0;
-        lv[top] = jmin;
-        kk[top++] = k0;
-        while (top > 0) {
-            const int l = lv[--top], k = kk[top];
-            if (!(box_distance2(rugo_mobb_tree_node(tree, l, k), p) <= r2)) continue;
-            if (l == level) {
-                if (count == MAX_CANDIDATES) return -1;
-                segs[count++] = k;
-                continue;
-            }
-            lv[top] = l + 1;
-            kk[top++] = 2 * k + 1;
-            lv[top] = l + 1;
-            kk[top++] = 2 * k;
+    int count = 0, l, k;
+    node_walk w;
+    walk_start(&w, jmin);
+    while (walk_next(&w, &l, &k)) {
+        if (!(box_distance2(rugo_mobb_tree_node(tree, l, k), p) <= r2)) continue;
+        if (l < level) {
+            walk_descend(&w, l, k);
+        } else {
+            if (count == MAX_CANDIDATES) return -1;
+            segs[count++] = k;
         }
     }
     return count;

@@ -634,9 +634,13 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
         return st;
     }
     if (st != RUGO_OK) {
-        set_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
-                   "the finest level is not a valid counter-clockwise outline (%s)",
-                   st == RUGO_ERR_BAD_ARGUMENT ? "clockwise" : rugo_status_string(st));
+        if (st == RUGO_ERR_BAD_SIZE)
+            set_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
+                       "the finest level's size is outside [%g, %g]", RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE);
+        else
+            set_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
+                       "the finest level is not a valid counter-clockwise outline (%s)",
+                       st == RUGO_ERR_BAD_ARGUMENT ? "clockwise" : rugo_status_string(st));
         return RUGO_ERR_BAD_FORMAT;
     }
     return RUGO_OK;

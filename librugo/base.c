@@ -36,6 +36,7 @@ const char* rugo_status_string(rugo_status status) {
     case RUGO_ERR_CHECKSUM: return "checksum mismatch (corrupted data)";
     case RUGO_ERR_TRUNCATED: return "data shorter than its header says (truncated)";
     case RUGO_ERR_TOO_LARGE: return "input beyond the size limit";
+    case RUGO_ERR_BAD_SIZE: return "outline too small or too large for a shape";
     case RUGO_STATUS_COUNT: break;
     }
     return "unknown status";

@@ -73,6 +73,18 @@ void rugo_shape_destroy(rugo_shape* s) {
     rugo__free(&al, s);
 }
 
+/* The finest curve's size (diagonal of its bounds) must lie in [RUGO_SHAPE_MIN_SIZE,
+ * RUGO_SHAPE_MAX_SIZE]: the polar inertia (at most size^4) then stays within the baked format's value
+ * limit, and squared distances (tree queries, narrow phase) stay normal doubles. */
+static rugo_status check_size(const rugo_pyramid* p, int finest) {
+    rugo_contour fine;
+    rugo_pyramid_level(p, finest, &fine);
+    rugo_vec2 lo, hi;
+    rugo_contour_bounds(fine, &lo, &hi);
+    const rugo_real size = hypot(hi.x - lo.x, hi.y - lo.y);
+    return size >= RUGO_SHAPE_MIN_SIZE && size <= RUGO_SHAPE_MAX_SIZE ? RUGO_OK : RUGO_ERR_BAD_SIZE;
+}
+
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem) {
     if (out != NULL) *out = NULL;
     if (def == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
@@ -96,6 +108,7 @@ rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_
     pd.check_self_intersection = def->check_self_intersection;
     pd.allocator = al;
     st = rugo_pyramid_create(&pd, &s->pyramid, problem);
+    if (st == RUGO_OK) st = check_size(s->pyramid, rugo_pyramid_finest_level(s->pyramid));
     if (st != RUGO_OK) {
         rugo_shape_destroy(s);
         return st;
@@ -293,6 +306,7 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
     const size_t per = ((size_t)1 << (J + 1)) - ((size_t)1 << Jmin); /* entries of levels Jmin..J */
     st = rugo__pyramid_from_levels(parts->filter, J, Jmin, parts->reversed, parts->points, parts->world,
                                    parts->local, &al, &s->pyramid);
+    if (st == RUGO_OK) st = check_size(s->pyramid, J);
     if (st == RUGO_OK)
         st = rugo__mobb_tree_from_nodes(J, Jmin, parts->box_method, parts->nodes, &parts->root, &al, &s->tree);
     if (st == RUGO_OK) {

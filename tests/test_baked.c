@@ -545,6 +545,18 @@ START_TEST(load_field_errors) {
     refresh_checksum(c, size);
     ck_assert_int_eq(load(c, size, &e), RUGO_ERR_BAD_FORMAT);
     ck_assert(strstr(e.message, "zero area") != NULL || strstr(e.message, "area") != NULL);
+    /* A finest level scaled below RUGO_SHAPE_MIN_SIZE or above RUGO_SHAPE_MAX_SIZE (the rest left as it
+     * is): refused by the shape's size check, which rugo_shape_create makes too. */
+    const double factors[2] = {1e-40, 1e40};
+    for (int f = 0; f < 2; ++f) {
+        memcpy(c, b, size);
+        for (size_t i = 0; i < 16; ++i)
+            putf64(c + fine + 8 * i, factors[f] * getf64(b + fine + 8 * i));
+        refresh_checksum(c, size);
+        ck_assert_int_eq(load(c, size, &e), RUGO_ERR_BAD_FORMAT);
+        ck_assert_str_eq(e.field, "pyramid.points");
+        ck_assert_msg(strstr(e.message, "size is outside") != NULL, "%s", e.message);
+    }
     free(c);
     free(b);
     rugo_shape_destroy(s);

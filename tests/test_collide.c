@@ -2404,6 +2404,31 @@ START_TEST(test_shape_bad_inputs_and_leaks) {
     d.tolerances = tol;
     ck_assert_int_eq(rugo_shape_create(NULL, &s, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_shape_create(&d, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    /* Sizes: the star (size ~2) scaled to the ends of [RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE] builds,
+     * with a finite positive inertia; a factor 100 beyond either end is BAD_SIZE. */
+    const double factors[4] = {8e-38, 2e36, 1e-40, 1e39};
+    for (int f = 0; f < 4; ++f) {
+        rugo_vec2 q[16];
+        double qt[16];
+        for (int i = 0; i < 16; ++i) {
+            q[i] = rugo_v2_scale(factors[f], p[i]);
+            qt[i] = factors[f] * tol[i];
+        }
+        rugo_shape_def sd = d;
+        sd.points = q;
+        sd.tolerances = qt;
+        rugo_shape* t = (rugo_shape*)0x1;
+        const rugo_status st = rugo_shape_create(&sd, &t, NULL);
+        if (f < 2) {
+            ck_assert_int_eq(st, RUGO_OK);
+            const rugo_mass_properties m = rugo_shape_mass(t);
+            ck_assert(m.inertia > 0.0 && m.inertia < 1e150 && isfinite(m.area) && m.area > 0.0);
+            rugo_shape_destroy(t);
+        } else {
+            ck_assert_int_eq(st, RUGO_ERR_BAD_SIZE);
+            ck_assert_ptr_null(t);
+        }
+    }
     rugo_shape_def bad = d;
     bad.cookie = 0;
     ck_assert_int_eq(rugo_shape_create(&bad, &s, NULL), RUGO_ERR_BAD_ARGUMENT);

@@ -25,6 +25,14 @@
 extern "C" {
 #endif
 
+/** Smallest size a shape may have (diagonal of its finest curve's bounds, length units; else
+ * RUGO_ERR_BAD_SIZE): below, squared distances underflow and the polar inertia (at most size^4) leaves
+ * the baked format's value range. Position is not limited (only by finiteness). */
+#define RUGO_SHAPE_MIN_SIZE 1e-37
+/** Largest size a shape may have (as RUGO_SHAPE_MIN_SIZE): above, the polar inertia exceeds the baked
+ * format's value limit of 1e150. */
+#define RUGO_SHAPE_MAX_SIZE 1e37
+
 /** A built rough shape (opaque, immutable): pyramid, tolerances, MOBBtree, mass, surface. */
 typedef struct rugo_shape rugo_shape;
 
@@ -51,7 +59,8 @@ rugo_shape_def rugo_default_shape_def(void);
 
 /** Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
  * On success *out is a new shape owned by the caller (free with rugo_shape_destroy); on error NULL.
- * Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie), those of rugo_pyramid_create,
+ * Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie), BAD_SIZE (the outline's size, the diagonal of the
+ * finest curve's bounds, outside [RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE]), those of rugo_pyramid_create,
  * rugo_tolerances_create, rugo_mobb_tree_create, rugo_friction_map_check and rugo_restitution_check.
  * problem may be NULL. */
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem);

@@ -744,9 +744,8 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         const BodyRec* S = self->rec;
         const BodyRec* O = oth->rec;
         const int LS = absLevel(S->shape, pairRel), LO = absLevel(O->shape, pairRel);
-        rugo_contour oc;
         rugo_tolerance_level otl;
-        if (rugo_shape_level(O->shape, LO, &oc) != RUGO_OK || rugo_shape_tolerance_level(O->shape, LO, &otl) != RUGO_OK) return;
+        if (rugo_shape_tolerance_level(O->shape, LO, &otl) != RUGO_OK) return;
         const rugo_transform xo = toRugo(O->body->GetTransform());
         const rugo_friction_map fmO = rugo_shape_friction_map(O->shape), fmS = rugo_shape_friction_map(S->shape);
         const rugo_restitution eO = rugo_shape_restitution(O->shape), eS = rugo_shape_restitution(S->shape);
@@ -780,29 +779,26 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
             const rugo_vec2 pl = rugo_inv_transform_point(xo, toRv(p));
             if (known == nullptr) unkept = JointInfo();
             JointInfo& ji = known ? known[k - firstK] : unkept;
+            // Whether the joint is inside O (level LO's curve, through the tree), computed once.
+            const auto isInside = [&]() {
+                if (ji.inside < 0) {
+                    int in = 0;
+                    rugo_shape_contains(O->shape, LO, pl, &in);
+                    ji.inside = in != 0 ? 1 : 0;
+                }
+                return ji.inside != 0;
+            };
             if (!ji.done && othBox != nullptr) {
                 const double reach = (reachO + lam) * (1.0 + 1e-9) + 1e-9 * (othBox->half[0] + othBox->half[1]);
-                if (obbDistance(othBox, pl) > reach) {
-                    if (ji.inside < 0) {
-                        int in = 0;
-                        rugo_shape_contains(O->shape, LO, pl, &in);
-                        ji.inside = in != 0 ? 1 : 0;
-                    }
-                    if (ji.inside == 0) return;
-                }
+                if (obbDistance(othBox, pl) > reach && !isInside()) return;
             }
             if (!ji.done) {
-                rugo_shape_closest_point(O->shape, LO, pl, &ji.cp); // = rugo_contour_closest_point(oc, pl), via the tree
+                rugo_shape_closest_point(O->shape, LO, pl, &ji.cp); // level LO's curve, through the tree
                 ji.done = true;
             }
             const rugo_curve_point cp = ji.cp;
             if ((cp.segment >> (LO - O->proxyLevel)) != oth->node) return; // another proxy pair's point
-            if (ji.inside < 0) {
-                int in = 0;
-                rugo_shape_contains(O->shape, LO, pl, &in); // = rugo_contour_contains(oc, pl), via the tree
-                ji.inside = in != 0 ? 1 : 0;
-            }
-            const bool inside = ji.inside != 0;
+            const bool inside = isInside();
             const double lamO = rugo_tolerance_at(otl.total, otl.count, cp.segment, cp.t, 0.0);
             const double s = (inside ? -cp.distance : cp.distance) - lam - lamO;
             const bool isApart = s > 0.0 || k == endK;

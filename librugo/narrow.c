@@ -170,40 +170,11 @@ static rugo_vec2 bez(const rugo_vec2* p, int n, rugo_real u) {
     return w[0];
 }
 
-/* Bezier points of the restriction of p (degree n <= 3) to [a, b] within [0, 1]. */
+/* Bezier points of p (degree n <= 3) on any interval [a, b] with 0 < b, a < b: within [0, 1] the
+ * restriction of the piece (the sub-boxes of a search), outside it the polynomial extrapolated (de
+ * Casteljau with parameters beyond 1 or below 0: the boxes around a root found just outside a box,
+ * exclusion below). */
 static void sub_bezier(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo_vec2* out) {
-    rugo_vec2 w[4], part[4];
-    for (int i = 0; i <= n; ++i)
-        w[i] = p[i];
-    if (b < 1.0) {
-        part[0] = w[0];
-        for (int k = 1; k <= n; ++k) {
-            for (int i = 0; i <= n - k; ++i)
-                w[i] = lerp(w[i], w[i + 1], b);
-            part[k] = w[0];
-        }
-        for (int i = 0; i <= n; ++i)
-            w[i] = part[i];
-    }
-    if (a > 0.0) {
-        rugo_real u = a / b;
-        part[n] = w[n];
-        for (int k = 1; k <= n; ++k) {
-            for (int i = 0; i <= n - k; ++i)
-                w[i] = lerp(w[i], w[i + 1], u);
-            part[n - k] = w[n - k];
-        }
-        for (int i = 0; i <= n; ++i)
-            w[i] = part[i];
-    }
-    for (int i = 0; i <= n; ++i)
-        out[i] = w[i];
-}
-
-/* Bezier points of p (degree n <= 3) on any interval [a, b] with 0 < b, a < b: outside [0, 1] the
- * polynomial is extrapolated (de Casteljau with parameters beyond 1 or below 0). For the boxes around
- * a root found just outside a box (exclusion below). */
-static void sub_bezier_ext(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo_vec2* out) {
     rugo_vec2 w[4], part[4];
     for (int i = 0; i <= n; ++i)
         w[i] = p[i];
@@ -786,8 +757,8 @@ static int cross_excluded(const ctx* c, box b, rugo_real s, rugo_real t, rugo_re
     rugo_real r0, unit;
     if (!exclusion_box(b, s, t, &e, &r0)) return 0;
     rugo_vec2 dF[3], dG[3];
-    sub_bezier_ext(c->df, 2, e.s0, e.s1, dF);
-    sub_bezier_ext(c->dg, 2, e.t0, e.t1, dG);
+    sub_bezier(c->df, 2, e.s0, e.s1, dF);
+    sub_bezier(c->dg, 2, e.t0, e.t1, dG);
     if (cone_sign(dF, dG, &unit) == 0) return 0;
     /* cone_sign's radius holds for a residual of 16 eps; it scales with the residual */
     const rugo_real rho = unit * (res + 16.0 * EPS) / (16.0 * EPS);
@@ -1107,12 +1078,12 @@ static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t
     rugo_real r0;
     if (!exclusion_box(b, s, t, &e, &r0)) return 0;
     rugo_vec2 F[4], G[4], dF[3], dG[3], ddF[2], ddG[2];
-    sub_bezier_ext(c->f, 3, e.s0, e.s1, F);
-    sub_bezier_ext(c->g, 3, e.t0, e.t1, G);
-    sub_bezier_ext(c->df, 2, e.s0, e.s1, dF);
-    sub_bezier_ext(c->dg, 2, e.t0, e.t1, dG);
-    sub_bezier_ext(c->ddf, 1, e.s0, e.s1, ddF);
-    sub_bezier_ext(c->ddg, 1, e.t0, e.t1, ddG);
+    sub_bezier(c->f, 3, e.s0, e.s1, F);
+    sub_bezier(c->g, 3, e.t0, e.t1, G);
+    sub_bezier(c->df, 2, e.s0, e.s1, dF);
+    sub_bezier(c->dg, 2, e.t0, e.t1, dG);
+    sub_bezier(c->ddf, 1, e.s0, e.s1, ddF);
+    sub_bezier(c->ddg, 1, e.t0, e.t1, ddG);
     ival J[4];
     stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
     rugo_real detmin, jmax;

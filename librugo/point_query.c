@@ -185,29 +185,33 @@ static rugo_curve_point level_closest_point(const rugo_shape* shape, int level, 
 /* ---------------------------------------------------------------------------------------------------
  * Public API. */
 
-rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside) {
-    if (inside != NULL) *inside = 0;
-    if (s == NULL || inside == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    rugo_contour curve;
-    const rugo_status st = rugo_shape_level(s, level, &curve);
+/* The checks both entry points make: a shape, a level it has (its curve into *curve), a finite point. */
+static rugo_status check_query(const rugo_shape* s, int level, rugo_vec2 p, rugo_contour* curve) {
+    if (s == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    const rugo_status st = rugo_shape_level(s, level, curve);
     if (st != RUGO_OK) return st;
-    if (!rugo__v2_finite(p)) return RUGO_ERR_NOT_FINITE;
+    return rugo__v2_finite(p) ? RUGO_OK : RUGO_ERR_NOT_FINITE;
+}
+
+rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside) {
+    if (inside == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *inside = 0;
+    rugo_contour curve;
+    const rugo_status st = check_query(s, level, p, &curve);
+    if (st != RUGO_OK) return st;
     *inside = rugo__level_contains(s, level, p, NULL);
     return RUGO_OK;
 }
 
 rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p, rugo_curve_point* out) {
-    if (out != NULL) {
-        out->segment = 0;
-        out->t = 0.0;
-        out->point = p;
-        out->distance = HUGE_VAL;
-    }
-    if (s == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    out->segment = 0;
+    out->t = 0.0;
+    out->point = p;
+    out->distance = HUGE_VAL;
     rugo_contour curve;
-    const rugo_status st = rugo_shape_level(s, level, &curve);
+    const rugo_status st = check_query(s, level, p, &curve);
     if (st != RUGO_OK) return st;
-    if (!rugo__v2_finite(p)) return RUGO_ERR_NOT_FINITE;
     *out = level_closest_point(s, level, curve, p);
     return RUGO_OK;
 }

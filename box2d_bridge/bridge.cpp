@@ -188,7 +188,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
         I.proxies[f] = ProxyRef{r, k};
     }
     I.bodies[body] = r;
-    I.reserveFor(I.bodies.size(), 1 << (level - proxyLevel));
+    I.reserveFor(I.bodies.size(), 1 << (level - proxyLevel), 1 << (J - proxyLevel));
     I.applyMass(r);
     return RUGO_OK;
 }

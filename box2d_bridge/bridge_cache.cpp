@@ -10,8 +10,9 @@ namespace rugo {
 // do not allocate once librugo's query context has grown (docs/box2d.md): per body 8 cached
 // queries (at most half the table used), 16 contacts and the joints of 8 proxy pieces (piece of
 // `per` joints). About 4 kB per body plus 0.4 kB per joint of a piece (table rounded up to a
-// power of two).
-void Bridge::Impl::reserveFor(size_t n, int per) {
+// power of two). The point lists of one proxy pair hold the joints of both sides' pieces (at most
+// perFinest + 1 each: a pair's level is at most the finest) and the query's contacts.
+void Bridge::Impl::reserveFor(size_t n, int per, int perFinest) {
     jointReserve += 8 * (static_cast<size_t>(per) + 1);
     size_t want = table.size();
     while (want < 16 * n && want < 65536)
@@ -27,6 +28,11 @@ void Bridge::Impl::reserveFor(size_t n, int per) {
     pool.reserve(16 * n);
     jointPool.reserve(jointReserve);
     jointChunks.reserve(8 * n);
+    const size_t pts = 2 * (static_cast<size_t>(perFinest) + 1);
+    joints.reserve(pts);
+    apart.reserve(pts);
+    cand.reserve(scratch.size() + pts);
+    regions.reserve(scratch.size());
 }
 
 // Runs (or finds) one librugo query; returns the contacts as [start, start+count) of pool. (run is a

@@ -244,7 +244,7 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
 
     // bridge_cache.cpp: the query cache. cachedQuery runs `run` unless the same query (bodies or
     // fixture, child, float poses, margin, level) ran this step; the contacts are pool[start, start+count).
-    void reserveFor(size_t n, int per);
+    void reserveFor(size_t n, int per, int perFinest);
     bool cachedQuery(const void* a, const void* b, int child, const b2Transform& xa, const b2Transform& xb,
                      double margin, int level, QueryRun run, uint32_t* start, uint32_t* count);
     static uint64_t cacheHash(const void* a, const void* b, int child, const float* xf);

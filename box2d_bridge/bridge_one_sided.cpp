@@ -54,6 +54,18 @@ Bridge::Impl::OneSided Bridge::Impl::makeTwoSided(const b2EdgeShape& e, const b2
     return o;
 }
 
+namespace {
+// The normal beyond an end vertex v of the edge, toward p: a round cap's points from v to p; a convex
+// vertex's lies between the normals of the faces before and after it (clamped to them); otherwise
+// (a flat or concave vertex: "snap") *m is left as it is, the face normal.
+void endNormal(b2Vec2 p, b2Vec2 v, bool round, bool convex, b2Vec2 nBefore, b2Vec2 nAfter, b2Vec2* m) {
+    if (!round && !convex) return;
+    b2Vec2 d = p - v;
+    if (d.Normalize() > 0.0f)
+        *m = round ? d : (b2Cross(nBefore, d) < 0.0f ? nBefore : (b2Cross(d, nAfter) < 0.0f ? nAfter : d));
+}
+} // namespace
+
 // A curve point p (world) against the one-sided edge: false if another child reports it; else the
 // normal out of the edge toward p (*m) and p's signed distance along it from the edge's skin.
 bool Bridge::Impl::resolveOneSided(const OneSided& o, b2Vec2 p, b2Vec2* m, double* dist) {
@@ -62,25 +74,11 @@ bool Bridge::Impl::resolveOneSided(const OneSided& o, b2Vec2 p, b2Vec2* m, doubl
     *m = o.n1;
     if (along < 0.0f) {
         if (o.hasPrev && b2Dot(p - o.v1, o.e0) < 0.0f) return false; // on the previous child's face
-        if (o.roundEnds) {
-            b2Vec2 d = p - o.v1;
-            if (d.Normalize() > 0.0f) *m = d;
-        } else if (o.convex1) {
-            b2Vec2 d = p - o.v1;
-            if (d.Normalize() > 0.0f)
-                *m = b2Cross(o.n0, d) < 0.0f ? o.n0 : (b2Cross(d, o.n1) < 0.0f ? o.n1 : d);
-        }
+        endNormal(p, o.v1, o.roundEnds, o.convex1, o.n0, o.n1, m);
     } else if (along >= o.len) {
         if (o.hasNext) return false; // the next child's (its t = 0)
         base = o.v2;
-        if (o.roundEnds) {
-            b2Vec2 d = p - o.v2;
-            if (d.Normalize() > 0.0f) *m = d;
-        } else if (o.convex2) {
-            b2Vec2 d = p - o.v2;
-            if (d.Normalize() > 0.0f)
-                *m = b2Cross(o.n1, d) < 0.0f ? o.n1 : (b2Cross(d, o.n2) < 0.0f ? o.n2 : d);
-        }
+        endNormal(p, o.v2, o.roundEnds, o.convex2, o.n1, o.n2, m);
     }
     *dist = static_cast<double>(b2Dot(p - base, *m)) - static_cast<double>(o.radius);
     return true;

@@ -97,10 +97,7 @@ std::vector<double> Bridge::Impl::bandMaxima(const rugo_shape* s) {
     return m;
 }
 
-// librugo reports one contact per local minimum or overlap region; a slightly tilted flat face has
-// one minimum (its lower end), so a block would rock on one point. Like Box2D's clipping, the
-// joints (t = 0) of the owned segments that also touch (band-adjusted separation <= 0) are offered
-// as manifold points; the reduction keeps the deepest and the farthest.
+// The absolute level of a relative one (0 finest, < 0 coarser), clamped to the shape's levels.
 int Bridge::Impl::absLevel(const rugo_shape* s, int rel) {
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     return std::max(Jmin, std::min(J, J + rel));

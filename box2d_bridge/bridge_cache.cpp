@@ -2,6 +2,7 @@
 // same poses) shares one librugo query, found by the bodies, the child and the float poses.
 #include "bridge_impl.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace rugo {
@@ -28,10 +29,16 @@ void Bridge::Impl::reserveFor(size_t n, int per, int perFinest) {
     pool.reserve(16 * n);
     jointPool.reserve(jointReserve);
     jointChunks.reserve(8 * n);
-    const size_t pts = 2 * (static_cast<size_t>(perFinest) + 1);
-    joints.reserve(pts);
-    apart.reserve(pts);
-    cand.reserve(scratch.size() + pts);
+    pointReserve = std::max(pointReserve, 2 * (static_cast<size_t>(perFinest) + 1));
+    reservePoints();
+}
+
+// The point lists of one proxy pair: the joints of two pieces, and the contacts of a query (at most
+// the scratch buffer's size) with those joints.
+void Bridge::Impl::reservePoints() {
+    joints.reserve(pointReserve);
+    apart.reserve(pointReserve);
+    cand.reserve(scratch.size() + pointReserve);
     regions.reserve(scratch.size());
 }
 
@@ -77,6 +84,7 @@ bool Bridge::Impl::cachedQuery(const void* a, const void* b, int child, const b2
     rugo_status st = run(scratch.data(), static_cast<int>(scratch.size()), &n, &qs);
     if (st == RUGO_OK && qs.contacts_found > static_cast<int>(scratch.size())) {
         scratch.resize(static_cast<size_t>(qs.contacts_found) * 2); // warm-up only
+        reservePoints();                                            // now, not in a later step's PreSolve
         st = run(scratch.data(), static_cast<int>(scratch.size()), &n, &qs);
     }
     ++stats.queries;

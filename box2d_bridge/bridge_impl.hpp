@@ -198,8 +198,10 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     // Bodies destroyed since construction (SayGoodbye of any fixture): a callback of the bridge's own
     // (QueryAABB, Draw) that changed it may have destroyed bodies the bridge still holds.
     long destroyedFixtures = 0;
-    // Per-step caches are reserved for this many joints (reserveFor).
+    // Per-step caches are reserved for this many joints (reserveFor), the point lists of one proxy
+    // pair for this many joint points (reservePoints).
     size_t jointReserve = 0;
+    size_t pointReserve = 0;
     size_t ncand = 0;         // cand[0, ncand) are librugo's contacts, the rest joints
     bool dropEndFlag = false; // gatherPrimitive: a chain child's second vertex belongs to the next child
 
@@ -245,6 +247,7 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     // bridge_cache.cpp: the query cache. cachedQuery runs `run` unless the same query (bodies or
     // fixture, child, float poses, margin, level) ran this step; the contacts are pool[start, start+count).
     void reserveFor(size_t n, int per, int perFinest);
+    void reservePoints();
     bool cachedQuery(const void* a, const void* b, int child, const b2Transform& xa, const b2Transform& xb,
                      double margin, int level, QueryRun run, uint32_t* start, uint32_t* count);
     static uint64_t cacheHash(const void* a, const void* b, int child, const float* xf);

@@ -38,7 +38,8 @@
 // (BridgeDef::maxProxyLevel) and Box2D's continuous collision for an experiment; --alloc-trace prints
 // the callers of the counted allocations; --verbose each new worst level-of-detail pair.
 // --quick (the test suite): N = 16, S = 32, 60 steps; checks that every variant runs, stays in the
-// container, makes contacts and that the level-of-detail check ran (the goals are reported, not asserted).
+// container, makes contacts, that the level-of-detail check ran and that the bridge and librugo do not
+// allocate in the timed steps (the other goals are reported, not asserted).
 #include "rugo/box2d.hpp"
 
 #include "scenes.h"
@@ -1063,6 +1064,14 @@ int main(int argc, char** argv) {
             sample_expect(name, r.st[v].contacts > 0.0);
             std::snprintf(name, sizeof name, "%s N=%d S=%d: time per step measured", kVariantName[v], r.n, r.s);
             sample_expect(name, r.st[v].ms > 0.0 && std::isfinite(r.st[v].ms));
+            // The small scene of the test suite: nothing outside Box2D allocates once warmed up (the
+            // bridge and librugo reserve in Attach). Asserted only there: at S = 512 librugo's pair list
+            // may still reach a new high-water mark during the fall (docs/benchmarks.md, "Allocations").
+            if (opt.quick && (v == kAuto || v == kFinest) && BENCH_COUNT_ALLOCATIONS && g_box2dHi > g_box2dLo) {
+                std::snprintf(name, sizeof name, "%s N=%d S=%d: the bridge and librugo allocate nothing in the timed steps",
+                              kVariantName[v], r.n, r.s);
+                sample_expect(name, r.st[v].stepsWithOwnAlloc == 0);
+            }
             if (v == kAuto && opt.checkEvery > 0) {
                 std::snprintf(name, sizeof name, "%s N=%d S=%d: level-of-detail error measured on contacting pairs", kVariantName[v],
                               r.n, r.s);

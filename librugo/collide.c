@@ -705,16 +705,25 @@ static int hit_cmp(const void* pa, const void* pb) {
     return 0;
 }
 
+/* A stationary pair that may be the closest pair of two curves: a minimum, or a one-sided one (the
+ * smallest distance overall is a minimum on every side, so a one-sided minimum that is not one loses
+ * to a smaller distance reported elsewhere). */
+static int is_minimum_candidate(int kind) { return kind == RUGO__MINIMUM || kind == RUGO__END_MINIMUM; }
+
 /* Sorts by A's parameter and marks as dead every hit that repeats an earlier one found by another
  * narrow call (same points within `eps`, A parameters within one segment, cyclically). A crossing
  * beats a touching; for stationary pairs a minimum beats other kinds: at a joint next to a point-like
- * segment or a zero-speed corner, the pieces that only reach the point at an end of their domain
- * cannot classify it, the piece that holds it can. */
+ * segment, the piece that holds the point inside its domain classifies it. Pieces that reach the point
+ * only at an end of their domain where they stop (a zero-speed corner of three coincident control
+ * points) see one side of it (RUGO__END_MINIMUM when it rises there): it is a minimum when no other
+ * piece reports the same point as a saddle or maximum, i.e. when it rises on every side seen. */
 static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stationary) {
     if (n == 0) return;
     qsort(h, n, sizeof(hit), hit_cmp);
     for (size_t i = 0; i < n; ++i) {
         if (h[i].dead) continue;
+        int any_min = h[i].kind == RUGO__MINIMUM, any_end = h[i].kind == RUGO__END_MINIMUM;
+        int any_other = h[i].kind == RUGO__SADDLE || h[i].kind == RUGO__MAXIMUM;
         for (size_t jj = 1; jj < n; ++jj) {
             const size_t j = (i + jj) % n;
             rugo_real du = h[j].ua - h[i].ua;
@@ -733,13 +742,17 @@ static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stat
             if (same) {
                 h[i].coincident |= h[j].coincident;
                 if (stationary) {
-                    if (h[j].kind == RUGO__MINIMUM) h[i].kind = RUGO__MINIMUM;
+                    any_min |= h[j].kind == RUGO__MINIMUM;
+                    any_end |= h[j].kind == RUGO__END_MINIMUM;
+                    any_other |= h[j].kind == RUGO__SADDLE || h[j].kind == RUGO__MAXIMUM;
                 } else if (h[i].kind == 0 && h[j].kind != 0) {
                     h[i].kind = h[j].kind;
                 }
                 h[j].dead = 1;
             }
         }
+        if (stationary && (any_min || any_end))
+            h[i].kind = any_min || !any_other ? RUGO__MINIMUM : RUGO__SADDLE;
     }
 }
 
@@ -1240,7 +1253,7 @@ static rugo_status closest_pair(rugo_collide_context* ctx, pair_geo* g, const ts
             return RUGO_ERR_OUT_OF_MEMORY;
         const hit* hs = (const hit*)ctx->ss2.data;
         for (size_t j = 0; j < ns; ++j)
-            if (hs[j].kind == RUGO__MINIMUM && (!*found || hs[j].distance < best->distance)) {
+            if (is_minimum_candidate(hs[j].kind) && (!*found || hs[j].distance < best->distance)) {
                 *best = hs[j];
                 *found = 1;
             }
@@ -2263,7 +2276,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             best.pb = pb0;
             best.distance = cp.distance;
             for (size_t i = 0; i < n2; ++i)
-                if (h2[i].kind == RUGO__MINIMUM && h2[i].distance < best.distance) best = h2[i];
+                if (is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
             const rugo_vec2 n = curve_normal(A.curve, best.sa, best.ta);
             const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
             if (!emit(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))

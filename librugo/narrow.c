@@ -50,6 +50,11 @@
  * round-off decide min / saddle / max; a semi-definite direction is probed along its eigenvector with
  * the smallest step that changes D beyond round-off (rising both ways, or flat: minimum side;
  * falling both ways: maximum side; else saddle). A pair at distance <= TAU_TOUCH is a minimum.
+ * Sharp corners: a piece that stops at an end of its domain (zero speed there, as at three coincident
+ * control points) gives a multiple root that is located only roughly; such roots are moved onto the
+ * end, the end is a candidate of the point query even when the root finder misses it, probes look
+ * only along the piece (its cubic continued past the end is not the curve), and a minimum seen from
+ * that one side is RUGO__END_MINIMUM, for the caller to confirm with the neighbouring segment's piece.
  * Transversal crossings are not reported as stationary pairs; a touching (kind 0) crossing is always
  * also a minimum, and a minimum at distance <= TAU_TOUCH always also a touching crossing.
  *
@@ -111,6 +116,7 @@ enum {
 #define R_MERGE 1e-5              /* ... and everything within this parameter distance of it */
 #define H_TOUCH (1.0 / 1048576.0) /* 2^-20: crossing boxes this small try the touching hypothesis */
 #define POINT_TOL 1e-13           /* a piece within this extent is a point */
+#define END_ZONE 1e-4             /* a root this close to a zero-speed end is at that end (near_end) */
 
 typedef struct box {
     rugo_real s0, s1, t0, t1;
@@ -1181,16 +1187,44 @@ static rugo_real half_dist2(const ctx* c, rugo_real s, rugo_real t) {
     return 0.5 * rugo_v2_dot(r, r);
 }
 
+/* Whether a root parameter is at an end of the domain, where a piece that stops there (zero speed)
+ * gives the systems a multiple root, located only to ~1e-5 in parameter (the position to ~1e-15 of the
+ * piece, its offset from the end growing with the third power of the parameter's). Such roots are
+ * moved onto the end (snap_to_zero_speed_end) and classified from the piece's side. */
+static int near_end(rugo_real u) { return u <= END_ZONE || u >= 1.0 - END_ZONE; }
+
+/* Whether (s, t) lies in the parameter square, up to a hair. Beyond it the pieces' polynomials are
+ * extrapolated past their segments' ends, and that is not the curve: at a zero-speed corner (three
+ * coincident control points) the extrapolated cubic runs on along the same side, while the curve turns
+ * into the next segment. */
+static int in_square(rugo_real s, rugo_real t) {
+    return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12;
+}
+
 /* +1 if D rises both ways along v (or stays flat), -1 if it falls both ways, 0 otherwise; from the
- * smallest step that changes D beyond its round-off. */
-static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v) {
+ * smallest step that changes D beyond its round-off. Where one way leaves the parameter square, the way
+ * that stays inside decides alone (+1 rising, -1 falling) and *one_sided is set: the other side belongs
+ * to the neighbouring segment. */
+static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v, int* one_sided) {
     static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
     rugo_real d0 = half_dist2(c, s, t);
     /* D = |r|^2/2 with |r| good to a few ulps of the O(1) coordinates */
     rugo_real noise = 16.0 * EPS * (sqrt(2.0 * d0) + EPS);
     for (int k = 0; k < 6; ++k) {
-        rugo_real dp = half_dist2(c, s + delta[k] * v.x, t + delta[k] * v.y) - d0;
-        rugo_real dm = half_dist2(c, s - delta[k] * v.x, t - delta[k] * v.y) - d0;
+        const rugo_real sp = s + delta[k] * v.x, tp = t + delta[k] * v.y;
+        const rugo_real sm = s - delta[k] * v.x, tm = t - delta[k] * v.y;
+        const int inp = in_square(sp, tp), inm = in_square(sm, tm);
+        if (inp != inm) {
+            const rugo_real d1 = inp ? half_dist2(c, sp, tp) - d0 : half_dist2(c, sm, tm) - d0;
+            if (fabs(d1) > noise) {
+                *one_sided = 1;
+                return d1 > 0.0 ? 1 : -1;
+            }
+            continue;
+        }
+        /* both ways inside (or both outside, at a corner of the square: extrapolated, as before) */
+        rugo_real dp = half_dist2(c, sp, tp) - d0;
+        rugo_real dm = half_dist2(c, sm, tm) - d0;
         if (fabs(dp) > noise && fabs(dm) > noise) {
             if (dp > 0.0 && dm > 0.0) return 1;
             if (dp < 0.0 && dm < 0.0) return -1;
@@ -1200,8 +1234,29 @@ static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v) 
     return 1;
 }
 
+/* Whether a piece's speed |d| is round-off against the size of its hodograph's control points h[3]. */
+static int speed_vanishes(rugo_vec2 d, const rugo_vec2 h[3]) {
+    const rugo_real m = mx(vmax(h[0]), mx(vmax(h[1]), vmax(h[2])));
+    return rugo_v2_dot(d, d) <= 1e3 * EPS * m * m;
+}
+
+/* Moves a stationary pair near an end where its piece stops onto that end (near_end). */
+static void snap_to_zero_speed_end(const ctx* c, rugo_real* s, rugo_real* t) {
+    if (near_end(*s) && speed_vanishes(bez(c->df, 2, *s), c->df)) *s = *s < 0.5 ? 0.0 : 1.0;
+    if (near_end(*t) && speed_vanishes(bez(c->dg, 2, *t), c->dg)) *t = *t < 0.5 ? 0.0 : 1.0;
+}
+
+/* Whether (s, t) is at an end of a piece's domain where that piece's speed vanishes: a corner made by
+ * coincident control points, which the piece reaches only from one side. */
+static int at_zero_speed_end(const ctx* c, const pair_eval* e, rugo_real s, rugo_real t) {
+    return (near_end(s) && speed_vanishes(e->fp, c->df)) || (near_end(t) && speed_vanishes(e->gp, c->dg));
+}
+
 /* Minimum / saddle / maximum from the Hessian of D = |f-g|^2/2, whose entries are
- * D_ss = J11, D_st = J12 = -f'·g', D_tt = -J22. */
+ * D_ss = J11, D_st = J12 = -f'·g', D_tt = -J22. A minimum decided from one side only (a probe that
+ * could not look past the end of the domain, or the Hessian at a zero-speed end, where the piece's
+ * polynomial mirrors back and the curve turns) is RUGO__END_MINIMUM: the caller confirms it with the
+ * neighbouring segment's classification of the same point. */
 static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist) {
     if (dist <= TAU_TOUCH) return RUGO__MINIMUM;
     pair_eval e = eval_pair(c, s, t);
@@ -1211,7 +1266,8 @@ static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist)
     rugo_real m = 0.5 * (a + d), q = hypot(0.5 * (a - d), b);
     /* the entries are good to a few ulps of scale; so are the eigenvalues */
     rugo_real l1 = m - q, l2 = m + q, tol = 1e3 * EPS * scale;
-    if (l1 > tol) return RUGO__MINIMUM;
+    const int end = at_zero_speed_end(c, &e, s, t);
+    if (l1 > tol) return end ? RUGO__END_MINIMUM : RUGO__MINIMUM;
     if (l2 < -tol) return RUGO__MAXIMUM;
     if (l1 < -tol && l2 > tol) return RUGO__SADDLE;
     /* Semi-definite: decide the flat direction(s) by probing. Eigenvector of l1: (b, l1 - a) or
@@ -1221,9 +1277,10 @@ static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist)
     rugo_real lv = vlen(v1);
     v1 = lv > 0.0 ? rugo_v2(v1.x / lv, v1.y / lv) : rugo_v2(1.0, 0.0);
     rugo_vec2 v2 = rugo_v2_perp(v1);
-    int u1 = fabs(l1) <= tol ? probe_direction(c, s, t, v1) : sgn(l1);
-    int u2 = fabs(l2) <= tol ? probe_direction(c, s, t, v2) : sgn(l2);
-    if (u1 > 0 && u2 > 0) return RUGO__MINIMUM;
+    int one_sided = end;
+    int u1 = fabs(l1) <= tol ? probe_direction(c, s, t, v1, &one_sided) : sgn(l1);
+    int u2 = fabs(l2) <= tol ? probe_direction(c, s, t, v2, &one_sided) : sgn(l2);
+    if (u1 > 0 && u2 > 0) return one_sided ? RUGO__END_MINIMUM : RUGO__MINIMUM;
     if (u1 < 0 && u2 < 0) return RUGO__MAXIMUM;
     return RUGO__SADDLE;
 }
@@ -1271,9 +1328,16 @@ static void emit_stationary(const ctx* c, rugo__narrow_result* out, rugo_real s,
 }
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Largest max-norm offset of a control point from the first: within POINT_TOL a piece is a point. */
+static rugo_real piece_extent(const rugo_vec2 p[4]) {
+    rugo_real e = 0.0;
+    for (int i = 1; i < 4; ++i)
+        e = mx(e, vmax(rugo_v2_sub(p[i], p[0])));
+    return e;
+}
+
 /* The point query in a local frame: a[] are the Bezier points of f - c (already scaled). Writes
  * parameters, local distances and kinds; returns the count (<= 6). */
-
 static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, rugo_real* d_out,
                       int* k_out) {
     /* f(s) - c = A0 + A1 s + A2 s^2 + A3 s^3 */
@@ -1291,6 +1355,8 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
     p[5] = 3.0 * rugo_v2_dot(A3, A3);
     rugo_real sa = vlen(A0) + vlen(A1) + vlen(A2) + vlen(A3);
     rugo_real sd = vlen(A1) + 2.0 * vlen(A2) + 3.0 * vlen(A3);
+    /* a point-like piece holds its point: its minimum there is not one-sided */
+    const int point_like = piece_extent(a) <= POINT_TOL;
     rugo_real roots[RUGO__POLY_MAX_ROOTS];
     int n = rugo__poly_roots(p, 5, 0.0, 1.0, 16.0 * EPS * sa * sd, roots);
     int count = 0;
@@ -1305,6 +1371,30 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
         }
         return count;
     }
+    /* An end where the piece stops (zero speed: a corner) is stationary whatever the rest of the
+     * polynomial does, but it is a multiple root there, which need not change sign: make sure it is a
+     * candidate. */
+    if (!point_like) {
+        const rugo_vec2 fp1 = rugo_v2_add(A1, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0, A3)));
+        const int zero0 = rugo_v2_dot(A1, A1) <= 1e3 * EPS * sd * sd,
+                  zero1 = rugo_v2_dot(fp1, fp1) <= 1e3 * EPS * sd * sd;
+        /* roots near such an end are that end (near_end); then one each */
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            rugo_real u = roots[i];
+            if (zero0 && u <= END_ZONE) u = 0.0;
+            if (zero1 && u >= 1.0 - END_ZONE) u = 1.0;
+            if (m == 0 || u != roots[m - 1]) roots[m++] = u;
+        }
+        n = m;
+        if (zero0 && (n == 0 || roots[0] != 0.0) && n < RUGO__POLY_MAX_ROOTS) {
+            for (int i = n; i > 0; --i)
+                roots[i] = roots[i - 1];
+            roots[0] = 0.0;
+            ++n;
+        }
+        if (zero1 && (n == 0 || roots[n - 1] != 1.0) && n < RUGO__POLY_MAX_ROOTS) roots[n++] = 1.0;
+    }
     for (int i = 0; i < n && count < 6; ++i) {
         rugo_real s = roots[i];
         rugo_vec2 r = bez(a, 3, s);
@@ -1316,21 +1406,38 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
         rugo_real second = rugo_v2_dot(fp, fp) + rugo_v2_dot(r, fpp);
         rugo_real scale = rugo_v2_dot(fp, fp) + d * vlen(fpp);
         int kind;
-        if (d <= TAU_TOUCH || second > 1e3 * EPS * scale) {
+        /* At an end where the piece stops (zero speed: a corner of coincident control points) a minimum
+         * is one-sided (classify_stat), and f' and f'' are round-off there (of the coordinates, which
+         * can be much larger than the piece): the probe decides, looking along the piece only. */
+        const int end = near_end(s) && !point_like && rugo_v2_dot(fp, fp) <= 1e3 * EPS * sd * sd;
+        if (d <= TAU_TOUCH) {
             kind = RUGO__MINIMUM;
-        } else if (second < -1e3 * EPS * scale) {
+        } else if (!end && second > 1e3 * EPS * scale) {
+            kind = RUGO__MINIMUM;
+        } else if (!end && second < -1e3 * EPS * scale) {
             kind = RUGO__MAXIMUM;
         } else {
-            /* Degenerate: compare the distance a little to both sides (smallest telling step). */
+            /* Degenerate: compare the distance a little to both sides (smallest telling step); where one
+             * side leaves [0, 1], the side inside decides alone (probe_direction). */
             static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
-            kind = RUGO__MINIMUM;
+            kind = end ? RUGO__END_MINIMUM : RUGO__MINIMUM;
             rugo_real d0 = rugo_v2_dot(r, r);
             for (int k = 0; k < 6; ++k) {
-                rugo_vec2 rp = bez(a, 3, s + delta[k]), rm = bez(a, 3, s - delta[k]);
+                const rugo_real sp = s + delta[k], sm = s - delta[k];
+                rugo_vec2 rp = bez(a, 3, sp), rm = bez(a, 3, sm);
                 rugo_real up = rugo_v2_dot(rp, rp) - d0, um = rugo_v2_dot(rm, rm) - d0;
                 rugo_real noise = 32.0 * EPS * sa * (d + EPS * sa);
+                const int inp = sp <= 1.0 + 1e-12, inm = sm >= -1e-12;
+                if (inp != inm) {
+                    const rugo_real u1 = inp ? up : um;
+                    if (fabs(u1) > noise) {
+                        kind = u1 > 0.0 ? RUGO__END_MINIMUM : RUGO__SADDLE;
+                        break;
+                    }
+                    continue;
+                }
                 if (fabs(up) > noise && fabs(um) > noise) {
-                    kind = up > 0.0 && um > 0.0 ? RUGO__MINIMUM
+                    kind = up > 0.0 && um > 0.0 ? (end ? RUGO__END_MINIMUM : RUGO__MINIMUM)
                                                 : (up < 0.0 && um < 0.0 ? RUGO__MAXIMUM : RUGO__SADDLE);
                     break;
                 }
@@ -1346,13 +1453,6 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Degenerate pieces */
-
-static rugo_real piece_extent(const rugo_vec2 p[4]) {
-    rugo_real e = 0.0;
-    for (int i = 1; i < 4; ++i)
-        e = mx(e, vmax(rugo_v2_sub(p[i], p[0])));
-    return e;
-}
 
 /* One piece (index `which`: 0 = f, 1 = g) is a point: the point query against the other. */
 static void point_piece_path(ctx* c, int which, rugo__narrow_result* out) {
@@ -1534,6 +1634,7 @@ static void solve(ctx* c, rugo__narrow_result* out) {
     int ncross_found = c->ncross;
     for (int k = 0; k < c->nstat; ++k) {
         rugo_real s = clamp01(c->stat[k].s), t = clamp01(c->stat[k].t);
+        snap_to_zero_speed_end(c, &s, &t);
         c->stat[k].s = s;
         c->stat[k].t = t;
         rugo_real dist = vlen(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t)));

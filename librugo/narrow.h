@@ -20,8 +20,8 @@
  *  - A point-like piece reports parameter 0 for itself; parallel straight pieces report the two end
  *    pairs of their overlap as minima (overflow only when they coincide).
  *  - A minimum exactly at a piece end that is not stationary for that piece is left to the
- *    neighbouring segment; a crossing at a joint can come back as s = 1 from one segment and s = 0
- *    from the next (callers deduplicate).
+ *    neighbouring segment; one at an end where the piece stops (a sharp corner) is RUGO__END_MINIMUM; a
+ * crossing at a joint can come back as s = 1 from one segment and s = 0 from the next (callers deduplicate).
  *  - Cost: ~0.1 µs for a pair decided on the whole parameter square (hulls apart, or tangents nowhere
  *    parallel: most pairs a contact query hands over), ~0.5 µs when one box of each search settles
  *    it, a few µs when a search subdivides (0.7 µs on average over the pairs of bench_queries), 10-50
@@ -39,7 +39,12 @@ enum { RUGO__NARROW_MAX_CROSSINGS = 9, RUGO__NARROW_MAX_STATIONARY = 16 };
 typedef enum rugo__stationary_kind {
     RUGO__MINIMUM = 0, /* local minimum of |f(s) - g(t)|: a contact candidate */
     RUGO__SADDLE = 1,  /* saddle: e.g. the deepest pair inside an overlap (the centre line of two discs) */
-    RUGO__MAXIMUM = 2
+    RUGO__MAXIMUM = 2,
+    /* a minimum on this piece's side of an end of its domain, where the piece cannot see past the end:
+     * at a zero-speed joint (a corner of coincident control points) its polynomial does not continue
+     * as the curve does. A minimum of the curve only if the neighbouring segment's piece agrees (or
+     * holds the point inside); callers decide (collide.c, dedupe) */
+    RUGO__END_MINIMUM = 3
 } rugo__stationary_kind;
 
 typedef struct rugo__pair_point {

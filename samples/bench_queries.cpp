@@ -800,7 +800,8 @@ void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, r
         const double da = rugo_v2_dot(na, d), db = -rugo_v2_dot(nb, d);
         Cnt c;
         c.bound = 0.0;
-        if (h.kind == RUGO__MINIMUM && da >= 0.0 && db >= 0.0) {
+        /* (a one-sided minimum at a sharp corner counts too: none of these smooth shapes has one) */
+        if ((h.kind == RUGO__MINIMUM || h.kind == RUGO__END_MINIMUM) && da >= 0.0 && db >= 0.0) {
             const double band = rugo_tolerance_at(A.lambda, A.n, h.sa, h.ta, 0.0) +
                                 rugo_tolerance_at(B.lambda, B.n, h.sb, h.tb, 0.0) + kWindow;
             if (!(h.d <= band)) continue;

@@ -1160,6 +1160,98 @@ START_TEST(test_point_like_segments) {
 }
 END_TEST
 
+/* A block whose corners are three coincident control points (sharp corners, zero speed there) and whose
+ * sides hold 8 - 3 more, 32 points, with a constant band lam. */
+static rugo_shape* sharp_block(double w, double h, double lam) {
+    const double x = 0.5 * w, y = 0.5 * h;
+    const rugo_vec2 c[4] = {{x, -y}, {x, y}, {-x, y}, {-x, -y}};
+    rugo_vec2 p[32];
+    double tol[32];
+    int k = 0;
+    for (int i = 0; i < 4; ++i) {
+        const rugo_vec2 n = c[(i + 1) % 4];
+        for (int m = 0; m < 3; ++m)
+            p[k++] = c[i];
+        for (int j = 1; j <= 5; ++j)
+            p[k++] = rugo_v2(c[i].x + j * (n.x - c[i].x) / 6.0, c[i].y + j * (n.y - c[i].y) / 6.0);
+    }
+    for (int i = 0; i < 32; ++i)
+        tol[i] = lam;
+    return make_shape(p, 32, tol);
+}
+
+/* Regression (docs/simulator.md listed it as a known limit until 2026-11-22): a sharp corner tilted
+ * over a flat face, within the bands, was reported APART, because the two segments meeting at the
+ * corner each classified it by extrapolating their cubic past the corner (where it runs on along the
+ * same side) and called it a saddle. Now each piece looks at its own side only and the corner is a
+ * minimum when every piece that reaches it rises there. Checked against a floor shape and the
+ * primitives (segment, polygon, polygon with a radius, circle), both tilt directions, gaps within the
+ * bands: exactly one contact, at the lowest corner, at the right separation; the block's other bottom
+ * corner (also within the bands, but not a minimum: the bottom edge falls away from it) is not one. A
+ * gap beyond the bands (5.5 mm against a smooth primitive, which has no band) is APART. */
+START_TEST(test_sharp_corner_tilted) {
+    const double lam = 0.004; /* bands of both bodies: 8 mm together */
+    rugo_shape* blk = sharp_block(0.6, 0.3, lam);
+    rugo_shape* floor = sharp_block(40.0, 1.0, lam);
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    const double tilts[] = {0.0005, 0.0036, 0.02, -0.0005, -0.0036, -0.02};
+    const double gaps[] = {0.0005, 0.0029, 0.0055};
+    int cases = 0;
+    for (size_t it = 0; it < sizeof tilts / sizeof tilts[0]; ++it)
+        for (size_t ig = 0; ig < sizeof gaps / sizeof gaps[0]; ++ig) {
+            const double tilt = tilts[it], gap = gaps[ig];
+            rugo_transform xb = rugo_make_transform(0.0, 0.0, tilt);
+            /* the lower bottom corner: left for a counter-clockwise tilt */
+            const rugo_vec2 low = rugo_transform_point(xb, rugo_v2(tilt > 0 ? -0.3 : 0.3, -0.15));
+            xb.p.y = gap - low.y;
+            const rugo_vec2 corner = rugo_v2(low.x, gap);
+            for (int kind = 0; kind < 5; ++kind) {
+                rugo_contact c[16];
+                rugo_contact_state st = RUGO_STATE_APART;
+                int n = -1;
+                rugo_contact_query q = rugo_default_contact_query();
+                const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
+                const rugo_vec2 raised[4] = {{-5, -1}, {5, -1}, {5, -0.001}, {-5, -0.001}};
+                rugo_status r = RUGO_OK;
+                if (kind == 0)
+                    r = rugo_collide_shapes(ctx, blk, xb, floor, rugo_make_transform(0, -0.5, 0), &q, c, 16,
+                                            &n, &st, NULL);
+                else if (kind == 1)
+                    r = rugo_collide_segment(ctx, blk, xb, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, c, 16, &n,
+                                             &st, NULL);
+                else if (kind == 2)
+                    r = rugo_collide_polygon(ctx, blk, xb, box, 4, 0.0, &q, c, 16, &n, &st, NULL);
+                else if (kind == 3) /* the same face as a polygon 1 mm lower grown by 1 mm */
+                    r = rugo_collide_polygon(ctx, blk, xb, raised, 4, 0.001, &q, c, 16, &n, &st, NULL);
+                else /* a circle of radius 100 whose top is at y = 0 under the corner */
+                    r = rugo_collide_circle(ctx, blk, xb, rugo_v2(corner.x, -100.0), 100.0, &q, c, 16, &n,
+                                            &st, NULL);
+                ck_assert_int_eq(r, RUGO_OK);
+                /* the primitives are smooth (no band): only the block's band reaches them */
+                const double reach = kind == 0 ? 2.0 * lam : lam;
+                if (gap > reach) {
+                    ck_assert_msg(st == RUGO_STATE_APART && n == 0,
+                                  "tilt %g gap %g against %d: state %s, %d contacts", tilt, gap, kind,
+                                  rugo_contact_state_name(st), n);
+                    continue;
+                }
+                ck_assert_msg(st == RUGO_STATE_CONTACT && n == 1,
+                              "tilt %g gap %g against %d: state %s, %d contacts", tilt, gap, kind,
+                              rugo_contact_state_name(st), n);
+                ck_assert_near(c[0].point_a.x, corner.x, 1e-9);
+                ck_assert_near(c[0].point_a.y, corner.y, 1e-9);
+                ck_assert_near(c[0].separation, gap, 1e-9);
+                ++cases;
+            }
+        }
+    ck_assert_int_eq(cases, 90 - 6 * 4); /* the gap of 5.5 mm reaches only the floor shape */
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(blk);
+    rugo_shape_destroy(floor);
+}
+END_TEST
+
 /* Documented: coincident curves are CONTACT at separation 0 (what the narrow phase reports fits). */
 START_TEST(test_coincident_curves) {
     build_shapes();
@@ -2880,6 +2972,7 @@ int main(void) {
     tcase_add_test(th, test_near_tangent);
     tcase_add_test(th, test_parallel_straight_segments);
     tcase_add_test(th, test_point_like_segments);
+    tcase_add_test(th, test_sharp_corner_tilted);
     tcase_add_test(th, test_coincident_curves);
     tcase_add_test(th, test_containment);
     tcase_add_test(th, test_far_and_scaled);

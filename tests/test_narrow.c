@@ -1135,6 +1135,59 @@ END_TEST
 
 /* A piece and its translate: for the parabola and its copy 0.1 higher the vertex pair is a saddle
  * (moving both points sideways brings them closer), and the closest pairs are at the ends. */
+/* A piece that ends at a sharp corner (the B-spline segment of control points X, C, C, C: Bezier points
+ * (X + 5C)/6, C, C, C, with zero speed and zero second derivative at s = 1) against a line below the
+ * corner. Its polynomial extrapolated past s = 1 runs on along the same side, so a two-sided look called
+ * the corner a saddle (the bug behind collide's missed corner contacts). It reports the corner at s = 1
+ * as RUGO__END_MINIMUM when the distance rises along the piece (the side goes up, away from the line),
+ * and not as a minimum when it falls (the piece comes down toward the line); through the line path,
+ * the cubic-piece path and the point path (the line replaced by a far point below the corner). */
+START_TEST(test_sharp_corner_end) {
+    const rugo_vec2 C = rugo_v2(0.2, -0.1);
+    for (int falling = 0; falling < 2; ++falling)
+        for (int k = 0; k < 6; ++k) {
+            const double tilt = (k % 3 - 1) * 0.01 + (k / 3) * 0.003; /* floor line tilts, both ways */
+            const rugo_vec2 X =
+                falling ? rugo_v2(C.x + 0.3, C.y - 0.3 * tan(0.2)) : rugo_v2(C.x - 0.05, C.y + 0.3);
+            rugo_vec2 f[4] = {rugo_v2((X.x + 5 * C.x) / 6, (X.y + 5 * C.y) / 6), C, C, C};
+            const double gap = 0.004;
+            const rugo_vec2 dir = rugo_v2(cos(tilt), sin(tilt)), nrm = rugo_v2(-dir.y, dir.x);
+            const rugo_vec2 foot = rugo_v2(C.x - gap * nrm.x, C.y - gap * nrm.y);
+            const rugo_vec2 q0 = rugo_v2(foot.x - dir.x, foot.y - dir.y),
+                            q1 = rugo_v2(foot.x + dir.x, foot.y + dir.y);
+            rugo_vec2 g[4];
+            for (int i = 0; i < 4; ++i)
+                g[i] = rugo_v2(q0.x + (q1.x - q0.x) * i / 3.0, q0.y + (q1.y - q0.y) * i / 3.0);
+            rugo__narrow_result rl, rp;
+            rugo__narrow_line(f, q0, q1, 0.01, &rl);
+            rugo__narrow_pieces(f, g, 0.01, &rp);
+            rugo__pair_point pt[6];
+            const rugo_vec2 far = rugo_v2(C.x - 50.0 * nrm.x, C.y - 50.0 * nrm.y);
+            const int npt = rugo__narrow_point(f, far, INFINITY, pt);
+            const rugo__narrow_result* rs[2] = {&rl, &rp};
+            for (int w = 0; w < 3; ++w) {
+                int found = 0, kind = -1;
+                const int cnt = w < 2 ? rs[w]->stationary_count : npt;
+                for (int i = 0; i < cnt; ++i) {
+                    const rugo__pair_point* q = w < 2 ? &rs[w]->stationary[i] : &pt[i];
+                    if (q->s < 1.0 - 1e-6) continue;
+                    found = 1;
+                    kind = q->kind;
+                    ck_assert_msg(fabs(q->distance - (w < 2 ? gap : 50.0)) <= 1e-9, "distance %.12g",
+                                  q->distance);
+                }
+                if (falling) {
+                    ck_assert_msg(!found || (kind != RUGO__MINIMUM && kind != RUGO__END_MINIMUM),
+                                  "falling side, tilt %g, path %d: kind %d", tilt, w, kind);
+                } else {
+                    ck_assert_msg(found && kind == RUGO__END_MINIMUM,
+                                  "rising side, tilt %g, path %d: found %d kind %d", tilt, w, found, kind);
+                }
+            }
+        }
+}
+END_TEST
+
 START_TEST(test_translate) {
     rugo_vec2 f[4], g[4];
     parabola(f);
@@ -1669,6 +1722,7 @@ Suite* narrow_suite(void) {
     tcase_add_test(tk, test_overlapping_arcs_saddle);
     tcase_add_test(tk, test_tangential_crossing);
     tcase_add_test(tk, test_domain_edges);
+    tcase_add_test(tk, test_sharp_corner_end);
     tcase_add_test(tk, test_translate);
     tcase_add_test(tk, test_straight_cases);
     tcase_add_test(tk, test_point_cases);

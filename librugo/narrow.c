@@ -51,10 +51,13 @@
  * the smallest step that changes D beyond round-off (rising both ways, or flat: minimum side;
  * falling both ways: maximum side; else saddle). A pair at distance <= TAU_TOUCH is a minimum.
  * Sharp corners: a piece that stops at an end of its domain (zero speed there, as at three coincident
- * control points) gives a multiple root that is located only roughly; such roots are moved onto the
- * end, the end is a candidate of the point query even when the root finder misses it, probes look
- * only along the piece (its cubic continued past the end is not the curve), and a minimum seen from
- * that one side is RUGO__END_MINIMUM, for the caller to confirm with the neighbouring segment's piece.
+ * control points) gives a multiple root that is located only roughly, or none when rounding leaves the
+ * speed a few ulps off zero; such roots are moved onto the end, and the end's point query against the
+ * other piece adds the pairs the search missed (add_zero_speed_ends; the point query adds the end
+ * itself). There the pair is classified by probing along each piece on its own, only into the domain
+ * (its cubic continued past the end is not the curve), and a minimum is RUGO__END_MINIMUM, for the
+ * caller to confirm with the neighbouring segment's piece. A point-like piece (four coincident points:
+ * its polynomial is round-off) cannot classify its point and reports RUGO__END_MINIMUM too.
  * Transversal crossings are not reported as stationary pairs; a touching (kind 0) crossing is always
  * also a minimum, and a minimum at distance <= TAU_TOUCH always also a touching crossing.
  *
@@ -1254,9 +1257,9 @@ static int at_zero_speed_end(const ctx* c, const pair_eval* e, rugo_real s, rugo
 
 /* Minimum / saddle / maximum from the Hessian of D = |f-g|^2/2, whose entries are
  * D_ss = J11, D_st = J12 = -f'·g', D_tt = -J22. A minimum decided from one side only (a probe that
- * could not look past the end of the domain, or the Hessian at a zero-speed end, where the piece's
- * polynomial mirrors back and the curve turns) is RUGO__END_MINIMUM: the caller confirms it with the
- * neighbouring segment's classification of the same point. */
+ * could not look past the end of the domain, or any minimum at a zero-speed end, where the piece's
+ * polynomial does not continue as the curve does) is RUGO__END_MINIMUM: the caller confirms it with
+ * the neighbouring segment's classification of the same point. */
 static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist) {
     if (dist <= TAU_TOUCH) return RUGO__MINIMUM;
     pair_eval e = eval_pair(c, s, t);
@@ -1266,8 +1269,19 @@ static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist)
     rugo_real m = 0.5 * (a + d), q = hypot(0.5 * (a - d), b);
     /* the entries are good to a few ulps of scale; so are the eigenvalues */
     rugo_real l1 = m - q, l2 = m + q, tol = 1e3 * EPS * scale;
-    const int end = at_zero_speed_end(c, &e, s, t);
-    if (l1 > tol) return end ? RUGO__END_MINIMUM : RUGO__MINIMUM;
+    if (at_zero_speed_end(c, &e, s, t)) {
+        /* Where a piece stops, its derivatives are round-off (both pieces' at two corners facing each
+         * other), and so is the Hessian. Look along each piece on its own instead, only into the domain
+         * where it stops (reparametrised by the arc from the corner, the distance is first-order in it
+         * there, so rising along each piece is a minimum of the quadrant or half-plane). */
+        int one_sided = 1;
+        const int us = probe_direction(c, s, t, rugo_v2(1.0, 0.0), &one_sided);
+        const int ut = probe_direction(c, s, t, rugo_v2(0.0, 1.0), &one_sided);
+        if (us > 0 && ut > 0) return RUGO__END_MINIMUM;
+        if (us < 0 && ut < 0) return RUGO__MAXIMUM;
+        return RUGO__SADDLE;
+    }
+    if (l1 > tol) return RUGO__MINIMUM;
     if (l2 < -tol) return RUGO__MAXIMUM;
     if (l1 < -tol && l2 > tol) return RUGO__SADDLE;
     /* Semi-definite: decide the flat direction(s) by probing. Eigenvector of l1: (b, l1 - a) or
@@ -1277,7 +1291,7 @@ static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist)
     rugo_real lv = vlen(v1);
     v1 = lv > 0.0 ? rugo_v2(v1.x / lv, v1.y / lv) : rugo_v2(1.0, 0.0);
     rugo_vec2 v2 = rugo_v2_perp(v1);
-    int one_sided = end;
+    int one_sided = 0;
     int u1 = fabs(l1) <= tol ? probe_direction(c, s, t, v1, &one_sided) : sgn(l1);
     int u2 = fabs(l2) <= tol ? probe_direction(c, s, t, v2, &one_sided) : sgn(l2);
     if (u1 > 0 && u2 > 0) return one_sided ? RUGO__END_MINIMUM : RUGO__MINIMUM;
@@ -1355,18 +1369,21 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
     p[5] = 3.0 * rugo_v2_dot(A3, A3);
     rugo_real sa = vlen(A0) + vlen(A1) + vlen(A2) + vlen(A3);
     rugo_real sd = vlen(A1) + 2.0 * vlen(A2) + 3.0 * vlen(A3);
-    /* a point-like piece holds its point: its minimum there is not one-sided */
-    const int point_like = piece_extent(a) <= POINT_TOL;
     rugo_real roots[RUGO__POLY_MAX_ROOTS];
     int n = rugo__poly_roots(p, 5, 0.0, 1.0, 16.0 * EPS * sa * sd, roots);
     int count = 0;
-    if (n == RUGO__POLY_ALL) {
-        /* f is a point (or f - c vanishes): every s is stationary; report s = 0. */
+    /* A point-like piece (a segment of four or more coincident control points, to round-off of the
+     * caller's coordinates, or a piece a billion times smaller than its distance to c): one stationary
+     * point, s = 0, whose kind the piece cannot see (its polynomial is round-off): a minimum unless the
+     * neighbouring segments, which reach the point at their ends, say otherwise (RUGO__END_MINIMUM), or
+     * a touching. */
+    const rugo_real extent = piece_extent(a);
+    if (n == RUGO__POLY_ALL || extent <= POINT_TOL || extent <= 1e-9 * vmax(a[0])) {
         rugo_real d = vlen(A0);
         if (d <= cutoff) {
             s_out[0] = 0.0;
             d_out[0] = d;
-            k_out[0] = RUGO__MINIMUM;
+            k_out[0] = d <= TAU_TOUCH ? RUGO__MINIMUM : RUGO__END_MINIMUM;
             count = 1;
         }
         return count;
@@ -1374,7 +1391,7 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
     /* An end where the piece stops (zero speed: a corner) is stationary whatever the rest of the
      * polynomial does, but it is a multiple root there, which need not change sign: make sure it is a
      * candidate. */
-    if (!point_like) {
+    {
         const rugo_vec2 fp1 = rugo_v2_add(A1, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0, A3)));
         const int zero0 = rugo_v2_dot(A1, A1) <= 1e3 * EPS * sd * sd,
                   zero1 = rugo_v2_dot(fp1, fp1) <= 1e3 * EPS * sd * sd;
@@ -1409,7 +1426,7 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
         /* At an end where the piece stops (zero speed: a corner of coincident control points) a minimum
          * is one-sided (classify_stat), and f' and f'' are round-off there (of the coordinates, which
          * can be much larger than the piece): the probe decides, looking along the piece only. */
-        const int end = near_end(s) && !point_like && rugo_v2_dot(fp, fp) <= 1e3 * EPS * sd * sd;
+        const int end = near_end(s) && rugo_v2_dot(fp, fp) <= 1e3 * EPS * sd * sd;
         if (d <= TAU_TOUCH) {
             kind = RUGO__MINIMUM;
         } else if (!end && second > 1e3 * EPS * scale) {
@@ -1468,7 +1485,10 @@ static void point_piece_path(ctx* c, int which, rugo__narrow_result* out) {
     for (int i = 0; i < n; ++i) {
         rugo_real s = which == 0 ? 0.0 : ps[i], t = which == 0 ? ps[i] : 0.0;
         if (pd[i] <= TAU_TOUCH) emit_crossing(c, out, s, t, 0);
-        if (c->cutoff >= 0.0 && pd[i] <= c->cutoff) emit_stationary(c, out, s, t, pk[i]);
+        /* The point piece's own curve continues in the neighbouring segments: a minimum along the other
+         * piece is one-sided as far as this call can see (point_core's point-like case). */
+        const int kind = pk[i] == RUGO__MINIMUM && pd[i] > TAU_TOUCH ? RUGO__END_MINIMUM : pk[i];
+        if (c->cutoff >= 0.0 && pd[i] <= c->cutoff) emit_stationary(c, out, s, t, kind);
     }
 }
 
@@ -1552,6 +1572,38 @@ static void parallel_path(ctx* c, rugo__narrow_result* out) {
 /* ---------------------------------------------------------------------------------------------- */
 /* Driver */
 
+/* An end where a piece stops (zero speed: a sharp corner, three coincident control points) is
+ * stationary in that piece's parameter whatever the other piece does, so its stationary pairs are the
+ * end against the other piece's stationary points to it (the point query). The search can miss them:
+ * the root is multiple and need not change sign, or, when rounding leaves the end's speed a few ulps
+ * off zero, there is no exact root at all. They are added here unless the search has one there; the
+ * classification then looks along the pieces (classify_stat). */
+static void add_zero_speed_ends(ctx* c) {
+    for (int which = 0; which < 2; ++which) {
+        const rugo_vec2* p = which == 0 ? c->f : c->g;
+        const rugo_vec2* h = which == 0 ? c->df : c->dg;
+        const rugo_vec2* other = which == 0 ? c->g : c->f;
+        for (int end = 0; end < 2; ++end) {
+            if (!speed_vanishes(h[end ? 2 : 0], h)) continue;
+            rugo_vec2 a[4];
+            for (int i = 0; i < 4; ++i)
+                a[i] = rugo_v2_sub(other[i], p[end ? 3 : 0]);
+            rugo_real us[6], ds[6];
+            int ks[6];
+            const int n = point_core(a, c->cutoff, us, ds, ks);
+            for (int i = 0; i < n; ++i) {
+                const rugo_real s = which == 0 ? (rugo_real)end : us[i],
+                                t = which == 0 ? us[i] : (rugo_real)end;
+                if (near_root(c->stat, c->nstat, s, t, END_ZONE)) continue;
+                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                    c->overflow = 1;
+                    return;
+                }
+            }
+        }
+    }
+}
+
 /* The general case on a prepared context. */
 static void solve(ctx* c, rugo__narrow_result* out) {
     rugo_real mf = 0.0, mg = 0.0, cmax = 0.0;
@@ -1561,6 +1613,18 @@ static void solve(ctx* c, rugo__narrow_result* out) {
         for (int j = 0; j < 3; ++j) {
             c->root_cross[3 * i + j] = rugo_v2_cross(c->df[i], c->dg[j]);
             cmax = mx(cmax, fabs(c->root_cross[3 * i + j]));
+        }
+    }
+    {
+        /* Both pieces points at this distance (two segments of four or more coincident control points,
+         * whose Bezier points differ by round-off of the caller's coordinates, which can be far larger
+         * than this frame): one pair, which neither piece can classify (point_core's point-like case). */
+        const rugo_real ef = piece_extent(c->f), eg = piece_extent(c->g);
+        const rugo_real gap = vmax(rugo_v2_sub(c->f[0], c->g[0]));
+        if (ef <= 1e-9 * gap && eg <= 1e-9 * gap) {
+            const rugo_real d = vlen(rugo_v2_sub(c->f[0], c->g[0]));
+            if (c->cutoff >= 0.0 && d <= c->cutoff) emit_stationary(c, out, 0.0, 0.0, RUGO__END_MINIMUM);
+            return;
         }
     }
     if (piece_extent(c->g) <= POINT_TOL) {
@@ -1596,7 +1660,10 @@ static void solve(ctx* c, rugo__narrow_result* out) {
     /* Crossings beyond count mean (nearly) coincident curves: every pair on the common stretch is a
      * touching, so the stationary search would only fill up with them; the touching crossings below
      * stand for them. */
-    if (c->cutoff >= 0.0 && !c->overflow) search_stationary(c);
+    if (c->cutoff >= 0.0 && !c->overflow) {
+        search_stationary(c);
+        add_zero_speed_ends(c);
+    }
 
     /* Touching crossings are minima too. */
     for (int i = 0; i < c->ncross; ++i) {

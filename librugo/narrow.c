@@ -1200,9 +1200,8 @@ static int near_end(rugo_real u) { return u <= END_ZONE || u >= 1.0 - END_ZONE; 
  * extrapolated past their segments' ends, and that is not the curve: at a zero-speed corner (three
  * coincident control points) the extrapolated cubic runs on along the same side, while the curve turns
  * into the next segment. */
-static int in_square(rugo_real s, rugo_real t) {
-    return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12;
-}
+static int in_unit(rugo_real u) { return u >= -1e-12 && u <= 1.0 + 1e-12; }
+static int in_square(rugo_real s, rugo_real t) { return in_unit(s) && in_unit(t); }
 
 /* +1 if D rises both ways along v (or stays flat), -1 if it falls both ways, 0 otherwise; from the
  * smallest step that changes D beyond its round-off. Where one way leaves the parameter square, the way
@@ -1237,10 +1236,12 @@ static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v, 
     return 1;
 }
 
-/* Whether a piece's speed |d| is round-off against the size of its hodograph's control points h[3]. */
+/* Whether a speed |d| is round-off against a derivative size m of its piece. */
+static int zero_speed(rugo_vec2 d, rugo_real m) { return rugo_v2_dot(d, d) <= 1e3 * EPS * m * m; }
+
+/* zero_speed against the size of the piece's hodograph control points h[3]. */
 static int speed_vanishes(rugo_vec2 d, const rugo_vec2 h[3]) {
-    const rugo_real m = mx(vmax(h[0]), mx(vmax(h[1]), vmax(h[2])));
-    return rugo_v2_dot(d, d) <= 1e3 * EPS * m * m;
+    return zero_speed(d, mx(vmax(h[0]), mx(vmax(h[1]), vmax(h[2]))));
 }
 
 /* Moves a stationary pair near an end where its piece stops onto that end (near_end). */
@@ -1393,8 +1394,7 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
      * candidate. */
     {
         const rugo_vec2 fp1 = rugo_v2_add(A1, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0, A3)));
-        const int zero0 = rugo_v2_dot(A1, A1) <= 1e3 * EPS * sd * sd,
-                  zero1 = rugo_v2_dot(fp1, fp1) <= 1e3 * EPS * sd * sd;
+        const int zero0 = zero_speed(A1, sd), zero1 = zero_speed(fp1, sd);
         /* roots near such an end are that end (near_end); then one each */
         int m = 0;
         for (int i = 0; i < n; ++i) {
@@ -1426,7 +1426,7 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
         /* At an end where the piece stops (zero speed: a corner of coincident control points) a minimum
          * is one-sided (classify_stat), and f' and f'' are round-off there (of the coordinates, which
          * can be much larger than the piece): the probe decides, looking along the piece only. */
-        const int end = near_end(s) && rugo_v2_dot(fp, fp) <= 1e3 * EPS * sd * sd;
+        const int end = near_end(s) && zero_speed(fp, sd);
         if (d <= TAU_TOUCH) {
             kind = RUGO__MINIMUM;
         } else if (!end && second > 1e3 * EPS * scale) {
@@ -1444,7 +1444,7 @@ static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, 
                 rugo_vec2 rp = bez(a, 3, sp), rm = bez(a, 3, sm);
                 rugo_real up = rugo_v2_dot(rp, rp) - d0, um = rugo_v2_dot(rm, rm) - d0;
                 rugo_real noise = 32.0 * EPS * sa * (d + EPS * sa);
-                const int inp = sp <= 1.0 + 1e-12, inm = sm >= -1e-12;
+                const int inp = in_unit(sp), inm = in_unit(sm);
                 if (inp != inm) {
                     const rugo_real u1 = inp ? up : um;
                     if (fabs(u1) > noise) {

@@ -1363,6 +1363,22 @@ static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, cons
     return RUGO_OK;
 }
 
+/* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
+ * within SAME_POINT of the size of each other, merged, or one of them taken for a touching), so that
+ * no arc between them is seen inside. The curves do cross, the state is INTERSECTING, and the caller
+ * must get a contact: one at each crossing, the curves' common point (separation 0 to round-off: the
+ * overlap is shallower than the resolution), A's outward normal. Id index 2 + i. */
+static rugo_status emit_unresolved_crossings(out_ctx* o, const hit* x, int m) {
+    const int prim = o->B == NULL;
+    for (int i = 0; i < m; ++i) {
+        const int id_b = prim ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
+        if (!emit(o, x[i].sa, x[i].ta, prim ? -1 : x[i].sb, prim ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
+                  curve_normal(o->A->curve, x[i].sa, x[i].ta), i, 1, 2 + i, id_b))
+            return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    return RUGO_OK;
+}
+
 /* Segments under the arcs of region reg (which = 0: A's, 1: B's), appended to ctx->segs. */
 static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const regions* r, int reg,
                             int which, unsigned char* mark, size_t* nseg) {
@@ -1635,6 +1651,10 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         /* Local minima within the band away from every overlap region are contacts too. */
         st = emit_minima(&o, &g, (hit*)ctx->ss.data, ns, &r, r.count, override);
         if (st != RUGO_OK) return st;
+        if (o.n == 0 && (capacity > 0 || stats != NULL)) {
+            st = emit_unresolved_crossings(&o, (const hit*)ctx->xs.data, (int)m);
+            if (st != RUGO_OK) return st;
+        }
     } else {
         /* One curve inside the other? Cheap rejections first: a point outside the other's root box. */
         int b_in_a = 0, a_in_b = 0;
@@ -2142,6 +2162,10 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         if (want) {
             st = edge_pieces(ctx, &g, xs, m, &o);
             if (st != RUGO_OK) return st;
+            if (o.n == 0) {
+                st = emit_unresolved_crossings(&o, xs, (int)m);
+                if (st != RUGO_OK) return st;
+            }
         }
     } else if (m > 0) {
         *state = RUGO_STATE_INTERSECTING;
@@ -2239,6 +2263,10 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
             if (prim_sd(P, h->pa, NULL, NULL) < 0.0) continue;
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
+        }
+        if (o.n == 0 && want) {
+            st = emit_unresolved_crossings(&o, xs, (int)m);
+            if (st != RUGO_OK) return st;
         }
     } else {
         /* No crossing: B inside A, A inside B, or apart / in contact. */

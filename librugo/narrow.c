@@ -866,18 +866,19 @@ static void search_crossings(ctx* c) {
     }
 }
 
-/* Unit tangent of f at s (from f'' then f''' where f' vanishes), or 0 for a point. */
+/* Unit tangent of f at s, or 0 for a point. Where f' is below 1e-9 of the hodograph (next to a
+ * zero-speed end, as at three coincident control points) the direction of the chord over
+ * [s - h, s + h] within the domain: f'' there points backwards on the side before the zero
+ * (f' ~ (1 - s)^2 a, f'' ~ -2 (1 - s) a), which made crossings next to a sharp corner "touching";
+ * the chord, the integral of f', does not turn. */
 static rugo_vec2 tangent_f(const ctx* c, rugo_real s) {
     rugo_vec2 d = bez(c->df, 2, s);
     rugo_real scale = vmax(c->df[0]) + vmax(c->df[1]) + vmax(c->df[2]);
     rugo_real l = vlen(d);
     if (!(l > 1e-9 * scale)) {
-        d = bez(c->ddf, 1, s);
+        const rugo_real h = 1.0 / 1024.0;
+        d = rugo_v2_sub(bez(c->f, 3, mn(s + h, 1.0)), bez(c->f, 3, mx(s - h, 0.0)));
         l = vlen(d);
-        if (!(l > 1e-9 * scale)) {
-            d = rugo_v2_sub(c->ddf[1], c->ddf[0]);
-            l = vlen(d);
-        }
     }
     if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
     return rugo_v2(d.x / l, d.y / l);

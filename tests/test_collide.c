@@ -1285,6 +1285,124 @@ START_TEST(test_sharp_corner_tilted) {
 }
 END_TEST
 
+/* The lowest point of a curve (after a turn by `angle`), refined by golden section from dense samples:
+ * on a smooth curve its height is exact to round-off (the height is flat there). */
+static double lowest_height(rugo_contour c, double angle, rugo_vec2* at) {
+    const rugo_transform x = rugo_make_transform(0.0, 0.0, angle);
+    const int per = 256;
+    double best = HUGE_VAL, bu = 0.0;
+    for (int i = 0; i < c.count * per; ++i) {
+        const double u = (double)i / per;
+        const double y = rugo_transform_point(x, rugo_contour_point_at(c, u)).y;
+        if (y < best) best = y, bu = u;
+    }
+    double lo = bu - 1.0 / per, hi = bu + 1.0 / per;
+    for (int it = 0; it < 200; ++it) {
+        const double u1 = hi - 0.6180339887498949 * (hi - lo), u2 = lo + 0.6180339887498949 * (hi - lo);
+        const double y1 = rugo_transform_point(x, rugo_contour_point_at(c, fmod(u1 + c.count, c.count))).y;
+        const double y2 = rugo_transform_point(x, rugo_contour_point_at(c, fmod(u2 + c.count, c.count))).y;
+        if (y1 <= y2)
+            hi = u2;
+        else
+            lo = u1;
+    }
+    const rugo_vec2 p =
+        rugo_transform_point(x, rugo_contour_point_at(c, fmod(0.5 * (lo + hi) + c.count, c.count)));
+    if (p.y < best) best = p.y, bu = 0.5 * (lo + hi);
+    *at = rugo_transform_point(x, rugo_contour_point_at(c, fmod(bu + c.count, c.count)));
+    return best;
+}
+
+/* An overlap so shallow that its two crossings lie within the resolution of each other (SAME_POINT of
+ * the size: 4e-8 against a 40-unit floor) still gets a contact. Before 2026-11-22 a sharp corner or
+ * the lowest point of an ellipse pushed 1e-8 to 1e-12 into a floor shape, a segment or a polygon was
+ * often INTERSECTING with no contact at all: the two crossings merged into one, or the crossing next
+ * to the corner was taken for a touching (the narrow phase's tangent there pointed backwards), and one
+ * crossing closes no region. Every contact lies at the overlap, no deeper than it, and a resolved
+ * overlap (1e-6) reports its depth. */
+START_TEST(test_shallow_overlap_has_contact) {
+    rugo_shape* blk = sharp_block(0.6, 0.3, 0.004, 3);
+    rugo_shape* floor = sharp_block(40.0, 1.0, 0.004, 3);
+    rugo_vec2 ep[32];
+    double et[32];
+    for (int i = 0; i < 32; ++i) {
+        ep[i] = rugo_v2(0.3 * cos(2.0 * M_PI * i / 32), 0.2 * sin(2.0 * M_PI * i / 32));
+        et[i] = 0.004;
+    }
+    rugo_shape* ell = make_shape(ep, 32, et);
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    const double angles[] = {0.013, 0.231166, 0.7, -0.4, 0.1439, 0.8420};
+    const double depths[] = {1e-6, 1e-8, 1e-10, 1e-12};
+    int cases = 0;
+    for (int which = 0; which < 2; ++which) {
+        rugo_shape* A = which == 0 ? blk : ell;
+        rugo_contour c;
+        rugo_shape_level(A, rugo_shape_finest_level(A), &c);
+        for (size_t ia = 0; ia < sizeof angles / sizeof angles[0]; ++ia) {
+            rugo_vec2 low;
+            const double ymin = lowest_height(c, angles[ia], &low);
+            for (size_t id = 0; id < sizeof depths / sizeof depths[0]; ++id) {
+                const double depth = depths[id];
+                rugo_transform xa = rugo_make_transform(0.05, -depth - ymin, angles[ia]);
+                const rugo_vec2 lowest = rugo_v2(low.x + 0.05, -depth);
+                for (int kind = 0; kind < 3; ++kind) {
+                    rugo_contact k[16];
+                    rugo_contact_state st = RUGO_STATE_APART;
+                    int n = -1;
+                    rugo_contact_query q = rugo_default_contact_query();
+                    const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
+                    rugo_status r;
+                    if (kind == 0)
+                        r = rugo_collide_shapes(ctx, A, xa, floor, rugo_make_transform(0, -0.5, 0), &q, k, 16,
+                                                &n, &st, NULL);
+                    else if (kind == 1)
+                        r = rugo_collide_segment(ctx, A, xa, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, k, 16,
+                                                 &n, &st, NULL);
+                    else
+                        r = rugo_collide_polygon(ctx, A, xa, box, 4, 0.0, &q, k, 16, &n, &st, NULL);
+                    ck_assert_int_eq(r, RUGO_OK);
+                    /* 1e-12 is below the resolution of near-tangent smooth curves against a 40-unit floor
+                     * (2.5e-14 of its size: crossings that close merge into a touching): CONTACT there */
+                    ck_assert_msg(
+                        (st == RUGO_STATE_INTERSECTING || (depth < 1e-11 && st == RUGO_STATE_CONTACT)) &&
+                            n >= 1,
+                        "%s at %g rad, %g deep into %d: state %s, %d contacts", which ? "ellipse" : "block",
+                        angles[ia], depth, kind, rugo_contact_state_name(st), n);
+                    double deepest = 0.0;
+                    for (int i = 0; i < n; ++i) {
+                        ck_assert_msg(k[i].separation <= 1e-12 && k[i].separation >= -1.01 * depth - 1e-14,
+                                      "%s at %g rad, %g deep into %d: separation %g",
+                                      which ? "ellipse" : "block", angles[ia], depth, kind, k[i].separation);
+                        ck_assert_near(hypot(k[i].normal.x, k[i].normal.y), 1.0, 1e-12);
+                        /* at the overlap: its crossings lie within sqrt(2 depth R) (ellipse), depth / tan
+                         * (corner) of the lowest point */
+                        ck_assert_msg(hypot(k[i].point_a.x - lowest.x, k[i].point_a.y - lowest.y) <= 1e-4,
+                                      "%s at %g rad, %g deep into %d: point (%g, %g), lowest (%g, %g)",
+                                      which ? "ellipse" : "block", angles[ia], depth, kind, k[i].point_a.x,
+                                      k[i].point_a.y, lowest.x, lowest.y);
+                        if (k[i].separation < deepest) deepest = k[i].separation;
+                    }
+                    /* resolved: the depth along the normal of A's face or of the floor (0.013 rad apart);
+                     * an edge reports the deepest point of its chord through A, nearer A's boundary than
+                     * the corner is to the edge (0.71-0.99 of the depth here) */
+                    if (depth >= 1e-6)
+                        ck_assert_msg(deepest <= (kind == 1 ? -0.5 : -0.98) * depth,
+                                      "%s at %g rad into %d: depth %g reported %g",
+                                      which ? "ellipse" : "block", angles[ia], kind, depth, deepest);
+                    ++cases;
+                }
+            }
+        }
+    }
+    ck_assert_int_eq(cases, 2 * 6 * 4 * 3);
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(blk);
+    rugo_shape_destroy(floor);
+    rugo_shape_destroy(ell);
+}
+END_TEST
+
 /* Documented: coincident curves are CONTACT at separation 0 (what the narrow phase reports fits). */
 START_TEST(test_coincident_curves) {
     build_shapes();
@@ -3006,6 +3124,7 @@ int main(void) {
     tcase_add_test(th, test_parallel_straight_segments);
     tcase_add_test(th, test_point_like_segments);
     tcase_add_test(th, test_sharp_corner_tilted);
+    tcase_add_test(th, test_shallow_overlap_has_contact);
     tcase_add_test(th, test_coincident_curves);
     tcase_add_test(th, test_containment);
     tcase_add_test(th, test_far_and_scaled);

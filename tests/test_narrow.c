@@ -1192,6 +1192,47 @@ START_TEST(test_sharp_corner_end) {
 }
 END_TEST
 
+/* A crossing just before a zero-speed end (three coincident control points: f' ~ (1 - s)^2) has the
+ * orientation of the piece there. The crossing is found in a leaf and classified by probing which side
+ * of the piece the line lies on before and after it; until 2026-11-22 the piece's tangent there came
+ * from f'', which points backwards before the zero, so the crossing read as a touching (kind 0) and a
+ * corner pushed 1e-8 into a floor lost its overlap region. The side of a 0.6 x 0.3 block ending at its
+ * corner C, a 10-unit line 1e-8 to 1e-4 above C, tilted both ways, run both ways. */
+START_TEST(test_crossing_before_zero_speed_end) {
+    const rugo_vec2 C = rugo_v2(-0.3, -0.15);
+    const rugo_vec2 f[4] = {{-0.3, -0.14}, C, C, C}; /* f(s) = C + (f0 - C)(1 - s)^3, going down */
+    int cases = 0;
+    for (int k = 0; k < 5; ++k)
+        for (int sgn = -1; sgn <= 1; sgn += 2)
+            for (int rev = 0; rev < 2; ++rev) {
+                const double above = pow(10.0, -8.0 + k), tilt = sgn * 0.013;
+                const rugo_vec2 dir = rugo_v2(cos(tilt), sin(tilt)), X = rugo_v2(C.x, C.y + above);
+                rugo_vec2 q0 = rugo_v2(X.x - 5.0 * dir.x, X.y - 5.0 * dir.y),
+                          q1 = rugo_v2(X.x + 5.0 * dir.x, X.y + 5.0 * dir.y);
+                if (rev) {
+                    const rugo_vec2 t = q0;
+                    q0 = q1;
+                    q1 = t;
+                }
+                rugo__narrow_result r;
+                rugo__narrow_line(f, q0, q1, 0.01, &r);
+                /* f runs down (-y); the line runs +x (rev: -x): cross(f', g') = +1 for rev = 0 */
+                const int want = rev ? -1 : 1;
+                ck_assert_msg(r.crossing_count == 1, "%g above, tilt %g, reversed %d: %d crossings", above,
+                              tilt, rev, r.crossing_count);
+                ck_assert_msg(r.crossings[0].kind == want, "%g above, tilt %g, reversed %d: kind %d, not %d",
+                              above, tilt, rev, r.crossings[0].kind, want);
+                ck_assert_near(r.crossings[0].pa.x, C.x, 1e-15);
+                ck_assert_near(r.crossings[0].pa.y, X.y, 1e-12);
+                for (int i = 0; i < r.stationary_count; ++i) /* nothing touches: only the corner's pair */
+                    ck_assert_msg(r.stationary[i].distance > 0.5 * above, "%g above: a pair at distance %g",
+                                  above, r.stationary[i].distance);
+                ++cases;
+            }
+    ck_assert_int_eq(cases, 20);
+}
+END_TEST
+
 START_TEST(test_translate) {
     rugo_vec2 f[4], g[4];
     parabola(f);
@@ -1729,6 +1770,7 @@ Suite* narrow_suite(void) {
     tcase_add_test(tk, test_tangential_crossing);
     tcase_add_test(tk, test_domain_edges);
     tcase_add_test(tk, test_sharp_corner_end);
+    tcase_add_test(tk, test_crossing_before_zero_speed_end);
     tcase_add_test(tk, test_translate);
     tcase_add_test(tk, test_straight_cases);
     tcase_add_test(tk, test_point_cases);

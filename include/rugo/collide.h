@@ -7,7 +7,9 @@
  *  - The state is INTERSECTING if the curves cross; then there is one contact per overlap region
  *    (the region inside both): its deepest pair of points (a stationary pair of the distance, 6.14,
  *    whose connecting vector is normal to both curves), with negative separation, and the normal the
- *    direction that separates the bodies fastest.
+ *    direction that separates the bodies fastest. An overlap too shallow for its crossings to be told
+ *    apart (entry and exit within 1e-9 of the size) gets a contact at its crossing, separation ~0:
+ *    an INTERSECTING state always comes with at least one contact.
  *  - Otherwise the state is CONTACT if some local minimum of the distance between the curves is within
  *    the summed tolerance λ_A(t_A) + λ_B(t_B) (6.15) — one contact per such local minimum — and APART
  *    if none is.

@@ -619,7 +619,7 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
  * the per-segment tables take both shapes' segments. What grows with the contacts is sized from what
  * the benchmarks measure per contact (about 25 segment pairs near one contact at the finest level, a
  * few hits each), with room to spare, and the pair list holds every segment pair when there are at
- * most 8192; a query beyond that (large shapes deeply overlapping) still grows. */
+ * most 2^18; a query beyond that (shapes over 512 segments deeply overlapping) still grows. */
 rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* s, int contacts) {
     if (ctx == NULL || s == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (contacts < 0 || contacts > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_ARGUMENT;
@@ -628,9 +628,10 @@ rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_s
     const int j0 = rugo_mobb_tree_coarsest_level(t), levels = rugo_mobb_tree_finest_level(t) - j0 + 1;
     const size_t fan = (size_t)1 << j0, seg = (size_t)2 << rugo_mobb_tree_finest_level(t); /* both shapes */
     const size_t c = contacts > 0 ? (size_t)contacts : 1;
-    /* every segment pair of two such shapes, when that is at most 8192 (64 kB): deeply overlapping
-     * small shapes (a pile's worst pairs) then fit too */
-    const size_t half = seg / 2, all_pairs = half <= 90 ? half * half : 8192;
+    /* every segment pair of two such shapes, when that is at most 2^18 (2 MB; shapes up to 512
+     * segments): deeply overlapping shapes, and falling ones whose speculative margins grow the boxes by
+     * centimetres (65 537 pairs seen between two 512-segment bodies in benchmark 3), then fit too */
+    const size_t half = seg / 2, all_pairs = half <= 512 ? half * half : (size_t)1 << 18;
     const int ok = reserve(ctx, &ctx->stack, fan * fan + 6 * (size_t)levels + 1, sizeof(tnode)) &&
                    reserve(ctx, &ctx->kids, 2 + 2 * fan + 8 * (size_t)levels, sizeof(tbx)) &&
                    reserve(ctx, &ctx->pairs, all_pairs > 64 * c ? all_pairs : 64 * c, sizeof(rugo_node_pair)) &&

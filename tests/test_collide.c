@@ -2229,6 +2229,41 @@ START_TEST(test_context_reserve) {
     ck_assert_int_eq(with.live, 0);
     ck_assert_int_eq(without.live, 0);
 
+    /* Shapes of 512 segments: the reserve holds every segment pair (2^18, 2 MB). Two discs whose bands
+     * (0.5 on radius 1) make each leaf box reach a good part of the other's: more than the 8192 pairs
+     * reserved until 2026-11-22, which two falling 512-segment bodies exceeded in benchmark 3 (their
+     * speculative margins grow the boxes), so that the pair list grew during a step. */
+    {
+        enum { BIG = 512 };
+        rugo_vec2 bp[BIG];
+        double bt[BIG];
+        for (int i = 0; i < BIG; ++i) {
+            bp[i] = rugo_v2(cos(2.0 * M_PI * i / BIG), sin(2.0 * M_PI * i / BIG));
+            bt[i] = 0.5;
+        }
+        rugo_shape* big = make_shape(bp, BIG, bt);
+        test_budget_ctx bb = {1L << 40, 0};
+        const rugo_allocator ab = {test_budget_alloc, test_budget_free, &bb};
+        rugo_collide_context* cb = NULL;
+        ck_assert_int_eq(rugo_collide_context_create(&ab, &cb), RUGO_OK);
+        ck_assert_int_eq(rugo_collide_context_reserve(cb, big, CONTACTS), RUGO_OK);
+        const long res = (1L << 40) - bb.budget;
+        const rugo_mobb_tree* tr = rugo_shape_tree(big);
+        const int fine = rugo_shape_finest_level(big);
+        int cnt = 0;
+        long tests = 0;
+        ck_assert_int_eq(rugo_tree_pairs(cb, tr, rugo_identity_transform(), fine, tr,
+                                         rugo_make_transform(0.01, 0.0, 0.1), fine, NULL, 0, &cnt, &tests),
+                         RUGO_OK);
+        printf("context reserve, 512 segments: %d segment pairs, %ld allocations after the reserve\n", cnt,
+               (1L << 40) - bb.budget - res);
+        ck_assert_int_gt(cnt, 8192);
+        ck_assert_int_eq((1L << 40) - bb.budget - res, 0);
+        rugo_collide_context_destroy(cb);
+        rugo_shape_destroy(big);
+        ck_assert_int_eq(bb.live, 0);
+    }
+
     /* bad input, and out of memory: the context keeps what it had and still answers */
     ck_assert_int_eq(rugo_collide_context_reserve(NULL, g_shapes[0].s, 1), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_collide_context_reserve(pose_ctx, NULL, 1), RUGO_ERR_NULL_ARGUMENT);

@@ -1318,13 +1318,15 @@ static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, c
 
 /* Normal of a non-penetrating pair: from the points when they are far enough apart to give a
  * direction to ~1e-9, else A's outward normal (exact at a stationary pair). */
+/* Normal of a minimum: from the points, or below NORMAL_FROM_POINTS A's outward normal. Not turned to
+ * follow pb - pa: a minimum found facing (see facing) with pb behind A's tangent is a touching whose
+ * curves overlap below the resolution, and turning the normal would point it into A (the separation,
+ * (pb - pa)·n, comes out as that tiny overlap, negative). */
 static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
     const rugo_real len = v2_len(d);
     if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
-    rugo_vec2 na = normal_a(g, h->sa, h->ta);
-    if (len > 0.0 && rugo_v2_dot(na, d) < 0.0) na = rugo_v2_scale(-1.0, na);
-    return na;
+    return normal_a(g, h->sa, h->ta);
 }
 
 /* Facing test of a minimum: B lies on A's outward side at pa and A on B's outward side at pb (at
@@ -1364,21 +1366,13 @@ static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, cons
     return RUGO_OK;
 }
 
-/* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
- * within SAME_POINT of the size of each other, merged, or one of them taken for a touching), so that
- * no arc between them is seen inside. The curves do cross, the state is INTERSECTING, and the caller
- * must get a contact: one at each crossing, the curves' common point (separation 0 to round-off: the
- * overlap is shallower than the resolution), A's outward normal. Id index 2 + i. */
-static rugo_status emit_unresolved_crossings(out_ctx* o, const hit* x, int m) {
-    const int prim = o->B == NULL;
-    for (int i = 0; i < m; ++i) {
-        const int id_b = prim ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
-        if (!emit(o, x[i].sa, x[i].ta, prim ? -1 : x[i].sb, prim ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
-                  curve_normal(o->A->curve, x[i].sa, x[i].ta), i, 1, 2 + i, id_b))
-            return RUGO_ERR_OUT_OF_MEMORY;
-    }
-    return RUGO_OK;
-}
+/* Overlaps below the resolution (defined with the primitives, whose type they read): the normal that
+ * takes a tiny overlap at pa (A) / pb (B) apart, and the contacts of crossings that closed no region. */
+struct prim;
+static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
+                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale);
+static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
+                                             const hit* x, int m, rugo_real scale);
 
 /* Segments under the arcs of region reg (which = 0: A's, 1: B's), appended to ctx->segs. */
 static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const regions* r, int reg,
@@ -1517,7 +1511,9 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
     normalise(&fsa, &fta, g->A->n);
     normalise(&fsb, &ftb, g->B->n);
     rugo_vec2 d = rugo_v2_sub(fpa, fpb);
-    rugo_vec2 n = v2_len(d) > SAME_POINT * g->scale ? v2_unit(d) : normal_a(g, fsa, fta);
+    rugo_vec2 n = v2_len(d) > SAME_POINT * g->scale
+                      ? v2_unit(d)
+                      : overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
     if (!emit(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
     return RUGO_OK;
 }
@@ -1653,7 +1649,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         st = emit_minima(&o, &g, (hit*)ctx->ss.data, ns, &r, r.count, override);
         if (st != RUGO_OK) return st;
         if (o.n == 0 && (capacity > 0 || stats != NULL)) {
-            st = emit_unresolved_crossings(&o, (const hit*)ctx->xs.data, (int)m);
+            st = emit_unresolved_crossings(&o, &g, NULL, (const hit*)ctx->xs.data, (int)m, g.scale);
             if (st != RUGO_OK) return st;
         }
     } else {
@@ -2066,6 +2062,110 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
     return RUGO_OK;
 }
 
+/* ---------------------------------------------------------------------------------------------------
+ * Overlaps below the resolution. */
+
+/* A sharp corner (zero-speed joint) of curve c at one of segment seg's two joints, within `near` of x
+ * (c's frame): 1 and the corner's chord normal in *n. */
+static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n) {
+    for (int j = 0; j < 2; ++j) {
+        const int k = rugo__wrap(seg + j, c.count);
+        rugo_vec2 nin, nout;
+        if (!corner_normals(c, k, 0.0, &nin, &nout)) continue;
+        if (v2_len(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
+        *n = curve_normal(c, k, 0.0);
+        return 1;
+    }
+    return 0;
+}
+
+/* Outward normal of a primitive's boundary at (or next to) p: the direction from the core on the
+ * rounded skin, else the nearest edge's normal (an edge, R = 0, faces both ways: the caller orients). */
+static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
+    if (P->V == 1) {
+        const rugo_vec2 d = rugo_v2_sub(p, P->v[0]);
+        return v2_len(d) > 0.0 ? v2_unit(d) : rugo_v2(1.0, 0.0);
+    }
+    const int edges = P->V == 2 ? 1 : P->V;
+    rugo_real dk = HUGE_VAL;
+    rugo_vec2 foot = P->v[0];
+    int e = 0;
+    for (int i = 0; i < edges; ++i) {
+        rugo_vec2 f;
+        const rugo_real d = point_segment(p, P->v[i], P->v[(i + 1) % P->V], &f);
+        if (d < dk) {
+            dk = d;
+            foot = f;
+            e = i;
+        }
+    }
+    if (P->R > 0.0 && dk > 0.5 * P->R) return v2_unit(rugo_v2_sub(p, foot));
+    return P->m[e];
+}
+
+/* The normal (from A to B) that takes apart an overlap too shallow to be resolved, at pa on A
+ * (segment sa) and pb on B (segment sb at tb, or a primitive P's boundary), A's frame. At a sharp
+ * corner of one curve the overlap is the corner poking through the other's face, and a point found on
+ * the corner's flank has the flank's normal, up to 90 degrees off: the other curve's normal decides.
+ * (Review of the first version: the flank's normal, and at a triangle's corner one pointing into A.)
+ * At corners of both, their chord normals; elsewhere the mean of A's outward and B's inward normals. */
+static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
+                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
+    const rugo_real near = 1e3 * SAME_POINT * scale;
+    const rugo_vec2 na = curve_normal(A->curve, sa, ta);
+    rugo_vec2 nb, ca = na, cb = rugo_v2_scale(-1.0, na);
+    const int corner_a = corner_near(A->curve, sa, pa, near, &ca);
+    int corner_b = 0;
+    if (P == NULL) {
+        nb = rugo_rotate(g->rel.q, curve_normal(g->B->curve, sb, tb));
+        corner_b = corner_near(g->B->curve, sb, rugo_inv_transform_point(g->rel, pb), near, &cb);
+        if (corner_b) cb = rugo_rotate(g->rel.q, cb);
+    } else {
+        nb = prim_normal_at(P, pb);
+        /* an edge faces both ways: the way A comes from (its corner's middle normal, at a corner) */
+        if (P->V == 2 && P->R == 0.0 && rugo_v2_dot(nb, ca) > 0.0) nb = rugo_v2_scale(-1.0, nb);
+        for (int v = 0; P->V >= 2 && P->R == 0.0 && v < P->V && !corner_b; ++v)
+            corner_b = v2_len(rugo_v2_sub(P->v[v], pb)) <= near;
+        if (corner_b) cb = rugo_v2_scale(-1.0, ca); /* a vertex has no normal of its own: A's decides */
+    }
+    rugo_vec2 n;
+    if (corner_a && !corner_b)
+        n = rugo_v2_scale(-1.0, nb);
+    else if (corner_b && !corner_a)
+        n = na;
+    else if (corner_a && corner_b)
+        n = rugo_v2_sub(ca, cb);
+    else
+        n = rugo_v2_sub(na, nb);
+    return v2_len(n) > 0.0 ? v2_unit(n) : na;
+}
+
+/* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
+ * within SAME_POINT of the size of each other, merged, or one of them taken for a touching), so that
+ * no arc between them is seen inside. The curves do cross, the state is INTERSECTING, and the caller
+ * must get a contact: one per cluster of such crossings (within 1e3 SAME_POINT of each other), at the
+ * curves' common point (separation 0 to round-off: the overlap is shallower than the resolution), with
+ * the normal of overlap_normal. Id index 2 + cluster. */
+static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
+                                             const hit* x, int m, rugo_real scale) {
+    const rugo_real near = 1e3 * SAME_POINT * scale;
+    int cluster = 0;
+    for (int i = 0; i < m; ++i) {
+        int seen = 0;
+        for (int j = 0; j < i && !seen; ++j)
+            seen = v2_len(rugo_v2_sub(x[j].pa, x[i].pa)) <= near;
+        if (seen) continue;
+        const rugo_vec2 n =
+            overlap_normal(o->A, g, P, x[i].sa, x[i].ta, x[i].pa, x[i].sb, x[i].tb, x[i].pb, scale);
+        const int id_b = P != NULL ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
+        if (!emit(o, x[i].sa, x[i].ta, P != NULL ? -1 : x[i].sb, P != NULL ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
+                  n, cluster, 1, 2 + cluster, id_b))
+            return RUGO_ERR_OUT_OF_MEMORY;
+        ++cluster;
+    }
+    return RUGO_OK;
+}
+
 static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, prim* P,
                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
@@ -2164,7 +2264,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             st = edge_pieces(ctx, &g, xs, m, &o);
             if (st != RUGO_OK) return st;
             if (o.n == 0) {
-                st = emit_unresolved_crossings(&o, xs, (int)m);
+                st = emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
                 if (st != RUGO_OK) return st;
             }
         }
@@ -2246,7 +2346,9 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 }
             normalise(&fsa, &fta, A.n);
             const rugo_vec2 d = rugo_v2_sub(fpa, fpb);
-            const rugo_vec2 n = v2_len(d) > eps ? v2_unit(d) : curve_normal(A.curve, fsa, fta);
+            const rugo_vec2 n = v2_len(d) > eps
+                                    ? v2_unit(d)
+                                    : overlap_normal(&A, NULL, P, fsa, fta, fpa, -1, 0.0, fpb, g.scale);
             if (!emit(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
                 return RUGO_ERR_OUT_OF_MEMORY;
         }
@@ -2266,7 +2368,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
         }
         if (o.n == 0 && want) {
-            st = emit_unresolved_crossings(&o, xs, (int)m);
+            st = emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
             if (st != RUGO_OK) return st;
         }
     } else {

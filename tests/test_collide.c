@@ -1313,15 +1313,38 @@ static double lowest_height(rugo_contour c, double angle, rugo_vec2* at) {
     return best;
 }
 
+/* A polygon whose vertices are three coincident control points each (sharp corners), with inner[i]
+ * more points evenly spaced on the side from vertex i to the next. */
+static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, const int* inner, double lam) {
+    rugo_vec2 p[64];
+    double tol[64];
+    int k = 0;
+    for (int i = 0; i < nv; ++i) {
+        const rugo_vec2 a = v[i], b = v[(i + 1) % nv];
+        for (int m = 0; m < 3; ++m)
+            p[k++] = a;
+        for (int j = 1; j <= inner[i]; ++j)
+            p[k++] = rugo_v2(a.x + j * (b.x - a.x) / (inner[i] + 1), a.y + j * (b.y - a.y) / (inner[i] + 1));
+    }
+    for (int i = 0; i < k; ++i)
+        tol[i] = lam;
+    return make_shape(p, k, tol);
+}
+
 /* An overlap so shallow that its two crossings lie within the resolution of each other (SAME_POINT of
  * the size: 4e-8 against a 40-unit floor) still gets a contact. Before 2026-11-22 a sharp corner or
  * the lowest point of an ellipse pushed 1e-8 to 1e-12 into a floor shape, a segment or a polygon was
  * often INTERSECTING with no contact at all: the two crossings merged into one, or the crossing next
  * to the corner was taken for a touching (the narrow phase's tangent there pointed backwards), and one
- * crossing closes no region. Every contact lies at the overlap, no deeper than it, and a resolved
- * overlap (1e-6) reports its depth. */
+ * crossing closes no region. Every contact lies at the overlap, no deeper than it, with a normal that
+ * takes it apart (the floor's, within 15 degrees: the review of the first version found the normal of
+ * the corner's other face, up to 90 degrees off, and at a triangle's corner one pointing into A), also
+ * with the floor as A; no two contacts at one point; a resolved overlap (1e-6) reports its depth. */
 START_TEST(test_shallow_overlap_has_contact) {
     rugo_shape* blk = sharp_block(0.6, 0.3, 0.004, 3);
+    const rugo_vec2 tv[3] = {{0.0, 0.3}, {-0.25, -0.15}, {0.3, -0.2}};
+    const int tin[3] = {8, 7, 8};
+    rugo_shape* tri = sharp_polygon(tv, 3, tin, 0.004);
     rugo_shape* floor = sharp_block(40.0, 1.0, 0.004, 3);
     rugo_vec2 ep[32];
     double et[32];
@@ -1332,11 +1355,14 @@ START_TEST(test_shallow_overlap_has_contact) {
     rugo_shape* ell = make_shape(ep, 32, et);
     rugo_collide_context* ctx = NULL;
     rugo_collide_context_create(NULL, &ctx);
-    const double angles[] = {0.013, 0.231166, 0.7, -0.4, 0.1439, 0.8420};
+    const char* names[3] = {"block", "triangle", "ellipse"};
+    rugo_shape* shapes[3] = {blk, tri, ell};
+    const double angles[] = {0.013, 0.231166, 0.7, -0.4, 0.1439, 0.8420, 4.1897902047863909};
     const double depths[] = {1e-6, 1e-8, 1e-10, 1e-12};
+    const rugo_transform xf = rugo_make_transform(0, -0.5, 0);
     int cases = 0;
-    for (int which = 0; which < 2; ++which) {
-        rugo_shape* A = which == 0 ? blk : ell;
+    for (int which = 0; which < 3; ++which) {
+        rugo_shape* A = shapes[which];
         rugo_contour c;
         rugo_shape_level(A, rugo_shape_finest_level(A), &c);
         for (size_t ia = 0; ia < sizeof angles / sizeof angles[0]; ++ia) {
@@ -1346,7 +1372,7 @@ START_TEST(test_shallow_overlap_has_contact) {
                 const double depth = depths[id];
                 rugo_transform xa = rugo_make_transform(0.05, -depth - ymin, angles[ia]);
                 const rugo_vec2 lowest = rugo_v2(low.x + 0.05, -depth);
-                for (int kind = 0; kind < 3; ++kind) {
+                for (int kind = 0; kind < 4; ++kind) { /* floor shape, segment, polygon, floor shape as A */
                     rugo_contact k[16];
                     rugo_contact_state st = RUGO_STATE_APART;
                     int n = -1;
@@ -1354,50 +1380,66 @@ START_TEST(test_shallow_overlap_has_contact) {
                     const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
                     rugo_status r;
                     if (kind == 0)
-                        r = rugo_collide_shapes(ctx, A, xa, floor, rugo_make_transform(0, -0.5, 0), &q, k, 16,
-                                                &n, &st, NULL);
+                        r = rugo_collide_shapes(ctx, A, xa, floor, xf, &q, k, 16, &n, &st, NULL);
                     else if (kind == 1)
                         r = rugo_collide_segment(ctx, A, xa, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, k, 16,
                                                  &n, &st, NULL);
-                    else
+                    else if (kind == 2)
                         r = rugo_collide_polygon(ctx, A, xa, box, 4, 0.0, &q, k, 16, &n, &st, NULL);
+                    else
+                        r = rugo_collide_shapes(ctx, floor, xf, A, xa, &q, k, 16, &n, &st, NULL);
                     ck_assert_int_eq(r, RUGO_OK);
                     /* 1e-12 is below the resolution of near-tangent smooth curves against a 40-unit floor
                      * (2.5e-14 of its size: crossings that close merge into a touching): CONTACT there */
                     ck_assert_msg(
                         (st == RUGO_STATE_INTERSECTING || (depth < 1e-11 && st == RUGO_STATE_CONTACT)) &&
                             n >= 1,
-                        "%s at %g rad, %g deep into %d: state %s, %d contacts", which ? "ellipse" : "block",
-                        angles[ia], depth, kind, rugo_contact_state_name(st), n);
+                        "%s at %g rad, %g deep into %d: state %s, %d contacts", names[which], angles[ia],
+                        depth, kind, rugo_contact_state_name(st), n);
                     double deepest = 0.0;
                     for (int i = 0; i < n; ++i) {
                         ck_assert_msg(k[i].separation <= 1e-12 && k[i].separation >= -1.01 * depth - 1e-14,
-                                      "%s at %g rad, %g deep into %d: separation %g",
-                                      which ? "ellipse" : "block", angles[ia], depth, kind, k[i].separation);
+                                      "%s at %g rad, %g deep into %d: separation %g", names[which],
+                                      angles[ia], depth, kind, k[i].separation);
                         ck_assert_near(hypot(k[i].normal.x, k[i].normal.y), 1.0, 1e-12);
+                        /* from the shape down into the floor (from the floor up when it is A); not for an
+                         * edge's resolved piece (id index 0): it takes the normal of A's boundary nearest its
+                         * deepest point, the shortest way out of A (contacts.md, "Primitives"), which at a
+                         * sharp corner is one of its flanks */
+                        const double down = kind == 3 ? k[i].normal.y : -k[i].normal.y;
+                        const int edge_piece = kind == 1 && (k[i].id & 0xFFF) == 0;
+                        ck_assert_msg(edge_piece || down >= cos(15.0 * M_PI / 180.0),
+                                      "%s at %g rad, %g deep into %d: normal (%g, %g)", names[which],
+                                      angles[ia], depth, kind, k[i].normal.x, k[i].normal.y);
                         /* at the overlap: its crossings lie within sqrt(2 depth R) (ellipse), depth / tan
                          * (corner) of the lowest point */
-                        ck_assert_msg(hypot(k[i].point_a.x - lowest.x, k[i].point_a.y - lowest.y) <= 1e-4,
+                        const rugo_vec2 on = kind == 3 ? k[i].point_b : k[i].point_a;
+                        ck_assert_msg(hypot(on.x - lowest.x, on.y - lowest.y) <= 1e-4,
                                       "%s at %g rad, %g deep into %d: point (%g, %g), lowest (%g, %g)",
-                                      which ? "ellipse" : "block", angles[ia], depth, kind, k[i].point_a.x,
-                                      k[i].point_a.y, lowest.x, lowest.y);
+                                      names[which], angles[ia], depth, kind, on.x, on.y, lowest.x, lowest.y);
+                        for (int j = 0; j < i; ++j)
+                            ck_assert_msg(hypot(k[j].point_a.x - k[i].point_a.x,
+                                                k[j].point_a.y - k[i].point_a.y) > 1e-9,
+                                          "%s at %g rad, %g deep into %d: contacts %d and %d at one point",
+                                          names[which], angles[ia], depth, kind, j, i);
                         if (k[i].separation < deepest) deepest = k[i].separation;
                     }
-                    /* resolved: the depth along the normal of A's face or of the floor (0.013 rad apart);
-                     * an edge reports the deepest point of its chord through A, nearer A's boundary than
-                     * the corner is to the edge (0.71-0.99 of the depth here) */
+                    /* resolved: the depth along the normal of A's face or of the floor; an edge reports
+                     * the deepest point of its chord through A, nearer A's boundary than the corner is to
+                     * the edge (0.71-0.99 of the depth here) */
                     if (depth >= 1e-6)
                         ck_assert_msg(deepest <= (kind == 1 ? -0.5 : -0.98) * depth,
-                                      "%s at %g rad into %d: depth %g reported %g",
-                                      which ? "ellipse" : "block", angles[ia], kind, depth, deepest);
+                                      "%s at %g rad into %d: depth %g reported %g", names[which], angles[ia],
+                                      kind, depth, deepest);
                     ++cases;
                 }
             }
         }
     }
-    ck_assert_int_eq(cases, 2 * 6 * 4 * 3);
+    ck_assert_int_eq(cases, 3 * 7 * 4 * 4);
     rugo_collide_context_destroy(ctx);
     rugo_shape_destroy(blk);
+    rugo_shape_destroy(tri);
     rugo_shape_destroy(floor);
     rugo_shape_destroy(ell);
 }

@@ -1316,17 +1316,48 @@ static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, c
     return RUGO_OK;
 }
 
-/* Normal of a non-penetrating pair: from the points when they are far enough apart to give a
- * direction to ~1e-9, else A's outward normal (exact at a stationary pair). */
-/* Normal of a minimum: from the points, or below NORMAL_FROM_POINTS A's outward normal. Not turned to
- * follow pb - pa: a minimum found facing (see facing) with pb behind A's tangent is a touching whose
- * curves overlap below the resolution, and turning the normal would point it into A (the separation,
- * (pb - pa)·n, comes out as that tiny overlap, negative). */
+/* Overlaps below the resolution (defined with the primitives, whose type they read): the normal that
+ * takes a tiny overlap at pa (A) / pb (B) apart, and the contacts of crossings that closed no region. */
+struct prim;
+static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
+                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale);
+static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
+                                             const hit* x, int m, rugo_real scale);
+
+/* A sharp corner (zero-speed joint) of curve c at one of segment seg's two joints, within `near` of x
+ * (c's frame): 1 and the corner's chord normal in *n. */
+static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n) {
+    for (int j = 0; j < 2; ++j) {
+        const int k = rugo__wrap(seg + j, c.count);
+        rugo_vec2 nin, nout;
+        if (!corner_normals(c, k, 0.0, &nin, &nout)) continue;
+        if (v2_len(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
+        *n = curve_normal(c, k, 0.0);
+        return 1;
+    }
+    return 0;
+}
+
+/* Normal of a minimum: from the points when they are far enough apart to give a direction to ~1e-9,
+ * else A's outward normal (exact at a stationary pair), or overlap_normal's where either curve has a
+ * sharp corner there (A's normal is then a flank's) or the two normals point the same way (a coarse
+ * level's curl turns one of them back: the flatter curve's); turned to follow pb - pa while the points are
+ * apart beyond round-off (1e-12 of the size), where A's normal may face the wrong way (a curled coarse
+ * level), but not below: there pb behind A's tangent is an overlap below the resolution, and turning
+ * would point the normal into A. */
 static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
     const rugo_real len = v2_len(d);
     if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
-    return normal_a(g, h->sa, h->ta);
+    rugo_vec2 n = normal_a(g, h->sa, h->ta);
+    const rugo_real near = 1e3 * SAME_POINT * g->scale;
+    rugo_vec2 c;
+    if (corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
+        corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
+        rugo_v2_dot(n, normal_b(g, h->sb, h->tb)) > 0.0)
+        n = overlap_normal(g->A, g, NULL, h->sa, h->ta, h->pa, h->sb, h->tb, h->pb, g->scale);
+    if (len > 1e-12 * g->scale && rugo_v2_dot(n, d) < 0.0) n = rugo_v2_scale(-1.0, n);
+    return n;
 }
 
 /* Facing test of a minimum: B lies on A's outward side at pa and A on B's outward side at pb (at
@@ -1365,14 +1396,6 @@ static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, cons
     }
     return RUGO_OK;
 }
-
-/* Overlaps below the resolution (defined with the primitives, whose type they read): the normal that
- * takes a tiny overlap at pa (A) / pb (B) apart, and the contacts of crossings that closed no region. */
-struct prim;
-static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
-                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale);
-static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
-                                             const hit* x, int m, rugo_real scale);
 
 /* Segments under the arcs of region reg (which = 0: A's, 1: B's), appended to ctx->segs. */
 static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const regions* r, int reg,
@@ -2065,20 +2088,6 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
 /* ---------------------------------------------------------------------------------------------------
  * Overlaps below the resolution. */
 
-/* A sharp corner (zero-speed joint) of curve c at one of segment seg's two joints, within `near` of x
- * (c's frame): 1 and the corner's chord normal in *n. */
-static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n) {
-    for (int j = 0; j < 2; ++j) {
-        const int k = rugo__wrap(seg + j, c.count);
-        rugo_vec2 nin, nout;
-        if (!corner_normals(c, k, 0.0, &nin, &nout)) continue;
-        if (v2_len(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
-        *n = curve_normal(c, k, 0.0);
-        return 1;
-    }
-    return 0;
-}
-
 /* Outward normal of a primitive's boundary at (or next to) p: the direction from the core on the
  * rounded skin, else the nearest edge's normal (an edge, R = 0, faces both ways: the caller orients). */
 static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
@@ -2103,12 +2112,24 @@ static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
     return P->m[e];
 }
 
+/* Curvature |f' x f''| / |f'|^3 of curve c at (seg, t); infinite where the speed vanishes. */
+static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
+    rugo_vec2 v, w, r;
+    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
+    const rugo_vec2 d1 = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_vec2 d2 = rugo_v2(0.5 * (2.0 * v.x * t + w.x), 0.5 * (2.0 * v.y * t + w.y));
+    const rugo_real l = v2_len(d1);
+    return l > 0.0 ? fabs(rugo_v2_cross(d1, d2)) / (l * l * l) : HUGE_VAL;
+}
+
 /* The normal (from A to B) that takes apart an overlap too shallow to be resolved, at pa on A
  * (segment sa) and pb on B (segment sb at tb, or a primitive P's boundary), A's frame. At a sharp
  * corner of one curve the overlap is the corner poking through the other's face, and a point found on
  * the corner's flank has the flank's normal, up to 90 degrees off: the other curve's normal decides.
  * (Review of the first version: the flank's normal, and at a triangle's corner one pointing into A.)
- * At corners of both, their chord normals; elsewhere the mean of A's outward and B's inward normals. */
+ * At corners of both, their chord normals; elsewhere the mean of A's outward and B's inward normals,
+ * or, where those point the same way (one curve turns back on itself, as a coarse level of a point-like
+ * corner does), the flatter curve's. */
 static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
                                 rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
     const rugo_real near = 1e3 * SAME_POINT * scale;
@@ -2135,8 +2156,12 @@ static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct p
         n = na;
     else if (corner_a && corner_b)
         n = rugo_v2_sub(ca, cb);
-    else
+    else if (rugo_v2_dot(na, nb) <= 0.0) /* facing each other, as at a touching */
         n = rugo_v2_sub(na, nb);
+    else /* one of them turns back on itself there (a coarse level's curl): the flatter curve decides */
+        n = P != NULL || curvature_at(g->B->curve, sb, tb) <= curvature_at(A->curve, sa, ta)
+                ? rugo_v2_scale(-1.0, nb)
+                : na;
     return v2_len(n) > 0.0 ? v2_unit(n) : na;
 }
 

@@ -61,6 +61,7 @@
 /* Relative tolerances (times the larger shape's size). */
 #define SAME_POINT 1e-9         /* two results closer than this are the same point */
 #define NORMAL_FROM_POINTS 1e-7 /* below this distance the normal comes from A's curve, not pb - pa */
+#define OVERLAP_NEAR 1e-6       /* points this close belong to one overlap below the resolution */
 #define CUTOFF_PAD 1e-12        /* pad of narrow-phase cutoffs: round-off must not hide a contact */
 #define FALLBACK_SAMPLES 16     /* samples per segment of a region's arcs when no penetration pair exists */
 #define EDGE_SAMPLES 32         /* samples of an edge piece inside A */
@@ -283,6 +284,11 @@ static rugo_real local_extent(rugo_contour c, int seg) {
     return e;
 }
 
+/* First derivative of a segment at t from rugo_contour_derivative_coefficients' v, w, r. */
+static rugo_vec2 first_derivative(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_real t) {
+    return rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+}
+
 /* Whether len > 1e-9 (|v| + |w| + |r|) (the lengths as v2_len computes them), without the three
  * lengths when an upper bound of their sum already decides it: |a| <= |a.x| + |a.y|, so the sum of
  * the lengths is at most the sum of the absolute coordinates (padded against its rounding), and len
@@ -298,7 +304,7 @@ static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
 static int regular_normal(rugo_contour c, int seg, rugo_real t, rugo_vec2* n) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_vec2 d = first_derivative(v, w, r, t);
     const rugo_real len = v2_len(d);
     if (!(speed_regular(len, v, w, r) && len > 0.0)) return 0;
     *n = rugo_v2(d.y / len, -d.x / len);
@@ -327,7 +333,7 @@ static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
 static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in, rugo_vec2* n_out) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_vec2 d = first_derivative(v, w, r, t);
     const rugo_real scale = v2_len(v) + v2_len(w) + v2_len(r);
     if (v2_len(d) > 1e-9 * scale && v2_len(d) > 0.0) return 0;
     const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, n = (rugo_real)c.count;
@@ -1341,16 +1347,16 @@ static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rug
 /* Normal of a minimum: from the points when they are far enough apart to give a direction to ~1e-9,
  * else A's outward normal (exact at a stationary pair), or overlap_normal's where either curve has a
  * sharp corner there (A's normal is then a flank's) or the two normals point the same way (a coarse
- * level's curl turns one of them back: the flatter curve's); turned to follow pb - pa while the points are
- * apart beyond round-off (1e-12 of the size), where A's normal may face the wrong way (a curled coarse
- * level), but not below: there pb behind A's tangent is an overlap below the resolution, and turning
- * would point the normal into A. */
+ * level's curl turns one of them back: the flatter curve's). Turned to follow pb - pa while the points
+ * are apart beyond round-off (1e-12 of the size), where A's normal may still face the wrong way, but
+ * not below: there pb behind A's tangent is an overlap below the resolution, and turning would point
+ * the normal into A. */
 static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
     const rugo_real len = v2_len(d);
     if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
     rugo_vec2 n = normal_a(g, h->sa, h->ta);
-    const rugo_real near = 1e3 * SAME_POINT * g->scale;
+    const rugo_real near = OVERLAP_NEAR * g->scale;
     rugo_vec2 c;
     if (corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
         corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
@@ -2116,7 +2122,7 @@ static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
 static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d1 = rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+    const rugo_vec2 d1 = first_derivative(v, w, r, t);
     const rugo_vec2 d2 = rugo_v2(0.5 * (2.0 * v.x * t + w.x), 0.5 * (2.0 * v.y * t + w.y));
     const rugo_real l = v2_len(d1);
     return l > 0.0 ? fabs(rugo_v2_cross(d1, d2)) / (l * l * l) : HUGE_VAL;
@@ -2132,7 +2138,7 @@ static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
  * corner does), the flatter curve's. */
 static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
                                 rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
-    const rugo_real near = 1e3 * SAME_POINT * scale;
+    const rugo_real near = OVERLAP_NEAR * scale;
     const rugo_vec2 na = curve_normal(A->curve, sa, ta);
     rugo_vec2 nb, ca = na, cb = rugo_v2_scale(-1.0, na);
     const int corner_a = corner_near(A->curve, sa, pa, near, &ca);
@@ -2168,12 +2174,12 @@ static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct p
 /* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
  * within SAME_POINT of the size of each other, merged, or one of them taken for a touching), so that
  * no arc between them is seen inside. The curves do cross, the state is INTERSECTING, and the caller
- * must get a contact: one per cluster of such crossings (within 1e3 SAME_POINT of each other), at the
+ * must get a contact: one per cluster of such crossings (within OVERLAP_NEAR of each other), at the
  * curves' common point (separation 0 to round-off: the overlap is shallower than the resolution), with
  * the normal of overlap_normal. Id index 2 + cluster. */
 static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
                                              const hit* x, int m, rugo_real scale) {
-    const rugo_real near = 1e3 * SAME_POINT * scale;
+    const rugo_real near = OVERLAP_NEAR * scale;
     int cluster = 0;
     for (int i = 0; i < m; ++i) {
         int seen = 0;

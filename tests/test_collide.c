@@ -1160,25 +1160,31 @@ START_TEST(test_point_like_segments) {
 }
 END_TEST
 
-/* A block whose corners are `mult` coincident control points (3: sharp corners, zero speed there; 4: a
- * point-like segment at each) and whose sides hold 8 - mult more, 32 points, with a constant band lam. */
+/* A polygon whose vertices are `mult` coincident control points each (3: sharp corners, zero speed
+ * there; 4: a point-like segment at each), with inner[i] more points evenly spaced on the side from
+ * vertex i to the next, and a constant band lam. */
+static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, int mult, const int* inner, double lam) {
+    rugo_vec2 p[64];
+    double tol[64];
+    int k = 0;
+    for (int i = 0; i < nv; ++i) {
+        const rugo_vec2 a = v[i], b = v[(i + 1) % nv];
+        for (int m = 0; m < mult; ++m)
+            p[k++] = a;
+        for (int j = 1; j <= inner[i]; ++j)
+            p[k++] = rugo_v2(a.x + j * (b.x - a.x) / (inner[i] + 1), a.y + j * (b.y - a.y) / (inner[i] + 1));
+    }
+    for (int i = 0; i < k; ++i)
+        tol[i] = lam;
+    return make_shape(p, k, tol);
+}
+
+/* A w x h block of 32 points: `mult` coincident points a corner and 8 - mult more on each side. */
 static rugo_shape* sharp_block(double w, double h, double lam, int mult) {
     const double x = 0.5 * w, y = 0.5 * h;
     const rugo_vec2 c[4] = {{x, -y}, {x, y}, {-x, y}, {-x, -y}};
-    rugo_vec2 p[32];
-    double tol[32];
-    int k = 0;
-    for (int i = 0; i < 4; ++i) {
-        const rugo_vec2 n = c[(i + 1) % 4];
-        const int in = 8 - mult;
-        for (int m = 0; m < mult; ++m)
-            p[k++] = c[i];
-        for (int j = 1; j <= in; ++j)
-            p[k++] = rugo_v2(c[i].x + j * (n.x - c[i].x) / (in + 1), c[i].y + j * (n.y - c[i].y) / (in + 1));
-    }
-    for (int i = 0; i < 32; ++i)
-        tol[i] = lam;
-    return make_shape(p, 32, tol);
+    const int inner[4] = {8 - mult, 8 - mult, 8 - mult, 8 - mult};
+    return sharp_polygon(c, 4, mult, inner, lam);
 }
 
 /* Regression (docs/simulator.md listed it as a known limit until 2026-11-22): a sharp corner tilted
@@ -1313,24 +1319,6 @@ static double lowest_height(rugo_contour c, double angle, rugo_vec2* at) {
     return best;
 }
 
-/* A polygon whose vertices are three coincident control points each (sharp corners), with inner[i]
- * more points evenly spaced on the side from vertex i to the next. */
-static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, const int* inner, double lam) {
-    rugo_vec2 p[64];
-    double tol[64];
-    int k = 0;
-    for (int i = 0; i < nv; ++i) {
-        const rugo_vec2 a = v[i], b = v[(i + 1) % nv];
-        for (int m = 0; m < 3; ++m)
-            p[k++] = a;
-        for (int j = 1; j <= inner[i]; ++j)
-            p[k++] = rugo_v2(a.x + j * (b.x - a.x) / (inner[i] + 1), a.y + j * (b.y - a.y) / (inner[i] + 1));
-    }
-    for (int i = 0; i < k; ++i)
-        tol[i] = lam;
-    return make_shape(p, k, tol);
-}
-
 /* An overlap so shallow that its two crossings lie within the resolution of each other (SAME_POINT of
  * the size: 4e-8 against a 40-unit floor) still gets a contact. Before 2026-11-22 a sharp corner or
  * the lowest point of an ellipse pushed 1e-8 to 1e-12 into a floor shape, a segment or a polygon was
@@ -1344,7 +1332,7 @@ START_TEST(test_shallow_overlap_has_contact) {
     rugo_shape* blk = sharp_block(0.6, 0.3, 0.004, 3);
     const rugo_vec2 tv[3] = {{0.0, 0.3}, {-0.25, -0.15}, {0.3, -0.2}};
     const int tin[3] = {8, 7, 8};
-    rugo_shape* tri = sharp_polygon(tv, 3, tin, 0.004);
+    rugo_shape* tri = sharp_polygon(tv, 3, 3, tin, 0.004);
     rugo_shape* floor = sharp_block(40.0, 1.0, 0.004, 3);
     rugo_vec2 ep[32];
     double et[32];

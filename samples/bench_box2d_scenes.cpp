@@ -34,7 +34,7 @@
 // Default: N = 16, 64, 256, 1024 at S = 64, and S = 32, 64, 128, 512 at N = 256 (--grid: every pair);
 // 300 steps of which 60 warm-up (--steps-large K: K steps for N >= 1024 or S >= 512; warm-up at most
 // half the steps). --max-n caps N; --variants picks a(uto), f(inest), p(olygon), c(ircle); --repeat
-// keeps the best time of R runs. --max-proxy-level and --no-ccd change the bridge's proxy level cap
+// keeps the best time of R runs, the variants' runs alternating. --max-proxy-level and --no-ccd change the bridge's proxy level cap
 // (BridgeDef::maxProxyLevel) and Box2D's continuous collision for an experiment; --alloc-trace prints
 // the callers of the counted allocations; --verbose each new worst level-of-detail pair.
 // --quick (the test suite): N = 16, S = 32, 60 steps; checks that every variant runs, stays in the
@@ -958,21 +958,23 @@ int main(int argc, char** argv) {
         row.n = n;
         row.s = s;
         row.steps = steps - warmup;
-        for (int v = 0; v < kVariants; ++v) {
-            if (opt.variants.find(kVariantLetter[v]) == std::string::npos) continue;
-            Stats best;
-            for (int r = 0; r < opt.repeat; ++r) {
+        // Repeats alternate between the variants (a f p c, a f p c, ...), so that a change in the shared
+        // machine's load falls on all of them alike rather than on one variant's repeats.
+        for (int r = 0; r < opt.repeat; ++r)
+            for (int v = 0; v < kVariants; ++v) {
+                if (opt.variants.find(kVariantLetter[v]) == std::string::npos) continue;
                 Stats st = RunScene(static_cast<Variant>(v), n, *set, opt, steps, warmup);
-                if (r == 0 || st.ms < best.ms) {
-                    const double ms = st.ms;
-                    if (r > 0) st = best; // keep the first run's measurements (deterministic) but the best time
-                    st.ms = ms;
-                    best = st;
+                if (r == 0) {
+                    row.st[v] = st;
+                    row.ran[v] = true;
+                } else {
+                    // keep the first run's measurements (deterministic) but the best time
+                    row.st[v].ms = std::min(row.st[v].ms, st.ms);
                 }
             }
-            row.st[v] = best;
-            row.ran[v] = true;
-            const Stats& st = best;
+        for (int v = 0; v < kVariants; ++v) {
+            if (!row.ran[v]) continue;
+            const Stats& st = row.st[v];
             const double ts = row.steps;
             const double all = ts + warmup;
             std::printf("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%.1f,%.1f,%.1f,"

@@ -85,6 +85,27 @@ static rugo_status check_size(const rugo_pyramid* p, int finest) {
     return size >= RUGO_SHAPE_MIN_SIZE && size <= RUGO_SHAPE_MAX_SIZE ? RUGO_OK : RUGO_ERR_BAD_SIZE;
 }
 
+/* The coarsest level from which every level up to the finest is a simple closed curve (rugo_contour_check
+ * with the crossing test). Coarse levels of outlines with sharp corners can loop (a corner of four
+ * coincident control points curls back at the next level): such a curve has no inside, and queries at
+ * it would report overlaps of nearly the body's size between bodies that are apart. The finest level
+ * was checked when the pyramid was built. */
+static rugo_status simple_coarsest(const rugo_pyramid* p, const rugo_allocator* al, int* out) {
+    const int J = rugo_pyramid_finest_level(p), Jmin = rugo_pyramid_coarsest_level(p);
+    *out = Jmin;
+    for (int j = J - 1; j >= Jmin; --j) {
+        rugo_contour c;
+        rugo_pyramid_level(p, j, &c);
+        const rugo_status st = rugo_contour_check(c.points, c.count, RUGO_CHECK_SELF_INTERSECTION, NULL, al);
+        if (st == RUGO_ERR_OUT_OF_MEMORY) return st;
+        if (st != RUGO_OK) {
+            *out = j + 1;
+            break;
+        }
+    }
+    return RUGO_OK;
+}
+
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem) {
     if (out != NULL) *out = NULL;
     if (def == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
@@ -109,6 +130,18 @@ rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_
     pd.allocator = al;
     st = rugo_pyramid_create(&pd, &s->pyramid, problem);
     if (st == RUGO_OK) st = check_size(s->pyramid, rugo_pyramid_finest_level(s->pyramid));
+    if (st == RUGO_OK && def->check_self_intersection) {
+        /* Levels coarser than the coarsest simple one are dropped: the pyramid is built again down to
+         * it (the levels it keeps are the same bits, computed from the finest down). */
+        int simple = 0;
+        st = simple_coarsest(s->pyramid, &al, &simple);
+        if (st == RUGO_OK && simple > rugo_pyramid_coarsest_level(s->pyramid)) {
+            rugo_pyramid_destroy(s->pyramid);
+            s->pyramid = NULL;
+            pd.coarsest_level = simple;
+            st = rugo_pyramid_create(&pd, &s->pyramid, problem);
+        }
+    }
     if (st != RUGO_OK) {
         rugo_shape_destroy(s);
         return st;
@@ -127,6 +160,13 @@ rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_
     }
     for (int j = 0; j < n; ++j) {
         const rugo_real v = def->tolerances != NULL ? def->tolerances[j] : 0.0;
+        /* A band wider than the largest shape: the boxes and bands would leave the baked format's value
+         * range (non-finite and negative values are rugo_tolerances_create's errors). */
+        if (v > RUGO_SHAPE_MAX_SIZE) {
+            rugo__free(&al, lambda);
+            rugo_shape_destroy(s);
+            return RUGO_ERR_BAD_SIZE;
+        }
         lambda[s->reversed ? rugo__wrap(n - 2 - j, n) : j] = v;
     }
     rugo_tolerance_def td = rugo_default_tolerance_def();

@@ -1187,6 +1187,98 @@ static rugo_shape* sharp_block(double w, double h, double lam, int mult) {
     return sharp_polygon(c, 4, mult, inner, lam);
 }
 
+/* Coarse levels are simple closed curves (regression, found by a review's symmetry sweep on
+ * 2026-11-22). A triangle whose corners are four coincident control points has a level (8 points) that
+ * loops at a corner; queries at it reported INTERSECTING with a contact 0.4-0.9 of the body's size deep
+ * between bodies that were apart, and a different state when the shapes were swapped. rugo_shape_create
+ * now keeps only the levels from the coarsest simple one up (shape.h). Checked: every level a shape
+ * keeps passes rugo_contour_check's crossing test, for triangles and blocks with 1 to 4 coincident
+ * points per corner; the triangle built without the crossing check keeps a looping level (so the rule
+ * is what removes it); and the triangle 1 cm above a polygon floor, turned through 72 angles, is
+ * APART at levels 0 to -3. */
+static double lowest_height(rugo_contour c, double angle, rugo_vec2* at);
+
+START_TEST(test_coarse_levels_are_simple_curves) {
+    const rugo_vec2 tri[3] = {{-0.8, -0.5}, {0.9, -0.4}, {-0.1, 0.8}};
+    const int tri_inner[3] = {2, 1, 1};
+    int raised = 0;
+    for (int mult = 1; mult <= 4; ++mult) {
+        const int inner[3] = {tri_inner[0] + 4 - mult, tri_inner[1] + 4 - mult, tri_inner[2] + 4 - mult};
+        rugo_shape* shapes[2] = {sharp_polygon(tri, 3, mult, mult == 4 ? tri_inner : inner, 0.0),
+                                 sharp_block(1.0, 0.6, 0.0, mult)};
+        for (int k = 0; k < 2; ++k) {
+            rugo_shape* sh = shapes[k];
+            for (int j = rugo_shape_coarsest_level(sh); j <= rugo_shape_finest_level(sh); ++j) {
+                rugo_contour c;
+                ck_assert_int_eq(rugo_shape_level(sh, j, &c), RUGO_OK);
+                ck_assert_msg(rugo_contour_check(c.points, c.count, RUGO_CHECK_SELF_INTERSECTION, NULL,
+                                                 NULL) == RUGO_OK,
+                              "mult %d shape %d level %d", mult, k, j);
+            }
+            raised += rugo_shape_coarsest_level(sh) > 2;
+            rugo_shape_destroy(sh);
+        }
+    }
+    ck_assert_int_gt(raised, 0); /* the rule did drop levels somewhere */
+
+    /* The four-point triangle without the crossing check keeps level 2 and a looping level. */
+    rugo_vec2 p[16];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+        for (int m = 0; m < 4; ++m)
+            p[n++] = tri[i];
+        for (int j = 1; j <= tri_inner[i]; ++j)
+            p[n++] = rugo_v2_add(
+                tri[i], rugo_v2_scale((double)j / (tri_inner[i] + 1), rugo_v2_sub(tri[(i + 1) % 3], tri[i])));
+    }
+    ck_assert_int_eq(n, 16);
+    rugo_shape_def d = rugo_default_shape_def();
+    d.points = p;
+    d.count = n;
+    d.check_self_intersection = 0;
+    rugo_shape* unchecked = NULL;
+    ck_assert_int_eq(rugo_shape_create(&d, &unchecked, NULL), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_coarsest_level(unchecked), 2);
+    int loops = 0;
+    for (int j = 2; j < rugo_shape_finest_level(unchecked); ++j) {
+        rugo_contour c;
+        rugo_shape_level(unchecked, j, &c);
+        loops += rugo_contour_check(c.points, c.count, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL) ==
+                 RUGO_ERR_SELF_INTERSECTING;
+    }
+    ck_assert_int_gt(loops, 0);
+    rugo_shape_destroy(unchecked);
+    rugo_shape* t4 = make_shape(p, n, NULL);
+    ck_assert_int_gt(rugo_shape_coarsest_level(t4), 3);
+
+    /* Apart stays apart at every level asked for (against a polygon floor, which has no levels). */
+    const rugo_vec2 floor[4] = {{-20.0, -0.5}, {20.0, -0.5}, {20.0, 0.5}, {-20.0, 0.5}};
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    rugo_contour fine;
+    rugo_shape_level(t4, rugo_shape_finest_level(t4), &fine);
+    for (int a = 0; a < 72; ++a) {
+        const double angle = 2.0 * M_PI * a / 72.0;
+        rugo_vec2 at;
+        const double low = lowest_height(fine, angle, &at);
+        const rugo_transform xt = rugo_make_transform(0.0, 0.5 + 0.01 - low, angle);
+        for (int level = 0; level >= -3; --level) {
+            rugo_contact_query q = rugo_default_contact_query();
+            q.level = level;
+            rugo_contact c[8];
+            int count = -1;
+            rugo_contact_state st;
+            ck_assert_int_eq(rugo_collide_polygon(ctx, t4, xt, floor, 4, 0.0, &q, c, 8, &count, &st, NULL),
+                             RUGO_OK);
+            ck_assert_msg(st == RUGO_STATE_APART && count == 0, "angle %d level %d: state %d", a, level,
+                          (int)st);
+        }
+    }
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(t4);
+}
+END_TEST
+
 /* Regression (docs/simulator.md listed it as a known limit until 2026-11-22): a sharp corner tilted
  * over a flat face, within the bands, was reported APART, because the two segments meeting at the
  * corner each classified it by extrapolating their cubic past the corner (where it runs on along the
@@ -2737,6 +2829,35 @@ START_TEST(test_shape_bad_inputs_and_leaks) {
             ck_assert_ptr_null(t);
         }
     }
+    /* Tolerances: up to RUGO_SHAPE_MAX_SIZE a shape builds and its bake loads back (every stored value
+     * within the format's 1e150); above, BAD_SIZE (a 1e150 band used to build, then its bake was
+     * refused by the loader). */
+    const double bands[3] = {RUGO_SHAPE_MAX_SIZE, 1e38, 1e150};
+    for (int f = 0; f < 3; ++f) {
+        double qt[16];
+        for (int i = 0; i < 16; ++i)
+            qt[i] = i % 3 == 0 ? bands[f] : tol[i];
+        rugo_shape_def sd = d;
+        sd.tolerances = qt;
+        rugo_shape* t = (rugo_shape*)0x1;
+        const rugo_status st = rugo_shape_create(&sd, &t, NULL);
+        if (f > 0) {
+            ck_assert_int_eq(st, RUGO_ERR_BAD_SIZE);
+            ck_assert_ptr_null(t);
+            continue;
+        }
+        ck_assert_int_eq(st, RUGO_OK);
+        size_t size = 0, written = 0;
+        ck_assert_int_eq(rugo_shape_bake_size(t, &size), RUGO_OK);
+        void* buf = malloc(size);
+        ck_assert_ptr_nonnull(buf);
+        ck_assert_int_eq(rugo_shape_bake(t, buf, size, &written), RUGO_OK);
+        rugo_shape* back = NULL;
+        ck_assert_int_eq(rugo_shape_load_baked(buf, written, NULL, &back, NULL), RUGO_OK);
+        rugo_shape_destroy(back);
+        free(buf);
+        rugo_shape_destroy(t);
+    }
     rugo_shape_def bad = d;
     bad.cookie = 0;
     ck_assert_int_eq(rugo_shape_create(&bad, &s, NULL), RUGO_ERR_BAD_ARGUMENT);
@@ -3189,6 +3310,7 @@ int main(void) {
     tcase_add_test(th, test_parallel_straight_segments);
     tcase_add_test(th, test_point_like_segments);
     tcase_add_test(th, test_sharp_corner_tilted);
+    tcase_add_test(th, test_coarse_levels_are_simple_curves);
     tcase_add_test(th, test_shallow_overlap_has_contact);
     tcase_add_test(th, test_coincident_curves);
     tcase_add_test(th, test_containment);

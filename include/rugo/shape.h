@@ -42,14 +42,17 @@ typedef struct rugo_shape_def {
     const rugo_vec2* points; /**< 2^J control points, either orientation (normalised to CCW) */
     int count;               /**< number of control points: a power of two >= 4 */
     rugo_filter filter;      /**< default RUGO_FILTER_DEFAULT */
-    int coarsest_level;      /**< J_min >= 2; 0 = as coarse as possible (2) */
+    int coarsest_level;      /**< J_min >= 2; 0 = as coarse as possible (2). With check_self_intersection
+                                  set, J_min is raised above any level whose curve crosses or touches
+                                  itself (a coarse level of sharp corners can loop): every level kept is
+                                  a simple closed curve. rugo_shape_coarsest_level gives the result. */
     const rugo_real* tolerances; /**< λ per finest segment of the INPUT order (count values); NULL = smooth */
     rugo_real q;             /**< default RUGO_DEFAULT_Q */
     rugo_tolerance_estimator estimator; /**< default RUGO_ESTIMATOR_DETAIL */
     rugo_friction_map friction;         /**< default rugo_default_friction_map() */
     rugo_restitution restitution;       /**< default rugo_default_restitution() */
     rugo_box_method box_method;         /**< default RUGO_BOXES_MULTIRES */
-    int check_self_intersection;        /**< default 1 */
+    int check_self_intersection; /**< default 1: reject a crossing outline, drop looping coarse levels */
     rugo_allocator allocator;           /**< used for the shape's lifetime; zeroed = malloc/free */
     int cookie;                         /**< set by rugo_default_shape_def; catches uninitialised defs */
 } rugo_shape_def;
@@ -60,7 +63,8 @@ rugo_shape_def rugo_default_shape_def(void);
 /** Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
  * On success *out is a new shape owned by the caller (free with rugo_shape_destroy); on error NULL.
  * Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie), BAD_SIZE (the outline's size, the diagonal of the
- * finest curve's bounds, outside [RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE]), those of rugo_pyramid_create,
+ * finest curve's bounds, outside [RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE], or a tolerance above
+ * RUGO_SHAPE_MAX_SIZE: either would leave the baked format's value range), those of rugo_pyramid_create,
  * rugo_tolerances_create, rugo_mobb_tree_create, rugo_friction_map_check and rugo_restitution_check.
  * problem may be NULL. */
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem);

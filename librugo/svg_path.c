@@ -1134,6 +1134,11 @@ rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline
             return sample_fail(error, RUGO_ERR_BAD_ARGUMENT, "subpath %d refers to segments beyond the path",
                                k);
     }
+    for (int k = 0; k < path->segment_count; ++k) {
+        const int kind = (int)path->segments[k].kind;
+        if (kind < (int)RUGO_PATH_LINE || kind > (int)RUGO_PATH_ARC)
+            return sample_fail(error, RUGO_ERR_BAD_ARGUMENT, "segment %d has an unknown kind %d", k, kind);
+    }
     const rugo_affine m = def->transform;
 
     int chosen = def->subpath;
@@ -1321,6 +1326,11 @@ rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline
     const double area = 0.5 * fabs(area2) * (2.0 * half) * (2.0 * half);
     if (!isfinite(area)) {
         st = sample_fail(error, RUGO_ERR_NOT_FINITE, "the outline's area overflows under the transform");
+        goto done;
+    }
+    if (!(area > 0.0)) { /* a shape, but so small that its area underflows (e.g. 1e-300 across) */
+        st = sample_fail(error, RUGO_ERR_ZERO_AREA, "subpath %d: its area underflows (under the transform)",
+                         chosen);
         goto done;
     }
     int reversed = 0;

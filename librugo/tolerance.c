@@ -104,7 +104,7 @@ rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rug
     if (lambda == NULL || count < 1) return NAN;
     int k;
     rugo_real u;
-    piece_of(segment, t, &k, &u);
+    piece_of(rugo__wrap(segment, count), t, &k, &u); /* wrapped first: k - 1 .. k + 2 cannot overflow */
     const rugo_real l0 = lambda[rugo__wrap(k - 1, count)], l1 = lambda[rugo__wrap(k, count)];
     const rugo_real l2 = lambda[rugo__wrap(k + 1, count)], l3 = lambda[rugo__wrap(k + 2, count)];
     /* The cubic γ(u) = [1 u u² u³] M^{-1} [λ_{k-1} .. λ_{k+2}]^T of SPEC 6.3, evaluated in its
@@ -321,6 +321,11 @@ rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coa
     int shift = 0;
     while (shift < 30 && (coarse.count << shift) < finest.count) ++shift;
     if ((coarse.count << shift) != finest.count) return RUGO_ERR_BAD_ARGUMENT;
+    /* Checked up front: the bounds below take maxima of distances, which would drop a NaN point. */
+    for (int i = 0; i < coarse.count; ++i)
+        if (!rugo__v2_finite(coarse.points[i]) || !isfinite(coarse_lambda[i])) return RUGO_ERR_NOT_FINITE;
+    for (int i = 0; i < finest.count; ++i)
+        if (!rugo__v2_finite(finest.points[i]) || !isfinite(finest_lambda[i])) return RUGO_ERR_NOT_FINITE;
     rugo_real worst = 0.0;
     for (int k = 0; k < coarse.count; ++k) {
         rugo_real e = 0.0;

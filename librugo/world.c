@@ -123,6 +123,8 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     if (def->cookie != WORLD_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
     if (!rugo__v2_finite(def->gravity) || !isfinite(def->time_step) || !isfinite(def->penetration_tolerance))
         return RUGO_ERR_NOT_FINITE;
+    /* a step's velocity change by gravity, g h, must be a double too */
+    if (!rugo__v2_finite(rugo_v2_scale(def->time_step, def->gravity))) return RUGO_ERR_NOT_FINITE;
     if (!(def->time_step > 0.0) || !(def->penetration_tolerance > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
     if (def->integrator != RUGO_INTEGRATE_SYMPLECTIC_EULER && def->integrator != RUGO_INTEGRATE_EXPLICIT_EULER)
         return RUGO_ERR_BAD_ARGUMENT;
@@ -202,6 +204,13 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     rugo_mass_properties mp = rugo_shape_mass(def->shape);
     const rugo_obb* root = rugo_mobb_tree_root(rugo_shape_tree(def->shape));
     if (root == NULL || !(mp.area > 0.0) || !(mp.inertia > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
+    if (def->type == RUGO_BODY_DYNAMIC) {
+        /* A density so large or so small that the mass, the inertia or their inverses leave the doubles
+         * would only fail later, in a step. */
+        const rugo_real m = def->density * mp.area, i = def->density * mp.inertia;
+        if (!isfinite(m) || !isfinite(i) || !isfinite(1.0 / m) || !isfinite(1.0 / i))
+            return RUGO_ERR_NOT_FINITE;
+    }
 
     int need = w->count + 1;
     int caps[4] = {w->capacity, w->capacity, w->capacity, w->capacity};

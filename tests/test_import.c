@@ -897,6 +897,23 @@ START_TEST(sample_bad_input) {
     d2.transform.a = 0;
     ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_ZERO_AREA);
     ck_assert_ptr_null(s.points);
+    /* So small that the area underflows (it used to come back RUGO_OK with area 0). */
+    d2.transform.a = 1e-320;
+    d2.transform.d = 1e-320;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_ZERO_AREA);
+    ck_assert_ptr_nonnull(strstr(e.message, "underflows"));
+    ck_assert_ptr_null(s.points);
+    /* A segment of a kind the enum does not have (a hand-built path). */
+    d2 = sd;
+    const rugo_path_segment_kind kept = p.segments[1].kind;
+    p.segments[1].kind = (rugo_path_segment_kind)42;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_ptr_nonnull(strstr(e.message, "unknown kind"));
+    p.segments[1].kind = (rugo_path_segment_kind)-1;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_ERR_BAD_ARGUMENT);
+    p.segments[1].kind = kept;
+    ck_assert_int_eq(rugo_outline_sample(&d2, &s, &e), RUGO_OK);
+    rugo_outline_samples_free(&s);
     rugo_path_free(&p);
     /* A path whose counts disagree with its arrays. */
     rugo_path bogus;

@@ -9,6 +9,7 @@
 #include "test_util.h"
 
 #include <float.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -252,6 +253,12 @@ START_TEST(tolerance_at_clamp) {
     ck_assert_double_lt(unclamped_min, 0.0); /* the cubic does overshoot below zero here */
     ck_assert(clamped_min == minimum);
     ck_assert_int_gt(clamped, 0);
+    /* segment indices wrap, to the ends of int (no overflow on the way) */
+    ck_assert(rugo_tolerance_at(lam, N, INT_MAX, 0.7, 0.0) ==
+              rugo_tolerance_at(lam, N, INT_MAX % N, 0.7, 0.0));
+    ck_assert(rugo_tolerance_at(lam, N, INT_MIN, 0.2, 0.0) ==
+              rugo_tolerance_at(lam, N, rugo__wrap(INT_MIN, N), 0.2, 0.0));
+    ck_assert(rugo_tolerance_at(lam, N, -1, 0.2, 0.0) == rugo_tolerance_at(lam, N, N - 1, 0.2, 0.0));
     /* NaN input is not hidden by the clamp */
     lam[3] = NAN;
     ck_assert(isnan(rugo_tolerance_at(lam, N, 3, 0.5, minimum)));
@@ -908,6 +915,20 @@ START_TEST(level_error_bad_input) {
     lam[3] = INFINITY;
     ck_assert_int_eq(rugo_tolerance_level_error(c8, lam, c16, lam, per, &mx), RUGO_ERR_NOT_FINITE);
     ck_assert(isnan(mx));
+    /* a NaN control point too, in either contour (the bound's maxima would drop it) */
+    lam[3] = 0.0;
+    for (int which = 0; which < 2; ++which) {
+        rugo_vec2 q[16];
+        for (int i = 0; i < 16; ++i)
+            q[i] = pts[i];
+        q[which == 0 ? 1 : 9].x = NAN;
+        const rugo_contour qc = {q, which == 0 ? 8 : 16};
+        mx = 0.0;
+        ck_assert_int_eq(which == 0 ? rugo_tolerance_level_error(qc, lam, c16, lam, per, &mx)
+                                    : rugo_tolerance_level_error(c8, lam, qc, lam, per, &mx),
+                         RUGO_ERR_NOT_FINITE);
+        ck_assert(isnan(mx));
+    }
 }
 END_TEST
 

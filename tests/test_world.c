@@ -531,6 +531,10 @@ START_TEST(test_bad_input) {
     bad.gravity.y = INFINITY;
     ck_assert_int_eq(rugo_world_create(&bad, &w), RUGO_ERR_NOT_FINITE);
     bad = d;
+    bad.time_step = 1e300; /* finite, but g h overflows */
+    bad.gravity.y = -1e300;
+    ck_assert_int_eq(rugo_world_create(&bad, &w), RUGO_ERR_NOT_FINITE);
+    bad = d;
     bad.integrator = (rugo_integrator)7;
     ck_assert_int_eq(rugo_world_create(&bad, &w), RUGO_ERR_BAD_ARGUMENT);
     bad = d;
@@ -564,6 +568,16 @@ START_TEST(test_bad_input) {
     bb = b;
     bb.density = NAN;
     ck_assert_int_eq(rugo_world_add_body(w, &bb, &id), RUGO_ERR_NOT_FINITE);
+    bb = b;
+    rugo_shape* wide = make_block(40.0, 1.0, sf); /* area ~40 */
+    bb.shape = wide;
+    bb.density = 1e308; /* the mass overflows */
+    ck_assert_int_eq(rugo_world_add_body(w, &bb, &id), RUGO_ERR_NOT_FINITE);
+    bb.density = 4.9e-324; /* the inverse inertia overflows */
+    ck_assert_int_eq(rugo_world_add_body(w, &bb, &id), RUGO_ERR_NOT_FINITE);
+    bb.shape = blk;
+    ck_assert_int_eq(rugo_world_add_body(w, &bb, &id), RUGO_ERR_NOT_FINITE);
+    rugo_shape_destroy(wide);
     bb = b;
     bb.transform.p.x = NAN;
     ck_assert_int_eq(rugo_world_add_body(w, &bb, &id), RUGO_ERR_NOT_FINITE);

@@ -212,12 +212,12 @@ typedef struct rugo_outline_samples {
  * flip, reverses the drawing direction). A subpath counts as closed if it ends with Z or its last
  * point lies within 1e-9 of its bounds' diagonal from its start. Deterministic.
  * Errors (out zeroed; error gets a message, may be NULL): NULL_ARGUMENT, BAD_ARGUMENT (def not from
- * rugo_default_outline_sample_def, a path whose counts and arrays disagree, subpath index out of
- * range, sample_count negative, 1, 2 or below S), TOO_MANY_POINTS (M or S beyond
+ * rugo_default_outline_sample_def, a path whose counts and arrays disagree or with a segment of unknown
+ * kind, subpath index out of range, sample_count negative, 1, 2 or below S), TOO_MANY_POINTS (M or S beyond
  * RUGO_MAX_CONTROL_POINTS), NOT_FINITE (a non-finite transform, or lengths or points that overflow
  * under it), BAD_FIELD (no closed subpath, also for any index into a path without subpaths; the
  * chosen one is open or empty), ZERO_AREA (zero length, or the samples enclose no area, e.g. under a
- * degenerate transform), OUT_OF_MEMORY.
+ * degenerate transform, or an area so small that it underflows to 0), OUT_OF_MEMORY.
  * Free the result with rugo_outline_samples_free. */
 rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline_samples* out,
                                 rugo_parse_error* error);

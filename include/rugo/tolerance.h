@@ -112,7 +112,7 @@ rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, in
  * NULL) receives coarse.count values and *max_error the largest (round-off pads only when the levels
  * coincide).
  * Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_ARGUMENT (coarse.count < 4, or finest.count not
- * coarse.count times a power of two), NOT_FINITE (the bound overflows). */
+ * coarse.count times a power of two), NOT_FINITE (a point or λ not finite, or the bound overflows). */
 rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda, rugo_contour finest,
                                        const rugo_real* finest_lambda, rugo_real* per_segment, rugo_real* max_error);
 

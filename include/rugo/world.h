@@ -79,13 +79,14 @@ typedef struct rugo_world rugo_world;
 
 /** Creates an empty world into *out (owned by the caller; free with rugo_world_destroy). Errors:
  * NULL_ARGUMENT, BAD_ARGUMENT (cookie, time_step <= 0, integrator, max_bisections out of
- * range, ...), NOT_FINITE, OUT_OF_MEMORY. */
+ * range, ...), NOT_FINITE (also when gravity times time_step overflows), OUT_OF_MEMORY. */
 rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out);
 /** Frees the world and its buffers (not the shapes); NULL is allowed. */
 void rugo_world_destroy(rugo_world* world);
 
 /** Adds a body; *id is its index (0, 1, 2, ... in creation order). Errors: NULL_ARGUMENT,
- * BAD_ARGUMENT (cookie, type, density, a rotation that is not unit), NOT_FINITE, OUT_OF_MEMORY. */
+ * BAD_ARGUMENT (cookie, type, density, a rotation that is not unit), NOT_FINITE (also a density that
+ * makes the mass, the inertia or their inverses overflow), OUT_OF_MEMORY. */
 rugo_status rugo_world_add_body(rugo_world* world, const rugo_body_def* def, int* id);
 /** Number of bodies (0 for NULL). */
 int rugo_world_body_count(const rugo_world* world);
@@ -144,8 +145,9 @@ typedef struct rugo_contact_record {
     int micro;                 /**< 1 if a micro-collision (resting contact) */
 } rugo_contact_record;
 
-/** Advances one time step. stats may be NULL. Errors: NULL_ARGUMENT, OUT_OF_MEMORY (buffers could not
- * grow; the world is left as before the step). */
+/** Advances one time step. stats may be NULL. Errors (the world is then left as before the step):
+ * NULL_ARGUMENT, OUT_OF_MEMORY (buffers could not grow), NOT_FINITE (a pose, velocity or impulse
+ * overflowed, e.g. bodies thrown at speeds near the largest double). */
 rugo_status rugo_world_step(rugo_world* world, rugo_step_stats* stats);
 /** The impulses of the last step (owned by the world, valid until the next step); their number goes
  * to *count (count may be NULL). NULL and 0 for a NULL world. */

@@ -1163,9 +1163,8 @@ END_TEST
 /* A polygon whose vertices are `mult` coincident control points each (3: sharp corners, zero speed
  * there; 4: a point-like segment at each), with inner[i] more points evenly spaced on the side from
  * vertex i to the next, and a constant band lam. */
-static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, int mult, const int* inner, double lam) {
-    rugo_vec2 p[64];
-    double tol[64];
+/* The control points of sharp_polygon into p (at most 64); returns their count. */
+static int sharp_points(const rugo_vec2* v, int nv, int mult, const int* inner, rugo_vec2* p) {
     int k = 0;
     for (int i = 0; i < nv; ++i) {
         const rugo_vec2 a = v[i], b = v[(i + 1) % nv];
@@ -1174,6 +1173,13 @@ static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, int mult, const int
         for (int j = 1; j <= inner[i]; ++j)
             p[k++] = rugo_v2(a.x + j * (b.x - a.x) / (inner[i] + 1), a.y + j * (b.y - a.y) / (inner[i] + 1));
     }
+    return k;
+}
+
+static rugo_shape* sharp_polygon(const rugo_vec2* v, int nv, int mult, const int* inner, double lam) {
+    rugo_vec2 p[64];
+    double tol[64];
+    const int k = sharp_points(v, nv, mult, inner, p);
     for (int i = 0; i < k; ++i)
         tol[i] = lam;
     return make_shape(p, k, tol);
@@ -1222,15 +1228,8 @@ START_TEST(test_coarse_levels_are_simple_curves) {
     ck_assert_int_gt(raised, 0); /* the rule did drop levels somewhere */
 
     /* The four-point triangle without the crossing check keeps level 2 and a looping level. */
-    rugo_vec2 p[16];
-    int n = 0;
-    for (int i = 0; i < 3; ++i) {
-        for (int m = 0; m < 4; ++m)
-            p[n++] = tri[i];
-        for (int j = 1; j <= tri_inner[i]; ++j)
-            p[n++] = rugo_v2_add(
-                tri[i], rugo_v2_scale((double)j / (tri_inner[i] + 1), rugo_v2_sub(tri[(i + 1) % 3], tri[i])));
-    }
+    rugo_vec2 p[64];
+    const int n = sharp_points(tri, 3, 4, tri_inner, p);
     ck_assert_int_eq(n, 16);
     rugo_shape_def d = rugo_default_shape_def();
     d.points = p;

@@ -212,6 +212,9 @@ rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p
     rugo_contour curve;
     const rugo_status st = check_query(s, level, p, &curve);
     if (st != RUGO_OK) return st;
+    /* Farther out, squared distances overflow and every segment looks infinitely far (shapes are at
+     * most RUGO_SHAPE_MAX_SIZE across). */
+    if (fabs(p.x) > 1e150 || fabs(p.y) > 1e150) return RUGO_ERR_NOT_FINITE;
     *out = level_closest_point(s, level, curve, p);
     return RUGO_OK;
 }

@@ -35,7 +35,12 @@ uint64_t rugo_rng_next(rugo_rng* rng) {
 
 rugo_real rugo_rng_uniform(rugo_rng* rng) { return (rugo_real)(rugo_rng_next(rng) >> 11) * 0x1.0p-53; }
 
-rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi) { return lo + (hi - lo) * rugo_rng_uniform(rng); }
+rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi) {
+    const rugo_real u = rugo_rng_uniform(rng);
+    const rugo_real w = hi - lo;
+    /* hi - lo overflows only for bounds near the largest doubles: then the weighted form */
+    return isfinite(w) || !isfinite(lo) || !isfinite(hi) ? lo + w * u : lo * (1.0 - u) + hi * u;
+}
 
 uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n) {
     if (n < 1) return 0;

@@ -498,7 +498,11 @@ rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b) {
     case RUGO_MIX_MAX: return a > b ? a : b;
     case RUGO_MIX_MIN: return a < b ? a : b;
     case RUGO_MIX_MEAN: return 0.5 * a + 0.5 * b; /* no overflow for huge a + b */
-    case RUGO_MIX_GEOMETRIC: return sqrt(a * b);
+    case RUGO_MIX_GEOMETRIC: {
+        const rugo_real g = sqrt(a * b);
+        /* a b overflows (or underflows) only for extreme values; then the product of the roots */
+        return isfinite(g) && (g > 0.0 || a == 0.0 || b == 0.0) ? g : sqrt(a) * sqrt(b);
+    }
     default: return NAN;
     }
 }

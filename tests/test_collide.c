@@ -3219,6 +3219,11 @@ START_TEST(test_point_queries_bad_input) {
     ck_assert_int_eq(in, 1);
     ck_assert_int_eq(rugo_shape_closest_point(s, Jmin, rugo_v2(1e3, 0.0), &cp), RUGO_OK);
     ck_assert(cp.distance > 900.0 && cp.distance < 1e3 + 10.0);
+    /* up to 1e150 a distance; beyond, squared distances overflow: NOT_FINITE (was OK with distance inf) */
+    ck_assert_int_eq(rugo_shape_closest_point(s, J, rugo_v2(1e150, -1e150), &cp), RUGO_OK);
+    ck_assert(isfinite(cp.distance) && cp.distance > 1.4e150);
+    ck_assert_int_eq(rugo_shape_closest_point(s, J, rugo_v2(1e154, 1e154), &cp), RUGO_ERR_NOT_FINITE);
+    ck_assert(cp.distance == HUGE_VAL);
 }
 END_TEST
 

@@ -9,6 +9,8 @@
  * for chi-square, the upper 1e-6 quantile of the distribution. */
 #include "test_util.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -64,6 +66,14 @@ START_TEST(uniform_golden_values) {
     /* range = lo + (hi - lo) u with the same draws */
     rugo_rng_seed(&rng, 42);
     ck_assert(rugo_rng_range(&rng, -3.0, 5.0) == -3.0 + 8.0 * ((double)top53[0] * 0x1.0p-53));
+    /* bounds whose difference overflows: lo (1 - u) + hi u, inside [lo, hi] (was inf) */
+    for (int i = 0; i < 100; ++i) {
+        const double v = rugo_rng_range(&rng, -DBL_MAX, DBL_MAX);
+        ck_assert(isfinite(v) && v >= -DBL_MAX && v <= DBL_MAX);
+    }
+    rugo_rng_seed(&rng, 42);
+    ck_assert(rugo_rng_range(&rng, -DBL_MAX, DBL_MAX) ==
+              -DBL_MAX * (1.0 - (double)top53[0] * 0x1.0p-53) + DBL_MAX * ((double)top53[0] * 0x1.0p-53));
 }
 END_TEST
 

@@ -1160,6 +1160,10 @@ START_TEST(mixing_rules) {
     ck_assert_near(rugo_mix(RUGO_MIX_GEOMETRIC, 0.25, 0.64), 0.4, 1e-16);
     ck_assert(rugo_mix(RUGO_MIX_GEOMETRIC, 0.0, 0.9) == 0.0);
     ck_assert(rugo_mix(RUGO_MIX_MEAN, DBL_MAX, DBL_MAX) == DBL_MAX);
+    /* where a b overflows or underflows, the product of the roots (was inf and 0) */
+    ck_assert_near(rugo_mix(RUGO_MIX_GEOMETRIC, DBL_MAX, DBL_MAX) / DBL_MAX, 1.0, 1e-15);
+    ck_assert_near(rugo_mix(RUGO_MIX_GEOMETRIC, 1e-200, 4e-200) / 2e-200, 1.0, 1e-15);
+    ck_assert(isnan(rugo_mix(RUGO_MIX_GEOMETRIC, NAN, 0.5)));
     for (int rule = 0; rule < 4; ++rule) { /* symmetric */
         ck_assert(rugo_mix((rugo_mix_rule)rule, 0.2, 0.9) == rugo_mix((rugo_mix_rule)rule, 0.9, 0.2));
         ck_assert_near(rugo_mix((rugo_mix_rule)rule, 0.6, 0.6), 0.6, 1e-16); /* idempotent */

@@ -129,7 +129,8 @@ typedef struct rugo_curve_point {
     rugo_real distance; /**< distance from the query point (length units) */
 } rugo_curve_point;
 /** Closest point on the curve to p (global minimum of the distance over all segments). For count < 1
- * the result is p itself with distance HUGE_VAL. */
+ * the result is p itself with distance HUGE_VAL. p must lie within about 1e150 of the curve: farther,
+ * squared distances overflow (distance inf; rugo_shape_closest_point says NOT_FINITE). */
 rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
 
 /** 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the

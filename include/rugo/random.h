@@ -34,8 +34,8 @@ void rugo_rng_seed(rugo_rng* rng, uint64_t seed);
 uint64_t rugo_rng_next(rugo_rng* rng);
 /** Uniform in [0, 1), multiples of 2^-53. */
 rugo_real rugo_rng_uniform(rugo_rng* rng);
-/** Uniform in [lo, hi] (hi itself can come out by rounding of lo + (hi - lo) u); not checked: NaN in,
- * NaN out. */
+/** Uniform in [lo, hi] (hi itself can come out by rounding of lo + (hi - lo) u; when hi - lo overflows,
+ * lo (1 - u) + hi u); not checked: NaN in, NaN out. */
 rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi);
 /** Uniform integer in [0, n) for n >= 1 (unbiased, by rejection). 0 if n < 1. */
 uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n);

@@ -91,7 +91,8 @@ rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* pe
  * answer, bit for bit, as rugo_contour_closest_point on that level's curve, computed through the
  * MOBBtree (the boxes near p and the few segments under them instead of a pass over all segments).
  * Re-entrant, no allocation. On error *out (if not NULL) is p itself with distance HUGE_VAL. Errors:
- * NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
+ * NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p not finite, or a coordinate beyond 1e150, where squared
+ * distances overflow). */
 rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p, rugo_curve_point* out);
 /** *inside = rugo_contour_contains on the curve of `level` (J_min..J) at p (shape's local frame): the
  * same answer on every input, computed through the MOBBtree (the boxes along the ray from p towards

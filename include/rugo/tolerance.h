@@ -149,7 +149,8 @@ typedef enum rugo_mix_rule {
     RUGO_MIX_MAX = 0,      /**< max(a, b) */
     RUGO_MIX_MIN = 1,      /**< min(a, b) */
     RUGO_MIX_MEAN = 2,     /**< (a + b) / 2 */
-    RUGO_MIX_GEOMETRIC = 3 /**< sqrt(a b), Box2D's b2MixFriction */
+    RUGO_MIX_GEOMETRIC = 3 /**< sqrt(a b), Box2D's b2MixFriction (sqrt(a) sqrt(b) where a b overflows or
+                                underflows) */
 } rugo_mix_rule;
 /** The value of a and b mixed by `rule`; NaN for an invalid rule. */
 rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);

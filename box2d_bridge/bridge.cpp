@@ -6,7 +6,9 @@
 #include "bridge_impl.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <new>
 
 namespace rugo {
@@ -27,16 +29,22 @@ Bridge::Impl::~Impl() {
 
 // ---- chaining ----------------------------------------------------------------------------
 void Bridge::Impl::BeginContact(b2Contact* c) {
-    if (prevListener) prevListener->BeginContact(c);
+    if (rechained(kBegin, c)) return;
+    chain(kBegin, c, [&] { prevListener->BeginContact(c); });
 }
 
 void Bridge::Impl::EndContact(b2Contact* c) {
-    if (prevListener) prevListener->EndContact(c);
+    if (rechained(kEnd, c)) return;
+    const bool was = removingProxies;
+    if (world != nullptr && !world->IsLocked()) removingProxies = true; // see removingProxies
+    chain(kEnd, c, [&] { prevListener->EndContact(c); });
+    removingProxies = was;
 }
 
 void Bridge::Impl::PostSolve(b2Contact* c, const b2ContactImpulse* imp) {
+    if (rechained(kPost, c)) return;
     afterSolve = true;
-    if (prevListener) prevListener->PostSolve(c, imp);
+    chain(kPost, c, [&] { prevListener->PostSolve(c, imp); });
 }
 
 bool Bridge::Impl::ShouldCollide(b2Fixture* a, b2Fixture* b) {
@@ -94,8 +102,21 @@ std::vector<b2Body*> Bridge::Impl::bodiesInAttachOrder() const {
 
 Bridge::Bridge(b2World* world, const BridgeDef& def) : m_impl(new Impl) {
     Impl& I = *m_impl;
+    // One bridge per world: a second one would take over the listeners and keep records of bodies the
+    // first one's world destroys. It is made inert instead (Attach: BAD_ARGUMENT).
+    if (world != nullptr && dynamic_cast<Impl*>(world->GetContactManager().m_contactListener) != nullptr)
+        world = nullptr;
     I.world = world;
     I.def = def;
+    {
+        // An unknown mixing rule would give NaN friction (rugo_mix); read as an int, since loading an
+        // out-of-range enum value is undefined in C++.
+        int mix = 0;
+        static_assert(sizeof mix == sizeof def.pointFrictionMix, "rugo_mix_rule is an int");
+        std::memcpy(&mix, &def.pointFrictionMix, sizeof mix);
+        if (mix < RUGO_MIX_MAX || mix > RUGO_MIX_GEOMETRIC)
+            I.def.pointFrictionMix = BridgeDef().pointFrictionMix;
+    }
     I.userDestruction = def.destructionListener;
     if (rugo_collide_context_create(nullptr, &I.ctx) != RUGO_OK) I.ctx = nullptr;
     if (world) {
@@ -131,6 +152,17 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     if (I.bodies.count(body)) return RUGO_ERR_ALREADY_ATTACHED;
     if (!std::isfinite(def.density) || def.density < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if (def.density == 0.0 && body->GetType() == b2_dynamicBody) return RUGO_ERR_BAD_ARGUMENT;
+    if (def.density > 0.0) {
+        // Box2D keeps mass and inertia in floats and asserts a positive inertia (b2Assert is on in
+        // Debian's build): a density that puts them out of [1e6 FLT_MIN, 1e-6 FLT_MAX] (room for the
+        // products with speeds and gravity, and for the inverses) is refused now, not in SetMassData or
+        // as NaN poses later.
+        const rugo_mass_properties mp = rugo_shape_mass(def.shape);
+        const double m = mp.area * def.density, ic = mp.inertia * def.density;
+        const double io = ic + m * (mp.centroid.x * mp.centroid.x + mp.centroid.y * mp.centroid.y);
+        const double lo = 1e6 * static_cast<double>(FLT_MIN), hi = 1e-6 * static_cast<double>(FLT_MAX);
+        if (!(m >= lo && m <= hi && ic >= lo && ic <= hi && io <= hi)) return RUGO_ERR_BAD_ARGUMENT;
+    }
     if (I.ctx == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
     const rugo_shape* s = def.shape;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);

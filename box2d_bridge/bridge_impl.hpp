@@ -194,7 +194,24 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
         b2Vec2 p, n;
     };
     std::vector<DrawnContact> lastContacts;
-    bool removingProxies = false; // inside Detach's DestroyFixture calls (EndContact may run)
+    // Inside Detach's DestroyFixture calls, or a user EndContact that Box2D raised outside Step
+    // (DestroyBody, DestroyFixture, SetEnabled, SetType walk a contact list meanwhile): Attach and
+    // Detach refuse (WORLD_LOCKED).
+    bool removingProxies = false;
+    // The contact each callback (Begin, End, Pre, Post) is being chained for. A user listener that
+    // forwards to the listener it replaced (the bridge) is chained back by Step: bridge -> user ->
+    // bridge -> ... would recurse without end. A callback re-entered for the contact it is chaining
+    // returns at once (callbacks for other contacts, e.g. from a DestroyBody there, run as usual).
+    enum Callback { kBegin = 0, kEnd = 1, kPre = 2, kPost = 3 };
+    const b2Contact* chaining[4] = {nullptr, nullptr, nullptr, nullptr};
+    bool rechained(Callback k, const b2Contact* c) const { return chaining[k] == c; }
+    template <class F> void chain(Callback k, b2Contact* c, F&& call) {
+        if (prevListener == nullptr) return;
+        const b2Contact* was = chaining[k];
+        chaining[k] = c;
+        call();
+        chaining[k] = was;
+    }
     // Bodies destroyed since construction (SayGoodbye of any fixture): a callback of the bridge's own
     // (QueryAABB, Draw) that changed it may have destroyed bodies the bridge still holds.
     long destroyedFixtures = 0;

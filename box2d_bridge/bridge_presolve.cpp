@@ -9,6 +9,7 @@
 namespace rugo {
 
 void Bridge::Impl::PreSolve(b2Contact* c, const b2Manifold* old) {
+    if (rechained(kPre, c)) return;
     b2Fixture* fa = c->GetFixtureA();
     b2Fixture* fb = c->GetFixtureB();
     const ProxyRef* ra = lookup(fa);
@@ -26,7 +27,7 @@ void Bridge::Impl::PreSolve(b2Contact* c, const b2Manifold* old) {
             // the whole step without gravity and the other contacts (a rolling disc would hover),
             // so it leaves the TOI phase.
             disable(c);
-            if (prevListener) prevListener->PreSolve(c, old);
+            chain(kPre, c, [&] { prevListener->PreSolve(c, old); });
             return;
         }
         cand.clear();
@@ -71,7 +72,7 @@ void Bridge::Impl::PreSolve(b2Contact* c, const b2Manifold* old) {
         }
         write(c, old, ra != nullptr, ra ? ra->rec->body : fa->GetBody(), rb ? rb->rec->body : fb->GetBody());
     }
-    if (prevListener) prevListener->PreSolve(c, old);
+    chain(kPre, c, [&] { prevListener->PreSolve(c, old); });
 }
 
 bool Bridge::Impl::atCollidePoses(const ProxyRef* ra, const ProxyRef* rb, b2Fixture* fa, b2Fixture* fb,

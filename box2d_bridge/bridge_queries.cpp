@@ -38,6 +38,8 @@ struct OrdinaryRay : public b2RayCastCallback {
 bool Bridge::RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const {
     const Impl& I = *m_impl;
     if (I.world == nullptr) return false;
+    // b2World::RayCast asserts a finite ray of positive length (b2Assert is on in Debian's build).
+    if (!p1.IsValid() || !p2.IsValid() || !(b2DistanceSquared(p1, p2) > 0.0f)) return false;
     OrdinaryRay ordinary;
     ordinary.bridge = this;
     I.world->RayCast(&ordinary, p1, p2);

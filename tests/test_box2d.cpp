@@ -9,6 +9,7 @@ extern "C" {
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 namespace {
@@ -540,6 +541,140 @@ START_TEST(test_lifetime) {
         ck_assert_int_eq(l.attachStatus, RUGO_ERR_WORLD_LOCKED);
         ck_assert_int_eq(l.detachStatus, RUGO_ERR_WORLD_LOCKED);
     }
+    rugo_shape_destroy(disc);
+}
+END_TEST
+
+// ---- hardening (an API review, 2026-11-22): each case aborted, crashed or gave NaN before -------
+namespace {
+// Forwards every callback to the listener it replaced (the bridge), as listener chains often do.
+struct Forwarding : public b2ContactListener {
+    b2ContactListener* next = nullptr;
+    int depth = 0, maxDepth = 0, pre = 0, begin = 0;
+    void BeginContact(b2Contact* c) override {
+        ++begin;
+        if (next) next->BeginContact(c);
+    }
+    void EndContact(b2Contact* c) override {
+        if (next) next->EndContact(c);
+    }
+    void PreSolve(b2Contact* c, const b2Manifold* m) override {
+        ++pre;
+        maxDepth = std::max(maxDepth, ++depth);
+        if (next && depth < 100) next->PreSolve(c, m); // (the cap only keeps a failing test finite)
+        --depth;
+    }
+    void PostSolve(b2Contact* c, const b2ContactImpulse* i) override {
+        if (next) next->PostSolve(c, i);
+    }
+};
+// Detaches a body from EndContact, which Box2D also raises outside Step (DestroyBody, SetEnabled).
+struct DetachOnEnd : public b2ContactListener {
+    rugo::Bridge* bridge = nullptr;
+    b2Body* victim = nullptr;
+    int status = -1;
+    void EndContact(b2Contact*) override {
+        if (victim == nullptr) return;
+        b2Body* v = victim;
+        victim = nullptr;
+        status = bridge->Detach(v);
+    }
+};
+} // namespace
+
+START_TEST(test_bridge_hardening) {
+    rugo_shape* disc = makeDisc(32, 0.3, 0.5, 0.0);
+    rugo_shape* block = makeShape(rectPoints(32, 0.6, 0.3, nullptr, 0.0), nullptr, 0.4, 0.0);
+    { // Densities whose mass or inertia leaves Box2D's floats (1e40 aborted in SetMassData, 1e39 gave
+        // NaN poses, 1e-50 a mass of 0): BAD_ARGUMENT. RayCast of zero length or NaN (Box2D asserts).
+        b2World w(b2Vec2(0.0f, -9.8f));
+        rugo::Bridge bridge(&w);
+        b2Body* a = dynamicBody(w, b2Vec2(0, 1));
+        for (double d : {1e40, 1e39, 1e-50})
+            ck_assert_int_eq(bridge.Attach(a, roughDef(disc, d)), RUGO_ERR_BAD_ARGUMENT);
+        ck_assert_int_eq(bridge.Attach(a, roughDef(disc, 1e3)), RUGO_OK);
+        rugo::RayHit hit;
+        ck_assert(!bridge.RayCast(b2Vec2(0, 1), b2Vec2(0, 1), &hit));
+        ck_assert(!bridge.RayCast(b2Vec2(NAN, 1), b2Vec2(0, 1), &hit));
+        ck_assert(bridge.RayCast(b2Vec2(-2, 1), b2Vec2(2, 1), &hit)); // and a real ray still hits
+        ck_assert(hit.body == a);
+    }
+    { // An unknown pointFrictionMix falls back to the default (it gave NaN friction).
+        b2World w(b2Vec2(0.0f, -9.8f));
+        rugo::BridgeDef def;
+        const int seven = 7;
+        std::memcpy(&def.pointFrictionMix, &seven, sizeof seven);
+        rugo::Bridge bridge(&w, def);
+        groundBox(w, 5.0f, 0.5f, b2Vec2(0.0f, -0.5f), 0.5f);
+        b2Body* a = dynamicBody(w, b2Vec2(0, 0.16f));
+        ck_assert_int_eq(bridge.Attach(a, roughDef(block)), RUGO_OK);
+        int twoPoint = 0;
+        for (int i = 0; i < 30; ++i) {
+            bridge.Step(1.0f / 60.0f, 8, 3);
+            for (b2Contact* c = w.GetContactList(); c; c = c->GetNext()) {
+                ck_assert(std::isfinite(c->GetFriction()));
+                twoPoint += c->IsTouching() && c->GetManifold()->pointCount == 2;
+            }
+        }
+        ck_assert_int_gt(twoPoint, 0);
+        ck_assert(std::isfinite(a->GetPosition().y) && a->GetPosition().y > 0.1f);
+    }
+    { // Detach from an EndContact that DestroyBody raises outside Step: WORLD_LOCKED (it returned OK,
+        // then Box2D crashed in b2Contact::Destroy).
+        b2World w(b2Vec2(0.0f, -9.8f));
+        DetachOnEnd l;
+        w.SetContactListener(&l);
+        rugo::Bridge bridge(&w);
+        groundBox(w, 5.0f, 0.5f, b2Vec2(0.0f, -0.5f), 0.5f);
+        b2Body* a = dynamicBody(w, b2Vec2(-0.5f, 0.35f));
+        b2Body* b = dynamicBody(w, b2Vec2(0.5f, 0.35f));
+        ck_assert_int_eq(bridge.Attach(a, roughDef(disc)), RUGO_OK);
+        ck_assert_int_eq(bridge.Attach(b, roughDef(disc)), RUGO_OK);
+        for (int i = 0; i < 30; ++i)
+            bridge.Step(1.0f / 60.0f, 8, 3);
+        l.bridge = &bridge;
+        l.victim = a;
+        w.DestroyBody(a); // ends a's contact with the ground outside Step
+        ck_assert_int_eq(l.status, RUGO_ERR_WORLD_LOCKED);
+        ck_assert(!bridge.IsRough(a));
+        ck_assert(bridge.IsRough(b));
+        for (int i = 0; i < 10; ++i)
+            bridge.Step(1.0f / 60.0f, 8, 3);
+        ck_assert_int_eq(bridge.Detach(b), RUGO_OK); // and outside any callback Detach works
+    }
+    { // A listener that forwards to the one it replaced (the bridge): no recursion (it overflowed the
+        // stack), and both see the callbacks.
+        b2World w(b2Vec2(0.0f, -9.8f));
+        groundBox(w, 5.0f, 0.5f, b2Vec2(0.0f, -0.5f), 0.5f);
+        rugo::Bridge bridge(&w);
+        b2Body* a = dynamicBody(w, b2Vec2(0, 0.35f));
+        ck_assert_int_eq(bridge.Attach(a, roughDef(disc)), RUGO_OK);
+        Forwarding f;
+        f.next = w.GetContactManager().m_contactListener;
+        w.SetContactListener(&f);
+        for (int i = 0; i < 30; ++i)
+            bridge.Step(1.0f / 60.0f, 8, 3);
+        ck_assert_int_eq(f.maxDepth, 1);
+        ck_assert_int_gt(f.pre, 0);
+        ck_assert_int_gt(bridge.GetStats().preSolves, 0);
+        ck_assert(a->GetPosition().y > 0.25f && a->GetPosition().y < 0.35f); // resting on the ground
+        w.SetContactListener(f.next);
+    }
+    { // A second bridge on the same world is inert; the first keeps working.
+        b2World w(b2Vec2(0.0f, -9.8f));
+        rugo::Bridge first(&w);
+        b2Body* a = dynamicBody(w, b2Vec2(0, 1));
+        {
+            rugo::Bridge second(&w);
+            ck_assert(second.GetWorld() == nullptr);
+            ck_assert_int_eq(second.Attach(a, roughDef(disc)), RUGO_ERR_BAD_ARGUMENT);
+        }
+        ck_assert_int_eq(first.Attach(a, roughDef(disc)), RUGO_OK);
+        w.DestroyBody(a);
+        ck_assert(!first.IsRough(a));
+        first.Step(1.0f / 60.0f, 8, 3);
+    }
+    rugo_shape_destroy(block);
     rugo_shape_destroy(disc);
 }
 END_TEST
@@ -1314,6 +1449,7 @@ int main(void) {
     tcase_add_test(tc, test_chain_one_sided_no_ghost_bumps);
     tcase_add_test(tc, test_draw);
     tcase_add_test(tc, test_misuse_in_callbacks);
+    tcase_add_test(tc, test_bridge_hardening);
     suite_add_tcase(s, tc);
     return test_run_suite(s);
 }

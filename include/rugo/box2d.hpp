@@ -53,7 +53,8 @@ struct BridgeDef {
     /// (rugo_shape_level_error: how far its curve plus band can lie from the finest curve plus band,
     /// anywhere on the outline, in metres) is at most this, at it and every finer level. A contact's
     /// band-adjusted separation then differs from the finest level's by at most the sum of the two
-    /// bodies' budgets. Per body, see RoughBodyDef::errorBudget.
+    /// bodies' budgets. Per body, see RoughBodyDef::errorBudget. A negative or NaN budget keeps every
+    /// body at its finest level.
     double errorBudget = 0.005;
     /// Automatic proxy level: at most 2^maxProxyLevel proxies per body (never finer than the body's
     /// contact level, never coarser than the tree's coarsest level).
@@ -64,7 +65,8 @@ struct BridgeDef {
     /// false: only touching points (s <= 0) are ever submitted.
     bool speculative = true;
     /// Contacts per proxy pair are reduced to Box2D's 2 manifold points (deepest, then farthest).
-    /// Friction of the contact: how the per-point μ of the (at most 2) points are combined.
+    /// Friction of the contact: how the per-point μ of the (at most 2) points are combined (a value
+    /// that is not a rugo_mix_rule falls back to this default).
     rugo_mix_rule pointFrictionMix = RUGO_MIX_MEAN;
     /// Box2D has no getter for the world's destruction listener: give the one you had set on the world
     /// here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
@@ -77,9 +79,10 @@ struct RoughBodyDef {
     const rugo_shape* shape = nullptr; ///< shared, not copied; must outlive the attachment
     double density = 1.0;              ///< kg/m^2 (> 0 for a dynamic body)
     /// Level of detail of this body's contacts: 0 = finest, -1 = one level coarser, ... (clamped to the
-    /// shape's coarsest level); kAutoLevel = from errorBudget. A body pair uses the finer of its two levels.
+    /// shape's coarsest level; a positive value means the finest); kAutoLevel = from errorBudget. A body
+    /// pair uses the finer of its two levels.
     int level = kAutoLevel;
-    double errorBudget = -1.0; ///< metres; < 0 = BridgeDef::errorBudget
+    double errorBudget = -1.0; ///< metres; < 0 or NaN = BridgeDef::errorBudget
     /// Absolute MOBBtree level of the proxy boxes; kAutoLevel = automatic (see BridgeDef). Must not be
     /// finer than the body's contact level (the boxes must enclose that level's curve and band).
     int proxyLevel = kAutoLevel;
@@ -136,8 +139,9 @@ struct BodyMemory {
 class Bridge {
 public:
     /// Installs the bridge's contact listener, contact filter and destruction listener on `world`,
-    /// chaining to those the world had (world is not owned; nullptr makes an inert bridge). Create it
-    /// after setting your own listener and filter. Throws std::bad_alloc if memory runs out.
+    /// chaining to those the world had (world is not owned; nullptr makes an inert bridge, and so does a
+    /// world that already has a bridge: one bridge per world). Create it after setting your own listener
+    /// and filter. Throws std::bad_alloc if memory runs out.
     explicit Bridge(b2World* world, const BridgeDef& def = BridgeDef());
     /// Removes every proxy and restores the world's listener, filter and destruction listener (unless
     /// ReleaseWorld() was called). Must run before the world is destroyed.
@@ -150,9 +154,11 @@ public:
     /// Makes `body` rough: adds density-0 proxy fixtures (owned by the body, removed by Detach or by
     /// destroying the body) and applies the exact mass. The shape is borrowed (see RoughBodyDef).
     /// Errors: RUGO_ERR_NULL_ARGUMENT (body or def.shape), RUGO_ERR_BAD_ARGUMENT (body of another world,
-    // density not finite or < 0, or 0 on a dynamic body, proxyLevel outside the tree or finer than the
-    // contact level), RUGO_ERR_ALREADY_ATTACHED, RUGO_ERR_WORLD_LOCKED (inside Step or a callback),
-    /// RUGO_ERR_OUT_OF_MEMORY.
+    /// density not finite or < 0, or 0 on a dynamic body, or so large or small that the shape's mass or
+    /// inertia leaves [1e6 FLT_MIN, 1e-6 FLT_MAX] (Box2D's floats need room for products and inverses),
+    /// proxyLevel outside the tree or finer than the contact level), RUGO_ERR_ALREADY_ATTACHED,
+    /// RUGO_ERR_WORLD_LOCKED (inside Step or a callback, or an EndContact that Box2D raises outside
+    /// Step), RUGO_ERR_OUT_OF_MEMORY.
     rugo_status Attach(b2Body* body, const RoughBodyDef& def);
     /// Removes the proxies and the rough mass (Box2D recomputes the mass from the remaining fixtures).
     /// Errors: RUGO_ERR_NULL_ARGUMENT, RUGO_ERR_NOT_ATTACHED, RUGO_ERR_WORLD_LOCKED.
@@ -185,7 +191,8 @@ public:
 
     /// Closest hit along p1 -> p2 (world, metres) over all fixtures: rough bodies are hit on their true
     /// curve (at their contact level, band ignored), ordinary fixtures as Box2D reports them. Returns
-    /// false if none; on a hit fills *hit unless it is nullptr. Allocates a small temporary vector.
+    /// false if none (also for a ray of zero length or with a non-finite end, which Box2D's own ray cast
+    /// would assert on); on a hit fills *hit unless it is nullptr. Allocates a small temporary vector.
     bool RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const;
     /// Is the world point inside the rough body's true curve? (false if not rough)
     bool TestPoint(const b2Body* body, const b2Vec2& p) const;

@@ -1872,8 +1872,33 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
     for (int e = 0; e < edges; ++e) {
         const rugo_vec2 off = rugo_v2_scale(P->R, P->m[e]);
         const rugo_vec2 q0 = rugo_v2_add(P->v[e], off), q1 = rugo_v2_add(P->v[(e + 1) % P->V], off);
+        /* Only the part of the edge the piece projects onto can hold a crossing or a foot of the
+         * piece's points (the piece lies in its control points' hull): the narrow phase gets that part
+         * (padded), so that its frame, and with it its resolution, is the shape's size and not the
+         * edge's (a long ground edge hid overlaps up to ~4e-14 W^2 deep, W its half-length in the
+         * shape's units). Parameters map back onto the edge. */
+        const rugo_vec2 ev = rugo_v2_sub(q1, q0);
+        const rugo_real ee = rugo_v2_dot(ev, ev);
+        rugo_real t0 = 0.0, t1 = 1.0;
+        if (ee > 0.0) {
+            rugo_real lo = HUGE_VAL, hi = -HUGE_VAL;
+            for (int i = 0; i < 4; ++i) {
+                const rugo_real t = rugo_v2_dot(rugo_v2_sub(f[i], q0), ev) / ee;
+                lo = fmin(lo, t);
+                hi = fmax(hi, t);
+            }
+            /* padded by the piece's projection and the shape's size on each side, so that every foot
+             * lies well inside the part (classification probes along it) and the frame is the
+             * shape's size even for a point-like piece */
+            const rugo_real pad = (hi - lo) + g->scale / sqrt(ee);
+            t0 = fmax(0.0, lo - pad);
+            t1 = fmin(1.0, hi + pad);
+            if (!(t0 < t1)) continue; /* the piece lies beyond the edge's ends: the vertices decide */
+        }
+        const rugo_vec2 c0 = t0 == 0.0 ? q0 : rugo_v2_add(q0, rugo_v2_scale(t0, ev));
+        const rugo_vec2 c1 = t1 == 1.0 ? q1 : rugo_v2_add(q0, rugo_v2_scale(t1, ev));
         rugo__narrow_result r;
-        rugo__narrow_line(fl, rugo_v2_sub(q0, o), rugo_v2_sub(q1, o), reach, &r);
+        rugo__narrow_line(fl, rugo_v2_sub(c0, o), rugo_v2_sub(c1, o), reach, &r);
         const int src = g->src++;
         if (g->stats != NULL) {
             g->stats->segment_pairs += 1;
@@ -1888,7 +1913,10 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
                 hit h;
                 memset(&h, 0, sizeof h);
                 fill_a(&h, ka, pp[i].s, g);
-                fill_b(&h, 2.0 * (rugo_real)e + 1.0 + pp[i].t, P);
+                fill_b(&h,
+                       2.0 * (rugo_real)e + 1.0 +
+                           (t0 == 0.0 && t1 == 1.0 ? pp[i].t : t0 + (t1 - t0) * pp[i].t),
+                       P);
                 h.pa = rugo_v2_add(pp[i].pa, o);
                 h.pb = rugo_v2_add(pp[i].pb, o);
                 h.nb = P->m[e];
@@ -2242,7 +2270,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     memset(&g, 0, sizeof g);
     g.A = &A;
     g.P = P;
-    g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), v2_len(rugo_v2_sub(P->hi, P->lo)));
+    g.scale = box_size(rugo_mobb_tree_root(A.tree)); /* the shape's: a large primitive must not coarsen it */
     g.stats = stats;
     out_ctx o;
     memset(&o, 0, sizeof o);

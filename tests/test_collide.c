@@ -1204,6 +1204,67 @@ static rugo_shape* sharp_block(double w, double h, double lam, int mult) {
  * APART at levels 0 to -3. */
 static double lowest_height(rugo_contour c, double angle, rugo_vec2* at);
 
+/* A primitive much longer than the shape keeps the shape's resolution (regression, found by a review
+ * of the primitive queries on 2026-11-22). The resolution was the larger of the two sizes and the
+ * narrow phase ran each piece against the whole edge: an overlap shallower than ~4e-14 W^2 of a ground
+ * box or capsule of half-length W was APART (1e-10 at W = 50, 1e-4 at W = 50 000). Now each edge is
+ * clipped to the piece's projection first. Checked: an ellipse (size ~2.8) pushed 1e-4 .. 1e-10 into a
+ * box, a capsule and an edge of half-length 5 .. 50 000 is INTERSECTING with that depth (to 1e-6 of it,
+ * plus the round-off of placing the floor) and the floor's normal; held 1e-6 above, it is APART. */
+START_TEST(test_long_primitives_keep_resolution) {
+    rugo_vec2 p[16];
+    for (int i = 0; i < 16; ++i)
+        p[i] = rugo_v2(1.2 * cos(2.0 * M_PI * i / 16), 0.7 * sin(2.0 * M_PI * i / 16));
+    rugo_shape* s = make_shape(p, 16, NULL);
+    rugo_contour c;
+    rugo_shape_level(s, rugo_shape_finest_level(s), &c);
+    rugo_vec2 at;
+    const double ymin = lowest_height(c, 0.0, &at);
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    const rugo_transform x = rugo_make_transform(0.0, 0.0, 0.0);
+    const double Ws[5] = {5.0, 50.0, 500.0, 5000.0, 50000.0};
+    for (int w = 0; w < 5; ++w)
+        for (int k = 4; k <= 11; ++k) {
+            const double W = Ws[w], dep = k <= 10 ? pow(10.0, -k) : -1e-6; /* the last: 1e-6 apart */
+            const double top = ymin + dep;
+            for (int kind = 0; kind < 3; ++kind) {
+                rugo_contact ct[16];
+                int n = -1;
+                rugo_contact_state st;
+                rugo_status status;
+                if (kind == 0) {
+                    const rugo_vec2 box[4] = {{-W, top - 1.0}, {W, top - 1.0}, {W, top}, {-W, top}};
+                    status = rugo_collide_polygon(ctx, s, x, box, 4, 0.0, NULL, ct, 16, &n, &st, NULL);
+                } else {
+                    const double r = kind == 1 ? 0.05 : 0.0;
+                    status = rugo_collide_segment(ctx, s, x, rugo_v2(-W, top - r), rugo_v2(W, top - r), r,
+                                                  NULL, ct, 16, &n, &st, NULL);
+                }
+                ck_assert_int_eq(status, RUGO_OK);
+                if (dep < 0.0) {
+                    ck_assert_msg(st == RUGO_STATE_APART && n == 0, "W %g kind %d apart: state %d", W, kind,
+                                  (int)st);
+                    continue;
+                }
+                ck_assert_msg(st == RUGO_STATE_INTERSECTING && n >= 1, "W %g depth %g kind %d: state %d", W,
+                              dep, kind, (int)st);
+                double deepest = 0.0;
+                int di = 0;
+                for (int i = 0; i < n; ++i)
+                    if (ct[i].separation < deepest) deepest = ct[i].separation, di = i;
+                /* (1e-15: the round-off of top = ymin + dep itself, ymin ~ -0.7) */
+                ck_assert_msg(fabs(deepest + dep) <= 1e-6 * dep + 1e-15,
+                              "W %g depth %g kind %d: separation %.6e", W, dep, kind, deepest);
+                ck_assert_msg(ct[di].normal.y < -0.999999, "W %g depth %g kind %d: normal (%g, %g)", W, dep,
+                              kind, ct[di].normal.x, ct[di].normal.y);
+            }
+        }
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(s);
+}
+END_TEST
+
 START_TEST(test_coarse_levels_are_simple_curves) {
     const rugo_vec2 tri[3] = {{-0.8, -0.5}, {0.9, -0.4}, {-0.1, 0.8}};
     const int tri_inner[3] = {2, 1, 1};
@@ -3315,6 +3376,7 @@ int main(void) {
     tcase_add_test(th, test_point_like_segments);
     tcase_add_test(th, test_sharp_corner_tilted);
     tcase_add_test(th, test_coarse_levels_are_simple_curves);
+    tcase_add_test(th, test_long_primitives_keep_resolution);
     tcase_add_test(th, test_shallow_overlap_has_contact);
     tcase_add_test(th, test_coincident_curves);
     tcase_add_test(th, test_containment);

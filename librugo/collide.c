@@ -1434,6 +1434,15 @@ static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const 
     return 1;
 }
 
+/* 1 if the pair (pa, pb) at distance len is a depth: pb is B's closest point to pa, or pa is A's
+ * closest point to pb (within round-off). A stationary pair need not be one: a zero-speed corner of A
+ * (where (f - g)·f' vanishes for every g) pairs with every foot on B, up to B's far side. */
+static int pair_is_depth(const pair_geo* g, rugo_vec2 pa, rugo_vec2 pb, rugo_real len) {
+    const rugo_real slack = len * 1e-9 + SAME_POINT * g->scale;
+    if (side_closest(g->B, rugo_inv_transform_point(g->rel, pa)).distance >= len - slack) return 1;
+    return side_closest(g->A, pb).distance >= len - slack;
+}
+
 /* Deepest penetration pair of region reg; 0 if none. */
 static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const regions* r, int reg,
                                   out_ctx* o) {
@@ -1479,6 +1488,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
                 if (!(rugo_v2_dot(normal_a(g, h->sa, h->ta), d) > 0.0)) continue;
                 if (!(rugo_v2_dot(normal_b(g, h->sb, h->tb), d) < 0.0)) continue;
                 if (!have || len > best.distance || (len == best.distance && hit_cmp(h, &best) < 0)) {
+                    if (!pair_is_depth(g, h->pa, h->pb, len)) continue;
                     best = *h;
                     best.distance = len;
                     have = 1;
@@ -2354,6 +2364,11 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 if (!(rugo_v2_dot(curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
                 if (!b_side_ok(P, h, n)) continue;
                 if (len > depth || (len == depth && hit_cmp(h, best) < 0)) {
+                    /* a depth, as pair_is_depth: pb is B's closest point to pa, or pa is A's to pb */
+                    const rugo_real slack = len * 1e-9 + eps;
+                    if (fabs(prim_sd(P, h->pa, NULL, NULL)) < len - slack &&
+                        side_closest(&A, h->pb).distance < len - slack)
+                        continue;
                     depth = len;
                     best = h;
                 }

@@ -1204,6 +1204,69 @@ static rugo_shape* sharp_block(double w, double h, double lam, int mult) {
  * APART at levels 0 to -3. */
 static double lowest_height(rugo_contour c, double angle, rugo_vec2* at);
 
+/* The depth of an overlap region is a pair whose one point is the other curve's closest point to the
+ * other (regression, found by a review's cross-check of shapes against primitives on 2026-11-22). At a
+ * corner of four coincident control points, (f - g)·f' vanishes for every g, so the corner paired with
+ * feet all over B, and the region's "deepest" stationary pair ran across B: -0.1745 where the overlap is
+ * 0.0036 deep. Checked: a block with four-point corners poking into an octagon, at the review's pose
+ * and turned by up to ±0.05 rad about it: rugo_collide_shapes against the octagon as a shape (three
+ * coincident points per vertex, straight sides: the same curve) gives the same deepest separation as
+ * rugo_collide_polygon against the octagon, to 1e-9. */
+START_TEST(test_region_depth_is_a_closest_pair) {
+    rugo_shape* block = sharp_block(0.7, 0.6, 0.0, 4);
+    const rugo_vec2 V[8] = {
+        {-0x1.a46189f35bb37p+2, -0x1.6ae1dfff6bba6p+2}, {-0x1.aefe530186882p+2, -0x1.6eff56b7d9c0bp+2},
+        {-0x1.b558e542eb394p+2, -0x1.79007a55904e7p+2}, {-0x1.b440324a83ff9p+2, -0x1.8515d11221a23p+2},
+        {-0x1.a1ae67611e4b8p+2, -0x1.8ffd3dd76ce8fp+2}, {-0x1.95708316490b5p+2, -0x1.89e1d802e4131p+2},
+        {-0x1.927112f9315dap+2, -0x1.855b905ccb4efp+2}, {-0x1.92a4124739f72p+2, -0x1.7523ab2c64008p+2}};
+    rugo_vec2 cen = {0.0, 0.0}, loc[8];
+    for (int i = 0; i < 8; ++i)
+        cen = rugo_v2_add(cen, rugo_v2_scale(0.125, V[i]));
+    for (int i = 0; i < 8; ++i)
+        loc[i] = rugo_v2_sub(V[i], cen);
+    const int inner[8] = {13, 13, 13, 13, 13, 13, 13, 13};
+    rugo_vec2 pts[128];
+    double tol[128] = {0};
+    const int nb = sharp_points(loc, 8, 3, inner, pts);
+    ck_assert_int_eq(nb, 128);
+    rugo_shape* octagon = make_shape(pts, nb, tol);
+    const rugo_transform xb = {cen, {1.0, 0.0}};
+    const rugo_transform x0 = {{-0x1.80ac5b71448b1p+2, -0x1.65b9d92093a3ep+2},
+                               {-0x1.f8d85e4b03c2bp-2, -0x1.bd73866c3d051p-1}};
+    rugo_collide_context* ctx = NULL;
+    rugo_collide_context_create(NULL, &ctx);
+    rugo_contact_query q = rugo_default_contact_query();
+    q.margin = 0x1.1e27bd9c8656p-6;
+    int overlapping = 0;
+    for (int k = -5; k <= 5; ++k) {
+        const double turn = 0.01 * k, c = cos(turn), sn = sin(turn);
+        rugo_transform xa = x0;
+        xa.q.c = c * x0.q.c - sn * x0.q.s;
+        xa.q.s = sn * x0.q.c + c * x0.q.s;
+        rugo_contact cs[16], cp[16];
+        int ns = -1, np = -1;
+        rugo_contact_state ss, sp;
+        ck_assert_int_eq(rugo_collide_shapes(ctx, block, xa, octagon, xb, &q, cs, 16, &ns, &ss, NULL),
+                         RUGO_OK);
+        ck_assert_int_eq(rugo_collide_polygon(ctx, block, xa, V, 8, 0.0, &q, cp, 16, &np, &sp, NULL),
+                         RUGO_OK);
+        ck_assert_int_eq(ss, sp);
+        double ds = HUGE_VAL, dp = HUGE_VAL;
+        for (int i = 0; i < ns; ++i)
+            ds = fmin(ds, cs[i].separation);
+        for (int i = 0; i < np; ++i)
+            dp = fmin(dp, cp[i].separation);
+        overlapping += sp == RUGO_STATE_INTERSECTING;
+        ck_assert_msg(fabs(ds - dp) <= 1e-9, "turn %g: deepest %.9e as a shape, %.9e as a polygon", turn, ds,
+                      dp);
+    }
+    ck_assert_int_gt(overlapping, 5);
+    rugo_collide_context_destroy(ctx);
+    rugo_shape_destroy(octagon);
+    rugo_shape_destroy(block);
+}
+END_TEST
+
 /* A primitive much longer than the shape keeps the shape's resolution (regression, found by a review
  * of the primitive queries on 2026-11-22). The resolution was the larger of the two sizes and the
  * narrow phase ran each piece against the whole edge: an overlap shallower than ~4e-14 W^2 of a ground
@@ -3377,6 +3440,7 @@ int main(void) {
     tcase_add_test(th, test_sharp_corner_tilted);
     tcase_add_test(th, test_coarse_levels_are_simple_curves);
     tcase_add_test(th, test_long_primitives_keep_resolution);
+    tcase_add_test(th, test_region_depth_is_a_closest_pair);
     tcase_add_test(th, test_shallow_overlap_has_contact);
     tcase_add_test(th, test_coincident_curves);
     tcase_add_test(th, test_containment);

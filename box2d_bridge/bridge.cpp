@@ -157,11 +157,11 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
         // Debian's build): a density that puts them out of [1e6 FLT_MIN, 1e-6 FLT_MAX] (room for the
         // products with speeds and gravity, and for the inverses) is refused now, not in SetMassData or
         // as NaN poses later.
-        const rugo_mass_properties mp = rugo_shape_mass(def.shape);
-        const double m = mp.area * def.density, ic = mp.inertia * def.density;
-        const double io = ic + m * (mp.centroid.x * mp.centroid.x + mp.centroid.y * mp.centroid.y);
+        const Impl::RoughMass rm = Impl::roughMass(def.shape, def.density);
         const double lo = 1e6 * static_cast<double>(FLT_MIN), hi = 1e-6 * static_cast<double>(FLT_MAX);
-        if (!(m >= lo && m <= hi && ic >= lo && ic <= hi && io <= hi)) return RUGO_ERR_BAD_ARGUMENT;
+        if (!(rm.mass >= lo && rm.mass <= hi && rm.inertiaCentre >= lo && rm.inertiaCentre <= hi &&
+              rm.inertiaOrigin <= hi))
+            return RUGO_ERR_BAD_ARGUMENT;
     }
     if (I.ctx == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
     const rugo_shape* s = def.shape;

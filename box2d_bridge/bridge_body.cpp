@@ -8,12 +8,22 @@
 
 namespace rugo {
 
+Bridge::Impl::RoughMass Bridge::Impl::roughMass(const rugo_shape* s, double density) {
+    const rugo_mass_properties mp = rugo_shape_mass(s);
+    RoughMass out;
+    out.mass = mp.area * density;
+    out.centroid = mp.centroid;
+    out.inertiaCentre = density * mp.inertia;
+    out.inertiaOrigin =
+        out.inertiaCentre + out.mass * (mp.centroid.x * mp.centroid.x + mp.centroid.y * mp.centroid.y);
+    return out;
+}
+
 b2MassData Bridge::Impl::exactMass(const BodyRec* r) const {
-    const rugo_mass_properties mp = rugo_shape_mass(r->shape);
-    double m = mp.area * r->density;
-    double cx = m * mp.centroid.x, cy = m * mp.centroid.y;
-    double iOrigin =
-        r->density * mp.inertia + m * (mp.centroid.x * mp.centroid.x + mp.centroid.y * mp.centroid.y);
+    const RoughMass rm = roughMass(r->shape, r->density);
+    double m = rm.mass;
+    double cx = m * rm.centroid.x, cy = m * rm.centroid.y;
+    double iOrigin = rm.inertiaOrigin;
     for (const b2Fixture* f = r->body->GetFixtureList(); f; f = f->GetNext()) {
         if (proxies.count(f) || f->GetDensity() <= 0.0f) continue;
         b2MassData md;

@@ -247,6 +247,13 @@ struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b
     std::vector<b2Body*> bodiesInAttachOrder() const;
 
     // bridge_body.cpp: mass, levels, bands, reach and speed
+    // The rough part's mass at a density: kg, local centroid, inertia about it and about the body origin.
+    struct RoughMass {
+        double mass;
+        rugo_vec2 centroid;
+        double inertiaCentre, inertiaOrigin;
+    };
+    static RoughMass roughMass(const rugo_shape* s, double density);
     b2MassData exactMass(const BodyRec* r) const;
     static bool sameMass(const b2MassData& a, const b2MassData& b);
     void applyMass(BodyRec* r);

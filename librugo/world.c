@@ -204,13 +204,12 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     rugo_mass_properties mp = rugo_shape_mass(def->shape);
     const rugo_obb* root = rugo_mobb_tree_root(rugo_shape_tree(def->shape));
     if (root == NULL || !(mp.area > 0.0) || !(mp.inertia > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
-    if (def->type == RUGO_BODY_DYNAMIC) {
-        /* A density so large or so small that the mass, the inertia or their inverses leave the doubles
-         * would only fail later, in a step. */
-        const rugo_real m = def->density * mp.area, i = def->density * mp.inertia;
-        if (!isfinite(m) || !isfinite(i) || !isfinite(1.0 / m) || !isfinite(1.0 / i))
-            return RUGO_ERR_NOT_FINITE;
-    }
+    /* A density so large or so small that the mass, the inertia or their inverses leave the doubles
+     * would only fail later, in a step. */
+    const rugo_real mass = def->density * mp.area, inertia = def->density * mp.inertia;
+    if (def->type == RUGO_BODY_DYNAMIC &&
+        (!isfinite(mass) || !isfinite(inertia) || !isfinite(1.0 / mass) || !isfinite(1.0 / inertia)))
+        return RUGO_ERR_NOT_FINITE;
 
     int need = w->count + 1;
     int caps[4] = {w->capacity, w->capacity, w->capacity, w->capacity};
@@ -239,8 +238,8 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     b->restitution = rugo_shape_restitution(def->shape);
     b->user_data = def->user_data;
     if (def->type == RUGO_BODY_DYNAMIC) {
-        b->mass = def->density * mp.area;
-        b->inertia = def->density * mp.inertia;
+        b->mass = mass;
+        b->inertia = inertia;
         b->inv_mass = 1.0 / b->mass;
         b->inv_inertia = 1.0 / b->inertia;
         b->v = def->linear_velocity;

@@ -1,4 +1,4 @@
-#include "internal.h"
+#include "core/internal.h"
 #include "test_util.h"
 
 #include <stdlib.h>

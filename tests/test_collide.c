@@ -10,8 +10,8 @@
  * itself cannot decide (the curves within 1e-6 of the size of touching: near-tangency below the
  * sampling error; a local minimum whose Newton refinement fails) are counted and reported, not
  * compared. */
-#include "internal.h"
-#include "narrow.h" /* rugo__shape_contains: containment through the tree */
+#include "core/internal.h"
+#include "query/narrow.h" /* rugo__shape_contains: containment through the tree */
 #include "test_util.h"
 
 #include <float.h>

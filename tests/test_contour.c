@@ -2,8 +2,8 @@
  * containment, ray cast and validation (SPEC 1). References are computed here independently:
  * de Casteljau on the Bezier form, finite differences, dense polygons, brute-force sampling, exact
  * rationals derived symbolically. */
-#include "internal.h"
-#include "poly.h"
+#include "core/internal.h"
+#include "curve/poly.h"
 #include "test_util.h"
 
 #include <float.h>

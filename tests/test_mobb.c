@@ -1,7 +1,7 @@
 /* MOBB suite: oriented-box primitives (covariance axes, separating axes, transform, enclose), leaf
  * boxes of every degenerate kind of segment, and the MOBBtree's invariant for both box methods on
  * smooth and rough shapes (SPEC 5, 7; thesis chapters 3-4). */
-#include "internal.h"
+#include "core/internal.h"
 #include "test_util.h"
 
 #include <float.h>

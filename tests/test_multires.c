@@ -1,6 +1,6 @@
 /* Multires suite: pyramid, local frames, direct manipulation, multiresolution deformation
  * (SPEC 2.3, 3; thesis 2.2-2.3, Theorem 2.1 and Corollaries 2.1-2.2). */
-#include "internal.h"
+#include "core/internal.h"
 #include "test_util.h"
 
 #include <stdlib.h>

@@ -11,7 +11,7 @@
  * verified on its own: residual of F or H, parameters in [0,1], kind against the Hessian or the
  * crossing's orientation, distance within the cutoff. Classic cases with known answers, degenerate
  * input, determinism and finiteness are tested separately. */
-#include "narrow.h"
+#include "query/narrow.h"
 #include "test_util.h"
 
 #include <float.h>

@@ -5,7 +5,7 @@
  * standard errors of the estimate. "Normal deviation" is the parametric one: at a parameter u of the
  * output, (f_rough(u) - f_refined(u)) · n_refined(u), with f_refined the input refined to the output's
  * level (the unperturbed curve at the same resolution). */
-#include "internal.h"
+#include "core/internal.h"
 #include "test_util.h"
 
 #include <float.h>

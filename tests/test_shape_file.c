@@ -1,7 +1,7 @@
 /* Shape files: the strict JSON reader and writer (librugo/json.c) and the shape description layer
  * (librugo/shape_file.c). Inputs are copied into buffers of exactly their length, so that the
  * sanitizer build catches any read past `length`. */
-#include "json.h"
+#include "io/json.h"
 #include "test_util.h"
 
 #include <float.h>

@@ -5,7 +5,7 @@
  * of details whose outward component (local frame of multires.h) is N(0, σ_s²) with a known σ per
  * segment, and synthesis. The pyramid of the result analyses back exactly those details (perfect
  * reconstruction), so the estimators can be checked against the σ that made them. */
-#include "internal.h"
+#include "core/internal.h"
 #include "test_util.h"
 
 #include <float.h>

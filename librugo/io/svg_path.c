@@ -6,8 +6,8 @@
  * column by rugo_json_locate (the same convention as the JSON reader). */
 #include "rugo/import.h"
 
-#include "internal.h"
-#include "json.h" /* rugo_json_locate */
+#include "core/internal.h"
+#include "io/json.h" /* rugo_json_locate */
 
 #include <float.h>
 #include <stdarg.h>

@@ -8,8 +8,8 @@
  * is refused and leaves the pyramid as it was. */
 #include "rugo/multires.h"
 
-#include "internal.h"
-#include "shape_internal.h" /* rugo__pyramid_from_levels */
+#include "core/internal.h"
+#include "curve/internal.h" /* rugo__pyramid_from_levels */
 
 #include <string.h>
 

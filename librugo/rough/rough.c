@@ -14,7 +14,7 @@
 #include "rugo/contour.h"
 #include "rugo/multires.h"
 
-#include "internal.h"
+#include "core/internal.h"
 
 #include <string.h>
 

@@ -13,8 +13,8 @@
 
 #include "rugo/baked.h"
 
-#include "internal.h"
-#include "shape_internal.h"
+#include "core/internal.h"
+#include "shape/internal.h"
 
 #include <float.h>
 #include <stdarg.h>

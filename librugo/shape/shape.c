@@ -8,8 +8,9 @@
  * never miss a contact within the band. At the finest level the boxes hold β^J >= max λ(t): no excess. */
 #include "rugo/shape.h"
 
-#include "internal.h"
-#include "shape_internal.h"
+#include "core/internal.h"
+#include "curve/internal.h" /* rugo__pyramid_from_levels */
+#include "shape/internal.h"
 
 #include <string.h>
 

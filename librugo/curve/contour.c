@@ -3,9 +3,9 @@
  * allocate; only rugo_contour_check's crossing test takes O(n) scratch memory. */
 #include "rugo/contour.h"
 
-#include "internal.h"
-#include "narrow.h" /* rugo__contour_winding_segment */
-#include "poly.h"
+#include "core/internal.h"
+#include "curve/internal.h" /* rugo__contour_winding_segment */
+#include "curve/poly.h"
 
 #include <float.h>
 #include <stdlib.h>

@@ -14,7 +14,7 @@
  * (callers that need finite results validate first, as the pyramid does). */
 #include "rugo/wavelet.h"
 
-#include "internal.h"
+#include "core/internal.h"
 
 #include <stdint.h>
 #include <string.h>

@@ -41,23 +41,17 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
 /* ---- internal constructors from stored data (multires.c, mobb.c), for rugo__shape_create_from_parts.
  * They copy instead of analysing or building; the caller must have validated every value. */
 
-/* A pyramid holding the stored levels (points: levels J_min..J; world, local: levels J_min..J-1; both
- * encoded as in rugo__shape_parts), without the analysis. Validates the decoded finest level with an
- * O(n) outline check: exact signed area of the closed B-spline in closed form, finite (NOT_FINITE),
- * positive (BAD_ARGUMENT when clockwise) and above 1e-13 times the squared diagonal of the joints'
- * bounds (ZERO_AREA; rugo_contour_check demands 1e-12 of the curve's bounds, which contain the
- * joints, so every outline a build accepts passes). No crossing test. `reversed` is what
- * rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL, OUT_OF_MEMORY. */
-rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
-                                      const unsigned char* points, const unsigned char* world,
-                                      const unsigned char* local, const rugo_allocator* allocator,
-                                      rugo_pyramid** out);
-
 /* A tree holding the stored boxes (2^(J+1) - 2^J_min nodes encoded as in rugo__shape_parts, level by
  * level from the coarsest) and root, without building it. BAD_LEVEL, BAD_ARGUMENT (unknown method),
  * OUT_OF_MEMORY. */
 rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method method,
                                        const unsigned char* nodes, const rugo_obb* root,
                                        const rugo_allocator* allocator, rugo_mobb_tree** out);
+
+/* rugo_contour_contains on the shape's curve of absolute `level` (J_min..J, already resolved), p in the
+ * shape's local frame, with the same answer on every input but computed through the shape's MOBBtree
+ * (point_query.c): only segments under boxes that the ray from p towards +x may meet are evaluated.
+ * *visited (may be NULL) gets their number. */
+int rugo__level_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
 
 #endif

@@ -1,4 +1,4 @@
-#include "internal.h"
+#include "core/internal.h"
 
 #include <stdint.h>
 #include <locale.h>

@@ -28,8 +28,8 @@
  * conservative. */
 #include "rugo/mobb.h"
 
-#include "internal.h"
-#include "shape_internal.h" /* rugo__mobb_tree_from_nodes */
+#include "core/internal.h"
+#include "shape/internal.h" /* rugo__mobb_tree_from_nodes */
 
 #include <float.h>
 #include <stddef.h> /* offsetof */

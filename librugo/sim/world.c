@@ -14,7 +14,7 @@
  * its centre of pressure; support probing adds the patch's ends (see below and docs/simulator.md).
  * Micro-collisions (7.3): a point inside its band approaching slower than sqrt(2 g λ) counts its
  * incoming speed as at most sqrt(2 g δ) and leaves with ε_c(δ) times it (dissipative). */
-#include "internal.h"
+#include "core/internal.h"
 #include "rugo/world.h"
 
 #include <string.h>

@@ -42,7 +42,7 @@
 #include "rugo/tolerance.h"
 
 #include "rugo/contour.h"
-#include "internal.h"
+#include "core/internal.h"
 
 #include <float.h>
 #include <string.h>

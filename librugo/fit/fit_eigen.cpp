@@ -28,7 +28,7 @@
 #include <Eigen/SparseCore>
 
 /* internal.h is a C header without its own linkage block; its standard headers are already in. */
-#include "internal.h" /* declares its C functions with C linkage itself */
+#include "core/internal.h" /* declares its C functions with C linkage itself */
 
 namespace {
 

@@ -1,8 +1,8 @@
 /* Shape description files and point lists (JSON), and whole-file reading. */
 #include "rugo/shape_file.h"
 
-#include "internal.h"
-#include "json.h"
+#include "core/internal.h"
+#include "io/json.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* A small strict JSON reader (a tree in an arena) and writer. See json.h for the rules it keeps. */
-#include "json.h"
+#include "io/json.h"
 
-#include "internal.h"
+#include "core/internal.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -86,10 +86,10 @@
  * the centre and hands back those at its root, cone_sign skips the lengths when the cross products
  * are not even of one sign, and stat_prune runs its rarely pruning hull test last (the tests are pure:
  * their order does not change the answer). Same bits as before (issue 7). */
-#include "narrow.h"
+#include "query/narrow.h"
 
-#include "internal.h"
-#include "poly.h"
+#include "core/internal.h"
+#include "curve/poly.h"
 
 #include <float.h>
 #include <math.h>

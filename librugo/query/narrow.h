@@ -82,27 +82,8 @@ int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo
  * [0,1]. Same conventions as rugo__narrow_pieces. */
 void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff, rugo__narrow_result* out);
 
-/* Containment helper (contour.c, used by collide.c's tree walk): the signed count of the changes of
- * segment j of c between "below" (y < p.y) and "up" (y >= p.y) that happen right of p (x > p.x),
- * exactly as rugo_contour_contains counts them; the winding number of c around p is their sum over
- * all segments, and p is inside iff it is not 0. A segment whose curve keeps more than the round-off
- * of its evaluation (relative to its control points' distance from p) above, below or left of p
- * counts 0. */
-int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p);
-
-/* rugo_contour_closest_point restricted to the segments segs[0 .. count) (increasing; NULL: all
- * count = c.count segments), computed by the same passes in the same order (contour.c). Given every
- * segment that could hold a point at most as far from p as the nearest joint, it is the same answer,
- * bit for bit, as over all segments: the others can neither lower the bound nor win (point_query.c). */
-rugo_curve_point rugo__contour_closest_among(rugo_contour c, rugo_vec2 p, const int* segs, int count);
-
-/* rugo_contour_contains on the shape's curve of absolute `level` (J_min..J, already resolved), p in the
- * shape's local frame, with the same answer on every input but computed through the shape's MOBBtree
- * (point_query.c): only segments under boxes that the ray from p towards +x may meet are evaluated.
- * *visited (may be NULL) gets their number. */
-int rugo__level_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
-
-/* The same with the level as rugo_contact_query.level (0 finest, < 0 coarser, > 0 absolute; collide.c). */
+/* rugo__level_contains (shape/internal.h) with the level as rugo_contact_query.level (0 finest, < 0
+ * coarser, > 0 absolute; collide.c). */
 int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
 
 #endif

@@ -10,8 +10,9 @@
  * pad. */
 #include "rugo/shape.h"
 
-#include "internal.h"
-#include "narrow.h"
+#include "core/internal.h"
+#include "curve/internal.h" /* rugo__contour_closest_among, rugo__contour_winding_segment */
+#include "shape/internal.h"
 
 #define POINT_PAD 1e-8
 /* Segments a closest-point query evaluates at most through the tree; beyond, it takes the pass over

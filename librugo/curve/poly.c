@@ -6,9 +6,9 @@
  * round-off (plus the caller's tol) of zero without crossing it is a double root that round-off
  * lifted off the axis; it is reported too, so tangencies are not lost. Nothing depends on the
  * nominal degree being exact, so a leading coefficient that is round-off noise is harmless. */
-#include "poly.h"
+#include "curve/poly.h"
 
-#include "internal.h"
+#include "core/internal.h"
 
 #include <float.h>
 

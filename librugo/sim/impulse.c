@@ -11,7 +11,7 @@
  *     makes it positive anyway the plastic impulse (ε = 0) is used.
  * The energy change of an impulse is J·(v + v')/2 (exact for rigid bodies), so it is checked without
  * touching the bodies. */
-#include "internal.h"
+#include "core/internal.h"
 #include "rugo/world.h"
 
 /* Relative slack of the acceptance tests: an impulse whose energy gain is below this fraction of the

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "internal.h"
+#include "core/internal.h"
 
 namespace {
 

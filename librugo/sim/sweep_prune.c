@@ -12,7 +12,7 @@
  * pair whose order did not change on either axis keeps its state, so the table ends up exact.
  * Pairs live in a hash table of h buckets, bucket (s + t) mod h, chained through a pool with a free
  * list; nothing allocates unless the pool or n grows. */
-#include "internal.h"
+#include "core/internal.h"
 #include "rugo/world.h"
 
 #include <stdlib.h>

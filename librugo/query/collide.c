@@ -44,10 +44,10 @@
  * gets one contact at its point deepest inside A (sampled, refined by golden section). */
 #include "rugo/collide.h"
 
-#include "internal.h"
-#include "shape_internal.h"
-#include "narrow.h"
-#include "poly.h"
+#include "core/internal.h"
+#include "shape/internal.h"
+#include "query/narrow.h"
+#include "curve/poly.h"
 
 #include <float.h>
 #include <stdint.h>

@@ -83,7 +83,7 @@
 #include <box2d/box2d.h>
 
 extern "C" {
-#include "narrow.h" /* internal: the narrow phase itself, for the brute-force method */
+#include "query/narrow.h" /* internal: the narrow phase itself, for the brute-force method */
 #include "sample_check.h"
 #include "sample_shapes.h"
 }

@@ -2,6 +2,11 @@
  * baseline users have today (Box2D 2.4's b2CollidePolygons on convex pieces of a polygonised outline).
  *
  * Usage: bench_queries [--quick] [--hm] [OUTDIR]      (default OUTDIR out/bench_queries)
+ *        bench_queries --contacts-hash [--quick]
+ *
+ * --contacts-hash prints, per level 0 .. -3, an FNV-1a hash of every byte of every contact (and the
+ * state and count) that rugo_collide_shapes reports on the benchmark's poses, then exits: a change that
+ * must not change behaviour keeps these hashes.
  *
  * Shapes (body size 1: the diameter of the smallest circle about the centroid that holds the finest
  * curve; Box2D sees them as 1 m bodies): an ellipse (convex, axes 1 : 0.7) and a bean (the samples'
@@ -1410,15 +1415,17 @@ HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, strip = true;
+    bool quick = false, strip = true, contacts_hash = false;
     const char* dir = "out/bench_queries";
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0)
             quick = true;
+        else if (std::strcmp(argv[i], "--contacts-hash") == 0)
+            contacts_hash = true;
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
-            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick]\n", argv[0]);
             return 2;
         } else
             dir = argv[i];
@@ -1463,6 +1470,36 @@ int main(int argc, char** argv) {
             poses.push_back(p);
         }
     const size_t P = poses.size();
+
+    if (contacts_hash) {
+        for (int L : levels) {
+            const rugo_contact_query q = make_query(L, kWindow);
+            static rugo_contact cbuf[kCap];
+            std::uint64_t h = SAMPLE_FNV_OFFSET;
+            for (size_t i = 0; i < P; ++i) {
+                int n = 0;
+                rugo_contact_state st = RUGO_STATE_APART;
+                rugo_collide_shapes(ctx, bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                    poses[i].xb, &q, cbuf, kCap, &n, &st, nullptr);
+                const int head[2] = {(int)st, n};
+                h = sample_fnv1a(h, head, sizeof head);
+                for (int k = 0; k < n; ++k) { /* field by field: padding bytes are not part of the answer */
+                    const rugo_contact& c = cbuf[k];
+                    const double reals[] = {c.point_a.x, c.point_a.y, c.point_b.x, c.point_b.y, c.normal.x, c.normal.y,
+                                            c.separation, c.t_a, c.t_b, c.tolerance_a, c.tolerance_b, c.friction,
+                                            c.restitution};
+                    const int ints[] = {c.segment_a, c.segment_b, c.level_a, c.level_b, c.region};
+                    h = sample_fnv1a(h, reals, sizeof reals);
+                    h = sample_fnv1a(h, ints, sizeof ints);
+                    h = sample_fnv1a(h, &c.id, sizeof c.id);
+                }
+            }
+            std::printf("contacts_hash level %d: %016llx (%zu poses)\n", L, (unsigned long long)h, P);
+        }
+        rugo_collide_context_destroy(ctx);
+        for (auto& b : bodies) rugo_shape_destroy(b.shape);
+        return 0;
+    }
 
     /* ---- reference ---- */
     std::vector<PoseRef> ref(P);

@@ -44,6 +44,7 @@
  * gets one contact at its point deepest inside A (sampled, refined by golden section). */
 #include "rugo/collide.h"
 
+#include "core/array.h"
 #include "core/internal.h"
 #include "shape/internal.h"
 #include "query/narrow.h"
@@ -71,10 +72,7 @@
 /* ---------------------------------------------------------------------------------------------------
  * Context: growable scratch. */
 
-typedef struct buffer {
-    void* data;
-    size_t cap; /* elements */
-} buffer;
+typedef rugo__array buffer;
 
 typedef struct tnode {
     int la, ka, lb, kb; /* level -1: the root */
@@ -124,21 +122,7 @@ struct rugo_collide_context {
 };
 
 static int reserve(rugo_collide_context* c, buffer* b, size_t need, size_t elem) {
-    if (need <= b->cap) return 1;
-    size_t n = b->cap ? b->cap : 64;
-    while (n < need) {
-        if (n > ((size_t)-1) / 4 / elem) return 0;
-        n *= 2;
-    }
-    void* p = rugo__alloc_array(&c->al, n, elem);
-    if (p == NULL) return 0;
-    if (b->data != NULL) {
-        memcpy(p, b->data, b->cap * elem);
-        rugo__free(&c->al, b->data);
-    }
-    b->data = p;
-    b->cap = n;
-    return 1;
+    return rugo__array_reserve(b, &c->al, need, elem, 64) == RUGO_OK;
 }
 
 rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out) {
@@ -158,7 +142,7 @@ void rugo_collide_context_destroy(rugo_collide_context* c) {
     buffer* all[] = {&c->stack, &c->kids, &c->pairs, &c->xs,  &c->ss,   &c->ss2,
                      &c->ints,  &c->marks, &c->segs, &c->out, &c->ptab, &c->pstamp};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
-        rugo__free(&c->al, all[i]->data);
+        rugo__array_free(all[i], &c->al);
     rugo_allocator al = c->al;
     rugo__free(&al, c);
 }

@@ -1,0 +1,751 @@
+/* The narrow phase at a resolution δ > 0 (narrow_resolved.h states what it finds and guarantees).
+ *
+ * Search. A depth-first walk of the parameter square, as the round-off narrow phase's, but with only
+ * two tests per box: the control polygons' separating-axis gap (a lower bound of the distance;
+ * minus the largest band coefficients, a lower bound of φ) against what the box is asked for, and the
+ * flatness of the two sub-pieces. A sub-piece's flatness is the largest distance of its middle
+ * control points from where the linear Bezier over the same parameters puts them, for the curve and
+ * for its band: a bound of |f(s) - chord(s)| + |λ(s) - linear(s)| at every parameter, so a leaf's
+ * chords carry the curves and bands to within flat_f + flat_g <= δ, parameter by parameter. The piece
+ * with the larger flatness is halved. A banded piece is first cut at its band's knot (1/2).
+ *
+ * Leaf. The chord functions are closed forms: the crossing of two segments; the minimum of
+ * |P(u) - Q(v)| - λ_P(u) - λ_Q(v) over the unit square, which is convex (a norm of an affine map minus
+ * linear terms) and whose minimum lies on an edge of the square except between parallel chords
+ * (where it is flat along the facing pairs, whose ends are on edges): each edge is a point against a
+ * segment with a linear band, whose minimiser has a closed form. Polishing is Newton on the true
+ * pieces: for crossings on f - g = 0, for minima on the gradient of φ with its exact Hessian, for
+ * saddles on the stationarity system of the distance. A polished root is kept only if Newton
+ * converged inside the pieces' domain; otherwise the chord's answer stands (within δ).
+ *
+ * Cost: a box costs two de Casteljau restrictions and a few dot products; a leaf a few square roots
+ * and, when it holds something, up to NEWTON_MAX Newton steps. The number of leaves is bounded by the
+ * products of δ-flat pieces of f and g near each other: about sqrt(curvature x length^2 / δ) each. */
+#include "query/narrow_resolved.h"
+
+#include "core/internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#define EPS DBL_EPSILON
+
+enum {
+    STACK_MAX = 160,   /* depth-first stack: depth <= 2 x MAX_DEPTH + 4 */
+    MAX_DEPTH = 60,    /* halvings of one parameter (2^-60: below any useful δ) */
+    BOX_BUDGET = 40000, /* boxes per call, then overflow */
+    NEWTON_MAX = 12,
+    TMP_ROOTS = 64
+};
+
+typedef struct box {
+    rugo_real s0, s1, t0, t1;
+} box;
+
+typedef struct sub {
+    rugo_vec2 p[4];
+    rugo_real l[4];
+} sub;
+
+typedef struct found {
+    rugo_real s, t, phi;
+    int kind;
+    int polished;
+} found;
+
+typedef struct rctx {
+    const rugo__banded_piece* f;
+    const rugo__banded_piece* g;
+    int banded_f, banded_g;
+    rugo_real cutoff, saddle_cutoff, delta, scale;
+    int want;
+    int newton, fallback, overflow;
+    int ncross, nmin, nsaddle;
+    found cross[TMP_ROOTS];
+    found mins[TMP_ROOTS];
+    found saddles[TMP_ROOTS];
+} rctx;
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Evaluation */
+
+static rugo_real mx(rugo_real a, rugo_real b) { return a > b ? a : b; }
+static rugo_real mn(rugo_real a, rugo_real b) { return a < b ? a : b; }
+static rugo_real vlen(rugo_vec2 v) { return sqrt(v.x * v.x + v.y * v.y); }
+
+static rugo_vec2 lerp(rugo_vec2 a, rugo_vec2 b, rugo_real u) {
+    return rugo_v2((1.0 - u) * a.x + u * b.x, (1.0 - u) * a.y + u * b.y);
+}
+
+/* Cubic Bezier point, first and second derivative at u. */
+static void bez3(const rugo_vec2 p[4], rugo_real u, rugo_vec2* x, rugo_vec2* d1, rugo_vec2* d2) {
+    const rugo_vec2 a = lerp(p[0], p[1], u), b = lerp(p[1], p[2], u), c = lerp(p[2], p[3], u);
+    const rugo_vec2 ab = lerp(a, b, u), bc = lerp(b, c, u);
+    *x = lerp(ab, bc, u);
+    *d1 = rugo_v2_scale(3.0, rugo_v2_sub(bc, ab));
+    const rugo_vec2 dd0 = rugo_v2_add(rugo_v2_sub(p[2], rugo_v2_scale(2.0, p[1])), p[0]);
+    const rugo_vec2 dd1 = rugo_v2_add(rugo_v2_sub(p[3], rugo_v2_scale(2.0, p[2])), p[1]);
+    *d2 = rugo_v2_scale(6.0, lerp(dd0, dd1, u));
+}
+
+/* Cubic in Bernstein form, value and first two derivatives at u. */
+static void bern3(const rugo_real l[4], rugo_real u, rugo_real* v, rugo_real* d1, rugo_real* d2) {
+    const rugo_real w = 1.0 - u;
+    const rugo_real a = w * l[0] + u * l[1], b = w * l[1] + u * l[2], c = w * l[2] + u * l[3];
+    const rugo_real ab = w * a + u * b, bc = w * b + u * c;
+    *v = w * ab + u * bc;
+    *d1 = 3.0 * (bc - ab);
+    *d2 = 6.0 * (w * (l[2] - 2.0 * l[1] + l[0]) + u * (l[3] - 2.0 * l[2] + l[1]));
+}
+
+/* λ of a banded piece at s and its derivatives in s (the half's cubic over its own parameter 2s - h;
+ * s = 1/2 belongs to the second half), clamped below at 0 as the queries clamp it. */
+static void band_at(const rugo__banded_piece* p, int banded, rugo_real s, rugo_real* v, rugo_real* d1,
+                    rugo_real* d2) {
+    *v = *d1 = *d2 = 0.0;
+    if (!banded) return;
+    const int h = s >= 0.5;
+    bern3(p->band[h], 2.0 * s - (rugo_real)h, v, d1, d2);
+    *d1 *= 2.0;
+    *d2 *= 4.0;
+    if (!(*v > 0.0)) *v = *d1 = *d2 = 0.0;
+}
+
+/* The restriction of a cubic's coefficients (n scalars per point, stride dims) to [a, b]. */
+static void restrict_scalar(const rugo_real in[4], rugo_real a, rugo_real b, rugo_real out[4]) {
+    rugo_real w[4] = {in[0], in[1], in[2], in[3]}, part[4];
+    if (b != 1.0) {
+        part[0] = w[0];
+        for (int k = 1; k <= 3; ++k) {
+            for (int i = 0; i <= 3 - k; ++i)
+                w[i] = (1.0 - b) * w[i] + b * w[i + 1];
+            part[k] = w[0];
+        }
+        memcpy(w, part, sizeof w);
+    }
+    if (a != 0.0) {
+        const rugo_real u = a / b;
+        part[3] = w[3];
+        for (int k = 1; k <= 3; ++k) {
+            for (int i = 0; i <= 3 - k; ++i)
+                w[i] = (1.0 - u) * w[i] + u * w[i + 1];
+            part[3 - k] = w[3 - k];
+        }
+        memcpy(w, part, sizeof w);
+    }
+    memcpy(out, w, sizeof w);
+}
+
+static void restrict_points(const rugo_vec2 in[4], rugo_real a, rugo_real b, rugo_vec2 out[4]) {
+    rugo_real x[4] = {in[0].x, in[1].x, in[2].x, in[3].x}, y[4] = {in[0].y, in[1].y, in[2].y, in[3].y};
+    rugo_real rx[4], ry[4];
+    restrict_scalar(x, a, b, rx);
+    restrict_scalar(y, a, b, ry);
+    for (int i = 0; i < 4; ++i)
+        out[i] = rugo_v2(rx[i], ry[i]);
+}
+
+/* Sub-piece over [a, b] (inside one band half when banded). */
+static void make_sub(const rugo__banded_piece* p, int banded, rugo_real a, rugo_real b, sub* out) {
+    restrict_points(p->p, a, b, out->p);
+    if (!banded) {
+        out->l[0] = out->l[1] = out->l[2] = out->l[3] = 0.0;
+        return;
+    }
+    const int h = a >= 0.5;
+    restrict_scalar(p->band[h], 2.0 * a - (rugo_real)h, 2.0 * b - (rugo_real)h, out->l);
+}
+
+/* |sub-piece - its linear Bezier| bound, curve and band (see the top of the file). */
+static rugo_real flatness(const sub* q) {
+    const rugo_vec2 m1 = lerp(q->p[0], q->p[3], 1.0 / 3.0), m2 = lerp(q->p[0], q->p[3], 2.0 / 3.0);
+    const rugo_real c = mx(vlen(rugo_v2_sub(q->p[1], m1)), vlen(rugo_v2_sub(q->p[2], m2)));
+    const rugo_real l1 = (2.0 * q->l[0] + q->l[3]) / 3.0, l2 = (q->l[0] + 2.0 * q->l[3]) / 3.0;
+    return c + mx(fabs(q->l[1] - l1), fabs(q->l[2] - l2));
+}
+
+static rugo_real band_max(const sub* q) { return mx(0.0, mx(mx(q->l[0], q->l[1]), mx(q->l[2], q->l[3]))); }
+
+/* Gap between the projections of the two control polygons on unit direction d (<= 0: they overlap). */
+static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
+    rugo_real flo = HUGE_VAL, fhi = -HUGE_VAL, glo = HUGE_VAL, ghi = -HUGE_VAL;
+    for (int i = 0; i < 4; ++i) {
+        const rugo_real a = rugo_v2_dot(F[i], d), b = rugo_v2_dot(G[i], d);
+        flo = mn(flo, a);
+        fhi = mx(fhi, a);
+        glo = mn(glo, b);
+        ghi = mx(ghi, b);
+    }
+    return mx(glo - fhi, flo - ghi);
+}
+
+static rugo_vec2 unit_or(rugo_vec2 v, rugo_vec2 fallback) {
+    const rugo_real l = vlen(v);
+    return l > 0.0 ? rugo_v2_scale(1.0 / l, v) : fallback;
+}
+
+/* A lower bound of the distance between the two sub-pieces (0 when their hulls may meet): the largest
+ * projection gap over x, y, the chords' normals and the line through the polygons' centres. */
+static rugo_real hull_gap(const sub* F, const sub* G) {
+    rugo_vec2 cf = rugo_v2(0.0, 0.0), cg = rugo_v2(0.0, 0.0);
+    for (int i = 0; i < 4; ++i) {
+        cf = rugo_v2_add(cf, F->p[i]);
+        cg = rugo_v2_add(cg, G->p[i]);
+    }
+    const rugo_vec2 dirs[5] = {unit_or(rugo_v2_sub(cg, cf), rugo_v2(1.0, 0.0)), rugo_v2(1.0, 0.0), rugo_v2(0.0, 1.0),
+                               unit_or(rugo_v2_perp(rugo_v2_sub(F->p[3], F->p[0])), rugo_v2(0.0, 1.0)),
+                               unit_or(rugo_v2_perp(rugo_v2_sub(G->p[3], G->p[0])), rugo_v2(0.0, 1.0))};
+    rugo_real best = 0.0;
+    for (int k = 0; k < 5; ++k)
+        best = mx(best, projection_gap(dirs[k], F->p, G->p));
+    return best;
+}
+
+/* The directions of a sub-piece's tangent (its hodograph's control points, as unoriented lines): an
+ * axis, the half-angle about it, and a lower bound of the speed along it (local parameter). 0 when
+ * the directions spread over 90 degrees or more (no useful cone). */
+typedef struct cone {
+    rugo_vec2 axis;
+    rugo_real half, speed, band_slope; /* band_slope: max |dλ/du|, local parameter */
+} cone;
+
+static int tangent_cone(const sub* q, cone* c) {
+    rugo_vec2 d[3];
+    for (int i = 0; i < 3; ++i)
+        d[i] = rugo_v2_scale(3.0, rugo_v2_sub(q->p[i + 1], q->p[i]));
+    rugo_vec2 axis = rugo_v2_sub(q->p[3], q->p[0]);
+    rugo_real l = vlen(axis);
+    if (!(l > 0.0)) return 0;
+    axis = rugo_v2_scale(1.0 / l, axis);
+    rugo_real cosmin = 1.0, speed = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+        const rugo_real len = vlen(d[i]);
+        const rugo_real along = rugo_v2_dot(d[i], axis);
+        if (!(along > 0.0)) return 0;
+        cosmin = mn(cosmin, along / len);
+        speed = mn(speed, along);
+    }
+    c->axis = axis;
+    c->half = acos(mn(1.0, cosmin));
+    c->speed = speed;
+    rugo_real slope = 0.0;
+    for (int i = 0; i < 3; ++i)
+        slope = mx(slope, 3.0 * fabs(q->l[i + 1] - q->l[i]));
+    c->band_slope = slope;
+    return 1;
+}
+
+/* 1 when the box provably holds no stationary point of φ (band = 1) or of the distance (band = 0):
+ * there f' and g' both lie within asin(|λ'| / |f'|) of the normal to f - g, so their lines are that
+ * close to parallel; cones whose lines stay farther apart exclude it. */
+static int cones_exclude(const sub* F, const sub* G, int band) {
+    cone a, b;
+    if (!tangent_cone(F, &a) || !tangent_cone(G, &b)) return 0;
+    const rugo_real c = fabs(rugo_v2_dot(a.axis, b.axis));
+    const rugo_real between = acos(mn(1.0, c)); /* angle between the axes' lines, in [0, pi/2] */
+    rugo_real allow = a.half + b.half + 1e-9;
+    if (band) allow += asin(mn(1.0, a.band_slope / a.speed)) + asin(mn(1.0, b.band_slope / b.speed));
+    return between > allow;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Roots: recording and merging */
+
+/* Adds (s, t) to a list unless a root within r (in both parameters) is there; a polished root
+ * replaces an unpolished one. Returns the index, or -1 when the list is full (overflow). */
+static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rugo_real phi, int kind, int polished,
+                     rugo_real r) {
+    for (int i = 0; i < *n; ++i)
+        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) {
+            if (polished && !list[i].polished) {
+                list[i].s = s;
+                list[i].t = t;
+                list[i].phi = phi;
+                list[i].kind = kind;
+                list[i].polished = 1;
+            }
+            return i;
+        }
+    if (*n >= TMP_ROOTS) {
+        c->overflow = 1;
+        return -1;
+    }
+    list[*n].s = s;
+    list[*n].t = t;
+    list[*n].phi = phi;
+    list[*n].kind = kind;
+    list[*n].polished = polished;
+    return (*n)++;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Newton polishing on the true pieces */
+
+static int in_domain(rugo_real s, rugo_real t) { return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12; }
+static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+
+/* f(s) = g(t) from (s, t); 1 and the root when Newton converged inside the domain. */
+static int polish_crossing(rctx* c, rugo_real* s, rugo_real* t) {
+    rugo_real S = *s, T = *t;
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+        bez3(c->f->p, S, &fp, &fd, &fdd);
+        bez3(c->g->p, T, &gp, &gd, &gdd);
+        const rugo_vec2 F = rugo_v2_sub(fp, gp);
+        /* [fd -gd] (dS, dT) = -F */
+        const rugo_real det = -fd.x * gd.y + gd.x * fd.y;
+        if (!(fabs(det) > 1e-300)) return 0;
+        const rugo_real dS = (-F.x * -gd.y - -gd.x * -F.y) / det;
+        const rugo_real dT = (fd.x * -F.y - fd.y * -F.x) / det;
+        ++c->newton;
+        S += dS;
+        T += dT;
+        if (!in_domain(S, T) || !isfinite(S) || !isfinite(T)) return 0;
+        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+            *s = clamp01(S);
+            *t = clamp01(T);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+typedef struct phi_eval {
+    rugo_real phi, d;
+    rugo_real gs, gt;           /* gradient */
+    rugo_real hss, hst, htt;    /* Hessian */
+} phi_eval;
+
+/* φ = |f(s) - g(t)| - λ_f(s) - λ_g(t), its gradient and Hessian (0: the points coincide). */
+static int eval_phi(const rctx* c, rugo_real s, rugo_real t, phi_eval* e) {
+    rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+    bez3(c->f->p, s, &fp, &fd, &fdd);
+    bez3(c->g->p, t, &gp, &gd, &gdd);
+    rugo_real la, la1, la2, lb, lb1, lb2;
+    band_at(c->f, c->banded_f, s, &la, &la1, &la2);
+    band_at(c->g, c->banded_g, t, &lb, &lb1, &lb2);
+    const rugo_vec2 r = rugo_v2_sub(fp, gp);
+    const rugo_real d = vlen(r);
+    e->d = d;
+    e->phi = d - la - lb;
+    if (!(d > 0.0)) return 0;
+    const rugo_vec2 u = rugo_v2_scale(1.0 / d, r);
+    const rugo_real uf = rugo_v2_dot(u, fd), ug = rugo_v2_dot(u, gd);
+    e->gs = uf - la1;
+    e->gt = -ug - lb1;
+    e->hss = rugo_v2_dot(u, fdd) + (rugo_v2_dot(fd, fd) - uf * uf) / d - la2;
+    e->htt = -rugo_v2_dot(u, gdd) + (rugo_v2_dot(gd, gd) - ug * ug) / d - lb2;
+    e->hst = (-rugo_v2_dot(fd, gd) + uf * ug) / d;
+    return 1;
+}
+
+/* Newton on grad φ = 0 from (s, t), while the Hessian is positive definite and φ does not rise; 1 and
+ * the minimum when it converged inside the domain. */
+static int polish_minimum(rctx* c, rugo_real* s, rugo_real* t, rugo_real* phi) {
+    rugo_real S = *s, T = *t;
+    phi_eval e;
+    if (!eval_phi(c, S, T, &e)) return 0;
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        const rugo_real det = e.hss * e.htt - e.hst * e.hst;
+        if (!(e.hss > 0.0) || !(det > 0.0)) return 0;
+        const rugo_real dS = -(e.htt * e.gs - e.hst * e.gt) / det;
+        const rugo_real dT = -(e.hss * e.gt - e.hst * e.gs) / det;
+        ++c->newton;
+        const rugo_real S1 = S + dS, T1 = T + dT;
+        if (!in_domain(S1, T1) || !isfinite(S1) || !isfinite(T1)) return 0;
+        phi_eval e1;
+        if (!eval_phi(c, clamp01(S1), clamp01(T1), &e1)) return 0;
+        /* Near the minimum φ is flat to round-off: allow its rounding, not a real rise. */
+        if (e1.phi > e.phi + 64.0 * EPS * (fabs(e.phi) + e.d + c->scale)) return 0;
+        S = clamp01(S1);
+        T = clamp01(T1);
+        e = e1;
+        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+            *s = S;
+            *t = T;
+            *phi = e.phi;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The stationarity system of the distance, H1 = (f-g)·f' = 0, H2 = (f-g)·g' = 0 (SPEC 8), from (s, t):
+ * 1 and the root when it converged inside the domain, with the kind from D = |f-g|^2/2's Hessian. */
+static int polish_stationary(rctx* c, rugo_real* s, rugo_real* t, int* kind) {
+    rugo_real S = *s, T = *t;
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+        bez3(c->f->p, S, &fp, &fd, &fdd);
+        bez3(c->g->p, T, &gp, &gd, &gdd);
+        const rugo_vec2 r = rugo_v2_sub(fp, gp);
+        const rugo_real h1 = rugo_v2_dot(r, fd), h2 = rugo_v2_dot(r, gd);
+        const rugo_real j11 = rugo_v2_dot(fd, fd) + rugo_v2_dot(r, fdd), j12 = -rugo_v2_dot(gd, fd);
+        const rugo_real j21 = rugo_v2_dot(gd, fd), j22 = -rugo_v2_dot(gd, gd) + rugo_v2_dot(r, gdd);
+        const rugo_real det = j11 * j22 - j12 * j21;
+        if (!(fabs(det) > 1e-300)) return 0;
+        const rugo_real dS = -(j22 * h1 - j12 * h2) / det;
+        const rugo_real dT = -(j11 * h2 - j21 * h1) / det;
+        ++c->newton;
+        S += dS;
+        T += dT;
+        if (!in_domain(S, T) || !isfinite(S) || !isfinite(T)) return 0;
+        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+            S = clamp01(S);
+            T = clamp01(T);
+            bez3(c->f->p, S, &fp, &fd, &fdd);
+            bez3(c->g->p, T, &gp, &gd, &gdd);
+            const rugo_vec2 rr = rugo_v2_sub(fp, gp);
+            /* Hessian of D: [[|f'|^2 + r·f'', -f'·g'], [-f'·g', |g'|^2 - r·g'']] */
+            const rugo_real dss = rugo_v2_dot(fd, fd) + rugo_v2_dot(rr, fdd);
+            const rugo_real dtt = rugo_v2_dot(gd, gd) - rugo_v2_dot(rr, gdd);
+            const rugo_real dst = -rugo_v2_dot(fd, gd);
+            const rugo_real hdet = dss * dtt - dst * dst;
+            *kind = hdet < 0.0 ? RUGO__SADDLE : (dss > 0.0 ? RUGO__MINIMUM : RUGO__MAXIMUM);
+            *s = S;
+            *t = T;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Leaves */
+
+/* min over v in [0, 1] of |x - (q0 + v V)| - (b0 + v db): a convex function of v whose unconstrained
+ * minimiser is the foot of x shifted by db h / (L sqrt(L^2 - db^2)) (|db| < L; else an end). */
+static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b0, rugo_real db, rugo_real* v_out) {
+    const rugo_real L2 = rugo_v2_dot(V, V);
+    const rugo_vec2 w = rugo_v2_sub(x, q0);
+    rugo_real v;
+    if (!(L2 > 0.0)) {
+        v = 0.0;
+    } else {
+        const rugo_real foot = rugo_v2_dot(w, V) / L2;
+        const rugo_real L = sqrt(L2);
+        if (fabs(db) < L) {
+            const rugo_real h = fabs(rugo_v2_cross(V, w)) / L;
+            v = foot + db * h / (L * sqrt(L2 - db * db));
+        } else {
+            v = db > 0.0 ? 1.0 : 0.0;
+        }
+        v = clamp01(v);
+    }
+    *v_out = v;
+    return vlen(rugo_v2_sub(w, rugo_v2_scale(v, V))) - (b0 + v * db);
+}
+
+static void leaf(rctx* c, box b, const sub* F, const sub* G) {
+    const rugo_vec2 P0 = F->p[0], U = rugo_v2_sub(F->p[3], F->p[0]);
+    const rugo_vec2 Q0 = G->p[0], V = rugo_v2_sub(G->p[3], G->p[0]);
+    const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
+    const rugo_real denom = rugo_v2_cross(U, V);
+    const rugo_vec2 w = rugo_v2_sub(Q0, P0);
+    int chords_cross = 0;
+    /* Crossing of the chords (parallel chords: none; their overlap is a conforming stretch, below). */
+    if (fabs(denom) > 1e-14 * (rugo_v2_dot(U, U) + rugo_v2_dot(V, V))) {
+        const rugo_real u = rugo_v2_cross(w, V) / denom, v = rugo_v2_cross(w, U) / denom;
+        const rugo_real e = 1e-12;
+        if (u >= -e && u <= 1.0 + e && v >= -e && v <= 1.0 + e) {
+            chords_cross = 1;
+            rugo_real s = b.s0 + clamp01(u) * hs, t = b.t0 + clamp01(v) * ht;
+            if (polish_crossing(c, &s, &t)) {
+                if (c->want & RUGO__RESOLVED_CROSSINGS) {
+                    rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+                    bez3(c->f->p, s, &fp, &fd, &fdd);
+                    bez3(c->g->p, t, &gp, &gd, &gdd);
+                    rugo_real cr = rugo_v2_cross(fd, gd);
+                    if (cr == 0.0) cr = denom;
+                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1, 1e-9);
+                }
+            } else if (c->want & RUGO__RESOLVED_MINIMA) {
+                /* Chords that cross where the curves have no crossing Newton can find: the curves come
+                 * within δ there (a touching, or an overlap shallower than δ): a minimum to δ. */
+                s = b.s0 + clamp01(u) * hs;
+                t = b.t0 + clamp01(v) * ht;
+                phi_eval pe;
+                eval_phi(c, s, t, &pe);
+                ++c->fallback;
+                add_found(c, c->mins, &c->nmin, s, t, pe.phi, RUGO__MINIMUM, 0, 0.0);
+            }
+        }
+    }
+    if ((c->want & RUGO__RESOLVED_MINIMA) && !chords_cross) {
+        /* Four edges of the square: the ends of one chord against the other. */
+        const rugo_real a0 = mx(0.0, F->l[0]), da = mx(0.0, F->l[3]) - a0;
+        const rugo_real b0 = mx(0.0, G->l[0]), db = mx(0.0, G->l[3]) - b0;
+        rugo_real best = HUGE_VAL, bu = 0.0, bv = 0.0, x;
+        rugo_real val = point_chord(P0, Q0, V, b0 + a0, db, &x);
+        if (val < best) best = val, bu = 0.0, bv = x;
+        val = point_chord(F->p[3], Q0, V, b0 + a0 + da, db, &x);
+        if (val < best) best = val, bu = 1.0, bv = x;
+        val = point_chord(Q0, P0, U, a0 + b0, da, &x);
+        if (val < best) best = val, bu = x, bv = 0.0;
+        val = point_chord(G->p[3], P0, U, a0 + b0 + db, da, &x);
+        if (val < best) best = val, bu = x, bv = 1.0;
+        if (best <= c->cutoff + c->delta) {
+            /* A polished minimum is a true stationary point wherever it lands (leaves that reach the
+             * same one merge); where Newton fails (φ flat to δ along a conforming stretch) the true
+             * gradient at the leaf's edge says whether the minimum lies in this leaf, so that of
+             * neighbouring leaves only those holding it report it. */
+            rugo_real s = b.s0 + bu * hs, t = b.t0 + bv * ht, phi = 0.0;
+            if (polish_minimum(c, &s, &t, &phi)) {
+                add_found(c, c->mins, &c->nmin, s, t, phi, RUGO__MINIMUM, 1, 1e-9);
+            } else {
+                s = b.s0 + bu * hs;
+                t = b.t0 + bv * ht;
+                phi_eval e;
+                int own = 1;
+                if (eval_phi(c, s, t, &e)) {
+                    const rugo_real tol = 1e-9 * (e.d + c->scale);
+                    if (bu <= 0.0 && e.gs > tol) own = 0;
+                    if (bu >= 1.0 && e.gs < -tol) own = 0;
+                    if (bv <= 0.0 && e.gt > tol) own = 0;
+                    if (bv >= 1.0 && e.gt < -tol) own = 0;
+                }
+                if (own) {
+                    ++c->fallback;
+                    add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 0, 0.0);
+                }
+            }
+        }
+    }
+    if (c->want & RUGO__RESOLVED_SADDLES) {
+        /* A depth pair joins anti-parallel stretches facing each other across an overlap. */
+        if (rugo_v2_dot(U, V) < 0.0) {
+            const rugo_vec2 mid = lerp(F->p[0], F->p[3], 0.5);
+            const rugo_real L2 = rugo_v2_dot(V, V);
+            const rugo_real v = L2 > 0.0 ? clamp01(rugo_v2_dot(rugo_v2_sub(mid, Q0), V) / L2) : 0.5;
+            rugo_real s = b.s0 + 0.5 * hs, t = b.t0 + v * ht;
+            int kind = 0;
+            if (polish_stationary(c, &s, &t, &kind) && kind == RUGO__SADDLE) {
+                rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+                bez3(c->f->p, s, &fp, &fd, &fdd);
+                bez3(c->g->p, t, &gp, &gd, &gdd);
+                const rugo_real d = vlen(rugo_v2_sub(fp, gp));
+                if (d <= c->saddle_cutoff) add_found(c, c->saddles, &c->nsaddle, s, t, d, RUGO__SADDLE, 1, 1e-9);
+            }
+        }
+    }
+}
+
+/* The two sub-pieces' tangent lines are never parallel (cones apart with no band allowance). */
+static int transversal(const sub* F, const sub* G) { return cones_exclude(F, G, 0); }
+
+/* The box's one possible crossing (transversal pieces), by Newton from the chords' crossing (or the
+ * box's centre): 1 when the box is settled — a root found inside it, or the pieces apart (which the
+ * caller's hull test did not prove). Minima need no search there: the tangents are never parallel,
+ * and with bands only within the slopes' allowance, which the caller checks (cones_exclude). */
+static int crossing_in_box(rctx* c, box b, const sub* F, const sub* G) {
+    if ((c->want & RUGO__RESOLVED_MINIMA) && !cones_exclude(F, G, 1)) return 0;
+    const rugo_vec2 U = rugo_v2_sub(F->p[3], F->p[0]), V = rugo_v2_sub(G->p[3], G->p[0]);
+    const rugo_vec2 w = rugo_v2_sub(G->p[0], F->p[0]);
+    const rugo_real denom = rugo_v2_cross(U, V);
+    rugo_real u = 0.5, v = 0.5;
+    if (denom != 0.0) {
+        u = clamp01(rugo_v2_cross(w, V) / denom);
+        v = clamp01(rugo_v2_cross(w, U) / denom);
+    }
+    rugo_real s = b.s0 + u * (b.s1 - b.s0), t = b.t0 + v * (b.t1 - b.t0);
+    if (!polish_crossing(c, &s, &t)) return 0;
+    const rugo_real pad = 1e-12;
+    if (s < b.s0 - pad || s > b.s1 + pad || t < b.t0 - pad || t > b.t1 + pad) return 0;
+    if (c->want & RUGO__RESOLVED_CROSSINGS) {
+        rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+        bez3(c->f->p, s, &fp, &fd, &fdd);
+        bez3(c->g->p, t, &gp, &gd, &gdd);
+        const rugo_real cr = rugo_v2_cross(fd, gd);
+        add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1, 1e-9);
+    }
+    return 1;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Search */
+
+static int push(box* st, int* n, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
+    if (*n >= STACK_MAX) return 0;
+    st[*n].s0 = s0;
+    st[*n].s1 = s1;
+    st[*n].t0 = t0;
+    st[*n].t1 = t1;
+    ++*n;
+    return 1;
+}
+
+static void search(rctx* c) {
+    box st[STACK_MAX];
+    int n = 0, boxes = 0;
+    /* Banded pieces start cut at their band's knot. */
+    const int cf = c->banded_f ? 2 : 1, cg = c->banded_g ? 2 : 1;
+    for (int i = cf - 1; i >= 0; --i)
+        for (int j = cg - 1; j >= 0; --j)
+            push(st, &n, (rugo_real)i / (rugo_real)cf, (rugo_real)(i + 1) / (rugo_real)cf, (rugo_real)j / (rugo_real)cg,
+                 (rugo_real)(j + 1) / (rugo_real)cg);
+    const rugo_real half_delta = 0.5 * c->delta;
+    const rugo_real min_width = ldexp(1.0, -MAX_DEPTH);
+    while (n > 0) {
+        const box b = st[--n];
+        if (++boxes > BOX_BUDGET) {
+            c->overflow = 1;
+            return;
+        }
+        sub F, G;
+        make_sub(c->f, c->banded_f, b.s0, b.s1, &F);
+        make_sub(c->g, c->banded_g, b.t0, b.t1, &G);
+        const rugo_real gap = hull_gap(&F, &G);
+        int need = 0;
+        if ((c->want & RUGO__RESOLVED_CROSSINGS) && gap <= 0.0) need = 1;
+        if ((c->want & RUGO__RESOLVED_MINIMA) && gap - band_max(&F) - band_max(&G) <= c->cutoff + c->delta &&
+            !cones_exclude(&F, &G, 1))
+            need = 1;
+        if ((c->want & RUGO__RESOLVED_SADDLES) && gap <= c->saddle_cutoff && !cones_exclude(&F, &G, 0)) need = 1;
+        if (!need) continue;
+        /* Tangent lines apart over the whole box: at most one crossing there (two would give, by
+         * Rolle, tangents of both parallel to the chord between them) and no stationary point. Newton
+         * from the chords' crossing then settles the box when it converges inside it. */
+        if (need && gap <= 0.0 && transversal(&F, &G) && crossing_in_box(c, b, &F, &G)) continue;
+        const rugo_real ff = flatness(&F), fg = flatness(&G);
+        const int tiny_f = b.s1 - b.s0 <= min_width, tiny_g = b.t1 - b.t0 <= min_width;
+        if ((ff <= half_delta || tiny_f) && (fg <= half_delta || tiny_g)) {
+            leaf(c, b, &F, &G);
+            continue;
+        }
+        const int split_f = !tiny_f && (ff > half_delta) && (ff >= fg || tiny_g || fg <= half_delta);
+        int ok;
+        if (split_f) {
+            const rugo_real m = 0.5 * (b.s0 + b.s1);
+            ok = push(st, &n, m, b.s1, b.t0, b.t1) && push(st, &n, b.s0, m, b.t0, b.t1);
+        } else {
+            const rugo_real m = 0.5 * (b.t0 + b.t1);
+            ok = push(st, &n, b.s0, b.s1, m, b.t1) && push(st, &n, b.s0, b.s1, b.t0, m);
+        }
+        if (!ok) {
+            c->overflow = 1;
+            return;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Output */
+
+static void sort_found(found* a, int n) {
+    for (int i = 1; i < n; ++i) {
+        const found v = a[i];
+        int j = i - 1;
+        while (j >= 0 && (a[j].s > v.s || (a[j].s == v.s && a[j].t > v.t))) {
+            a[j + 1] = a[j];
+            --j;
+        }
+        a[j + 1] = v;
+    }
+}
+
+/* Unpolished minima along a conforming stretch come one per leaf: keep each run's two ends and its
+ * deepest point (a run: consecutive by s, each within two leaves of the next in both parameters). */
+static int reduce_runs(found* a, int n, rugo_real reach) {
+    int w = 0;
+    for (int i = 0; i < n;) {
+        if (a[i].polished) {
+            a[w++] = a[i++];
+            continue;
+        }
+        int j = i + 1;
+        while (j < n && !a[j].polished && fabs(a[j].s - a[j - 1].s) <= reach && fabs(a[j].t - a[j - 1].t) <= reach) ++j;
+        int deep = i;
+        for (int k = i + 1; k < j; ++k)
+            if (a[k].phi < a[deep].phi) deep = k;
+        const found first = a[i], last = a[j - 1], d = a[deep];
+        a[w++] = first;
+        if (deep != i && deep != j - 1) a[w++] = d;
+        if (j - 1 != i) a[w++] = last;
+        i = j;
+    }
+    return w;
+}
+
+static void fill(const rctx* c, const found* r, int kind, rugo__pair_point* p) {
+    rugo_vec2 fd, fdd, gd, gdd;
+    p->s = r->s;
+    p->t = r->t;
+    bez3(c->f->p, r->s, &p->pa, &fd, &fdd);
+    bez3(c->g->p, r->t, &p->pb, &gd, &gdd);
+    p->distance = vlen(rugo_v2_sub(p->pb, p->pa));
+    p->kind = kind;
+}
+
+static int all_finite(const rugo__banded_piece* p) {
+    for (int i = 0; i < 4; ++i) {
+        if (!isfinite(p->p[i].x) || !isfinite(p->p[i].y)) return 0;
+        if (!isfinite(p->band[0][i]) || !isfinite(p->band[1][i])) return 0;
+    }
+    return 1;
+}
+
+static int is_banded(const rugo__banded_piece* p) {
+    for (int h = 0; h < 2; ++h)
+        for (int i = 0; i < 4; ++i)
+            if (p->band[h][i] != 0.0) return 1;
+    return 0;
+}
+
+void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real cutoff,
+                           rugo_real saddle_cutoff, rugo_real delta, int want, rugo__narrow_result* out) {
+    memset(out, 0, sizeof *out);
+    if (!all_finite(f) || !all_finite(g) || !(delta > 0.0) || !isfinite(delta)) return;
+    if (!(cutoff == cutoff)) want &= ~RUGO__RESOLVED_MINIMA;
+    if (!(saddle_cutoff == saddle_cutoff)) want &= ~RUGO__RESOLVED_SADDLES;
+    rctx c;
+    c.f = f;
+    c.g = g;
+    c.banded_f = is_banded(f);
+    c.banded_g = is_banded(g);
+    c.cutoff = cutoff;
+    c.saddle_cutoff = saddle_cutoff;
+    c.delta = delta;
+    c.want = want;
+    c.newton = c.fallback = c.overflow = 0;
+    c.ncross = c.nmin = c.nsaddle = 0;
+    rugo_real ext = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ext = mx(ext, mx(fabs(f->p[i].x - f->p[0].x), fabs(f->p[i].y - f->p[0].y)));
+        ext = mx(ext, mx(fabs(g->p[i].x - f->p[0].x), fabs(g->p[i].y - f->p[0].y)));
+    }
+    c.scale = ext;
+    search(&c);
+
+    sort_found(c.cross, c.ncross);
+    sort_found(c.mins, c.nmin);
+    sort_found(c.saddles, c.nsaddle);
+    c.nmin = reduce_runs(c.mins, c.nmin, 1.0 / 16.0);
+    for (int i = 0; i < c.ncross; ++i) {
+        if (out->crossing_count >= RUGO__NARROW_MAX_CROSSINGS) {
+            out->overflow = 1;
+            break;
+        }
+        fill(&c, &c.cross[i], c.cross[i].kind, &out->crossings[out->crossing_count++]);
+    }
+    /* Stationary pairs: minima and saddles merged by s. */
+    int i = 0, j = 0;
+    while (i < c.nmin || j < c.nsaddle) {
+        const int take_min = j >= c.nsaddle || (i < c.nmin && c.mins[i].s <= c.saddles[j].s);
+        const found* r = take_min ? &c.mins[i++] : &c.saddles[j++];
+        if (out->stationary_count >= RUGO__NARROW_MAX_STATIONARY) {
+            out->overflow = 1;
+            break;
+        }
+        fill(&c, r, r->kind, &out->stationary[out->stationary_count++]);
+    }
+    out->newton_iterations = c.newton;
+    out->fallback = c.fallback;
+    out->overflow |= c.overflow;
+}
+
+void rugo__banded_piece_smooth(const rugo_vec2 p[4], rugo__banded_piece* out) {
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < 4; ++i)
+        out->p[i] = p[i];
+}

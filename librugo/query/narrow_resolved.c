@@ -30,11 +30,14 @@
 #include <string.h>
 
 #define EPS DBL_EPSILON
+/* Newton has converged when a step moves both parameters by less than this: round-off of the
+ * residual divided by a small speed can keep steps of a few ulps going for ever. */
+#define NEWTON_TOL 1e-13
 
 enum {
     STACK_MAX = 160,   /* depth-first stack: depth <= 2 x MAX_DEPTH + 4 */
     MAX_DEPTH = 60,    /* halvings of one parameter (2^-60: below any useful δ) */
-    BOX_BUDGET = 40000, /* boxes per call, then overflow */
+    BOX_BUDGET = 20000, /* boxes per call, then overflow (the caller falls back to the round-off phase) */
     NEWTON_MAX = 12,
     TMP_ROOTS = 64
 };
@@ -252,6 +255,9 @@ static int cones_exclude(const sub* F, const sub* G, int band) {
 /* ---------------------------------------------------------------------------------------------- */
 /* Roots: recording and merging */
 
+static void sort_found(found* a, int n);
+static int reduce_runs(found* a, int n, rugo_real reach);
+
 /* Adds (s, t) to a list unless a root within r (in both parameters) is there; a polished root
  * replaces an unpolished one. Returns the index, or -1 when the list is full (overflow). */
 static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rugo_real phi, int kind, int polished,
@@ -267,6 +273,11 @@ static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rug
             }
             return i;
         }
+    if (*n >= TMP_ROOTS && list == c->mins) {
+        /* a long conforming stretch: keep its ends and its deepest point so far */
+        sort_found(list, *n);
+        *n = reduce_runs(list, *n, 1.01);
+    }
     if (*n >= TMP_ROOTS) {
         c->overflow = 1;
         return -1;
@@ -283,6 +294,8 @@ static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rug
 /* Newton polishing on the true pieces */
 
 static int in_domain(rugo_real s, rugo_real t) { return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12; }
+/* Newton may overshoot on its way to a root inside the domain: iterates may roam this far. */
+static int near_domain(rugo_real s, rugo_real t) { return s >= -0.5 && s <= 1.5 && t >= -0.5 && t <= 1.5; }
 static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 
 /* f(s) = g(t) from (s, t); 1 and the root when Newton converged inside the domain. */
@@ -301,8 +314,9 @@ static int polish_crossing(rctx* c, rugo_real* s, rugo_real* t) {
         ++c->newton;
         S += dS;
         T += dT;
-        if (!in_domain(S, T) || !isfinite(S) || !isfinite(T)) return 0;
-        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+        if (!near_domain(S, T) || !isfinite(S) || !isfinite(T)) return 0;
+        if (fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL) {
+            if (!in_domain(S, T)) return 0;
             *s = clamp01(S);
             *t = clamp01(T);
             return 1;
@@ -361,7 +375,7 @@ static int polish_minimum(rctx* c, rugo_real* s, rugo_real* t, rugo_real* phi) {
         S = clamp01(S1);
         T = clamp01(T1);
         e = e1;
-        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+        if (fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL) {
             *s = S;
             *t = T;
             *phi = e.phi;
@@ -391,7 +405,7 @@ static int polish_stationary(rctx* c, rugo_real* s, rugo_real* t, int* kind) {
         S += dS;
         T += dT;
         if (!in_domain(S, T) || !isfinite(S) || !isfinite(T)) return 0;
-        if (fabs(dS) <= 4.0 * EPS && fabs(dT) <= 4.0 * EPS) {
+        if (fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL) {
             S = clamp01(S);
             T = clamp01(T);
             bez3(c->f->p, S, &fp, &fd, &fdd);
@@ -437,6 +451,134 @@ static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b
     return vlen(rugo_v2_sub(w, rugo_v2_scale(v, V))) - (b0 + v * db);
 }
 
+/* The minimum of φ over the leaf's box, by Newton projected onto the box (a gradient step where the
+ * Hessian is not positive definite, halved until φ falls), from the chords' minimum (s, t). Inside
+ * the box it is a local minimum of φ: polished. On the box's edge the minimum lies beyond, in a
+ * neighbouring leaf, unless φ falls by less than δ across this leaf that way (a conforming stretch,
+ * flat to the resolution): then it stands as a point of that stretch, polished if Newton without the
+ * box converges from it. */
+static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
+    const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
+    phi_eval e;
+    if (!eval_phi(c, s, t, &e)) return; /* the curves meet: a crossing or a touching, found as such */
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        const rugo_real det = e.hss * e.htt - e.hst * e.hst;
+        rugo_real dS, dT;
+        if (e.hss > 0.0 && det > 0.0) {
+            dS = -(e.htt * e.gs - e.hst * e.gt) / det;
+            dT = -(e.hss * e.gt - e.hst * e.gs) / det;
+        } else {
+            const rugo_real g = sqrt(e.gs * e.gs / (hs * hs) + e.gt * e.gt / (ht * ht));
+            if (!(g > 0.0)) break;
+            dS = -0.25 * e.gs / (g * hs);
+            dT = -0.25 * e.gt / (g * ht);
+        }
+        int accepted = 0;
+        for (int half = 0; half < 6 && !accepted; ++half, dS *= 0.5, dT *= 0.5) {
+            const rugo_real S1 = mn(b.s1, mx(b.s0, s + dS)), T1 = mn(b.t1, mx(b.t0, t + dT));
+            phi_eval e1;
+            ++c->newton;
+            if (!eval_phi(c, S1, T1, &e1)) return;
+            if (e1.phi <= e.phi) {
+                const int moved = S1 != s || T1 != t;
+                s = S1;
+                t = T1;
+                e = e1;
+                accepted = moved;
+            }
+        }
+        if (!accepted || (fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL)) break;
+    }
+    const rugo_real es = 1e-9 * hs, et = 1e-9 * ht;
+    const int inside = s > b.s0 + es && s < b.s1 - es && t > b.t0 + et && t < b.t1 - et;
+    if (inside && polish_minimum(c, &s, &t, &e.phi)) {
+        add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 1, 1e-9);
+        return;
+    }
+    /* The minimum rests on edges of the box. Each edge is one of three kinds:
+     *  - the knot of a banded piece's band (1/2), where λ has a kink: a minimum of φ when φ also rises
+     *    on the other side (the band's one-sided slope there decides);
+     *  - an end of the piece where the curve stops (zero speed: a sharp corner of coincident control
+     *    points): RUGO__END_MINIMUM, which the caller confirms with the neighbouring segment's piece;
+     *  - else the minimum lies beyond, in a neighbouring leaf or segment, when φ falls that way faster
+     *    than δ over the piece's whole parameter range; slower, it stands as a point of a stretch flat to
+     *    the resolution. */
+    rugo_real drop = 0.0;
+    int kink = 0, corner = 0;
+    for (int k = 0; k < 4; ++k) {
+        const int is_s = k < 2, low = (k % 2) == 0;
+        const rugo_real x = is_s ? s : t, edge = is_s ? (low ? b.s0 : b.s1) : (low ? b.t0 : b.t1);
+        if (fabs(x - edge) > (is_s ? es : et)) continue;
+        const rugo_real g = is_s ? e.gs : e.gt; /* right-sided at a knot (band_at's convention) */
+        const rugo__banded_piece* p = is_s ? c->f : c->g;
+        const int banded = is_s ? c->banded_f : c->banded_g;
+        if (banded && edge == 0.5) {
+            rugo_real v, d1, d2, vl, d1l, d2l;
+            bern3(p->band[1], 0.0, &v, &d1, &d2);
+            bern3(p->band[0], 1.0, &vl, &d1l, &d2l);
+            const rugo_real g_left = v > 0.0 ? g + 2.0 * d1 - 2.0 * d1l : g; /* the left half's slope */
+            if (g_left <= 0.0 && g >= 0.0) {
+                kink = 1;
+                continue;
+            }
+        }
+        if (edge == 0.0 || edge == 1.0) {
+            rugo_vec2 pt, d, dd;
+            bez3(p->p, edge, &pt, &d, &dd);
+            if (vlen(d) <= 1e-9 * c->scale) {
+                corner = 1;
+                continue;
+            }
+        }
+        drop = mx(drop, low ? g : -g);
+    }
+    if (drop > c->delta) return;
+    if (kink || corner) {
+        add_found(c, c->mins, &c->nmin, s, t, e.phi, corner ? RUGO__END_MINIMUM : RUGO__MINIMUM, 1, 1e-9);
+        return;
+    }
+    rugo_real ps = s, pt = t, pphi = e.phi;
+    if (polish_minimum(c, &ps, &pt, &pphi)) {
+        add_found(c, c->mins, &c->nmin, ps, pt, pphi, RUGO__MINIMUM, 1, 1e-9);
+        return;
+    }
+    ++c->fallback;
+    add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 0, 1e-12);
+}
+
+/* Chords that face each other along a stretch over which φ stays within δ (parallel to the
+ * resolution): a conforming stretch, whose two ends are its points (Box2D clips faces the same way).
+ * 1 when the leaf is one; its ends are then recorded. */
+static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
+    const rugo_vec2 P0 = F->p[0], U = rugo_v2_sub(F->p[3], F->p[0]);
+    const rugo_vec2 Q0 = G->p[0], V = rugo_v2_sub(G->p[3], G->p[0]);
+    const rugo_real UU = rugo_v2_dot(U, U), VV = rugo_v2_dot(V, V);
+    if (!(UU > 0.0) || !(VV > 0.0)) return 0;
+    const rugo_real q0 = rugo_v2_dot(rugo_v2_sub(Q0, P0), U) / UU, q1 = rugo_v2_dot(rugo_v2_sub(G->p[3], P0), U) / UU;
+    const rugo_real ua = mx(0.0, mn(q0, q1)), ub = mn(1.0, mx(q0, q1));
+    if (!(ua < ub)) return 0;
+    rugo_real us[2] = {ua, ub}, vs[2], phis[2];
+    for (int k = 0; k < 2; ++k) {
+        const rugo_vec2 p = rugo_v2_add(P0, rugo_v2_scale(us[k], U));
+        vs[k] = clamp01(rugo_v2_dot(rugo_v2_sub(p, Q0), V) / VV);
+        const rugo_vec2 q = rugo_v2_add(Q0, rugo_v2_scale(vs[k], V));
+        const rugo_real la = mx(0.0, (1.0 - us[k]) * F->l[0] + us[k] * F->l[3]);
+        const rugo_real lb = mx(0.0, (1.0 - vs[k]) * G->l[0] + vs[k] * G->l[3]);
+        phis[k] = vlen(rugo_v2_sub(p, q)) - la - lb;
+    }
+    /* flat to δ over the whole piece's parameter range, not only across this leaf */
+    const rugo_real slope = fabs(phis[1] - phis[0]) / ((ub - ua) * (b.s1 - b.s0));
+    if (!(slope <= c->delta) || !(mn(phis[0], phis[1]) <= c->cutoff + c->delta)) return 0;
+    for (int k = 0; k < 2; ++k) {
+        const rugo_real s = b.s0 + us[k] * (b.s1 - b.s0), t = b.t0 + vs[k] * (b.t1 - b.t0);
+        phi_eval e;
+        eval_phi(c, s, t, &e);
+        ++c->fallback;
+        add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 0, 1e-12);
+    }
+    return 1;
+}
+
 static void leaf(rctx* c, box b, const sub* F, const sub* G) {
     const rugo_vec2 P0 = F->p[0], U = rugo_v2_sub(F->p[3], F->p[0]);
     const rugo_vec2 Q0 = G->p[0], V = rugo_v2_sub(G->p[3], G->p[0]);
@@ -472,6 +614,36 @@ static void leaf(rctx* c, box b, const sub* F, const sub* G) {
             }
         }
     }
+    if (!chords_cross) {
+        /* Chords that miss each other by less than the two flatnesses may stand for curves that do
+         * cross (near a leaf's end, where a chord's crossing moves off the other's end): Newton decides. */
+        rugo_real x, u = 0.0, v = 0.0, gapd = point_chord(P0, Q0, V, 0.0, 0.0, &v);
+        rugo_real d1 = point_chord(F->p[3], Q0, V, 0.0, 0.0, &x);
+        if (d1 < gapd) gapd = d1, u = 1.0, v = x;
+        d1 = point_chord(Q0, P0, U, 0.0, 0.0, &x);
+        if (d1 < gapd) gapd = d1, u = x, v = 0.0;
+        d1 = point_chord(G->p[3], P0, U, 0.0, 0.0, &x);
+        if (d1 < gapd) gapd = d1, u = x, v = 1.0;
+        if (gapd <= flatness(F) + flatness(G)) {
+            rugo_real s = b.s0 + u * hs, t = b.t0 + v * ht;
+            int ok = polish_crossing(c, &s, &t);
+            if (!ok) { /* the closest chord points may lead to a root outside the domain: the centre */
+                s = b.s0 + 0.5 * hs;
+                t = b.t0 + 0.5 * ht;
+                ok = polish_crossing(c, &s, &t);
+            }
+            if (ok) {
+                chords_cross = 1;
+                if (c->want & RUGO__RESOLVED_CROSSINGS) {
+                    rugo_vec2 fp, fd, fdd, gp, gd, gdd;
+                    bez3(c->f->p, s, &fp, &fd, &fdd);
+                    bez3(c->g->p, t, &gp, &gd, &gdd);
+                    const rugo_real cr = rugo_v2_cross(fd, gd);
+                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1, 1e-9);
+                }
+            }
+        }
+    }
     if ((c->want & RUGO__RESOLVED_MINIMA) && !chords_cross) {
         /* Four edges of the square: the ends of one chord against the other. */
         const rugo_real a0 = mx(0.0, F->l[0]), da = mx(0.0, F->l[3]) - a0;
@@ -485,32 +657,8 @@ static void leaf(rctx* c, box b, const sub* F, const sub* G) {
         if (val < best) best = val, bu = x, bv = 0.0;
         val = point_chord(G->p[3], P0, U, a0 + b0 + db, da, &x);
         if (val < best) best = val, bu = x, bv = 1.0;
-        if (best <= c->cutoff + c->delta) {
-            /* A polished minimum is a true stationary point wherever it lands (leaves that reach the
-             * same one merge); where Newton fails (φ flat to δ along a conforming stretch) the true
-             * gradient at the leaf's edge says whether the minimum lies in this leaf, so that of
-             * neighbouring leaves only those holding it report it. */
-            rugo_real s = b.s0 + bu * hs, t = b.t0 + bv * ht, phi = 0.0;
-            if (polish_minimum(c, &s, &t, &phi)) {
-                add_found(c, c->mins, &c->nmin, s, t, phi, RUGO__MINIMUM, 1, 1e-9);
-            } else {
-                s = b.s0 + bu * hs;
-                t = b.t0 + bv * ht;
-                phi_eval e;
-                int own = 1;
-                if (eval_phi(c, s, t, &e)) {
-                    const rugo_real tol = 1e-9 * (e.d + c->scale);
-                    if (bu <= 0.0 && e.gs > tol) own = 0;
-                    if (bu >= 1.0 && e.gs < -tol) own = 0;
-                    if (bv <= 0.0 && e.gt > tol) own = 0;
-                    if (bv >= 1.0 && e.gt < -tol) own = 0;
-                }
-                if (own) {
-                    ++c->fallback;
-                    add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 0, 0.0);
-                }
-            }
-        }
+        if (best <= c->cutoff + c->delta && !conforming_leaf(c, b, F, G))
+            leaf_minimum(c, b, b.s0 + bu * hs, b.t0 + bv * ht);
     }
     if (c->want & RUGO__RESOLVED_SADDLES) {
         /* A depth pair joins anti-parallel stretches facing each other across an overlap. */
@@ -644,26 +792,36 @@ static void sort_found(found* a, int n) {
     }
 }
 
-/* Unpolished minima along a conforming stretch come one per leaf: keep each run's two ends and its
- * deepest point (a run: consecutive by s, each within two leaves of the next in both parameters). */
+/* Unpolished minima along a conforming stretch come one or two per leaf: keep each run's two ends
+ * (a run: consecutive unpolished minima by s, each within `reach` of the next in both parameters),
+ * and its deepest point unless a polished minimum inside the run is as deep. Polished minima stay. */
 static int reduce_runs(found* a, int n, rugo_real reach) {
+    found keep[TMP_ROOTS];
     int w = 0;
     for (int i = 0; i < n;) {
         if (a[i].polished) {
-            a[w++] = a[i++];
+            ++i;
             continue;
         }
-        int j = i + 1;
-        while (j < n && !a[j].polished && fabs(a[j].s - a[j - 1].s) <= reach && fabs(a[j].t - a[j - 1].t) <= reach) ++j;
-        int deep = i;
-        for (int k = i + 1; k < j; ++k)
-            if (a[k].phi < a[deep].phi) deep = k;
-        const found first = a[i], last = a[j - 1], d = a[deep];
-        a[w++] = first;
-        if (deep != i && deep != j - 1) a[w++] = d;
-        if (j - 1 != i) a[w++] = last;
+        int last = i, deep = i, j = i + 1;
+        for (; j < n; ++j) {
+            if (a[j].polished) continue;
+            if (fabs(a[j].s - a[last].s) > reach || fabs(a[j].t - a[last].t) > reach) break;
+            last = j;
+            if (a[j].phi < a[deep].phi) deep = j;
+        }
+        int covered = 0;
+        for (int k = i; k <= last; ++k)
+            covered |= a[k].polished && a[k].phi <= a[deep].phi;
+        keep[w++] = a[i];
+        if (deep != i && deep != last && !covered) keep[w++] = a[deep];
+        if (last != i) keep[w++] = a[last];
         i = j;
     }
+    for (int i = 0; i < n; ++i)
+        if (a[i].polished) keep[w++] = a[i];
+    memcpy(a, keep, (size_t)w * sizeof *a);
+    sort_found(a, w);
     return w;
 }
 
@@ -720,7 +878,7 @@ void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece
     sort_found(c.cross, c.ncross);
     sort_found(c.mins, c.nmin);
     sort_found(c.saddles, c.nsaddle);
-    c.nmin = reduce_runs(c.mins, c.nmin, 1.0 / 16.0);
+    c.nmin = reduce_runs(c.mins, c.nmin, 1.01);
     for (int i = 0; i < c.ncross; ++i) {
         if (out->crossing_count >= RUGO__NARROW_MAX_CROSSINGS) {
             out->overflow = 1;

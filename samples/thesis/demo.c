@@ -1,7 +1,7 @@
-/* The main headless demo (until the Box2D bridge lands): take an outline, decompose it into levels of
- * detail, deform it in multiresolution, fit a contour to a sprite-like outline, and find the contacts
- * of two rough shapes. Writes pictures and numbers into OUTDIR (default out/demo): object.json,
- * levels.svg, deform.svg, fit.svg, contacts.svg, results.json. */
+/* A tour of the core library in one program (the README's main demo is the Box2D one, b2_demo): take
+ * an outline, decompose it into levels of detail, deform it in multiresolution, fit a contour to a
+ * sprite-like outline, and find the contacts of two rough shapes. Writes pictures and numbers into
+ * OUTDIR (default out/demo): object.json, levels.svg, deform.svg, fit.svg, contacts.svg, results.json. */
 #include "rugo/rugo.h"
 #ifdef RUGO_HAVE_FIT
 #include "rugo/fit.h"

@@ -3,7 +3,7 @@
  * 32-point pebble (tipo_3 scaled by 0.1) resting on it.
  *
  * Writes, into the directory given as the last argument (docs/img for the checked-in copies:
- * ./build/samples/guide_figures docs/img):
+ * ./build/samples/thesis/guide_figures docs/img):
  *   levels.svg    the wavelet pyramid: the curve of levels 6 (64 points) down to 2 (4 points);
  *   bands.svg     the tolerance band ±λ(t) at level 6 (with display asperities drawn by rugo_roughen)
  *                 and the accumulated band λ^4 at level 4;

@@ -1,5 +1,5 @@
 /* Engine-neutral descriptions of the thesis' chapter-7 scenes (Figs. 7.4-7.13) and of the main demo,
- * shared by the Box2D samples (samples/b2_*.cpp) and the simulator samples (rugo_world).
+ * shared by the Box2D samples (samples/box2d/b2_*.cpp) and the simulator samples (rugo_world).
  *
  * A scene is a list of bodies, gravity, a time step, a duration and the level of detail of its
  * contacts. Rough bodies carry a rugo_shape built here (with its roughness λ per segment, friction map

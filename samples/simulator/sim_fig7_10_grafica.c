@@ -1,7 +1,7 @@
 /* Thesis Fig. 7.10-7.11 in librugo's own simulator (rugo_world): the word "gráfica" as free letter
  * bodies standing on a fixed block with a gently wavy top, hit by a heavy ball thrown at 6 m/s; every
  * surface tipo_2 (Fig. 7.10) or tipo_3 (Fig. 7.11) (scenes.h, SCENE_GRAFICA). Mirrors
- * samples/b2_fig7_10_grafica.cpp: writes grafica_<tipo>.csv (every body every 0.1 s), frames
+ * samples/box2d/b2_fig7_10_grafica.cpp: writes grafica_<tipo>.csv (every body every 0.1 s), frames
  * grafica_<tipo>_<step>.svg every 0.5 s, summary.csv (start and final pose of every body per variant),
  * outcome.csv (the Box2D sample's columns) and prints a summary.
  *

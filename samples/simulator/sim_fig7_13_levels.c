@@ -1,7 +1,7 @@
 /* Thesis Fig. 7.12-7.13 in librugo's own simulator (rugo_world): three objects of arbitrary geometry with
  * fine detail (toothed, wavy, noisy slabs, tipo_3) thrown at 4 m/s along a fixed flat block (tipo_3),
  * with contacts at levels of detail 0 (reference), -1 and -2 (scenes.h, SCENE_LEVELS). Mirrors
- * samples/b2_fig7_13_levels.cpp: writes levels_<level>.csv, frames levels_<level>_<step>.svg and
+ * samples/box2d/b2_fig7_13_levels.cpp: writes levels_<level>.csv, frames levels_<level>_<step>.svg and
  * summary.csv with the Box2D sample's columns (the λ table of that sample is the library's, not the
  * engine's: see its tolerances.csv).
  *

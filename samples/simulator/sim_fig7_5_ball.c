@@ -1,6 +1,6 @@
 /* Thesis Fig. 7.4-7.6 in librugo's own simulator (rugo_world): a ball (radius 0.4 m) thrown sliding at
  * 3 m/s without spin along a fixed horizontal block, for the six roughness pairs ball-block
- * tipo_1-tipo_1 .. tipo_3-tipo_3 (scenes.h, SCENE_BALL). Mirrors samples/b2_fig7_5_ball.cpp: writes
+ * tipo_1-tipo_1 .. tipo_3-tipo_3 (scenes.h, SCENE_BALL). Mirrors samples/box2d/b2_fig7_5_ball.cpp: writes
  * ball_<pair>.csv (t, x, y, speed, ω, slip speed, mean μ of the step's impulses on the ball, number of
  * impulses: Fig. 7.5 friction at each contact over time, Fig. 7.6 speed over time),
  * ball_<pair>_impulses.csv (every impulse: μ, ε, J_n, J_t, branch), frames ball_<pair>_<step>.svg and

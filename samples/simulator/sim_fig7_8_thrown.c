@@ -1,6 +1,6 @@
 /* Thesis Fig. 7.7-7.8 in librugo's own simulator (rugo_world): an irregular slab thrown at tangential
  * speed 10 m/s on a fixed block. (a) both surfaces tipo_2; (b) a smooth slab on a block that is rough,
- * smooth, rough along its length (scenes.h, SCENE_THROWN). Mirrors samples/b2_fig7_8_thrown.cpp: writes
+ * smooth, rough along its length (scenes.h, SCENE_THROWN). Mirrors samples/box2d/b2_fig7_8_thrown.cpp: writes
  * thrown_a.csv / thrown_b.csv (t, pose, velocity, tangential contact speed, μ of the impulses, number of
  * impulses, energy), impulses_<v>.csv (every impulse the simulator applied to the slab: Fig. 7.8's
  * friction per collision), frames thrown_<v>_<step>.svg and summary.json.

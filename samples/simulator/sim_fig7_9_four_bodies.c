@@ -1,6 +1,6 @@
 /* Thesis Fig. 7.9 in librugo's own simulator (rugo_world): four irregular bodies (tipo_2 roughness,
  * restitution 0.10, 0.35, 0.60, 0.85) dropped on a fixed irregular block between two fixed rocks
- * (scenes.h, SCENE_FOUR_BODIES). Mirrors samples/b2_fig7_9_four_bodies.cpp: writes four_bodies.csv
+ * (scenes.h, SCENE_FOUR_BODIES). Mirrors samples/box2d/b2_fig7_9_four_bodies.cpp: writes four_bodies.csv
  * (every body every 0.1 s), frames four_bodies_<step>.svg and summary.json. Also the simulator's
  * determinism test: the scene is run a second time in the same process and the FNV-1a hash over the
  * double bits of every body's transform after every step (sim_sample.h) must be identical; the hash is

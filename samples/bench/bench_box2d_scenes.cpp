@@ -31,6 +31,9 @@
 //   bench_box2d_scenes [--quick] [--n 16,64,256,1024] [--s 32,64,128,512] [--grid] [--steps K]
 //                      [--warmup W] [--repeat R] [--max-n CAP] [--steps-large K] [--variants afpc]
 //                      [--check-every K] [--max-proxy-level P] [--no-ccd] [--alloc-trace] [--verbose]
+//                      [OUTDIR]
+// With OUTDIR the run's CSV, comments and summary also go to OUTDIR/bench_box2d_scenes.csv: results are
+// kept per machine as samples/bench/results/<machine>/bench_box2d_scenes.csv (results/README.md).
 // Default: N = 16, 64, 256, 1024 at S = 64, and S = 32, 64, 128, 512 at N = 256 (--grid: every pair);
 // 300 steps of which 60 warm-up (--steps-large K: K steps for N >= 1024 or S >= 512; warm-up at most
 // half the steps). --max-n caps N; --variants picks a(uto), f(inest), p(olygon), c(ircle); --repeat
@@ -50,6 +53,7 @@ extern "C" {
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -804,6 +808,21 @@ Stats RunScene(Variant var, int n, const ShapeSet& set, const Options& opt, int 
 
 namespace {
 
+// The run's output: stdout and, given OUTDIR, the results file there.
+FILE* g_results = nullptr;
+
+[[gnu::format(printf, 1, 2)]] void Emit(const char* fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    std::vprintf(fmt, ap);
+    va_end(ap);
+    if (g_results != nullptr) {
+        va_start(ap, fmt);
+        std::vfprintf(g_results, fmt, ap);
+        va_end(ap);
+    }
+}
+
 std::vector<int> ParseList(const char* s) {
     std::vector<int> out;
     while (*s) {
@@ -837,6 +856,7 @@ int main(int argc, char** argv) {
         backtrace(warm, 2); // loads the unwinder now, not inside a counted step
     }
     Options opt;
+    std::string outDir;
     bool nsGiven = false, ssGiven = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -873,10 +893,12 @@ int main(int argc, char** argv) {
             opt.verbose = true;
         else if (a == "--alloc-trace")
             opt.allocTrace = g_traceOn = true;
+        else if (a[0] != '-' && outDir.empty())
+            outDir = a;
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--n LIST] [--s LIST] [--grid] [--steps K] [--warmup W] [--repeat R]\n"
                                  "          [--max-n CAP] [--steps-large K] [--variants afpc] [--check-every K]\n"
-                                 "          [--max-proxy-level P] [--no-ccd] [--alloc-trace]\n",
+                                 "          [--max-proxy-level P] [--no-ccd] [--alloc-trace] [--verbose] [OUTDIR]\n",
                          argv[0]);
             return 2;
         }
@@ -892,6 +914,13 @@ int main(int argc, char** argv) {
     if (opt.warmup < 0 || opt.steps <= opt.warmup) {
         std::fprintf(stderr, "bench_box2d_scenes: need steps > warmup >= 0\n");
         return 2;
+    }
+    if (!outDir.empty()) {
+        const std::string path = outDir + "/bench_box2d_scenes.csv";
+        if (sample_mkdir(outDir.c_str()) != 0 || (g_results = std::fopen(path.c_str(), "w")) == nullptr) {
+            std::fprintf(stderr, "bench_box2d_scenes: cannot write %s\n", path.c_str());
+            return 1;
+        }
     }
     // The sizes to run: N sweep at S = 64 and S sweep at N = 256 (or every pair with --grid).
     std::vector<std::pair<int, int>> configs;
@@ -913,16 +942,16 @@ int main(int argc, char** argv) {
         return a.second != b.second ? a.second < b.second : a.first < b.first;
     });
 
-    std::printf("# bench_box2d_scenes: %d distinct rough shapes (mean radius %.2f m) shared by N bodies, 60 Hz, %d/%d iterations,"
-                " sleeping off; error budget %.1f mm; allocation counter %s\n",
-                kShapes, kRadius, kVelIt, kPosIt, 1e3 * kBudget,
-                BENCH_COUNT_ALLOCATIONS ? (g_box2dHi > g_box2dLo ? "on (libbox2d.so found)" : "on (libbox2d.so NOT found: all counted as own)")
-                                        : "off (AddressSanitizer)");
-    std::printf("variant,N,S,steps,ms_per_step,allocs_per_step,box2d_allocs_per_step,steps_with_allocs,bytes_per_body,"
-                "bytes_per_shape,fixtures_per_body,level,contacts,points,world_contacts,deepest_mm,max_budget_ratio,"
-                "max_budget_ratio_shallow,over_budget_pct,max_budget_diff_mm,budget_pairs,queries_per_step,cache_hits_per_step,"
-                "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_above_gap_mm,"
-                "gap_pairs\n");
+    Emit("# bench_box2d_scenes: %d distinct rough shapes (mean radius %.2f m) shared by N bodies, 60 Hz, %d/%d iterations,"
+         " sleeping off; error budget %.1f mm; allocation counter %s\n",
+         kShapes, kRadius, kVelIt, kPosIt, 1e3 * kBudget,
+         BENCH_COUNT_ALLOCATIONS ? (g_box2dHi > g_box2dLo ? "on (libbox2d.so found)" : "on (libbox2d.so NOT found: all counted as own)")
+                                 : "off (AddressSanitizer)");
+    Emit("variant,N,S,steps,ms_per_step,allocs_per_step,box2d_allocs_per_step,steps_with_allocs,bytes_per_body,"
+         "bytes_per_shape,fixtures_per_body,level,contacts,points,world_contacts,deepest_mm,max_budget_ratio,"
+         "max_budget_ratio_shallow,over_budget_pct,max_budget_diff_mm,budget_pairs,queries_per_step,cache_hits_per_step,"
+         "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_above_gap_mm,"
+         "gap_pairs\n");
     std::fflush(stdout);
 
     std::vector<Row> rows;
@@ -943,11 +972,11 @@ int main(int argc, char** argv) {
                 if (rugo_shape_tolerance_level(sh, rugo_shape_finest_level(sh), &tl) == RUGO_OK)
                     for (int i = 0; i < tl.count; ++i) bJ = std::max(bJ, tl.bound[i]);
                 std::size_t pieces = set->pieces[static_cast<size_t>(k)].size();
-                std::printf("# S=%d shape %d: bounding radius %.3f m, mass %.4f kg, finest level %d, band max beta %.2f mm;"
-                            " polygon %d vertices (max chord deviation %.2f mm, checked 4x denser), %zu convex pieces\n",
-                            s, k, set->boundRadius[static_cast<size_t>(k)], set->mass[static_cast<size_t>(k)],
-                            rugo_shape_finest_level(sh), 1e3 * bJ, set->polyVertices[static_cast<size_t>(k)],
-                            1e3 * set->polyDeviation[static_cast<size_t>(k)], pieces);
+                Emit("# S=%d shape %d: bounding radius %.3f m, mass %.4f kg, finest level %d, band max beta %.2f mm;"
+                     " polygon %d vertices (max chord deviation %.2f mm, checked 4x denser), %zu convex pieces\n",
+                     s, k, set->boundRadius[static_cast<size_t>(k)], set->mass[static_cast<size_t>(k)],
+                     rugo_shape_finest_level(sh), 1e3 * bJ, set->polyVertices[static_cast<size_t>(k)],
+                     1e3 * set->polyDeviation[static_cast<size_t>(k)], pieces);
             }
         }
         // The largest sizes (N >= 1024 or S >= 512) may run fewer steps (--steps-large): the finest level
@@ -977,16 +1006,16 @@ int main(int argc, char** argv) {
             const Stats& st = row.st[v];
             const double ts = row.steps;
             const double all = ts + warmup;
-            std::printf("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%.1f,%.1f,%.1f,"
-                        "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld\n",
-                        kVariantName[v], n, s, row.steps, st.ms, st.allocOwn, st.allocBox2d, st.stepsWithOwnAlloc,
-                        st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points, st.worldContacts,
-                        1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
-                        st.budgetPairs > 0 ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs) : 0.0,
-                        1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
-                        static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
-                        static_cast<double>(st.bs.toiPreSolves) / all, st.keFinal, st.hash, st.maxGapRatio,
-                        1e3 * st.maxContactAboveGap, st.gapPairs);
+            Emit("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%.1f,%.1f,%.1f,"
+                 "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld\n",
+                 kVariantName[v], n, s, row.steps, st.ms, st.allocOwn, st.allocBox2d, st.stepsWithOwnAlloc,
+                 st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points, st.worldContacts,
+                 1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
+                 st.budgetPairs > 0 ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs) : 0.0,
+                 1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
+                 static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
+                 static_cast<double>(st.bs.toiPreSolves) / all, st.keFinal, st.hash, st.maxGapRatio,
+                 1e3 * st.maxContactAboveGap, st.gapPairs);
             std::fflush(stdout);
             if (!st.contained) allOk = false;
         }
@@ -1015,30 +1044,30 @@ int main(int argc, char** argv) {
         char polyText[64] = "";
         if (g->ran[kPolygon])
             std::snprintf(polyText, sizeof polyText, ", polygon / circle = %.2f", g->st[kPolygon].ms / g->st[kCircle].ms);
-        std::printf("summary: N=%d S=%d: auto is %.2fx faster than finest (goal >= 1.5: %s); auto / circle floor = %.2f, finest / "
-                    "circle = %.2f%s (goal auto <= 3: %s); LOD error over all sizes, band gap of pairs apart at both levels: "
-                    "max |d gap| / budget %.2f (goal <= 1: %s); deepest reported contact's band-adjusted separation: max |ds| / "
-                    "budget resting %.2f, all %.2f (it sits up to %.2f mm above the band gap at the finest level); "
-                    "bridge+librugo allocations per step after warm-up: max %.3f (goal 0: %s), Box2D's own: max %.3f\n",
-                    g->n, g->s, speedup, speedup >= 1.5 ? "met" : "NOT met", floorRatio,
-                    g->st[kFinest].ms / g->st[kCircle].ms,
-                    polyText,
-                    floorRatio <= 3.0 ? "met" : "NOT met", maxGap,
-                    maxGap < 0.0 ? "not measured" : (maxGap <= 1.0 ? "met" : "NOT met"), maxShallow, maxRatio, 1e3 * maxAbove,
-                    BENCH_COUNT_ALLOCATIONS ? maxOwn : -1.0,
-                    BENCH_COUNT_ALLOCATIONS ? (maxOwn == 0.0 ? "met" : "NOT met") : "not measured under ASan", maxB2);
+        Emit("summary: N=%d S=%d: auto is %.2fx faster than finest (goal >= 1.5: %s); auto / circle floor = %.2f, finest / "
+             "circle = %.2f%s (goal auto <= 3: %s); LOD error over all sizes, band gap of pairs apart at both levels: "
+             "max |d gap| / budget %.2f (goal <= 1: %s); deepest reported contact's band-adjusted separation: max |ds| / "
+             "budget resting %.2f, all %.2f (it sits up to %.2f mm above the band gap at the finest level); "
+             "bridge+librugo allocations per step after warm-up: max %.3f (goal 0: %s), Box2D's own: max %.3f\n",
+             g->n, g->s, speedup, speedup >= 1.5 ? "met" : "NOT met", floorRatio,
+             g->st[kFinest].ms / g->st[kCircle].ms,
+             polyText,
+             floorRatio <= 3.0 ? "met" : "NOT met", maxGap,
+             maxGap < 0.0 ? "not measured" : (maxGap <= 1.0 ? "met" : "NOT met"), maxShallow, maxRatio, 1e3 * maxAbove,
+             BENCH_COUNT_ALLOCATIONS ? maxOwn : -1.0,
+             BENCH_COUNT_ALLOCATIONS ? (maxOwn == 0.0 ? "met" : "NOT met") : "not measured under ASan", maxB2);
     }
 
     if (opt.allocTrace) {
         for (int i = 0; i < g_traceCount; ++i) {
             Dl_info info;
             if (dladdr(g_trace[i], &info) && info.dli_fname)
-                std::printf("# allocation %d called from %s+0x%" PRIxPTR " (%s)\n", i, info.dli_fname,
-                            reinterpret_cast<std::uintptr_t>(g_trace[i]) - reinterpret_cast<std::uintptr_t>(info.dli_fbase),
-                            info.dli_sname ? info.dli_sname : "?");
+                Emit("# allocation %d called from %s+0x%" PRIxPTR " (%s)\n", i, info.dli_fname,
+                     reinterpret_cast<std::uintptr_t>(g_trace[i]) - reinterpret_cast<std::uintptr_t>(info.dli_fbase),
+                     info.dli_sname ? info.dli_sname : "?");
         }
         for (int i = 0; i < g_b2traceCount; ++i) {
-            std::printf("# Box2D allocation %d:", i);
+            Emit("# Box2D allocation %d:", i);
             for (int f = 0; f < kFrames && g_b2trace[i][f]; ++f) {
                 Dl_info info;
                 const char* name = "?";
@@ -1048,13 +1077,18 @@ int main(int argc, char** argv) {
                     dem = abi::__cxa_demangle(info.dli_sname, nullptr, nullptr, &status);
                     name = status == 0 && dem ? dem : info.dli_sname;
                 }
-                std::printf(" <- %s", name);
+                Emit(" <- %s", name);
                 std::free(dem);
             }
-            std::printf("\n");
+            Emit("\n");
         }
     }
 
+    if (g_results != nullptr && std::fclose(g_results) != 0) {
+        std::fprintf(stderr, "bench_box2d_scenes: writing %s/bench_box2d_scenes.csv failed\n", outDir.c_str());
+        return 1;
+    }
+    g_results = nullptr;
     // Checks (the test suite runs --quick): it ran, nothing escaped, contacts were made and measured.
     sample_expect("every configuration ran", !rows.empty());
     sample_expect("every body stays in the container, finite", allOk);

@@ -1,8 +1,9 @@
 // The main demo (README): rough curved bodies — rocks, gears, blobs — falling together with ordinary
 // Box2D boxes and circles into a container with a chain floor, through the Box2D 2.4 bridge at 60 Hz.
 //
-//   b2_demo OUTDIR          runs the scene (scenes.h, SCENE_DEMO) and writes OUTDIR/results.json,
-//                           trajectory.csv, frames/*.svg and final.svg; prints a summary.
+//   b2_demo OUTDIR          runs the scene (the scene table's "demo": scenes.h, SCENE_DEMO) and writes
+//                           OUTDIR/results.json, trajectory.csv, frames/*.svg and final.svg; prints a
+//                           summary.
 //   b2_demo --hash-only     runs the scene twice in this process and checks that the FNV-1a hashes of
 //                           all body transforms over the whole run are identical (determinism).
 //   b2_demo --hash-only --expect-hash HEX
@@ -42,10 +43,10 @@ struct Result {
     bool ok = false;
 };
 
-bool RunDemo(const scene& s, const std::string& dir, bool write, Result* out) {
+// Runs a freshly built demo world to the end.
+bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
+    const scene& s = *run.sc;
     Result res;
-    b2s::Run run;
-    if (!run.Build(s)) return false;
     res.bodies = s.body_count;
     res.shapes = s.shape_count;
     for (int i = 0; i < s.body_count; ++i) res.rough += s.bodies[i].kind == SCENE_ROUGH;
@@ -53,7 +54,7 @@ bool RunDemo(const scene& s, const std::string& dir, bool write, Result* out) {
     FILE* traj = write ? b2s::OpenOut(dir, "trajectory.csv") : nullptr;
     if (write && !traj) return false;
     if (traj) std::fprintf(traj, "step,time,body,name,kind,x,y,angle,vx,vy,w,awake\n");
-    const long nsteps = std::lround(s.duration / s.time_step);
+    const long nsteps = run.entry->stepCount;
     const long frameAt[] = {0, 30, 60, 120, 240};
     b2s::Fnv1a hash;
     res.e0 = b2s::Energy(run);
@@ -171,14 +172,11 @@ int main(int argc, char** argv) {
         } else
             dir = argv[i];
     }
-    static scene s;
-    if (scene_create(SCENE_DEMO, 0, &s) != RUGO_OK) {
-        std::fprintf(stderr, "b2_demo: scene\n");
-        return 1;
-    }
     if (hashOnly) {
         Result a, b;
-        const bool ok = RunDemo(s, dir, false, &a) && RunDemo(s, dir, false, &b);
+        b2s::Run runA, runB;
+        const bool ok = scene_table::Create("demo", 0, &runA) && RunDemo(runA, dir, false, &a) &&
+                        scene_table::Create("demo", 0, &runB) && RunDemo(runB, dir, false, &b);
         std::printf("hash run 1: %016" PRIx64 "\nhash run 2: %016" PRIx64 "\n", a.hash, b.hash);
         sample_expect("both runs completed", ok);
         sample_expect("determinism: identical FNV-1a hashes of all transforms over two runs", ok && a.hash == b.hash);
@@ -189,17 +187,21 @@ int main(int argc, char** argv) {
             sample_expect("determinism: the hash equals the pinned one (same bits across processes and builds)",
                           std::strcmp(got, expectHash) == 0);
         }
-        scene_destroy(&s);
         return sample_finish();
     }
+    b2s::Run run;
+    if (!scene_table::Create("demo", 0, &run)) {
+        std::fprintf(stderr, "b2_demo: scene\n");
+        return 1;
+    }
+    const scene& s = *run.sc;
     if (sample_mkdir((dir + "/frames").c_str()) != 0) {
         std::fprintf(stderr, "b2_demo: cannot create %s\n", dir.c_str());
         return 1;
     }
     Result r;
-    if (!RunDemo(s, dir, true, &r)) {
+    if (!RunDemo(run, dir, true, &r)) {
         sample_expect("demo ran", 0);
-        scene_destroy(&s);
         return sample_finish();
     }
     const double released = r.e0 - r.eFinal;
@@ -257,6 +259,5 @@ int main(int argc, char** argv) {
                      r.eMaxGrowth / r.e0, 0.01);
     sample_expect_le("the pile comes to rest: final kinetic energy / energy released", r.keFinal / released, 0.01);
     sample_expect("rough bodies made rough contacts", r.maxRough > 0);
-    scene_destroy(&s);
     return sample_finish();
 }

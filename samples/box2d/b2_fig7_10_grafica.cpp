@@ -45,14 +45,16 @@ struct Outcome {
     double ballSpeed = NAN, maxSpeed = NAN;
 };
 
-bool RunVariant(int v, const std::string& dir, scene& s, Outcome* out) {
-    if (scene_create(SCENE_GRAFICA, v, &s) != RUGO_OK) return false;
+// desc receives the scene's description, for after the run.
+bool RunVariant(int v, const std::string& dir, std::shared_ptr<const scene>* desc, Outcome* out) {
     Outcome o;
-    o.label = s.label;
     b2s::Record rec;
     {
         b2s::Run run;
-        if (!run.Build(s)) return false;
+        if (!scene_table::Create("fig7_10_grafica", v, &run)) return false;
+        *desc = run.description;
+        const scene& s = *run.sc;
+        o.label = s.label;
         for (const b2Body* b : run.bodies) o.start.push_back({b->GetPosition().x, b->GetPosition().y, b->GetAngle()});
         std::vector<long> frames;
         for (long k = 0; static_cast<double>(k) * s.time_step < s.duration; k += 30) frames.push_back(k);
@@ -77,7 +79,7 @@ bool RunVariant(int v, const std::string& dir, scene& s, Outcome* out) {
     o.released = rec.e0 - o.eFinal;
     o.finalKinetic = rec.finalKinetic;
     o.maxGrowth = rec.maxGrowth;
-    o.minAbove = rec.minY - s.ground_top;
+    o.minAbove = rec.minY - (*desc)->ground_top;
     *out = o;
     return true;
 }
@@ -103,10 +105,10 @@ double PresetMaxMu(rugo_tolerance_preset p) {
 int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : "out/b2_fig7_10_grafica";
     if (sample_mkdir(dir.c_str()) != 0) return 1;
-    static scene s[2];
+    std::shared_ptr<const scene> s[2];
     Outcome o[2];
     for (int v = 0; v < 2; ++v)
-        if (!sample_expect("variant ran", RunVariant(v, dir, s[v], &o[v]))) return sample_finish();
+        if (!sample_expect("variant ran", RunVariant(v, dir, &s[v], &o[v]))) return sample_finish();
 
     FILE* f = b2s::OpenOut(dir, "summary.csv");
     if (f) std::fprintf(f, "variant,body,name,x0,y0,angle0,x,y,angle\n");
@@ -114,19 +116,19 @@ int main(int argc, char** argv) {
                 ("final " + o[1].label + " (x, y, angle)").c_str());
     double sumDp = 0.0, sumDa = 0.0, push[2] = {0.0, 0.0};
     int letters = 0;
-    for (int i = 0; i < s[0].body_count; ++i) {
+    for (int i = 0; i < s[0]->body_count; ++i) {
         const std::size_t u = static_cast<std::size_t>(i);
         for (int v = 0; v < 2; ++v)
             if (f)
-                std::fprintf(f, "%s,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", o[v].label.c_str(), i, s[v].bodies[i].name, o[v].start[u].x,
+                std::fprintf(f, "%s,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", o[v].label.c_str(), i, s[v]->bodies[i].name, o[v].start[u].x,
                              o[v].start[u].y, o[v].start[u].a, o[v].final[u].x, o[v].final[u].y, o[v].final[u].a);
-        if (s[0].bodies[i].is_static) continue;
+        if (s[0]->bodies[i].is_static) continue;
         const double dp = std::hypot(o[0].final[u].x - o[1].final[u].x, o[0].final[u].y - o[1].final[u].y);
         const double da = std::fabs(std::remainder(o[0].final[u].a - o[1].final[u].a, 6.283185307179586));
-        std::printf("%-8s (%6.3f, %6.3f)   (%6.3f, %6.3f, %7.3f)    (%6.3f, %6.3f, %7.3f)    %.4f    %.4f\n", s[0].bodies[i].name,
+        std::printf("%-8s (%6.3f, %6.3f)   (%6.3f, %6.3f, %7.3f)    (%6.3f, %6.3f, %7.3f)    %.4f    %.4f\n", s[0]->bodies[i].name,
                     o[0].start[u].x, o[0].start[u].y, o[0].final[u].x, o[0].final[u].y, o[0].final[u].a, o[1].final[u].x,
                     o[1].final[u].y, o[1].final[u].a, dp, da);
-        if (s[0].bodies[i].role == SCENE_ROLE_OBJECT) {
+        if (s[0]->bodies[i].role == SCENE_ROLE_OBJECT) {
             sumDp += dp;
             sumDa += da;
             for (int v = 0; v < 2; ++v) push[v] += o[v].final[u].x - o[v].start[u].x;
@@ -142,7 +144,7 @@ int main(int argc, char** argv) {
                     "largest step growth %.3g of initial, lowest centre %.3f m above the block's lowest top, deepest overlap beyond "
                     "bands %.4f m (%s-%s), ball ends at %.3f m/s\n",
                     r.label.c_str(), r.meanMu, r.muCount, r.e0, r.eFinal, r.released, r.finalKinetic, r.maxGrowth, r.minAbove,
-                    r.worstOverlap, r.worstA >= 0 ? s[0].bodies[r.worstA].name : "-", r.worstB >= 0 ? s[0].bodies[r.worstB].name : "-",
+                    r.worstOverlap, r.worstA >= 0 ? s[0]->bodies[r.worstA].name : "-", r.worstB >= 0 ? s[0]->bodies[r.worstB].name : "-",
                     r.ballSpeed);
     std::printf("tipo_2 vs tipo_3: mean |d centre| %.4f m, mean |d angle| %.4f rad over %d letters; letters pushed %.4f m vs %.4f m "
                 "on average\n",
@@ -173,6 +175,5 @@ int main(int argc, char** argv) {
                      -(o[0].meanMu - o[1].meanMu - 0.05), 0.0);
     sample_expect_le("less friction, longer pushes: letters' mean x displacement tipo_3 - tipo_2 >= 0.1 m, -(difference - 0.1)",
                      -(push[1] - push[0] - 0.1), 0.0);
-    for (scene& sc : s) scene_destroy(&sc);
     return sample_finish();
 }

@@ -86,22 +86,18 @@ int main(int argc, char** argv) {
     if (f) std::fprintf(f, "level,mean_mu,predicted_mu,contact_samples,mean_slide,final_x0,final_x1,final_x2,max_energy_growth,final_kinetic\n");
     if (ft) std::fprintf(ft, "level,body,mean_lambda,mean_own,mean_mu_of_lambda,predicted_contact_mu,measured_contact_mu,contact_samples\n");
     for (int i = 0; i < 3; ++i) {
-        static scene s;
-        if (!sample_expect("scene built", scene_create(SCENE_LEVELS, variants[i], &s) == RUGO_OK)) return sample_finish();
+        b2s::Run run;
+        if (!sample_expect("scene built", scene_table::Create("fig7_13_levels", variants[i], &run))) return sample_finish();
+        const scene& s = *run.sc;
         b2s::Record rec;
         std::vector<double> bodyMu;
         std::vector<long> bodyMuCount;
         double k0 = 0.0;
-        {
-            b2s::Run run;
-            bool ok = run.Build(s);
-            if (ok)
-                for (const b2Body* b : run.bodies)
-                    if (b->GetType() == b2_dynamicBody) k0 += 0.5 * b->GetMass() * b2s::Speed(b) * b2s::Speed(b);
-            ok = ok && b2s::RunScene(run, dir, std::string("levels_") + s.label, {0, 30, 60, 120}, &rec,
-                                     [&](const b2s::Run& r) { b2s::AddContactMuPerBody(r, &bodyMu, &bodyMuCount); });
-            if (!sample_expect("scene ran", ok)) return sample_finish();
-        }
+        for (const b2Body* b : run.bodies)
+            if (b->GetType() == b2_dynamicBody) k0 += 0.5 * b->GetMass() * b2s::Speed(b) * b2s::Speed(b);
+        const bool ok = b2s::RunScene(run, dir, std::string("levels_") + s.label, {0, 30, 60, 120}, &rec,
+                                      [&](const b2s::Run& r) { b2s::AddContactMuPerBody(r, &bodyMu, &bodyMuCount); });
+        if (!sample_expect("scene ran", ok)) return sample_finish();
         mu[i] = rec.MeanMu();
         const std::vector<b2Vec2>& fin = rec.pos.back();
         const int block = 0;
@@ -141,7 +137,6 @@ int main(int argc, char** argv) {
         sample_expect_le((std::string(s.label) + ": energy never grows, largest step increase / initial").c_str(), rec.maxGrowth, 1e-3);
         sample_expect_le((std::string(s.label) + ": objects come to rest, final kinetic / initial kinetic").c_str(), rec.finalKinetic / k0,
                          0.01);
-        scene_destroy(&s);
     }
     if (f) std::fclose(f);
     if (ft) std::fclose(ft);

@@ -28,18 +28,17 @@ struct PairResult {
 };
 
 bool RunPair(int v, const std::string& dir, PairResult* out) {
-    static scene s;
-    if (scene_create(SCENE_BALL, v, &s) != RUGO_OK) return false;
     PairResult r;
-    r.label = s.label;
     {
         b2s::Run run;
-        if (!run.Build(s)) return false;
+        if (!scene_table::Create("fig7_5_ball", v, &run)) return false;
+        const scene& s = *run.sc;
+        r.label = s.label;
         b2Body* ball = run.bodies[static_cast<std::size_t>(run.Find(SCENE_ROLE_MOVER))];
         FILE* f = b2s::OpenOut(dir, ("ball_" + r.label + ".csv").c_str());
         if (!f) return false;
         std::fprintf(f, "t,x,y,speed,omega,slip,mu,contacts\n");
-        const long n = std::lround(s.duration / s.time_step);
+        const long n = run.entry->stepCount;
         double sum = 0, sum2 = 0, e0 = b2s::Energy(run), ePrev = e0;
         std::vector<double> tr, vr;
         for (long k = 0; k <= n; ++k) {
@@ -87,7 +86,6 @@ bool RunPair(int v, const std::string& dir, PairResult* out) {
         r.stdMu = std::sqrt(std::max(0.0, sum2 / r.samples - r.meanMu * r.meanMu));
         r.rollDecel = -b2s::Slope(tr, vr);
     }
-    scene_destroy(&s);
     *out = r;
     return true;
 }

@@ -20,13 +20,15 @@ struct Sample {
     int contacts;
 };
 
-bool RunVariant(int v, const std::string& dir, std::vector<Sample>* out, scene* s) {
-    if (scene_create(SCENE_THROWN, v, s) != RUGO_OK) return false;
+// desc receives the scene's description, for after the run.
+bool RunVariant(int v, const std::string& dir, std::vector<Sample>* out, std::shared_ptr<const scene>* desc) {
     b2s::Run run;
-    if (!run.Build(*s)) return false;
+    if (!scene_table::Create("fig7_8_thrown", v, &run)) return false;
+    *desc = run.description;
+    const scene* s = run.sc;
     const int im = run.Find(SCENE_ROLE_MOVER), ig = run.Find(SCENE_ROLE_GROUND);
     b2Body* body = run.bodies[static_cast<std::size_t>(im)];
-    const long n = std::lround(s->duration / s->time_step);
+    const long n = run.entry->stepCount;
     const std::string tag = v == 0 ? "a" : "b";
     FILE* f = b2s::OpenOut(dir, ("thrown_" + tag + ".csv").c_str());
     if (!f) return false;
@@ -92,21 +94,21 @@ int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : "out/b2_fig7_8_thrown";
     if (sample_mkdir(dir.c_str()) != 0) return 1;
     std::vector<Sample> a, b;
-    static scene sa, sb;
+    std::shared_ptr<const scene> sa, sb;
     const bool ok = RunVariant(0, dir, &a, &sa) && RunVariant(1, dir, &b, &sb);
     if (!sample_expect("both variants ran", ok)) return sample_finish();
     const double g = 9.81;
     double rough1 = 0, smooth = 0, rough2 = 0;
     int n1 = 0, n2 = 0, n3 = 0;
-    rough1 = Deceleration(b, -10.0, sb.stretch[0], &n1);
-    smooth = Deceleration(b, sb.stretch[0], sb.stretch[1], &n2);
-    rough2 = Deceleration(b, sb.stretch[1], 10.0, &n3);
-    const double predicted = sb.stretch_mu[0] / sb.stretch_mu[1];
+    rough1 = Deceleration(b, -10.0, sb->stretch[0], &n1);
+    smooth = Deceleration(b, sb->stretch[0], sb->stretch[1], &n2);
+    rough2 = Deceleration(b, sb->stretch[1], 10.0, &n3);
+    const double predicted = sb->stretch_mu[0] / sb->stretch_mu[1];
     const double ratio = rough1 / smooth;
     std::printf("Fig. 7.8(b): deceleration rough %.3f m/s^2 (%d samples), smooth %.3f (%d), rough again %.3f (%d)\n",
                 rough1, n1, smooth, n2, rough2, n3);
     std::printf("  friction map: mu rough %.3f, smooth %.3f -> predicted decelerations %.3f, %.3f; ratio %.2f (predicted %.2f)\n",
-                sb.stretch_mu[0], sb.stretch_mu[1], sb.stretch_mu[0] * g, sb.stretch_mu[1] * g, ratio, predicted);
+                sb->stretch_mu[0], sb->stretch_mu[1], sb->stretch_mu[0] * g, sb->stretch_mu[1] * g, ratio, predicted);
     auto stopTime = [](const std::vector<Sample>& s) -> double {
         for (const Sample& p : s)
             if (std::fabs(p.vx) < 0.05 && p.t > 0.2) return p.t;
@@ -133,8 +135,8 @@ int main(int argc, char** argv) {
                      "  \"deceleration\": {\"rough\": %.6f, \"smooth\": %.6f, \"rough_again\": %s},\n"
                      "  \"samples\": [%d, %d, %d], \"mu\": {\"rough\": %.5f, \"smooth\": %.5f},\n"
                      "  \"ratio\": %.5f, \"predicted_ratio\": %.5f}}\n",
-                     stopTime(a), a.back().x, stopTime(b), b.back().x, rough1, smooth, r2.c_str(), n1, n2, n3, sb.stretch_mu[0],
-                     sb.stretch_mu[1], ratio, predicted);
+                     stopTime(a), a.back().x, stopTime(b), b.back().x, rough1, smooth, r2.c_str(), n1, n2, n3, sb->stretch_mu[0],
+                     sb->stretch_mu[1], ratio, predicted);
         std::fclose(f);
     }
     for (int v = 0; v < 2; ++v) {
@@ -153,12 +155,10 @@ int main(int argc, char** argv) {
     }
     sample_expect("(b) enough samples on the first rough stretch and on the smooth one", n1 >= 10 && n2 >= 10);
     sample_expect_le("(b) smooth stretch decelerates at mu_smooth g within 20%: |a/(mu g) - 1|",
-                     std::fabs(smooth / (sb.stretch_mu[1] * g) - 1.0), 0.2);
+                     std::fabs(smooth / (sb->stretch_mu[1] * g) - 1.0), 0.2);
     sample_expect_le("(b) rough stretch decelerates at mu_rough g within 20%: |a/(mu g) - 1|",
-                     std::fabs(rough1 / (sb.stretch_mu[0] * g) - 1.0), 0.2);
+                     std::fabs(rough1 / (sb->stretch_mu[0] * g) - 1.0), 0.2);
     sample_expect_le("(b) decelerates measurably faster on the rough stretch: -(rough/smooth) <= -predicted/2",
                      -ratio, -0.5 * predicted);
-    scene_destroy(&sa);
-    scene_destroy(&sb);
     return sample_finish();
 }

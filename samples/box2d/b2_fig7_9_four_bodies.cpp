@@ -13,17 +13,14 @@
 int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : "out/b2_fig7_9_four_bodies";
     if (sample_mkdir(dir.c_str()) != 0) return 1;
-    static scene s;
-    if (!sample_expect("scene built", scene_create(SCENE_FOUR_BODIES, 0, &s) == RUGO_OK)) return sample_finish();
+    b2s::Run run;
+    if (!sample_expect("scene built", scene_table::Create("fig7_9_four_bodies", 0, &run))) return sample_finish();
+    const scene& s = *run.sc;
     b2s::Record rec;
     std::vector<double> rebound(4, NAN);
-    double released = NAN;
-    {
-        b2s::Run run;
-        bool ok = run.Build(s) && b2s::RunScene(run, dir, "four_bodies", {0, 30, 60, 90, 120, 150, 180, 240, 300}, &rec);
-        if (!sample_expect("scene ran", ok)) return sample_finish();
-        released = rec.e0 - b2s::Energy(run);
-    }
+    const bool ok = b2s::RunScene(run, dir, "four_bodies", {0, 30, 60, 90, 120, 150, 180, 240, 300}, &rec);
+    if (!sample_expect("scene ran", ok)) return sample_finish();
+    const double released = rec.e0 - b2s::Energy(run);
     FILE* f = b2s::OpenOut(dir, "summary.json");
     if (f) std::fprintf(f, "{\"bodies\": [");
     for (int i = 0; i < 4; ++i) {
@@ -49,6 +46,5 @@ int main(int argc, char** argv) {
     sample_expect_le("energy never grows beyond position correction: largest step increase / initial", rec.maxGrowth, 1e-2);
     sample_expect_le("bodies come to rest: final kinetic / released", rec.finalKinetic / released, 0.01);
     sample_expect("restitution: the e = 0.85 body rebounds higher than the e = 0.10 body", rebound[3] > rebound[0]);
-    scene_destroy(&s);
     return sample_finish();
 }

@@ -1,11 +1,12 @@
-// Helpers shared by the headless Box2D samples (b2_*.cpp): build a scene (scenes.h) in a b2World through
-// the bridge, step it, measure it (energy, contacts, penetration, FNV-1a hash of transforms) and draw SVG
+// Helpers shared by the headless Box2D samples (b2_*.cpp): measure a scene of the scene table
+// (scene_table.hpp) as it runs (energy, contacts, penetration, FNV-1a hash of transforms) and draw SVG
 // frames with the samples' SVG writer. Header-only; C++17.
 #ifndef RUGO_SAMPLES_B2_SAMPLE_HPP
 #define RUGO_SAMPLES_B2_SAMPLE_HPP
 
 #include "rugo/box2d.hpp"
 
+#include "scene_table.hpp"
 #include "scenes.h"
 extern "C" {
 #include "sample_check.h"
@@ -24,100 +25,8 @@ extern "C" {
 
 namespace b2s {
 
-constexpr int kVelocityIterations = 8;
-constexpr int kPositionIterations = 3;
-
-// A scene living in a b2World. The bridge is destroyed before the world (box2d.hpp: lifetime).
-struct Run {
-    const scene* sc = nullptr;
-    std::unique_ptr<b2World> world;
-    std::unique_ptr<rugo::Bridge> bridge;
-    std::vector<b2Body*> bodies;  // index = scene body index (creation order)
-    std::vector<double> bands;    // widest band of each body at its contact level (0: ordinary)
-    double time = 0.0;
-    long steps = 0;
-
-    Run() = default;
-    Run(const Run&) = delete;
-    Run& operator=(const Run&) = delete;
-    ~Run() {
-        bridge.reset();
-        world.reset();
-    }
-
-    // Builds every body of the scene; false (with a message) if the bridge refuses one.
-    bool Build(const scene& s, const rugo::BridgeDef& def = rugo::BridgeDef()) {
-        sc = &s;
-        world = std::make_unique<b2World>(b2Vec2(static_cast<float>(s.gravity.x), static_cast<float>(s.gravity.y)));
-        bridge = std::make_unique<rugo::Bridge>(world.get(), def);
-        for (int i = 0; i < s.body_count; ++i) {
-            const scene_body& sb = s.bodies[i];
-            b2BodyDef bd;
-            bd.type = sb.is_static ? b2_staticBody : b2_dynamicBody;
-            bd.position.Set(static_cast<float>(sb.transform.p.x), static_cast<float>(sb.transform.p.y));
-            bd.angle = static_cast<float>(std::atan2(sb.transform.q.s, sb.transform.q.c));
-            b2Body* body = world->CreateBody(&bd);
-            double band = 0.0;
-            if (sb.kind == SCENE_ROUGH) {
-                rugo::RoughBodyDef rd;
-                rd.shape = sb.shape;
-                rd.density = sb.density;
-                rd.level = sb.level;
-                const rugo_status st = bridge->Attach(body, rd);
-                if (st != RUGO_OK) {
-                    std::fprintf(stderr, "Attach(%s): %s\n", sb.name, rugo_status_string(st));
-                    return false;
-                }
-                band = scene_max_band(sb.shape, sb.level);
-            } else {
-                b2FixtureDef fd;
-                fd.density = static_cast<float>(sb.density);
-                fd.friction = static_cast<float>(sb.friction);
-                fd.restitution = static_cast<float>(sb.restitution);
-                b2PolygonShape box;
-                b2CircleShape circle;
-                b2ChainShape chain;
-                std::vector<b2Vec2> v;
-                if (sb.kind == SCENE_BOX) {
-                    box.SetAsBox(static_cast<float>(sb.half_extents.x), static_cast<float>(sb.half_extents.y));
-                    fd.shape = &box;
-                } else if (sb.kind == SCENE_CIRCLE) {
-                    circle.m_radius = static_cast<float>(sb.radius);
-                    fd.shape = &circle;
-                } else {
-                    for (int k = 0; k < sb.chain_count; ++k)
-                        v.emplace_back(static_cast<float>(sb.chain[k].x), static_cast<float>(sb.chain[k].y));
-                    const b2Vec2 prev = v[0] + (v[0] - v[1]), next = v.back() + (v.back() - v[v.size() - 2]);
-                    chain.CreateChain(v.data(), static_cast<int32>(v.size()), prev, next);
-                    fd.shape = &chain;
-                }
-                body->CreateFixture(&fd);
-            }
-            body->SetLinearVelocity(b2Vec2(static_cast<float>(sb.linear_velocity.x), static_cast<float>(sb.linear_velocity.y)));
-            body->SetAngularVelocity(static_cast<float>(sb.angular_velocity));
-            bodies.push_back(body);
-            bands.push_back(band);
-        }
-        return true;
-    }
-
-    void Step() {
-        bridge->Step(static_cast<float>(sc->time_step), kVelocityIterations, kPositionIterations);
-        time += sc->time_step;
-        ++steps;
-    }
-
-    int Index(const b2Body* b) const {
-        for (std::size_t i = 0; i < bodies.size(); ++i)
-            if (bodies[i] == b) return static_cast<int>(i);
-        return -1;
-    }
-    int Find(scene_role role, int nth = 0) const {
-        for (int i = 0; i < sc->body_count; ++i)
-            if (sc->bodies[i].role == role && nth-- == 0) return i;
-        return -1;
-    }
-};
+// A scene of the scene table living in a b2World (scene_table.hpp): what every helper here measures.
+using Run = scene_table::World;
 
 // Kinetic plus potential energy of the dynamic bodies (J), potential from the scene's gravity.
 inline double Energy(const Run& r) {
@@ -204,23 +113,11 @@ inline void AddContactMuPerBody(const Run& r, std::vector<double>* sum, std::vec
     }
 }
 
-// FNV-1a over the float bits of (x, y, angle) of every body, in creation order (as Box2D's own
-// determinism test hashes transforms).
+// FNV-1a over the float bits of (x, y, angle) of every body, in creation order (scene_table's hash),
+// continued step after step.
 struct Fnv1a {
     std::uint64_t h = SAMPLE_FNV_OFFSET;
-    void Bytes(const void* p, std::size_t n) { h = sample_fnv1a(h, p, n); }
-    void Float(float f) {
-        std::uint32_t u;
-        std::memcpy(&u, &f, sizeof u);
-        Bytes(&u, sizeof u);
-    }
-    void Bodies(const Run& r) {
-        for (const b2Body* b : r.bodies) {
-            Float(b->GetPosition().x);
-            Float(b->GetPosition().y);
-            Float(b->GetAngle());
-        }
-    }
+    void Bodies(const Run& r) { h = scene_table::HashBodies(h, r); }
 };
 
 // ---- SVG frames ------------------------------------------------------------------------------
@@ -343,7 +240,7 @@ inline bool RunScene(Run& run, const std::string& dir, const std::string& prefix
     FILE* f = OpenOut(dir, (prefix + ".csv").c_str());
     if (!f) return false;
     std::fprintf(f, "t,body,name,x,y,angle,vx,vy,w\n");
-    const long n = std::lround(s.duration / s.time_step);
+    const long n = run.entry->stepCount;
     rec->e0 = Energy(run);
     double ePrev = rec->e0;
     for (long k = 0; k <= n; ++k) {

@@ -7,9 +7,8 @@
 //   b2_demo --hash-only     runs the scene twice in this process and checks that the FNV-1a hashes of
 //                           all body transforms over the whole run are identical (determinism).
 //   b2_demo --hash-only --expect-hash HEX
-//                           and that they equal HEX: the test registration pins the hash, in the normal
-//                           and the sanitizer build alike, so the bits are the same across processes
-//                           and builds, not only within one process.
+//                           and that they equal HEX (by hand; the determinism test,
+//                           tests/test_determinism.cpp, pins the hash of the same scene).
 //
 // Checks (each printed with its value): nothing leaves the container or falls through the floor; no
 // true-curve penetration beyond the bands + 2 b2_linearSlop; total mechanical energy never grows beyond

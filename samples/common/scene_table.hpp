@@ -23,11 +23,12 @@ namespace scene_table {
 
 struct Entry;
 
-// What a scene is built from besides its name. Only the pile reads more than the variant.
+// What a scene is built from besides its name. Only the pile reads more than the variant; its default
+// size is the benchmark's first row (N = 16 at S = 64), where the automatic level is not the finest.
 struct Args {
     int variant = 0;        // 0 .. Entry::variants - 1
     int bodies = 16;        // the pile: N bodies
-    int segments = 32;      // the pile: S control points per shape
+    int segments = 64;      // the pile: S control points per shape
     int maxProxyLevel = -1; // the pile: BridgeDef::maxProxyLevel (-1: the bridge's default)
     bool continuous = true; // the pile: Box2D's continuous collision
     // The pile: its shapes of `segments` control points when built before (the benchmark builds them

@@ -4,7 +4,7 @@
  * (every body every 0.1 s), frames four_bodies_<step>.svg and summary.json. Also the simulator's
  * determinism test: the scene is run a second time in the same process and the FNV-1a hash over the
  * double bits of every body's transform after every step (sim_sample.h) must be identical; the hash is
- * printed, and pinned by the test registration (--expect-hash).
+ * printed (tests/test_determinism.cpp pins it).
  *
  * Checks, each with its reason:
  *  - nothing falls through: no centre below the block's lowest valley (scene.ground_top) and no free
@@ -14,9 +14,8 @@
  *    discretisation of symplectic Euler allows for resting contact (sim_micro_growth_bound);
  *  - the bodies come to rest: final kinetic energy < 1% of the energy released;
  *  - restitution shows: the ε = 0.85 body rebounds higher after its first impact than the ε = 0.10 body;
- *  - determinism: two runs give the same hash; with --expect-hash HEX (the test registration pins it, in
- *    the normal and the sanitizer build alike) it must also equal HEX, so a change of trajectory between
- *    processes, builds or commits is caught, not only within one process. */
+ *  - determinism: two runs give the same hash; with --expect-hash HEX (a check by hand) it must also equal
+ *    HEX. */
 #include "sample_check.h"
 #include "sim_sample.h"
 

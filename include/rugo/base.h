@@ -41,6 +41,18 @@
 #include <math.h>
 #include <stddef.h>
 
+/** Marks the public API: every function declared in include/rugo/ and the Box2D bridge's class
+ * carry it. librugo, rugo::fit and rugo::box2d are compiled with hidden default visibility, so a shared
+ * library exports exactly what is marked so and none of the internals (the rugo__ helpers): its symbol
+ * table is the documented API, and calls between internals need no dynamic lookup. With GCC and clang
+ * it is the default-visibility attribute; elsewhere it is empty, and the libraries are meant to be
+ * built static there. */
+#if defined(__GNUC__) || defined(__clang__)
+#define RUGO_API __attribute__((visibility("default")))
+#else
+#define RUGO_API
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -115,7 +127,7 @@ typedef enum rugo_status {
 
 /** A short constant English name for a status, e.g. "self-intersecting outline". The string is static
  * (never free it); an unknown value gives a generic name. Never NULL, never fails. */
-const char* rugo_status_string(rugo_status status);
+RUGO_API const char* rugo_status_string(rugo_status status);
 
 /** Largest control-point count any function accepts (2^20): bounds memory use on hostile input
  * (RUGO_ERR_TOO_MANY_POINTS beyond it). */
@@ -136,11 +148,11 @@ typedef struct rugo_allocator {
 } rugo_allocator;
 
 /** The malloc/free allocator (ctx NULL). Never fails. */
-rugo_allocator rugo_default_allocator(void);
+RUGO_API rugo_allocator rugo_default_allocator(void);
 
 /** The version of the linked library, "MAJOR.MINOR.PATCH" (a static string; never NULL), for checking
  * that headers and library agree: compare with RUGO_VERSION_STRING. */
-const char* rugo_version_string(void);
+RUGO_API const char* rugo_version_string(void);
 
 /** The vector (x, y). Inline, like the small vector helpers below, so that hot loops stay cheap;
  * none of them checks for NaN (NaN in, NaN out). */

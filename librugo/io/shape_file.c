@@ -19,9 +19,9 @@ __attribute__((format(printf, 6, 7)))
 #endif
 static rugo_status
 field_error(rugo_parse_error* e, rugo_status status, const char* text, size_t length,
-            const rugo_json_value* at, const char* fmt, ...) {
+            const rugo__json_value* at, const char* fmt, ...) {
     if (e == NULL) return status;
-    if (at != NULL) rugo_json_locate(text, length, at->offset, &e->line, &e->column);
+    if (at != NULL) rugo__json_locate(text, length, at->offset, &e->line, &e->column);
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(e->message, sizeof e->message, fmt, ap);
@@ -41,7 +41,7 @@ set_path(rugo_parse_error* e, const char* fmt, ...) {
     va_end(ap);
 }
 
-static void copy_json_error(rugo_parse_error* e, const rugo_json_error* je) {
+static void copy_json_error(rugo_parse_error* e, const rugo__json_error* je) {
     if (e == NULL) return;
     e->line = je->line;
     e->column = je->column;
@@ -53,34 +53,34 @@ static void copy_json_error(rugo_parse_error* e, const rugo_json_error* je) {
 }
 
 /* "a number", "an array", "null", ... for "found ..." messages. */
-static const char* a_type(rugo_json_type t) {
+static const char* a_type(rugo__json_type t) {
     switch (t) {
-    case RUGO_JSON_NULL:
+    case RUGO__JSON_NULL:
         return "null";
-    case RUGO_JSON_BOOL:
+    case RUGO__JSON_BOOL:
         return "a boolean";
-    case RUGO_JSON_NUMBER:
+    case RUGO__JSON_NUMBER:
         return "a number";
-    case RUGO_JSON_STRING:
+    case RUGO__JSON_STRING:
         return "a string";
-    case RUGO_JSON_ARRAY:
+    case RUGO__JSON_ARRAY:
         return "an array";
-    case RUGO_JSON_OBJECT:
+    case RUGO__JSON_OBJECT:
         return "an object";
     }
     return "a value";
 }
 
 /* The JSON member `key` of the top-level object, which must occur exactly once unless optional. */
-static rugo_status find_member(const rugo_json_doc* doc, const char* text, size_t length, const char* key,
-                               int optional, const rugo_json_value** out, rugo_parse_error* e) {
-    const rugo_json_value* root = doc->root;
+static rugo_status find_member(const rugo__json_doc* doc, const char* text, size_t length, const char* key,
+                               int optional, const rugo__json_value** out, rugo_parse_error* e) {
+    const rugo__json_value* root = doc->root;
     *out = NULL;
-    if (root->type != RUGO_JSON_OBJECT)
+    if (root->type != RUGO__JSON_OBJECT)
         return field_error(e, RUGO_ERR_BAD_FIELD, text, length, root,
                            "expected a JSON object at the top level, found %s", a_type(root->type));
     int matches = 0;
-    const rugo_json_value* v = rugo_json_object_get(root, key, &matches);
+    const rugo__json_value* v = rugo__json_object_get(root, key, &matches);
     if (matches > 1) {
         set_path(e, "%s", key);
         return field_error(e, RUGO_ERR_BAD_FIELD, text, length, v, "field \"%s\" appears %d times", key,
@@ -95,12 +95,12 @@ static rugo_status find_member(const rugo_json_doc* doc, const char* text, size_
 }
 
 /* Reads an array of [x, y] pairs into a new point array (NULL when empty). */
-static rugo_status read_points(const rugo_json_value* arr, const char* key, const char* text, size_t length,
+static rugo_status read_points(const rugo__json_value* arr, const char* key, const char* text, size_t length,
                                const rugo_allocator* allocator, rugo_vec2** points, int* count,
                                rugo_parse_error* e) {
     *points = NULL;
     *count = 0;
-    if (arr->type != RUGO_JSON_ARRAY) {
+    if (arr->type != RUGO__JSON_ARRAY) {
         set_path(e, "%s", key);
         return field_error(e, RUGO_ERR_BAD_FIELD, text, length, arr,
                            "expected an array of [x, y] pairs, found %s", a_type(arr->type));
@@ -118,9 +118,9 @@ static rugo_status read_points(const rugo_json_value* arr, const char* key, cons
         if (pts == NULL) return field_error(e, RUGO_ERR_OUT_OF_MEMORY, text, length, NULL, "out of memory");
     }
     int i = 0;
-    for (const rugo_json_value* p = arr->u.first; p != NULL; p = p->next, ++i) {
+    for (const rugo__json_value* p = arr->u.first; p != NULL; p = p->next, ++i) {
         rugo_status s = RUGO_OK;
-        if (p->type != RUGO_JSON_ARRAY) {
+        if (p->type != RUGO__JSON_ARRAY) {
             set_path(e, "%s[%d]", key, i);
             s = field_error(e, RUGO_ERR_BAD_FIELD, text, length, p, "expected an [x, y] pair, found %s",
                             a_type(p->type));
@@ -130,9 +130,9 @@ static rugo_status read_points(const rugo_json_value* arr, const char* key, cons
                             "expected an [x, y] pair, found an array of %lu element%s",
                             (unsigned long)p->count, p->count == 1 ? "" : "s");
         } else {
-            const rugo_json_value* c = p->u.first;
+            const rugo__json_value* c = p->u.first;
             for (int j = 0; j < 2 && s == RUGO_OK; ++j, c = c->next) {
-                if (c->type != RUGO_JSON_NUMBER) {
+                if (c->type != RUGO__JSON_NUMBER) {
                     set_path(e, "%s[%d][%d]", key, i, j);
                     s = field_error(e, RUGO_ERR_BAD_FIELD, text, length, c, "expected a number, found %s",
                                     a_type(c->type));
@@ -159,9 +159,9 @@ static rugo_status read_points(const rugo_json_value* arr, const char* key, cons
 }
 
 static rugo_status parse_doc(const char* text, size_t length, const rugo_allocator* allocator,
-                             rugo_json_doc* doc, rugo_parse_error* e) {
-    rugo_json_error je;
-    rugo_status s = rugo_json_parse(text, length, allocator, NULL, doc, &je);
+                             rugo__json_doc* doc, rugo_parse_error* e) {
+    rugo__json_error je;
+    rugo_status s = rugo__json_parse(text, length, allocator, NULL, doc, &je);
     if (s != RUGO_OK) copy_json_error(e, &je);
     return s;
 }
@@ -176,13 +176,13 @@ rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
         if (error != NULL) snprintf(error->message, sizeof error->message, "a required argument is NULL");
         return RUGO_ERR_NULL_ARGUMENT;
     }
-    rugo_json_doc doc;
+    rugo__json_doc doc;
     rugo_status s = parse_doc(text, length, allocator, &doc, error);
     if (s != RUGO_OK) return s;
-    const rugo_json_value* arr = NULL;
+    const rugo__json_value* arr = NULL;
     s = find_member(&doc, text, length, key, 0, &arr, error);
     if (s == RUGO_OK) s = read_points(arr, key, text, length, allocator, points, count, error);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     return s;
 }
 
@@ -346,10 +346,10 @@ typedef struct rctx {
 
 /* Member `key` of object `obj` (whose path is `prefix`), NULL if absent; a repeated member is
  * BAD_FIELD. */
-static rugo_status member(const rctx* c, const rugo_json_value* obj, const char* prefix, const char* key,
-                          const rugo_json_value** out) {
+static rugo_status member(const rctx* c, const rugo__json_value* obj, const char* prefix, const char* key,
+                          const rugo__json_value** out) {
     int matches = 0;
-    *out = rugo_json_object_get(obj, key, &matches);
+    *out = rugo__json_object_get(obj, key, &matches);
     if (matches > 1) {
         set_path(c->e, "%s.%s", prefix, key);
         return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, *out,
@@ -359,7 +359,7 @@ static rugo_status member(const rctx* c, const rugo_json_value* obj, const char*
 }
 
 /* BAD_FIELD unless v has type t; `what` describes the expected value ("a number", ...). */
-static rugo_status want_type(const rctx* c, const rugo_json_value* v, rugo_json_type t, const char* path,
+static rugo_status want_type(const rctx* c, const rugo__json_value* v, rugo__json_type t, const char* path,
                              const char* what) {
     if (v->type == t) return RUGO_OK;
     set_path(c->e, "%s", path);
@@ -367,14 +367,14 @@ static rugo_status want_type(const rctx* c, const rugo_json_value* v, rugo_json_
                        a_type(v->type));
 }
 
-static rugo_status number_member(const rctx* c, const rugo_json_value* obj, const char* prefix,
+static rugo_status number_member(const rctx* c, const rugo__json_value* obj, const char* prefix,
                                  const char* key, rugo_real* out) {
-    const rugo_json_value* v = NULL;
+    const rugo__json_value* v = NULL;
     rugo_status s = member(c, obj, prefix, key, &v);
     if (s != RUGO_OK || v == NULL) return s;
     char path[64];
     snprintf(path, sizeof path, "%s.%s", prefix, key);
-    s = want_type(c, v, RUGO_JSON_NUMBER, path, "a number");
+    s = want_type(c, v, RUGO__JSON_NUMBER, path, "a number");
     if (s != RUGO_OK) return s;
     if (!isfinite(v->u.number)) { /* the reader refuses these already */
         set_path(c->e, "%s", path);
@@ -386,16 +386,17 @@ static rugo_status number_member(const rctx* c, const rugo_json_value* obj, cons
 
 /* A string member matched against names[0..count) (exact bytes; an embedded NUL never matches).
  * Unknown names are BAD_FIELD with the list of valid ones. *present tells whether it was there. */
-static rugo_status name_member(const rctx* c, const rugo_json_value* obj, const char* prefix, const char* key,
-                               const char* const* names, int count, int* index, int* present) {
-    const rugo_json_value* v = NULL;
+static rugo_status name_member(const rctx* c, const rugo__json_value* obj, const char* prefix,
+                               const char* key, const char* const* names, int count, int* index,
+                               int* present) {
+    const rugo__json_value* v = NULL;
     *present = 0;
     rugo_status s = member(c, obj, prefix, key, &v);
     if (s != RUGO_OK || v == NULL) return s;
     *present = 1;
     char path[64];
     snprintf(path, sizeof path, "%s.%s", prefix, key);
-    s = want_type(c, v, RUGO_JSON_STRING, path, "a name string");
+    s = want_type(c, v, RUGO__JSON_STRING, path, "a name string");
     if (s != RUGO_OK) return s;
     for (int i = 0; i < count; ++i)
         if (strlen(v->u.string) == v->count && strcmp(v->u.string, names[i]) == 0) {
@@ -410,7 +411,7 @@ static rugo_status name_member(const rctx* c, const rugo_json_value* obj, const 
         if (n < 0 || (size_t)n >= sizeof list - len) break;
         len += (size_t)n;
     }
-    rugo_json_quote_for_message(v->u.string, v->count, quoted, sizeof quoted);
+    rugo__json_quote_for_message(v->u.string, v->count, quoted, sizeof quoted);
     set_path(c->e, "%s", path);
     return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, v,
                        "unknown %s \"%s\" (expected one of %s)", key, quoted, list);
@@ -418,8 +419,8 @@ static rugo_status name_member(const rctx* c, const rugo_json_value* obj, const 
 
 /* The seed: an integer in plain digits, 0..RUGO_MAX_FILE_SEED. Read from the text itself, because a
  * double cannot tell 9007199254740993 from 2^53 or 1e3 from 1000. */
-static rugo_status seed_value(const rctx* c, const rugo_json_value* v, uint64_t* out) {
-    rugo_status s = want_type(c, v, RUGO_JSON_NUMBER, "roughness.seed", "an integer");
+static rugo_status seed_value(const rctx* c, const rugo__json_value* v, uint64_t* out) {
+    rugo_status s = want_type(c, v, RUGO__JSON_NUMBER, "roughness.seed", "an integer");
     if (s != RUGO_OK) return s;
     size_t i = v->offset;
     uint64_t x = 0;
@@ -451,8 +452,8 @@ static rugo_status seed_value(const rctx* c, const rugo_json_value* v, uint64_t*
 }
 
 /* "ranges": an array of {"from", "to", "tolerance"} objects (unknown members ignored). */
-static rugo_status read_ranges(const rctx* c, const rugo_json_value* arr, rugo_roughness_desc* r) {
-    rugo_status s = want_type(c, arr, RUGO_JSON_ARRAY, "roughness.ranges",
+static rugo_status read_ranges(const rctx* c, const rugo__json_value* arr, rugo_roughness_desc* r) {
+    rugo_status s = want_type(c, arr, RUGO__JSON_ARRAY, "roughness.ranges",
                               "an array of {\"from\", \"to\", \"tolerance\"} objects");
     if (s != RUGO_OK) return s;
     if (arr->count > (uint32_t)RUGO_MAX_ROUGHNESS_RANGES) {
@@ -470,13 +471,13 @@ static rugo_status read_ranges(const rctx* c, const rugo_json_value* arr, rugo_r
     }
     static const char* const names[3] = {"from", "to", "tolerance"};
     int i = 0;
-    for (const rugo_json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
+    for (const rugo__json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
         char prefix[48];
         snprintf(prefix, sizeof prefix, "roughness.ranges[%d]", i);
-        s = want_type(c, x, RUGO_JSON_OBJECT, prefix, "a range {\"from\", \"to\", \"tolerance\"}");
+        s = want_type(c, x, RUGO__JSON_OBJECT, prefix, "a range {\"from\", \"to\", \"tolerance\"}");
         rugo_real v[3] = {0.0, 0.0, 0.0};
         for (int k = 0; k < 3 && s == RUGO_OK; ++k) {
-            const rugo_json_value* mv = NULL;
+            const rugo__json_value* mv = NULL;
             s = member(c, x, prefix, names[k], &mv);
             if (s == RUGO_OK && mv == NULL) {
                 set_path(c->e, "%s.%s", prefix, names[k]);
@@ -493,7 +494,7 @@ static rugo_status read_ranges(const rctx* c, const rugo_json_value* arr, rugo_r
         int which = -1;
         s = range_check(&g[i], &which, msg, sizeof msg);
         if (s != RUGO_OK) {
-            const rugo_json_value* at = x;
+            const rugo__json_value* at = x;
             if (which >= 0) {
                 member(c, x, prefix, names[which], &at);
                 set_path(c->e, "%s.%s", prefix, names[which]);
@@ -514,9 +515,9 @@ static rugo_status read_ranges(const rctx* c, const rugo_json_value* arr, rugo_r
 }
 
 /* "profile": an array of [s, tolerance] pairs. */
-static rugo_status read_profile(const rctx* c, const rugo_json_value* arr, rugo_roughness_desc* r) {
+static rugo_status read_profile(const rctx* c, const rugo__json_value* arr, rugo_roughness_desc* r) {
     rugo_status s =
-        want_type(c, arr, RUGO_JSON_ARRAY, "roughness.profile", "an array of [s, tolerance] pairs");
+        want_type(c, arr, RUGO__JSON_ARRAY, "roughness.profile", "an array of [s, tolerance] pairs");
     if (s != RUGO_OK) return s;
     if (arr->count > (uint32_t)RUGO_MAX_PROFILE_SAMPLES) {
         set_path(c->e, "roughness.profile");
@@ -534,10 +535,10 @@ static rugo_status read_profile(const rctx* c, const rugo_json_value* arr, rugo_
     if (p == NULL)
         return field_error(c->e, RUGO_ERR_OUT_OF_MEMORY, c->text, c->length, NULL, "out of memory");
     int i = 0;
-    for (const rugo_json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
-        if (x->type != RUGO_JSON_ARRAY || x->count != 2) {
+    for (const rugo__json_value* x = arr->u.first; x != NULL && s == RUGO_OK; x = x->next, ++i) {
+        if (x->type != RUGO__JSON_ARRAY || x->count != 2) {
             set_path(c->e, "roughness.profile[%d]", i);
-            if (x->type != RUGO_JSON_ARRAY)
+            if (x->type != RUGO__JSON_ARRAY)
                 s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, x,
                                 "expected an [s, tolerance] pair, found %s", a_type(x->type));
             else
@@ -546,9 +547,9 @@ static rugo_status read_profile(const rctx* c, const rugo_json_value* arr, rugo_
                                 (unsigned long)x->count, x->count == 1 ? "" : "s");
             break;
         }
-        const rugo_json_value* e2[2] = {x->u.first, x->u.first->next};
+        const rugo__json_value* e2[2] = {x->u.first, x->u.first->next};
         for (int k = 0; k < 2 && s == RUGO_OK; ++k)
-            if (e2[k]->type != RUGO_JSON_NUMBER) {
+            if (e2[k]->type != RUGO__JSON_NUMBER) {
                 set_path(c->e, "roughness.profile[%d][%d]", i, k);
                 s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, e2[k],
                                 "expected a number, found %s", a_type(e2[k]->type));
@@ -575,10 +576,10 @@ static rugo_status read_profile(const rctx* c, const rugo_json_value* arr, rugo_
 }
 
 /* The finest tolerances: exactly one of "preset", "tolerances", "constant", "ranges", "profile". */
-static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* obj, int n,
+static rugo_status read_tolerance_source(const rctx* c, const rugo__json_value* obj, int n,
                                          rugo_roughness_desc* r) {
     static const char* const keys[5] = {"preset", "tolerances", "constant", "ranges", "profile"};
-    const rugo_json_value* v[5];
+    const rugo__json_value* v[5];
     int found = 0, first = -1, second = -1;
     for (int k = 0; k < 5; ++k) {
         rugo_status s = member(c, obj, "roughness", keys[k], &v[k]);
@@ -632,8 +633,8 @@ static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* o
         r->constant = x;
         return RUGO_OK;
     }
-    const rugo_json_value* arr = v[1];
-    rugo_status s = want_type(c, arr, RUGO_JSON_ARRAY, "roughness.tolerances", "an array of tolerances");
+    const rugo__json_value* arr = v[1];
+    rugo_status s = want_type(c, arr, RUGO__JSON_ARRAY, "roughness.tolerances", "an array of tolerances");
     if (s != RUGO_OK) return s;
     if ((long)arr->count != (long)n) {
         set_path(c->e, "roughness.tolerances");
@@ -648,8 +649,8 @@ static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* o
             return field_error(c->e, RUGO_ERR_OUT_OF_MEMORY, c->text, c->length, NULL, "out of memory");
     }
     int i = 0;
-    for (const rugo_json_value* x = arr->u.first; x != NULL; x = x->next, ++i) {
-        if (x->type != RUGO_JSON_NUMBER) {
+    for (const rugo__json_value* x = arr->u.first; x != NULL; x = x->next, ++i) {
+        if (x->type != RUGO__JSON_NUMBER) {
             set_path(c->e, "roughness.tolerances[%d]", i);
             s = field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, x, "expected a number, found %s",
                             a_type(x->type));
@@ -673,11 +674,11 @@ static rugo_status read_tolerance_source(const rctx* c, const rugo_json_value* o
     return RUGO_OK;
 }
 
-static rugo_status read_friction(const rctx* c, const rugo_json_value* obj, rugo_roughness_desc* r) {
-    const rugo_json_value* v = NULL;
+static rugo_status read_friction(const rctx* c, const rugo__json_value* obj, rugo_roughness_desc* r) {
+    const rugo__json_value* v = NULL;
     rugo_status s = member(c, obj, "roughness", "friction", &v);
     if (s != RUGO_OK || v == NULL) return s;
-    s = want_type(c, v, RUGO_JSON_OBJECT, "roughness.friction", "an object {\"alpha\", \"lambda_min\", \"base\"}");
+    s = want_type(c, v, RUGO__JSON_OBJECT, "roughness.friction", "an object {\"alpha\", \"lambda_min\", \"base\"}");
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "alpha", &r->friction.alpha);
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "lambda_min", &r->friction.lambda_min);
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "base", &r->friction.base);
@@ -694,11 +695,11 @@ static rugo_status read_friction(const rctx* c, const rugo_json_value* obj, rugo
     return RUGO_OK;
 }
 
-static rugo_status read_restitution(const rctx* c, const rugo_json_value* obj, rugo_roughness_desc* r) {
-    const rugo_json_value* v = NULL;
+static rugo_status read_restitution(const rctx* c, const rugo__json_value* obj, rugo_roughness_desc* r) {
+    const rugo__json_value* v = NULL;
     rugo_status s = member(c, obj, "roughness", "restitution", &v);
     if (s != RUGO_OK || v == NULL) return s;
-    s = want_type(c, v, RUGO_JSON_OBJECT, "roughness.restitution",
+    s = want_type(c, v, RUGO__JSON_OBJECT, "roughness.restitution",
                   "an object {\"epsilon\", \"epsilon_max\"}");
     if (s == RUGO_OK) s = number_member(c, v, "roughness.restitution", "epsilon", &r->restitution.epsilon);
     if (s == RUGO_OK)
@@ -715,13 +716,13 @@ static rugo_status read_restitution(const rctx* c, const rugo_json_value* obj, r
     return RUGO_OK;
 }
 
-static rugo_status read_perturbation(const rctx* c, const rugo_json_value* obj, int n,
+static rugo_status read_perturbation(const rctx* c, const rugo__json_value* obj, int n,
                                      rugo_roughness_desc* r) {
     static const char* const prefix = "roughness.perturbation";
-    const rugo_json_value* v = NULL;
+    const rugo__json_value* v = NULL;
     rugo_status s = member(c, obj, "roughness", "perturbation", &v);
     if (s != RUGO_OK || v == NULL) return s;
-    s = want_type(c, v, RUGO_JSON_OBJECT, prefix, "an object {\"method\", \"levels\", \"control_points\"}");
+    s = want_type(c, v, RUGO__JSON_OBJECT, prefix, "an object {\"method\", \"levels\", \"control_points\"}");
     if (s != RUGO_OK) return s;
     static const char* const methods[2] = {"wavelet", "local"};
     int index = 0, present = 0;
@@ -731,9 +732,9 @@ static rugo_status read_perturbation(const rctx* c, const rugo_json_value* obj, 
         set_path(c->e, "%s.method", prefix);
         return field_error(c->e, RUGO_ERR_BAD_FIELD, c->text, c->length, v, "missing field \"method\"");
     }
-    const rugo_json_value* lv = NULL;
+    const rugo__json_value* lv = NULL;
     if ((s = member(c, v, prefix, "levels", &lv)) != RUGO_OK) return s;
-    if (lv == NULL || lv->type != RUGO_JSON_NUMBER || !(lv->u.number >= 1.0) ||
+    if (lv == NULL || lv->type != RUGO__JSON_NUMBER || !(lv->u.number >= 1.0) ||
         !(lv->u.number <= (double)RUGO_MAX_PERTURBATION_LEVELS) || lv->u.number != floor(lv->u.number)) {
         set_path(c->e, "%s.levels", prefix);
         if (lv == NULL)
@@ -742,7 +743,7 @@ static rugo_status read_perturbation(const rctx* c, const rugo_json_value* obj, 
                            "expected an integer from 1 to %d", RUGO_MAX_PERTURBATION_LEVELS);
     }
     int levels = (int)lv->u.number;
-    const rugo_json_value* cp = NULL;
+    const rugo__json_value* cp = NULL;
     if ((s = member(c, v, prefix, "control_points", &cp)) != RUGO_OK) return s;
     if (cp == NULL) {
         set_path(c->e, "%s.control_points", prefix);
@@ -770,11 +771,11 @@ static rugo_status read_perturbation(const rctx* c, const rugo_json_value* obj, 
 }
 
 /* The "roughness" member of a shape with n control points into *r (arrays allocated with c->al). */
-static rugo_status read_roughness(const rctx* c, const rugo_json_value* obj, int n, rugo_roughness_desc* r) {
+static rugo_status read_roughness(const rctx* c, const rugo__json_value* obj, int n, rugo_roughness_desc* r) {
     *r = rugo_default_roughness_desc();
-    rugo_status s = want_type(c, obj, RUGO_JSON_OBJECT, "roughness", "a roughness object");
+    rugo_status s = want_type(c, obj, RUGO__JSON_OBJECT, "roughness", "a roughness object");
     if (s == RUGO_OK) s = read_tolerance_source(c, obj, n, r);
-    const rugo_json_value* v = NULL;
+    const rugo__json_value* v = NULL;
     if (s == RUGO_OK && r->kind == RUGO_ROUGHNESS_RANGES) {
         s = number_member(c, obj, "roughness", "background", &r->background);
         if (s == RUGO_OK && (s = rugo_tolerances_check(&r->background, 1, NULL)) != RUGO_OK) {
@@ -1171,7 +1172,7 @@ static size_t csv_number_as_json(const char* f, size_t n, char* buf, size_t size
 static rugo_status csv_number(const char* f, size_t n, const rugo_allocator* al, double* value, char* msg,
                               size_t size) {
     char quoted[48];
-    rugo_json_quote_for_message(f, n, quoted, sizeof quoted);
+    rugo__json_quote_for_message(f, n, quoted, sizeof quoted);
     if (n == 0) {
         snprintf(msg, size, "empty field (expected a number)");
         return RUGO_ERR_PARSE;
@@ -1180,16 +1181,16 @@ static rugo_status csv_number(const char* f, size_t n, const rugo_allocator* al,
         snprintf(msg, size, "\"%s\" is not a finite number", quoted);
         return RUGO_ERR_NOT_FINITE;
     }
-    char buf[RUGO_JSON_MAX_NUMBER_CHARS + 8];
+    char buf[RUGO__JSON_MAX_NUMBER_CHARS + 8];
     size_t len = csv_number_as_json(f, n, buf, sizeof buf);
     if (len == 0) {
         snprintf(msg, size, "expected a number, found \"%s\"", quoted);
         return RUGO_ERR_PARSE;
     }
-    rugo_json_doc doc;
-    rugo_json_error je;
-    rugo_status s = rugo_json_parse(buf, len, al, NULL, &doc, &je);
-    if (s == RUGO_OK && doc.root->type == RUGO_JSON_NUMBER) {
+    rugo__json_doc doc;
+    rugo__json_error je;
+    rugo_status s = rugo__json_parse(buf, len, al, NULL, &doc, &je);
+    if (s == RUGO_OK && doc.root->type == RUGO__JSON_NUMBER) {
         *value = doc.root->u.number;
     } else if (s == RUGO_ERR_NOT_FINITE) {
         snprintf(msg, size, "\"%s\" overflows to infinity", quoted);
@@ -1199,7 +1200,7 @@ static rugo_status csv_number(const char* f, size_t n, const rugo_allocator* al,
         snprintf(msg, size, "expected a number, found \"%s\"", quoted);
         s = RUGO_ERR_PARSE;
     }
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     return s;
 }
 
@@ -1211,7 +1212,7 @@ static rugo_status
 csv_error(rugo_parse_error* e, rugo_status status, const char* text, size_t length, size_t offset,
           const char* fmt, ...) {
     if (e == NULL) return status;
-    rugo_json_locate(text, length, offset, &e->line, &e->column);
+    rugo__json_locate(text, length, offset, &e->line, &e->column);
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(e->message, sizeof e->message, fmt, ap);
@@ -1352,95 +1353,95 @@ void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_s
     rugo__free(allocator, samples);
 }
 
-static void write_roughness(rugo_json_writer* w, const rugo_roughness_desc* r) {
-    rugo_json_key(w, "roughness");
-    rugo_json_begin_object(w, 0);
+static void write_roughness(rugo__json_writer* w, const rugo_roughness_desc* r) {
+    rugo__json_key(w, "roughness");
+    rugo__json_begin_object(w, 0);
     switch (r->kind) {
     case RUGO_ROUGHNESS_PRESET:
-        rugo_json_key(w, "preset");
-        rugo_json_string(w, rugo_preset_name(r->preset));
+        rugo__json_key(w, "preset");
+        rugo__json_string(w, rugo_preset_name(r->preset));
         break;
     case RUGO_ROUGHNESS_CONSTANT:
-        rugo_json_key(w, "constant");
-        rugo_json_number(w, r->constant);
+        rugo__json_key(w, "constant");
+        rugo__json_number(w, r->constant);
         break;
     case RUGO_ROUGHNESS_RANGES:
-        rugo_json_key(w, "ranges");
-        rugo_json_begin_array(w, 0);
+        rugo__json_key(w, "ranges");
+        rugo__json_begin_array(w, 0);
         for (int i = 0; i < r->range_count; ++i) {
-            rugo_json_begin_object(w, RUGO_JSON_INLINE);
-            rugo_json_key(w, "from");
-            rugo_json_number(w, r->ranges[i].from);
-            rugo_json_key(w, "to");
-            rugo_json_number(w, r->ranges[i].to);
-            rugo_json_key(w, "tolerance");
-            rugo_json_number(w, r->ranges[i].tolerance);
-            rugo_json_end_object(w);
+            rugo__json_begin_object(w, RUGO__JSON_INLINE);
+            rugo__json_key(w, "from");
+            rugo__json_number(w, r->ranges[i].from);
+            rugo__json_key(w, "to");
+            rugo__json_number(w, r->ranges[i].to);
+            rugo__json_key(w, "tolerance");
+            rugo__json_number(w, r->ranges[i].tolerance);
+            rugo__json_end_object(w);
         }
-        rugo_json_end_array(w);
-        rugo_json_key(w, "background");
-        rugo_json_number(w, r->background);
+        rugo__json_end_array(w);
+        rugo__json_key(w, "background");
+        rugo__json_number(w, r->background);
         break;
     case RUGO_ROUGHNESS_PROFILE:
-        rugo_json_key(w, "profile");
-        rugo_json_begin_array(w, 0);
+        rugo__json_key(w, "profile");
+        rugo__json_begin_array(w, 0);
         for (int i = 0; i < r->profile_count; ++i) {
-            rugo_json_begin_array(w, RUGO_JSON_INLINE);
-            rugo_json_number(w, r->profile[i].s);
-            rugo_json_number(w, r->profile[i].tolerance);
-            rugo_json_end_array(w);
+            rugo__json_begin_array(w, RUGO__JSON_INLINE);
+            rugo__json_number(w, r->profile[i].s);
+            rugo__json_number(w, r->profile[i].tolerance);
+            rugo__json_end_array(w);
         }
-        rugo_json_end_array(w);
+        rugo__json_end_array(w);
         break;
     default:
-        rugo_json_key(w, "tolerances");
-        rugo_json_begin_array(w, 0);
+        rugo__json_key(w, "tolerances");
+        rugo__json_begin_array(w, 0);
         for (int i = 0; i < r->tolerance_count; ++i)
-            rugo_json_number(w, r->tolerances[i]);
-        rugo_json_end_array(w);
+            rugo__json_number(w, r->tolerances[i]);
+        rugo__json_end_array(w);
         break;
     }
-    rugo_json_key(w, "seed");
-    rugo_json_integer(w, (long long)r->seed);
-    rugo_json_key(w, "q");
-    rugo_json_number(w, r->q);
-    rugo_json_key(w, "estimator");
-    rugo_json_string(w, estimator_name(r->estimator));
-    rugo_json_key(w, "friction");
-    rugo_json_begin_object(w, RUGO_JSON_INLINE);
-    rugo_json_key(w, "alpha");
-    rugo_json_number(w, r->friction.alpha);
-    rugo_json_key(w, "lambda_min");
-    rugo_json_number(w, r->friction.lambda_min);
-    rugo_json_key(w, "base");
-    rugo_json_number(w, r->friction.base);
-    rugo_json_end_object(w);
-    rugo_json_key(w, "restitution");
-    rugo_json_begin_object(w, RUGO_JSON_INLINE);
-    rugo_json_key(w, "epsilon");
-    rugo_json_number(w, r->restitution.epsilon);
-    rugo_json_key(w, "epsilon_max");
-    rugo_json_number(w, r->restitution.epsilon_max);
-    rugo_json_end_object(w);
+    rugo__json_key(w, "seed");
+    rugo__json_integer(w, (long long)r->seed);
+    rugo__json_key(w, "q");
+    rugo__json_number(w, r->q);
+    rugo__json_key(w, "estimator");
+    rugo__json_string(w, estimator_name(r->estimator));
+    rugo__json_key(w, "friction");
+    rugo__json_begin_object(w, RUGO__JSON_INLINE);
+    rugo__json_key(w, "alpha");
+    rugo__json_number(w, r->friction.alpha);
+    rugo__json_key(w, "lambda_min");
+    rugo__json_number(w, r->friction.lambda_min);
+    rugo__json_key(w, "base");
+    rugo__json_number(w, r->friction.base);
+    rugo__json_end_object(w);
+    rugo__json_key(w, "restitution");
+    rugo__json_begin_object(w, RUGO__JSON_INLINE);
+    rugo__json_key(w, "epsilon");
+    rugo__json_number(w, r->restitution.epsilon);
+    rugo__json_key(w, "epsilon_max");
+    rugo__json_number(w, r->restitution.epsilon_max);
+    rugo__json_end_object(w);
     if (r->has_perturbation) {
-        rugo_json_key(w, "perturbation");
-        rugo_json_begin_object(w, 0);
-        rugo_json_key(w, "method");
-        rugo_json_string(w, method_name(r->perturbation_method));
-        rugo_json_key(w, "levels");
-        rugo_json_integer(w, r->perturbation_levels);
-        rugo_json_key(w, "control_points");
-        rugo_json_begin_array(w, 0);
+        rugo__json_key(w, "perturbation");
+        rugo__json_begin_object(w, 0);
+        rugo__json_key(w, "method");
+        rugo__json_string(w, method_name(r->perturbation_method));
+        rugo__json_key(w, "levels");
+        rugo__json_integer(w, r->perturbation_levels);
+        rugo__json_key(w, "control_points");
+        rugo__json_begin_array(w, 0);
         for (int i = 0; i < r->perturbation_count; ++i) {
-            rugo_json_begin_array(w, RUGO_JSON_INLINE);
-            rugo_json_number(w, r->perturbation_points[i].x);
-            rugo_json_number(w, r->perturbation_points[i].y);
-            rugo_json_end_array(w);
+            rugo__json_begin_array(w, RUGO__JSON_INLINE);
+            rugo__json_number(w, r->perturbation_points[i].x);
+            rugo__json_number(w, r->perturbation_points[i].y);
+            rugo__json_end_array(w);
         }
-        rugo_json_end_array(w);
-        rugo_json_end_object(w);
+        rugo__json_end_array(w);
+        rugo__json_end_object(w);
     }
-    rugo_json_end_object(w);
+    rugo__json_end_object(w);
 }
 
 rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
@@ -1452,12 +1453,12 @@ rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_al
         return RUGO_ERR_NULL_ARGUMENT;
     }
     rugo_allocator al = rugo__allocator_or_default(allocator);
-    rugo_json_doc doc;
+    rugo__json_doc doc;
     rugo_status s = parse_doc(text, length, &al, &doc, error);
     if (s != RUGO_OK) return s;
 
-    const rugo_json_value* cp = NULL;
-    const rugo_json_value* fv = NULL;
+    const rugo__json_value* cp = NULL;
+    const rugo__json_value* fv = NULL;
     rugo_vec2* points = NULL;
     int count = 0;
     rugo_filter filter = RUGO_FILTER_DEFAULT;
@@ -1465,7 +1466,7 @@ rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_al
     if (s == RUGO_OK) s = read_points(cp, "control_points", text, length, &al, &points, &count, error);
     if (s == RUGO_OK) s = find_member(&doc, text, length, "filter", 1, &fv, error);
     if (s == RUGO_OK && fv != NULL) {
-        if (fv->type != RUGO_JSON_STRING) {
+        if (fv->type != RUGO__JSON_STRING) {
             set_path(error, "filter");
             s = field_error(error, RUGO_ERR_BAD_FIELD, text, length, fv,
                             "expected a filter name string, found %s", a_type(fv->type));
@@ -1479,7 +1480,7 @@ rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_al
                 filter = f;
             } else {
                 char quoted[48], names[80];
-                rugo_json_quote_for_message(fv->u.string, fv->count, quoted, sizeof quoted);
+                rugo__json_quote_for_message(fv->u.string, fv->count, quoted, sizeof quoted);
                 filter_list(names, sizeof names);
                 set_path(error, "filter");
                 s = field_error(error, RUGO_ERR_BAD_FILTER, text, length, fv,
@@ -1487,7 +1488,7 @@ rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_al
             }
         }
     }
-    const rugo_json_value* rv = NULL;
+    const rugo__json_value* rv = NULL;
     rugo_roughness_desc roughness;
     memset(&roughness, 0, sizeof roughness);
     if (s == RUGO_OK) s = find_member(&doc, text, length, "roughness", 1, &rv, error);
@@ -1495,7 +1496,7 @@ rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_al
         rctx c = {text, length, &al, error};
         s = read_roughness(&c, rv, count, &roughness);
     }
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     if (s != RUGO_OK) {
         rugo__free(&al, points);
         return s;
@@ -1539,24 +1540,24 @@ rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_alloca
     /* One point per line: diffs stay readable and parse errors name a useful line. The longest
      * "%.17g" is 24 characters, so a file of RUGO_MAX_CONTROL_POINTS points stays below
      * RUGO_MAX_JSON_BYTES (at most 58 bytes a point) and can be read back. */
-    rugo_json_writer w;
-    rugo_json_writer_init(&w, allocator, 2);
-    rugo_json_begin_object(&w, 0);
-    rugo_json_key(&w, "control_points");
-    rugo_json_begin_array(&w, 0);
+    rugo__json_writer w;
+    rugo__json_writer_init(&w, allocator, 2);
+    rugo__json_begin_object(&w, 0);
+    rugo__json_key(&w, "control_points");
+    rugo__json_begin_array(&w, 0);
     for (int i = 0; i < desc->count; ++i) {
-        rugo_json_begin_array(&w, RUGO_JSON_INLINE);
-        rugo_json_number(&w, desc->control_points[i].x);
-        rugo_json_number(&w, desc->control_points[i].y);
-        rugo_json_end_array(&w);
+        rugo__json_begin_array(&w, RUGO__JSON_INLINE);
+        rugo__json_number(&w, desc->control_points[i].x);
+        rugo__json_number(&w, desc->control_points[i].y);
+        rugo__json_end_array(&w);
     }
-    rugo_json_end_array(&w);
-    rugo_json_key(&w, "filter");
-    rugo_json_string(&w, filter);
+    rugo__json_end_array(&w);
+    rugo__json_key(&w, "filter");
+    rugo__json_string(&w, filter);
     if (desc->has_roughness) write_roughness(&w, &desc->roughness);
-    rugo_json_end_object(&w);
-    rugo_json_raw(&w, "\n", 1);
-    rugo_status s = rugo_json_writer_finish(&w, text, length);
+    rugo__json_end_object(&w);
+    rugo__json_raw(&w, "\n", 1);
+    rugo_status s = rugo__json_writer_finish(&w, text, length);
     if (s == RUGO_OK && *length > RUGO_MAX_JSON_BYTES) {
         /* Only a large roughness object gets here: the reader would refuse the text. */
         rugo_text_free(allocator, *text);

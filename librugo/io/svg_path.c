@@ -3,11 +3,11 @@
  *
  * Everything reads hostile text: no read past `length`, explicit size and nesting limits, no
  * recursion, every number checked finite. Positions in errors are byte offsets turned into line and
- * column by rugo_json_locate (the same convention as the JSON reader). */
+ * column by rugo__json_locate (the same convention as the JSON reader). */
 #include "rugo/import.h"
 
 #include "core/internal.h"
-#include "io/json.h" /* rugo_json_locate */
+#include "io/json.h" /* rugo__json_locate */
 
 #include <float.h>
 #include <stdarg.h>
@@ -45,7 +45,7 @@ fail_at(rugo_parse_error* e, rugo_status st, const locator* loc, size_t offset, 
     if (e == NULL) return st;
     if (loc != NULL && loc->doc != NULL) {
         size_t at = loc->exact ? loc->base + offset : loc->base;
-        rugo_json_locate(loc->doc, loc->doc_length, at, &e->line, &e->column);
+        rugo__json_locate(loc->doc, loc->doc_length, at, &e->line, &e->column);
     }
     snprintf(e->path, sizeof e->path, "%s", loc != NULL && loc->path != NULL ? loc->path : "");
     va_list ap;
@@ -145,7 +145,7 @@ static rugo_status read_number(scanner* sc, double* out, const char* what) {
         return fail_at(sc->err, RUGO_ERR_PARSE, &sc->loc, sc_offset(sc, sc->p), "malformed number");
     if (!isfinite(x)) {
         char shown[40];
-        rugo_json_quote_for_message(sc->p, n, shown, sizeof shown);
+        rugo__json_quote_for_message(sc->p, n, shown, sizeof shown);
         return fail_at(sc->err, RUGO_ERR_NOT_FINITE, &sc->loc, sc_offset(sc, sc->p),
                        "number %s is beyond the range of a double", shown);
     }
@@ -235,7 +235,7 @@ static rugo_status parse_transform_list(scanner* sc, rugo_affine* out) {
                     "expected a transform (matrix, translate, scale, rotate, skewX, skewY), found %s",
                     describe(name, sc->end, buf, sizeof buf));
             char shown[40];
-            rugo_json_quote_for_message(name, nlen, shown, sizeof shown);
+            rugo__json_quote_for_message(name, nlen, shown, sizeof shown);
             return fail_at(
                 sc->err, RUGO_ERR_PARSE, &sc->loc, sc_offset(sc, name),
                 "unknown transform '%s' (expected matrix, translate, scale, rotate, skewX or skewY)", shown);
@@ -1509,7 +1509,7 @@ static rugo_status
 doc_fail(const doc_scan* d, rugo_status st, size_t offset, const char* path, const char* fmt, ...) {
     rugo_parse_error* e = d->err;
     if (e == NULL) return st;
-    rugo_json_locate(d->text, d->length, offset, &e->line, &e->column);
+    rugo__json_locate(d->text, d->length, offset, &e->line, &e->column);
     snprintf(e->path, sizeof e->path, "%s", path != NULL ? path : "");
     va_list ap;
     va_start(ap, fmt);
@@ -1522,9 +1522,9 @@ doc_fail(const doc_scan* d, rugo_status st, size_t offset, const char* path, con
 static void element_label(const doc_scan* d, const open_element* el, const char* attr, char* out,
                           size_t size) {
     char name[32], id[40];
-    rugo_json_quote_for_message(d->text + el->name_off, el->name_len, name, sizeof name);
+    rugo__json_quote_for_message(d->text + el->name_off, el->name_len, name, sizeof name);
     if (el->id.present) {
-        rugo_json_quote_for_message(d->text + el->id.off, el->id.len, id, sizeof id);
+        rugo__json_quote_for_message(d->text + el->id.off, el->id.len, id, sizeof id);
         snprintf(out, size, "%s#%s/%s", name, id, attr);
     } else {
         snprintf(out, size, "%s/%s", name, attr);
@@ -1712,8 +1712,8 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
             const open_element* top = &stack[depth - 1];
             if (top->name_len != nlen || memcmp(text + top->name_off, text + name, nlen) != 0) {
                 char want[40], got[40];
-                rugo_json_quote_for_message(text + top->name_off, top->name_len, want, sizeof want);
-                rugo_json_quote_for_message(text + name, nlen, got, sizeof got);
+                rugo__json_quote_for_message(text + top->name_off, top->name_len, want, sizeof want);
+                rugo__json_quote_for_message(text + name, nlen, got, sizeof got);
                 st = doc_fail(&d, RUGO_ERR_PARSE, at, "", "end tag </%s> does not match <%s>", got, want);
                 break;
             }
@@ -1805,7 +1805,7 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
             if (slot != NULL) {
                 if (slot->present) {
                     char name[16];
-                    rugo_json_quote_for_message(text + an, alen, name, sizeof name);
+                    rugo__json_quote_for_message(text + an, alen, name, sizeof name);
                     st = doc_fail(&d, RUGO_ERR_PARSE, an, "", "attribute %s given twice", name);
                     break;
                 }
@@ -1827,8 +1827,8 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
             element_label(&d, &el, "d", label, sizeof label);
             if (!is_path) {
                 char name[32], shown[40];
-                rugo_json_quote_for_message(text + el.name_off, el.name_len, name, sizeof name);
-                rugo_json_quote_for_message(id, strlen(id), shown, sizeof shown);
+                rugo__json_quote_for_message(text + el.name_off, el.name_len, name, sizeof name);
+                rugo__json_quote_for_message(id, strlen(id), shown, sizeof shown);
                 st = doc_fail(&d, RUGO_ERR_BAD_FIELD, at, "", "the element with id '%s' is <%s>, not <path>",
                               shown, name);
                 break;
@@ -1839,7 +1839,7 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
             }
             if (nfound > 0) {
                 int line = 0, col = 0;
-                rugo_json_locate(text, length, found.d_offset, &line, &col);
+                rugo__json_locate(text, length, found.d_offset, &line, &col);
                 st = doc_fail(&d, RUGO_ERR_BAD_FIELD, at, "",
                               "the document has more than one <path> (another at line %d): choose one by id",
                               line);
@@ -1857,7 +1857,7 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
             found.d_offset = dspan.off;
             found.d_has_entities = dlen != dspan.len;
             found.transform = m;
-            rugo_json_locate(text, length, at, &found.line, &found.column);
+            rugo__json_locate(text, length, at, &found.line, &found.column);
             found.allocator = d.al;
             ++nfound;
             if (id != NULL) done = 1; /* the first element with the id wins; the rest is not read */
@@ -1876,7 +1876,7 @@ rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
     if (st == RUGO_OK && nfound == 0) {
         if (id != NULL) {
             char shown[64];
-            rugo_json_quote_for_message(id, strlen(id), shown, sizeof shown);
+            rugo__json_quote_for_message(id, strlen(id), shown, sizeof shown);
             st = doc_fail(&d, RUGO_ERR_BAD_FIELD, length, "", "no element with id '%s'", shown);
         } else {
             st = doc_fail(&d, RUGO_ERR_BAD_FIELD, length, "", "the document has no <path> element");
@@ -1917,7 +1917,7 @@ rugo_status rugo_svg_import_outline(const char* text, size_t length, const char*
     char label[96];
     if (id != NULL) {
         char shown[64];
-        rugo_json_quote_for_message(id, strlen(id), shown, sizeof shown);
+        rugo__json_quote_for_message(id, strlen(id), shown, sizeof shown);
         snprintf(label, sizeof label, "path#%s/d", shown);
     } else {
         snprintf(label, sizeof label, "path/d");
@@ -1945,7 +1945,7 @@ rugo_status rugo_svg_import_outline(const char* text, size_t length, const char*
         }
         if (st != RUGO_OK && error != NULL) {
             /* Sampling errors concern the path as a whole: point at its d attribute. */
-            rugo_json_locate(text, length, el.d_offset, &error->line, &error->column);
+            rugo__json_locate(text, length, el.d_offset, &error->line, &error->column);
             snprintf(error->path, sizeof error->path, "%s", label);
         }
     }

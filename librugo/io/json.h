@@ -35,6 +35,8 @@
 #include "rugo/base.h"
 #include "rugo/shape_file.h" /* RUGO_MAX_JSON_BYTES */
 
+#include "core/array.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -126,8 +128,8 @@ void rugo__json_quote_for_message(const char* s, size_t n, char* out, size_t siz
 
 typedef struct rugo__json_writer {
     rugo_allocator allocator;
-    char* data;
-    size_t length, capacity;
+    rugo__array text; /* chars: the text and the NUL that always follows it; NULL before the first write */
+    size_t length;    /* of the text, not counting the NUL */
     rugo_status status; /* first error, sticky */
     int indent;         /* spaces per level; 0: everything on one line */
     int depth;

@@ -19,48 +19,39 @@ static void w_set_error(rugo__json_writer* w, rugo_status s) {
     if (w->status == RUGO_OK) w->status = s;
 }
 
-/* Room for n more bytes plus the NUL that always follows the text. */
+/* Room for n more bytes plus the NUL that always follows the text: a text starts with room for 256
+ * bytes, which doubles as needed; a new buffer starts as the empty string. */
 static int w_reserve(rugo__json_writer* w, size_t n) {
     if (w->status != RUGO_OK) return 0;
     if (n > SIZE_MAX - 1 - w->length) {
         w_set_error(w, RUGO_ERR_OUT_OF_MEMORY);
         return 0;
     }
-    size_t need = w->length + n + 1;
-    if (need <= w->capacity) return 1;
-    size_t cap = w->capacity > 0 ? w->capacity : 256;
-    while (cap < need)
-        cap = (cap > SIZE_MAX / 2) ? need : cap * 2;
-    char* p = (char*)w->allocator.alloc(cap, w->allocator.ctx);
-    if (p == NULL) {
+    const int fresh = w->text.data == NULL;
+    if (rugo__array_reserve(&w->text, &w->allocator, w->length + n + 1, 1, 256) != RUGO_OK) {
         w_set_error(w, RUGO_ERR_OUT_OF_MEMORY);
         return 0;
     }
-    if (w->data != NULL) {
-        memcpy(p, w->data, w->length + 1);
-        w->allocator.free(w->data, w->allocator.ctx);
-    } else {
-        p[0] = '\0';
-    }
-    w->data = p;
-    w->capacity = cap;
+    if (fresh) ((char*)w->text.data)[0] = '\0';
     return 1;
 }
 
 static void w_put(rugo__json_writer* w, const char* s, size_t n) {
     if (!w_reserve(w, n)) return;
-    memcpy(w->data + w->length, s, n);
+    char* data = (char*)w->text.data;
+    memcpy(data + w->length, s, n);
     w->length += n;
-    w->data[w->length] = '\0';
+    data[w->length] = '\0';
 }
 
 static void w_newline(rugo__json_writer* w, int level) {
     size_t n = (size_t)w->indent * (size_t)level;
     if (!w_reserve(w, n + 1)) return;
-    w->data[w->length++] = '\n';
-    memset(w->data + w->length, ' ', n);
+    char* data = (char*)w->text.data;
+    data[w->length++] = '\n';
+    memset(data + w->length, ' ', n);
     w->length += n;
-    w->data[w->length] = '\0';
+    data[w->length] = '\0';
 }
 
 /* Comma and line break before an element of the innermost container. */
@@ -279,9 +270,8 @@ void rugo__json_raw(rugo__json_writer* w, const char* s, size_t n) {
 
 void rugo__json_writer_discard(rugo__json_writer* w) {
     if (w == NULL) return;
-    if (w->data != NULL) w->allocator.free(w->data, w->allocator.ctx);
-    w->data = NULL;
-    w->length = w->capacity = 0;
+    rugo__array_free(&w->text, &w->allocator);
+    w->length = 0;
     w->depth = 0;
     w->after_key = 0;
 }
@@ -294,15 +284,16 @@ rugo_status rugo__json_writer_finish(rugo__json_writer* w, char** text, size_t* 
         return RUGO_ERR_NULL_ARGUMENT;
     }
     if (w->status == RUGO_OK && (w->depth != 0 || w->after_key)) w->status = RUGO_ERR_BAD_ARGUMENT;
-    if (w->status == RUGO_OK && w->data == NULL) w_reserve(w, 0); /* an empty text is still a string */
+    if (w->status == RUGO_OK && w->text.data == NULL) w_reserve(w, 0); /* an empty text is still a string */
     rugo_status s = w->status;
     if (s != RUGO_OK) {
         rugo__json_writer_discard(w);
         return s;
     }
-    *text = w->data;
+    *text = (char*)w->text.data;
     if (length != NULL) *length = w->length;
-    w->data = NULL;
-    w->length = w->capacity = 0;
+    w->text.data = NULL;
+    w->text.capacity = 0;
+    w->length = 0;
     return RUGO_OK;
 }

@@ -6,6 +6,7 @@
  * column by rugo__json_locate (the same convention as the JSON reader). */
 #include "rugo/import.h"
 
+#include "core/array.h"
 #include "core/internal.h"
 #include "io/json.h" /* rugo__json_locate */
 
@@ -154,19 +155,10 @@ static rugo_status read_number(scanner* sc, double* out, const char* what) {
     return RUGO_OK;
 }
 
-/* ---- growable arrays through the allocator --------------------------------------------------------- */
-
-/* Makes room for one more element in *arr (count used, *cap allocated). 0 on success, -1 out of memory. */
-static int grow(const rugo_allocator* al, void** arr, int count, int* cap, size_t elem) {
-    if (count < *cap) return 0;
-    int ncap = *cap < 16 ? 16 : (*cap > INT32_MAX / 2 ? INT32_MAX : *cap * 2);
-    void* n = rugo__alloc_array(al, (size_t)ncap, elem);
-    if (n == NULL) return -1;
-    if (*arr != NULL && count > 0) memcpy(n, *arr, (size_t)count * elem);
-    rugo__free(al, *arr);
-    *arr = n;
-    *cap = ncap;
-    return 0;
+/* Room for one more element after `count` in a (room for 16 first, then doubling). 0 on success, -1
+ * out of memory. */
+static int grow(const rugo_allocator* al, rugo__array* a, int count, size_t elem) {
+    return rugo__array_reserve(a, al, (size_t)count + 1, elem, 16) == RUGO_OK ? 0 : -1;
 }
 
 /* ---- transforms ------------------------------------------------------------------------------------ */
@@ -352,17 +344,18 @@ rugo_status rugo_svg_transform_parse(const char* text, size_t length, rugo_affin
 
 typedef struct path_builder {
     rugo_allocator al;
-    rugo_path_segment* seg;
-    int nseg, capseg;
-    rugo_subpath* sub;
-    int nsub, capsub;
+    rugo__array seg; /* rugo_path_segment */
+    int nseg;
+    rugo__array sub; /* rugo_subpath */
+    int nsub;
 } path_builder;
 
+static rugo_path_segment* builder_segments(const path_builder* b) { return (rugo_path_segment*)b->seg.data; }
+static rugo_subpath* builder_subpaths(const path_builder* b) { return (rugo_subpath*)b->sub.data; }
+
 static void builder_free(path_builder* b) {
-    rugo__free(&b->al, b->seg);
-    rugo__free(&b->al, b->sub);
-    b->seg = NULL;
-    b->sub = NULL;
+    rugo__array_free(&b->seg, &b->al);
+    rugo__array_free(&b->sub, &b->al);
 }
 
 static rugo_vec2 segment_end(const rugo_path_segment* s) {
@@ -483,9 +476,9 @@ static rugo_status begin_subpath(path_state* ps, scanner* sc, size_t at, rugo_ve
     if (ps->b.nsub >= RUGO_MAX_PATH_SEGMENTS)
         return fail_at(sc->err, RUGO_ERR_TOO_LARGE, &sc->loc, at, "more than %d subpaths",
                        RUGO_MAX_PATH_SEGMENTS);
-    if (grow(&ps->b.al, (void**)&ps->b.sub, ps->b.nsub, &ps->b.capsub, sizeof(rugo_subpath)) != 0)
+    if (grow(&ps->b.al, &ps->b.sub, ps->b.nsub, sizeof(rugo_subpath)) != 0)
         return fail_at(sc->err, RUGO_ERR_OUT_OF_MEMORY, &sc->loc, at, "out of memory");
-    rugo_subpath* s = &ps->b.sub[ps->b.nsub++];
+    rugo_subpath* s = &builder_subpaths(&ps->b)[ps->b.nsub++];
     s->first = ps->b.nseg;
     s->count = 0;
     s->start = start;
@@ -502,10 +495,10 @@ static rugo_status add_segment(path_state* ps, scanner* sc, size_t at, rugo_path
     if (ps->b.nseg >= RUGO_MAX_PATH_SEGMENTS)
         return fail_at(sc->err, RUGO_ERR_TOO_LARGE, &sc->loc, at, "more than %d segments",
                        RUGO_MAX_PATH_SEGMENTS);
-    if (grow(&ps->b.al, (void**)&ps->b.seg, ps->b.nseg, &ps->b.capseg, sizeof(rugo_path_segment)) != 0)
+    if (grow(&ps->b.al, &ps->b.seg, ps->b.nseg, sizeof(rugo_path_segment)) != 0)
         return fail_at(sc->err, RUGO_ERR_OUT_OF_MEMORY, &sc->loc, at, "out of memory");
-    ps->b.seg[ps->b.nseg++] = *s;
-    ps->b.sub[ps->b.nsub - 1].count++;
+    builder_segments(&ps->b)[ps->b.nseg++] = *s;
+    builder_subpaths(&ps->b)[ps->b.nsub - 1].count++;
     ps->cur = segment_end(s);
     return RUGO_OK;
 }
@@ -638,7 +631,7 @@ static rugo_status close_subpath(path_state* ps, scanner* sc, size_t at) {
         rugo_status st = add_segment(ps, sc, at, &s);
         if (st != RUGO_OK) return st;
     }
-    ps->b.sub[ps->b.nsub - 1].closed = 1;
+    builder_subpaths(&ps->b)[ps->b.nsub - 1].closed = 1;
     ps->cur = ps->start;
     ps->in_subpath = 0;
     ps->prev = 0;
@@ -728,9 +721,9 @@ static rugo_status parse_path_data(scanner* sc, const rugo_allocator* allocator,
         builder_free(&ps.b);
         return st;
     }
-    out->segments = ps.b.seg;
+    out->segments = builder_segments(&ps.b);
     out->segment_count = ps.b.nseg;
-    out->subpaths = ps.b.sub;
+    out->subpaths = builder_subpaths(&ps.b);
     out->subpath_count = ps.b.nsub;
     out->allocator = ps.b.al;
     return RUGO_OK;
@@ -1982,8 +1975,8 @@ rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_a
         return rugo_points_parse(text, length, "points", allocator, points, count, error);
 
     const rugo_allocator al = rugo__allocator_or_default(allocator);
-    rugo_vec2* pts = NULL;
-    int n = 0, cap = 0;
+    rugo__array pts = {NULL, 0}; /* rugo_vec2 */
+    int n = 0;
     int seen_line = 0;
     scanner sc;
     sc.text = text;
@@ -2043,17 +2036,17 @@ rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_a
                          RUGO_MAX_CONTROL_POINTS);
             break;
         }
-        if (grow(&al, (void**)&pts, n, &cap, sizeof *pts) != 0) {
+        if (grow(&al, &pts, n, sizeof(rugo_vec2)) != 0) {
             st = fail_at(error, RUGO_ERR_OUT_OF_MEMORY, &sc.loc, q, "out of memory");
             break;
         }
-        pts[n++] = rugo_v2(v[0], v[1]);
+        ((rugo_vec2*)pts.data)[n++] = rugo_v2(v[0], v[1]);
     }
     if (st != RUGO_OK) {
-        rugo__free(&al, pts);
+        rugo__array_free(&pts, &al);
         return st;
     }
-    *points = pts;
+    *points = (rugo_vec2*)pts.data;
     *count = n;
     return RUGO_OK;
 }

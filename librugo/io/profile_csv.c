@@ -3,6 +3,7 @@
  * same text to the same bits. */
 #include "rugo/shape_file.h"
 
+#include "core/array.h"
 #include "core/internal.h"
 #include "io/json.h"
 #include "rough/internal.h" /* rugo__roughness_sample_check */
@@ -161,8 +162,9 @@ rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, co
         return RUGO_ERR_PARSE;
     }
     rugo_allocator al = rugo__allocator_or_default(allocator);
-    rugo_profile_sample* p = NULL;
-    int m = 0, cap = 0;
+    rugo__array room = {NULL, 0};  /* rugo_profile_sample: room for 64 first, then doubling */
+    rugo_profile_sample* p = NULL; /* room.data */
+    int m = 0;
     int header_allowed = 1;
     rugo_status s = RUGO_OK;
     size_t pos = 0;
@@ -235,19 +237,11 @@ rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, co
             }
         }
         if (s != RUGO_OK) break;
-        if (m == cap) {
-            int ncap =
-                cap == 0 ? 64 : (cap > RUGO_MAX_PROFILE_SAMPLES / 2 ? RUGO_MAX_PROFILE_SAMPLES : cap * 2);
-            rugo_profile_sample* np = (rugo_profile_sample*)rugo__alloc_array(&al, (size_t)ncap, sizeof *np);
-            if (np == NULL) {
-                s = csv_error(error, RUGO_ERR_OUT_OF_MEMORY, text, length, b, "out of memory");
-                break;
-            }
-            if (m > 0) memcpy(np, p, sizeof *np * (size_t)m);
-            rugo__free(&al, p);
-            p = np;
-            cap = ncap;
+        if (rugo__array_reserve(&room, &al, (size_t)m + 1, sizeof *p, 64) != RUGO_OK) {
+            s = csv_error(error, RUGO_ERR_OUT_OF_MEMORY, text, length, b, "out of memory");
+            break;
         }
+        p = (rugo_profile_sample*)room.data;
         p[m].s = v[0];
         p[m].tolerance = v[1];
         int column = 0;
@@ -264,7 +258,7 @@ rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, co
         s = csv_error(error, RUGO_ERR_BAD_FIELD, text, length, length,
                       "no samples: a profile needs at least one line \"s,lambda\"");
     if (s != RUGO_OK) {
-        rugo__free(&al, p);
+        rugo__array_free(&room, &al);
         return s;
     }
     *samples = p;

@@ -1,5 +1,5 @@
-/* Private helpers of the curve layer (contour.c, multires.c, path_segment.c, outline_sample.c) for the
- * layers above it. Not installed.
+/* Private helpers of the curve layer (contour.c, contour_check.c, multires.c, path_segment.c,
+ * outline_sample.c) for its own files and the layers above it. Not installed.
  * May include: core. */
 #ifndef RUGO_CURVE_INTERNAL_H
 #define RUGO_CURVE_INTERNAL_H
@@ -17,6 +17,11 @@
  * of its evaluation (relative to its control points' distance from p) above, below or left of p
  * counts 0. */
 int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p);
+
+/* The Bezier points of segment j relative to o (rugo_contour_bezier of the control points minus o),
+ * for the self-intersection test (contour_check.c): far from the origin, differences keep their
+ * digits. */
+void rugo__contour_bezier_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 out[4]);
 
 /* rugo_contour_closest_point restricted to the segments segs[0 .. count) (increasing; NULL: all
  * count = c.count segments), computed by the same passes in the same order (contour.c). Given every

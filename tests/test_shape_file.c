@@ -1,6 +1,7 @@
-/* Shape files: the strict JSON reader and writer (librugo/json.c) and the shape description layer
- * (librugo/shape_file.c). Inputs are copied into buffers of exactly their length, so that the
- * sanitizer build catches any read past `length`. */
+/* Shape files: the strict JSON reader and writer (librugo/io/json_read.c, json_write.c) and the shape
+ * description layer (librugo/io/shape_file.c, profile_csv.c, read_file.c; rough/roughness_resample.c).
+ * Inputs are copied into buffers of exactly their length, so that the sanitizer build catches any read
+ * past `length`. */
 #include "io/json.h"
 #include "test_util.h"
 

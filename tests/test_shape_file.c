@@ -1,5 +1,6 @@
 /* Shape files: the strict JSON reader and writer (librugo/io/json_read.c, json_write.c) and the shape
- * description layer (librugo/io/shape_file.c, profile_csv.c, read_file.c; rough/roughness_resample.c).
+ * description layer (librugo/io/shape_file_read.c, shape_file_write.c, profile_csv.c, read_file.c;
+ * rough/roughness_resample.c).
  * Inputs are copied into buffers of exactly their length, so that the sanitizer build catches any read
  * past `length`. */
 #include "io/json.h"

@@ -1,53 +1,9 @@
-/* Contacts between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2; DESIGN "Contact
- * semantics"). docs/contacts.md states the semantics; this comment says how they are computed.
- *
- * Frame. Everything is computed in A's local frame: B's boxes and pieces are moved there by the
- * relative transform xa^-1 xb (exact up to one rounding per coordinate even when both poses are far
- * from the origin), and every narrow-phase call gets its two pieces shifted so that A's piece starts
- * at the origin. Separations and normals are computed there and only the final points and normals
- * are moved to world coordinates.
- *
- * Shape against shape:
- *  1. Tree traversal (SPEC 7) from the two roots down to the query's levels, B's boxes moved into A's
- *     frame. Boxes are grown by the band the query can use beyond what the boxes hold (an override
- *     tolerance, or the excess of λ(t) over λ^j_k at coarse levels, see shape.c), so that no pair of
- *     segments within the band is pruned.
- *  2. First narrow pass on every surviving segment pair, cutoff = the bounds of λ(t) on both segments
- *     (or twice the override): all crossings, and all stationary pairs within the band.
- *  3. Results in global parameters; a point found by two segment pairs (a joint: t = 1 belongs to the
- *     next segment; or a point-like segment) is kept once.
- *  4. Crossings (kind != 0) => INTERSECTING. Overlap regions are traced as the boundary of A ∩ B:
- *     sorted along A and along B, each crossing starts an arc of A inside B or an arc of B inside A
- *     (from the crossing's orientation; if those are inconsistent, e.g. an odd count after a
- *     near-tangent crossing, from containment tests of arc midpoints), and following those arcs from
- *     crossing to crossing closes each region. A second narrow pass over the segments of each region,
- *     cutoff = the region's size, finds the stationary pairs (pa on an A-arc of the region, pb on a
- *     B-arc of it) whose connecting vector is normal to both curves and points out of A at pa and into
- *     B at pb — penetration pairs, typically saddles of the distance; the one with the largest
- *     distance is the region's contact. Pairs of segments whose tangent cones cannot be anti-parallel
- *     are skipped (a penetration pair has anti-parallel tangents). If a region has no such pair
- *     (tiny or degenerate overlaps), the point of its arcs farthest from the other curve (samples +
- *     closest point) is used instead. Local minima within the band outside every region are reported
- *     too, as their own regions.
- *  5. No crossing, but one curve inside the other (a point of one inside the other, decided through
- *     the tree: "Containment through the tree" below): INTERSECTING, one contact: the closest pair of
- *     the two curves gives the way out (the outer curve's outward normal there); the inner body's
- *     support point against that normal gives the depth.
- *  6. Otherwise each local minimum of the distance within λ_A(t_A) + λ_B(t_B), with the two curves
- *     facing each other, is a contact (CONTACT), or none (APART).
- *
- * Primitives (B = a convex core K — a point, a segment or a polygon — grown by a radius R) follow the
- * same plan with B's boundary made of straight edges (offset by R) and vertex arcs (radius R); the
- * narrow phase runs the piece against each edge (rugo__narrow_line) and each vertex
- * (rugo__narrow_point), crossings with vertex arcs are bracketed between the stationary points of
- * the distance to the vertex. An edge (a segment with R = 0) has no inside: each piece of it inside A
- * gets one contact at its point deepest inside A (sampled, refined by golden section). */
-#include "rugo/collide.h"
+/* Contact queries between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2; DESIGN
+ * "Contact semantics"): shape against shape and against primitives. collide_internal.h says how the
+ * contacts are computed. */
+#include "query/collide_internal.h"
 
-#include "core/array.h"
-#include "core/internal.h"
 #include "shape/internal.h"
-#include "query/narrow.h"
 #include "curve/poly.h"
 
 #include <float.h>
@@ -58,94 +14,9 @@
 /* "RUGQ": catches queries that did not come from rugo_default_contact_query. */
 #define QUERY_COOKIE 0x52554751
 
-
-/* Relative tolerances (times the larger shape's size). */
-#define SAME_POINT 1e-9         /* two results closer than this are the same point */
-#define NORMAL_FROM_POINTS 1e-7 /* below this distance the normal comes from A's curve, not pb - pa */
-#define OVERLAP_NEAR 1e-6       /* points this close belong to one overlap below the resolution */
-#define CUTOFF_PAD 1e-12        /* pad of narrow-phase cutoffs: round-off must not hide a contact */
-#define FALLBACK_SAMPLES 16     /* samples per segment of a region's arcs when no penetration pair exists */
-#define EDGE_SAMPLES 32         /* samples of an edge piece inside A */
-
-#define PI_VALUE 3.14159265358979323846
-
+#define EDGE_SAMPLES 32 /* samples of an edge piece inside A */
 /* ---------------------------------------------------------------------------------------------------
  * Context: growable scratch. */
-
-typedef rugo__array buffer;
-
-typedef struct tnode {
-    int la, ka, lb, kb; /* level -1: the root */
-    int ia, ib;         /* their boxes as tested, in the box pool (see traverse) */
-    int mark;           /* the pool's size when this node was pushed */
-} tnode;
-
-/* A crossing or a stationary pair found by the narrow phase, in global parameters. */
-typedef struct hit {
-    int sa, sb;       /* segment of A, segment of B (primitives: feature of B's boundary) */
-    rugo_real ta, tb; /* in [0, 1) */
-    rugo_real ua, ub; /* sa + ta, sb + tb */
-    rugo_vec2 pa, pb; /* A's frame */
-    rugo_vec2 nb;     /* primitives: B's outward normal at pb (zero: a corner, use its cone) */
-    rugo_real distance;
-    int kind;
-    int src;        /* the narrow call that found it */
-    int vertex;     /* primitives: the vertex of a corner candidate, else -1 */
-    int dead;       /* removed as a duplicate */
-    int coincident; /* found by a narrow call whose pieces coincide (infinitely many roots) */
-} hit;
-
-typedef struct seginfo {
-    int k;
-    rugo_vec2 b[4];   /* Bezier points in A's frame */
-    rugo_vec2 lo, hi; /* their bounds */
-    rugo_vec2 cone;   /* unit centre of the tangent directions */
-    rugo_real half;   /* half-angle of the tangent cone (>= pi: unknown) */
-} seginfo;
-
-struct rugo_collide_context {
-    rugo_allocator al;
-    buffer stack; /* tnode */
-    buffer kids;  /* tbx: the box pool of a traversal */
-    buffer pairs; /* rugo_node_pair */
-    buffer xs;    /* hit: crossings */
-    buffer ss;    /* hit: stationary pairs of the first pass */
-    buffer ss2;   /* hit: stationary pairs of later passes */
-    buffer ints;  /* int: region bookkeeping, 8 per crossing */
-    buffer marks; /* unsigned char: segment marks of A then B */
-    buffer segs;  /* seginfo: segments of one region */
-    buffer out;   /* rugo_contact: contacts before truncation */
-    buffer ptab;  /* rugo_vec2[4]: Bezier pieces of a query's segments, A's then B's (pair_geo) */
-    buffer pstamp; /* uint32_t: the query (epoch) whose piece a ptab entry holds */
-    size_t pstamp_zeroed; /* pstamp entries initialised */
-    uint32_t epoch;
-};
-
-static int reserve(rugo_collide_context* c, buffer* b, size_t need, size_t elem) {
-    return rugo__array_reserve(b, &c->al, need, elem, 64) == RUGO_OK;
-}
-
-rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out) {
-    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    *out = NULL;
-    rugo_allocator al = rugo__allocator_or_default(allocator);
-    rugo_collide_context* c = (rugo_collide_context*)rugo__alloc_array(&al, 1, sizeof(rugo_collide_context));
-    if (c == NULL) return RUGO_ERR_OUT_OF_MEMORY;
-    memset(c, 0, sizeof *c);
-    c->al = al;
-    *out = c;
-    return RUGO_OK;
-}
-
-void rugo_collide_context_destroy(rugo_collide_context* c) {
-    if (c == NULL) return;
-    buffer* all[] = {&c->stack, &c->kids, &c->pairs, &c->xs,  &c->ss,   &c->ss2,
-                     &c->ints,  &c->marks, &c->segs, &c->out, &c->ptab, &c->pstamp};
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
-        rugo__array_free(all[i], &c->al);
-    rugo_allocator al = c->al;
-    rugo__free(&al, c);
-}
 
 rugo_contact_query rugo_default_contact_query(void) {
     rugo_contact_query q;
@@ -174,54 +45,10 @@ const char* rugo_contact_state_name(rugo_contact_state s) {
 /* ---------------------------------------------------------------------------------------------------
  * Small geometry. */
 
-static rugo_vec2 lerp2(rugo_vec2 a, rugo_vec2 b, rugo_real t) {
-    return rugo_v2(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-}
-
-static rugo_vec2 bez_point(const rugo_vec2 b[4], rugo_real t) {
-    const rugo_real s = 1.0 - t;
-    const rugo_real w0 = s * s * s, w1 = 3.0 * s * s * t, w2 = 3.0 * s * t * t, w3 = t * t * t;
-    return rugo_v2(w0 * b[0].x + w1 * b[1].x + w2 * b[2].x + w3 * b[3].x,
-                   w0 * b[0].y + w1 * b[1].y + w2 * b[2].y + w3 * b[3].y);
-}
-
-static rugo_real v2_len(rugo_vec2 v) { return rugo__v2_length(v); }
-
-/* v / l for l = v2_len(v) computed by the caller (0 for l = 0). */
-static rugo_vec2 v2_unit_len(rugo_vec2 v, rugo_real l) {
-    return l > 0.0 ? rugo_v2(v.x / l, v.y / l) : rugo_v2(0.0, 0.0);
-}
-
-static rugo_vec2 v2_unit(rugo_vec2 v) { return v2_unit_len(v, v2_len(v)); }
-
-static rugo_transform relative_transform(rugo_transform xa, rugo_transform xb) {
-    rugo_transform r;
-    r.q.c = xa.q.c * xb.q.c + xa.q.s * xb.q.s;
-    r.q.s = xa.q.c * xb.q.s - xa.q.s * xb.q.c;
-    r.p = rugo_inv_rotate(xa.q, rugo_v2_sub(xb.p, xa.p));
-    return r;
-}
-
-static int transform_finite(rugo_transform t) {
-    return isfinite(t.p.x) && isfinite(t.p.y) && isfinite(t.q.c) && isfinite(t.q.s);
-}
-
-static rugo_real box_size(const rugo_obb* b) { return b ? 2.0 * hypot(b->half[0], b->half[1]) : 0.0; }
-
 static rugo_obb grow_box(rugo_obb b, rugo_real d) {
     b.half[0] += d;
     b.half[1] += d;
     return b;
-}
-
-static void bez_bounds(const rugo_vec2 b[4], rugo_vec2* lo, rugo_vec2* hi) {
-    *lo = *hi = b[0];
-    for (int i = 1; i < 4; ++i) {
-        lo->x = fmin(lo->x, b[i].x);
-        lo->y = fmin(lo->y, b[i].y);
-        hi->x = fmax(hi->x, b[i].x);
-        hi->y = fmax(hi->y, b[i].y);
-    }
 }
 
 /* The cone of tangent directions of a Bezier piece: the hodograph's control points span it. */
@@ -233,22 +60,22 @@ static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* hal
     /* each length once */
     for (int i = 0; i < 3; ++i) {
         d[i] = rugo_v2_sub(b[i + 1], b[i]);
-        len[i] = v2_len(d[i]);
+        len[i] = rugo__v2_length(d[i]);
         size = fmax(size, len[i]);
     }
     rugo_vec2 sum = rugo_v2(0.0, 0.0);
     for (int i = 0; i < 3; ++i) {
         if (len[i] > 1e-9 * size) {
-            u[m] = v2_unit_len(d[i], len[i]);
+            u[m] = rugo__v2_unit_len(d[i], len[i]);
             sum = rugo_v2_add(sum, u[m]);
             ++m;
         }
     }
     *centre = rugo_v2(1.0, 0.0);
     *half = 4.0; /* > pi: no information */
-    const rugo_real ls = v2_len(sum);
+    const rugo_real ls = rugo__v2_length(sum);
     if (m == 0 || ls < 1e-6) return;
-    *centre = v2_unit_len(sum, ls);
+    *centre = rugo__v2_unit_len(sum, ls);
     rugo_real h = 0.0;
     for (int i = 0; i < m; ++i) {
         rugo_real c = rugo_v2_dot(*centre, u[i]);
@@ -264,23 +91,18 @@ static rugo_real local_extent(rugo_contour c, int seg) {
     const rugo_vec2 o = c.points[rugo__wrap(seg, c.count)];
     rugo_real e = 0.0;
     for (int i = seg - 4; i <= seg + 5; ++i)
-        e = fmax(e, v2_len(rugo_v2_sub(c.points[rugo__wrap(i, c.count)], o)));
+        e = fmax(e, rugo__v2_length(rugo_v2_sub(c.points[rugo__wrap(i, c.count)], o)));
     return e;
 }
 
-/* First derivative of a segment at t from rugo_contour_derivative_coefficients' v, w, r. */
-static rugo_vec2 first_derivative(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_real t) {
-    return rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
-}
-
-/* Whether len > 1e-9 (|v| + |w| + |r|) (the lengths as v2_len computes them), without the three
+/* Whether len > 1e-9 (|v| + |w| + |r|) (the lengths as rugo__v2_length computes them), without the three
  * lengths when an upper bound of their sum already decides it: |a| <= |a.x| + |a.y|, so the sum of
  * the lengths is at most the sum of the absolute coordinates (padded against its rounding), and len
  * above 1e-9 times that is above 1e-9 times the sum. Otherwise the lengths decide, as before. */
 static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
     const rugo_real l1 = (fabs(v.x) + fabs(v.y)) + (fabs(w.x) + fabs(w.y)) + (fabs(r.x) + fabs(r.y));
     if (len > 1e-9 * (l1 * (1.0 + 1e-9))) return 1;
-    return len > 1e-9 * (v2_len(v) + v2_len(w) + v2_len(r));
+    return len > 1e-9 * (rugo__v2_length(v) + rugo__v2_length(w) + rugo__v2_length(r));
 }
 
 /* At a regular point of the curve (speed not vanishing against the segment's size), 1 and the
@@ -288,8 +110,8 @@ static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
 static int regular_normal(rugo_contour c, int seg, rugo_real t, rugo_vec2* n) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = first_derivative(v, w, r, t);
-    const rugo_real len = v2_len(d);
+    const rugo_vec2 d = rugo__first_derivative(v, w, r, t);
+    const rugo_real len = rugo__v2_length(d);
     if (!(speed_regular(len, v, w, r) && len > 0.0)) return 0;
     *n = rugo_v2(d.y / len, -d.x / len);
     return 1;
@@ -306,7 +128,7 @@ static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
         const rugo_vec2 p1 = rugo_contour_point_at(c, u + h);
         const rugo_vec2 p0 = rugo_contour_point_at(c, u - h + (rugo_real)c.count);
         const rugo_vec2 ch = rugo_v2_sub(p1, p0);
-        const rugo_real l = v2_len(ch);
+        const rugo_real l = rugo__v2_length(ch);
         if (l > tiny && l > 0.0) return rugo_v2(ch.y / l, -ch.x / l);
     }
     return rugo_contour_normal(c, seg, t);
@@ -317,9 +139,9 @@ static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
 static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in, rugo_vec2* n_out) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = first_derivative(v, w, r, t);
-    const rugo_real scale = v2_len(v) + v2_len(w) + v2_len(r);
-    if (v2_len(d) > 1e-9 * scale && v2_len(d) > 0.0) return 0;
+    const rugo_vec2 d = rugo__first_derivative(v, w, r, t);
+    const rugo_real scale = rugo__v2_length(v) + rugo__v2_length(w) + rugo__v2_length(r);
+    if (rugo__v2_length(d) > 1e-9 * scale && rugo__v2_length(d) > 0.0) return 0;
     const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, n = (rugo_real)c.count;
     const rugo_vec2 p = rugo_contour_point_at(c, u);
     const rugo_real tiny = 1e-8 * local_extent(c, seg);
@@ -330,7 +152,7 @@ static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in,
         for (rugo_real h = 1e-4; h < n; h *= 2.0) {
             const rugo_vec2 q = rugo_contour_point_at(c, side ? u + h : u - h + n);
             const rugo_vec2 ch = side ? rugo_v2_sub(q, p) : rugo_v2_sub(p, q);
-            const rugo_real l = v2_len(ch);
+            const rugo_real l = rugo__v2_length(ch);
             if (l > tiny && l > 0.0) {
                 *(side ? n_out : n_in) = rugo_v2(ch.y / l, -ch.x / l);
                 ++got;
@@ -352,7 +174,7 @@ static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo
         return rugo_v2_dot(rugo_rotate(rot, curve_normal(c, seg, t)), d) >= 0.0;
     a = rugo_rotate(rot, a);
     b = rugo_rotate(rot, b);
-    const rugo_real turn = rugo_v2_cross(a, b), tol = 1e-9 * v2_len(d);
+    const rugo_real turn = rugo_v2_cross(a, b), tol = 1e-9 * rugo__v2_length(d);
     if (turn < -1e-12) return 0;                                                    /* reflex */
     if (turn <= 1e-12) return rugo_v2_dot(a, d) >= 0.0 && rugo_v2_dot(b, d) >= 0.0; /* no turn */
     return rugo_v2_cross(a, d) >= -tol && rugo_v2_cross(d, b) >= -tol;
@@ -360,16 +182,6 @@ static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo
 
 /* ---------------------------------------------------------------------------------------------------
  * Levels, bands, surfaces. */
-
-typedef struct side {
-    const rugo_shape* shape;
-    const rugo_mobb_tree* tree;
-    rugo_contour curve; /* level curve, local frame */
-    int level, n, jmin;
-    const rugo_real* lambda; /* total λ of the level */
-    const rugo_real* band;   /* upper bounds of λ(t) per segment */
-    rugo_real slack;         /* growth of the boxes */
-} side;
 
 static int resolve_level(const rugo_shape* s, int level) {
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
@@ -380,7 +192,7 @@ static int resolve_level(const rugo_shape* s, int level) {
     return l;
 }
 
-static void side_init(side* s, const rugo_shape* shape, int level, rugo_real override) {
+static void side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override) {
     s->shape = shape;
     s->tree = rugo_shape_tree(shape);
     s->level = resolve_level(shape, level);
@@ -394,18 +206,18 @@ static void side_init(side* s, const rugo_shape* shape, int level, rugo_real ove
     s->slack = override >= 0.0 ? override : rugo__shape_band_excess(shape, s->level);
 }
 
-static rugo_real side_lambda(const side* s, int seg, rugo_real t, rugo_real override) {
+static rugo_real side_lambda(const query_side* s, int seg, rugo_real t, rugo_real override) {
     if (override >= 0.0) return override;
     return rugo_tolerance_at(s->lambda, s->n, seg, t, 0.0);
 }
 
 /* Containment through the tree (point_query.c): the same answer as rugo_contour_contains on the side's
  * curve, from the segments under the boxes the ray from p towards +x may meet. */
-static int side_contains(const side* s, rugo_vec2 p) { return rugo__level_contains(s->shape, s->level, p, NULL); }
+static int side_contains(const query_side* s, rugo_vec2 p) { return rugo__level_contains(s->shape, s->level, p, NULL); }
 
 /* rugo_contour_closest_point on the side's curve, through the tree (point_query.c): the same answer
  * (non-finite p, which the tree version refuses, takes the pass over all segments). */
-static rugo_curve_point side_closest(const side* s, rugo_vec2 p) {
+static rugo_curve_point side_closest(const query_side* s, rugo_vec2 p) {
     rugo_curve_point cp;
     if (rugo_shape_closest_point(s->shape, s->level, p, &cp) != RUGO_OK) return rugo_contour_closest_point(s->curve, p);
     return cp;
@@ -420,19 +232,12 @@ int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* v
 /* ---------------------------------------------------------------------------------------------------
  * Tree traversal (SPEC 7). */
 
-typedef struct tside {
-    const rugo_mobb_tree* tree; /* NULL: a single fixed box (a primitive) */
-    int jmin, stop;
-    rugo_real slack;
-    rugo_obb box;
-} tside;
-
-static int theight(const tside* s, int l) {
+static int theight(const tree_side* s, int l) {
     if (s->tree == NULL) return 0;
     return l < 0 ? s->stop - s->jmin + 1 : s->stop - l;
 }
 
-static void tchildren(const tside* s, int l, int k, int* cl, int* k0, int* nk) {
+static void tchildren(const tree_side* s, int l, int k, int* cl, int* k0, int* nk) {
     if (l < 0) {
         *cl = s->jmin;
         *k0 = 0;
@@ -444,14 +249,6 @@ static void tchildren(const tside* s, int l, int k, int* cl, int* k0, int* nk) {
     }
 }
 
-/* A box as tested, with the parts of rugo_obb_overlap's separating-axis test that depend on it alone
- * (mobb.c): its projected radius on its own two axes and its largest centre coordinate. */
-typedef struct tbx {
-    rugo_obb b;
-    rugo_real self0, self1; /* projected_radius(b, axis[0]), projected_radius(b, axis[1]) */
-    rugo_real pos;          /* fmax(|centre.x|, |centre.y|) */
-} tbx;
-
 /* fmax as the C library defines it (a NaN argument gives the other one), without the library call. */
 static rugo_real fmax_c(rugo_real a, rugo_real b) {
     if (a != a) return b;
@@ -462,7 +259,7 @@ static rugo_real fmax_c(rugo_real a, rugo_real b) {
 /* The box of node (l, k) of side s as tested (tree == NULL: the side's fixed box), into t: B's moved
  * by rel (rugo_obb_transform's operations), grown by the side's slack, with its own terms of the
  * test: projected_radius(b, l) = half[0] |axis[0]·l| + half[1] |axis[1]·l| (mobb.c), same operations. */
-static inline void tbx_make(tbx* t, const tside* s, const rugo_obb* const* base, int l, int k, int moved,
+static inline void tbx_make(tested_box* t, const tree_side* s, const rugo_obb* const* base, int l, int k, int moved,
                      rugo_transform rel) {
     rugo_obb* b = &t->b;
     if (s->tree == NULL) {
@@ -495,7 +292,7 @@ static inline void tbx_make(tbx* t, const tside* s, const rugo_obb* const* base,
 /* rugo_obb_overlap(&a->b, &b->b), the same decision bit for bit: every axis's distance and reach are
  * computed with the same operations (a dot product is the same either way round: its products are
  * exact to swap), the box-only terms come precomputed, and the four axes' cross terms are shared. */
-static int tbx_overlap(const tbx* a, const tbx* b) {
+static int tbx_overlap(const tested_box* a, const tested_box* b) {
     const rugo_vec2 t = rugo_v2_sub(b->b.center, a->b.center);
     const rugo_real position = fmax_c(a->pos, b->pos);
     const rugo_vec2 a0 = a->b.axis[0], a1 = a->b.axis[1], b0 = b->b.axis[0], b1 = b->b.axis[1];
@@ -517,10 +314,10 @@ static int tbx_overlap(const tbx* a, const tbx* b) {
 
 /* Node pairs at the stop levels whose boxes overlap, into ctx->pairs; B's boxes are moved by rel.
  * Each box is computed (moved, grown, its own terms of the test) once, when its node is pushed, into
- * a pool (ctx->kids) that the stack's entries index: an expansion that descends both trees tests
+ * a pool (ctx->box_pool) that the stack's entries index: an expansion that descends both trees tests
  * 2 x 2 pairs from 2 + 2 boxes. The pool holds the boxes of the open expansions only (a few per tree
  * level), not every box of the query. */
-static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tside* B, rugo_transform rel,
+static rugo_status traverse(rugo_collide_context* ctx, const tree_side* A, const tree_side* B, rugo_transform rel,
                             long* tests, size_t* count) {
     size_t top = 0, found = 0, nbox = 0;
     long n_tests = 0;
@@ -532,10 +329,10 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
         for (int l = A->jmin; l <= A->stop && l < 32; ++l) base_a[l] = rugo_mobb_tree_node(A->tree, l, 0);
     if (B->tree != NULL)
         for (int l = B->jmin; l <= B->stop && l < 32; ++l) base_b[l] = rugo_mobb_tree_node(B->tree, l, 0);
-    if (!reserve(ctx, &ctx->stack, 64, sizeof(tnode)) || !reserve(ctx, &ctx->kids, 64, sizeof(tbx)))
+    if (!rugo__scratch_reserve(ctx, &ctx->stack, 64, sizeof(traversal_node)) || !rugo__scratch_reserve(ctx, &ctx->box_pool, 64, sizeof(tested_box)))
         return RUGO_ERR_OUT_OF_MEMORY;
-    tnode* st = (tnode*)ctx->stack.data;
-    tbx* pool = (tbx*)ctx->kids.data;
+    traversal_node* st = (traversal_node*)ctx->stack.data;
+    tested_box* pool = (tested_box*)ctx->box_pool.data;
     st[top].la = -1;
     st[top].ka = 0;
     st[top].lb = -1;
@@ -551,13 +348,13 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
     ++n_tests;
     top += (size_t)tbx_overlap(&pool[st[0].ia], &pool[st[0].ib]);
     while (top > 0) {
-        const tnode t = st[--top];
+        const traversal_node t = st[--top];
         /* The pool is a stack too: the boxes made after t was pushed belong to the expansions of its
          * siblings popped before it, and no node left on the stack refers to them. */
         nbox = (size_t)t.mark;
         const int ha = theight(A, t.la), hb = theight(B, t.lb);
         if (ha == 0 && hb == 0) {
-            if (!reserve(ctx, &ctx->pairs, found + 1, sizeof(rugo_node_pair))) return RUGO_ERR_OUT_OF_MEMORY;
+            if (!rugo__scratch_reserve(ctx, &ctx->pairs, found + 1, sizeof(rugo_node_pair))) return RUGO_ERR_OUT_OF_MEMORY;
             rugo_node_pair* p = (rugo_node_pair*)ctx->pairs.data;
             p[found].k_a = t.ka;
             p[found].k_b = t.kb;
@@ -567,11 +364,11 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
         int cla = t.la, ka0 = t.ka, nka = 1, clb = t.lb, kb0 = t.kb, nkb = 1;
         if (ha >= hb) tchildren(A, t.la, t.ka, &cla, &ka0, &nka);
         if (hb >= ha) tchildren(B, t.lb, t.kb, &clb, &kb0, &nkb);
-        if (!reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(tnode)) ||
-            !reserve(ctx, &ctx->kids, nbox + (size_t)nka + (size_t)nkb, sizeof(tbx)))
+        if (!rugo__scratch_reserve(ctx, &ctx->stack, top + (size_t)(nka * nkb), sizeof(traversal_node)) ||
+            !rugo__scratch_reserve(ctx, &ctx->box_pool, nbox + (size_t)nka + (size_t)nkb, sizeof(tested_box)))
             return RUGO_ERR_OUT_OF_MEMORY;
-        st = (tnode*)ctx->stack.data;
-        pool = (tbx*)ctx->kids.data;
+        st = (traversal_node*)ctx->stack.data;
+        pool = (tested_box*)ctx->box_pool.data;
         /* children's boxes: B's at ib0 + j, A's at ia0 + i (or the parent's box where a side stays) */
         const size_t ib0 = nbox;
         if (hb >= ha) {
@@ -602,37 +399,6 @@ static rugo_status traverse(rugo_collide_context* ctx, const tside* A, const tsi
     return RUGO_OK;
 }
 
-/* Room for the queries between two shapes the size of s (the same coarsest and finest levels, or
- * smaller) with up to `contacts` contacts. The traversal's stack holds at most the root's children
- * (2^j0 x 2^j0) plus 3 per level descended on either side (each later expansion pops one node and pushes
- * at most 2 x 2), and its box pool 2 + 2 x 2^j0 boxes plus 4 per level on either side (see traverse);
- * the per-segment tables take both shapes' segments. What grows with the contacts is sized from what
- * the benchmarks measure per contact (about 25 segment pairs near one contact at the finest level, a
- * few hits each), with room to spare, and the pair list holds every segment pair when there are at
- * most 2^18; a query beyond that (shapes over 512 segments deeply overlapping) still grows. */
-rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* s, int contacts) {
-    if (ctx == NULL || s == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (contacts < 0 || contacts > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_ARGUMENT;
-    const rugo_mobb_tree* t = rugo_shape_tree(s);
-    if (t == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    const int j0 = rugo_mobb_tree_coarsest_level(t), levels = rugo_mobb_tree_finest_level(t) - j0 + 1;
-    const size_t fan = (size_t)1 << j0, seg = (size_t)2 << rugo_mobb_tree_finest_level(t); /* both shapes */
-    const size_t c = contacts > 0 ? (size_t)contacts : 1;
-    /* every segment pair of two such shapes, when that is at most 2^18 (2 MB; shapes up to 512
-     * segments): deeply overlapping shapes, and falling ones whose speculative margins grow the boxes by
-     * centimetres (65 537 pairs seen between two 512-segment bodies in benchmark 3), then fit too */
-    const size_t half = seg / 2, all_pairs = half <= 512 ? half * half : (size_t)1 << 18;
-    const int ok = reserve(ctx, &ctx->stack, fan * fan + 6 * (size_t)levels + 1, sizeof(tnode)) &&
-                   reserve(ctx, &ctx->kids, 2 + 2 * fan + 8 * (size_t)levels, sizeof(tbx)) &&
-                   reserve(ctx, &ctx->pairs, all_pairs > 64 * c ? all_pairs : 64 * c, sizeof(rugo_node_pair)) &&
-                   reserve(ctx, &ctx->xs, 4 * c, sizeof(hit)) && reserve(ctx, &ctx->ss, 8 * c, sizeof(hit)) &&
-                   reserve(ctx, &ctx->ss2, 8 * c, sizeof(hit)) && reserve(ctx, &ctx->ints, 24 * c, sizeof(int)) &&
-                   reserve(ctx, &ctx->marks, seg > (4 * c + 2) * sizeof(rugo_real) ? seg : (4 * c + 2) * sizeof(rugo_real), 1) &&
-                   reserve(ctx, &ctx->segs, seg, sizeof(seginfo)) && reserve(ctx, &ctx->out, 4 * c, sizeof(rugo_contact)) &&
-                   reserve(ctx, &ctx->ptab, seg, sizeof(rugo_vec2[4])) && reserve(ctx, &ctx->pstamp, seg, sizeof(uint32_t));
-    return ok ? RUGO_OK : RUGO_ERR_OUT_OF_MEMORY;
-}
-
 rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
                             int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
                             rugo_node_pair* pairs, int capacity, int* count, long* box_tests) {
@@ -641,8 +407,8 @@ rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, 
     if (ctx == NULL || a == NULL || b == NULL || count == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
     if (capacity > 0 && pairs == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!transform_finite(xa) || !transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
-    tside A, B;
+    if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    tree_side A, B;
     memset(&A, 0, sizeof A);
     memset(&B, 0, sizeof B);
     A.tree = a;
@@ -657,7 +423,7 @@ rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, 
                  : (level_b > rugo_mobb_tree_finest_level(b) ? rugo_mobb_tree_finest_level(b) : level_b);
     long tests = 0;
     size_t n = 0;
-    rugo_status st = traverse(ctx, &A, &B, relative_transform(xa, xb), &tests, &n);
+    rugo_status st = traverse(ctx, &A, &B, rugo__relative_transform(xa, xb), &tests, &n);
     if (st != RUGO_OK) return st;
     const rugo_node_pair* p = (const rugo_node_pair*)ctx->pairs.data;
     for (size_t i = 0; i < n && i < (size_t)capacity; ++i)
@@ -670,8 +436,8 @@ rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, 
 /* ---------------------------------------------------------------------------------------------------
  * Hits: recording, global parameters, duplicates. */
 
-static int push_hit(rugo_collide_context* ctx, buffer* b, size_t* n, const hit* h) {
-    if (!reserve(ctx, b, *n + 1, sizeof(hit))) return 0;
+static int push_hit(rugo_collide_context* ctx, rugo__array* b, size_t* n, const hit* h) {
+    if (!rugo__scratch_reserve(ctx, b, *n + 1, sizeof(hit))) return 0;
     ((hit*)b->data)[(*n)++] = *h;
     return 1;
 }
@@ -724,12 +490,12 @@ static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stat
              * (a corner made by coincident control points): those merge by position too. */
             if (h[j].dead || (h[j].src == h[i].src && !stationary)) continue;
             int same =
-                v2_len(rugo_v2_sub(h[j].pa, h[i].pa)) <= eps && v2_len(rugo_v2_sub(h[j].pb, h[i].pb)) <= eps;
+                rugo__v2_length(rugo_v2_sub(h[j].pa, h[i].pa)) <= eps && rugo__v2_length(rugo_v2_sub(h[j].pb, h[i].pb)) <= eps;
             /* Flat minima (straight or nearly straight pieces facing each other) are located only to
              * ~sqrt(eps) at joints; at the same distance to round-off, points that close are one. */
             if (!same && stationary && fabs(h[j].distance - h[i].distance) <= 1e-3 * eps)
-                same = v2_len(rugo_v2_sub(h[j].pa, h[i].pa)) <= 1e3 * eps &&
-                       v2_len(rugo_v2_sub(h[j].pb, h[i].pb)) <= 1e3 * eps;
+                same = rugo__v2_length(rugo_v2_sub(h[j].pa, h[i].pa)) <= 1e3 * eps &&
+                       rugo__v2_length(rugo_v2_sub(h[j].pb, h[i].pb)) <= 1e3 * eps;
             if (same) {
                 h[i].coincident |= h[j].coincident;
                 if (stationary) {
@@ -749,28 +515,6 @@ static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stat
 
 /* ---------------------------------------------------------------------------------------------------
  * Overlap regions: the boundary of A ∩ B traced through the crossings. */
-
-typedef struct region_io {
-    void* user;
-    rugo_real period_a, period_b;
-    rugo_vec2 (*point_a)(void* user, rugo_real u); /* A's frame */
-    rugo_vec2 (*point_b)(void* user, rugo_real w);
-    int (*inside_b)(void* user, rugo_vec2 p);
-    int (*inside_a)(void* user, rugo_vec2 p);
-} region_io;
-
-typedef struct regions {
-    int m;        /* crossings */
-    const hit* x; /* sorted by ua */
-    int* order_b; /* crossing indices sorted by ub */
-    int* pos_b;   /* rank of each crossing in order_b */
-    int* a_in;    /* A's arc from crossing i to the next along A lies inside B */
-    int* b_in;    /* B's arc from crossing i to the next along B lies inside A */
-    int* reg_a;   /* region of A's arc i, or -1 */
-    int* reg_b;   /* region of B's arc i, or -1 */
-    int count;    /* regions */
-    rugo_real period_a, period_b;
-} regions;
 
 static int next_a(const regions* r, int i) { return (i + 1) % r->m; }
 static int next_b(const regions* r, int i) { return r->order_b[(r->pos_b[i] + 1) % r->m]; }
@@ -912,16 +656,6 @@ static void build_regions(regions* r, const hit* x, int m, int* ints, const regi
 /* ---------------------------------------------------------------------------------------------------
  * Contacts: filling, ordering, output. */
 
-typedef struct out_ctx {
-    rugo_collide_context* ctx;
-    size_t n;
-    rugo_transform xa;
-    const rugo_contact_query* q;
-    const side* A;
-    const side* B; /* NULL for primitives */
-    rugo_real override;
-} out_ctx;
-
 static uint64_t make_id(int level_a, int level_b, int seg_a, int seg_b, int type, int index) {
     return ((uint64_t)(level_a & 31) << 59) | ((uint64_t)(level_b & 31) << 54) |
            ((uint64_t)(seg_a & 0xFFFFF) << 34) | ((uint64_t)(seg_b & 0xFFFFF) << 14) |
@@ -930,9 +664,9 @@ static uint64_t make_id(int level_a, int level_b, int seg_a, int seg_b, int type
 
 /* Adds a contact from a pair in A's frame: n unit from A to B. id_b: B's segment, or the primitive's
  * feature, for the id. */
-static int emit(out_ctx* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
+static int emit(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
                 rugo_vec2 n, int region, int type, int index, int id_b) {
-    if (!reserve(o->ctx, &o->ctx->out, o->n + 1, sizeof(rugo_contact))) return 0;
+    if (!rugo__scratch_reserve(o->ctx, &o->ctx->out, o->n + 1, sizeof(rugo_contact))) return 0;
     rugo_contact* c = (rugo_contact*)o->ctx->out.data + o->n++;
     memset(c, 0, sizeof *c);
     c->point_a = rugo_transform_point(o->xa, pa);
@@ -978,7 +712,7 @@ static int contact_cmp(const void* pa, const void* pb) {
     return 0;
 }
 
-static void finish(out_ctx* o, rugo_contact* contacts, int capacity, int* count, rugo_query_stats* stats) {
+static void finish(contact_out* o, rugo_contact* contacts, int capacity, int* count, rugo_query_stats* stats) {
     rugo_contact* all = (rugo_contact*)o->ctx->out.data;
     if (o->n > 1) qsort(all, o->n, sizeof(rugo_contact), contact_cmp);
     size_t w = o->n < (size_t)capacity ? o->n : (size_t)capacity;
@@ -1003,37 +737,12 @@ static rugo_status check_query(const rugo_contact_query* q, rugo_contact* contac
 /* ---------------------------------------------------------------------------------------------------
  * Shape against shape. */
 
-typedef struct pair_geo {
-    const side* A;
-    const side* B;
-    rugo_transform rel; /* B's frame -> A's frame */
-    rugo_real scale;
-    rugo_query_stats* stats;
-    int src;
-    int coincident; /* some pieces coincide */
-    rugo_real margin; /* query margin: minima up to band + margin count */
-    /* Bezier pieces computed at most once per query and segment (NULL: not set up, see piece_table) */
-    rugo_vec2 (*tab)[4]; /* A's n pieces, then B's n (in A's frame) */
-    uint32_t* stamp;     /* entry valid iff stamp == epoch */
-    uint32_t epoch;
-} pair_geo;
-
-static void piece_b(const pair_geo* g, int k, rugo_vec2 out[4]) {
+static void piece_b(const shape_pair* g, int k, rugo_vec2 out[4]) {
     rugo_vec2 q[4];
     rugo_contour_bezier(g->B->curve, k, q);
     for (int i = 0; i < 4; ++i)
         out[i] = rugo_transform_point(g->rel, q[i]);
 }
-
-/* The Bezier pieces of a query's segment pairs, each computed once: the pairs come sorted by A's
- * segment, with B's segments of a small range repeating for each (direct-mapped by the low bits). */
-enum { PIECE_CACHE = 16 };
-typedef struct piece_cache {
-    int ka;
-    rugo_vec2 fa[4];
-    int kb[PIECE_CACHE];
-    rugo_vec2 gb[PIECE_CACHE][4];
-} piece_cache;
 
 static void piece_cache_init(piece_cache* pc) {
     pc->ka = -1;
@@ -1042,7 +751,7 @@ static void piece_cache_init(piece_cache* pc) {
 }
 
 /* Pieces from the query's table (g->tab set: piece_table). */
-static const rugo_vec2* tab_piece_a(const pair_geo* g, int k) {
+static const rugo_vec2* tab_piece_a(const shape_pair* g, int k) {
     if (g->stamp[k] != g->epoch) {
         rugo_contour_bezier(g->A->curve, k, g->tab[k]);
         g->stamp[k] = g->epoch;
@@ -1050,7 +759,7 @@ static const rugo_vec2* tab_piece_a(const pair_geo* g, int k) {
     return g->tab[k];
 }
 
-static const rugo_vec2* tab_piece_b(const pair_geo* g, int k) {
+static const rugo_vec2* tab_piece_b(const shape_pair* g, int k) {
     const size_t e = (size_t)g->A->n + (size_t)k;
     if (g->stamp[e] != g->epoch) {
         piece_b(g, k, g->tab[e]);
@@ -1059,7 +768,7 @@ static const rugo_vec2* tab_piece_b(const pair_geo* g, int k) {
     return g->tab[e];
 }
 
-static const rugo_vec2* cached_piece_a(piece_cache* pc, const pair_geo* g, int k) {
+static const rugo_vec2* cached_piece_a(piece_cache* pc, const shape_pair* g, int k) {
     if (g->tab != NULL) return tab_piece_a(g, k);
     if (pc->ka != k) {
         rugo_contour_bezier(g->A->curve, k, pc->fa);
@@ -1068,7 +777,7 @@ static const rugo_vec2* cached_piece_a(piece_cache* pc, const pair_geo* g, int k
     return pc->fa;
 }
 
-static const rugo_vec2* cached_piece_b(piece_cache* pc, const pair_geo* g, int k) {
+static const rugo_vec2* cached_piece_b(piece_cache* pc, const shape_pair* g, int k) {
     if (g->tab != NULL) return tab_piece_b(g, k);
     const int slot = k & (PIECE_CACHE - 1);
     if (pc->kb[slot] != k) {
@@ -1081,9 +790,9 @@ static const rugo_vec2* cached_piece_b(piece_cache* pc, const pair_geo* g, int k
 /* Sets up g's piece table in ctx for the query (A->n + B->n entries); 0 if out of memory. A new epoch
  * invalidates every entry without clearing; stamps are zeroed once when first allocated, and all of
  * them when the epoch wraps. */
-static int piece_table(rugo_collide_context* ctx, pair_geo* g) {
+static int piece_table(rugo_collide_context* ctx, shape_pair* g) {
     const size_t n = (size_t)g->A->n + (size_t)g->B->n;
-    if (!reserve(ctx, &ctx->ptab, n, sizeof(rugo_vec2[4])) || !reserve(ctx, &ctx->pstamp, n, sizeof(uint32_t)))
+    if (!rugo__scratch_reserve(ctx, &ctx->ptab, n, sizeof(rugo_vec2[4])) || !rugo__scratch_reserve(ctx, &ctx->pstamp, n, sizeof(uint32_t)))
         return 0;
     uint32_t* stamp = (uint32_t*)ctx->pstamp.data;
     if (ctx->pstamp_zeroed < n) {
@@ -1100,16 +809,16 @@ static int piece_table(rugo_collide_context* ctx, pair_geo* g) {
     return 1;
 }
 
-static rugo_vec2 normal_a(const pair_geo* g, int seg, rugo_real t) {
+static rugo_vec2 normal_a(const shape_pair* g, int seg, rugo_real t) {
     return curve_normal(g->A->curve, seg, t);
 }
-static rugo_vec2 normal_b(const pair_geo* g, int seg, rugo_real t) {
+static rugo_vec2 normal_b(const shape_pair* g, int seg, rugo_real t) {
     return rugo_rotate(g->rel.q, curve_normal(g->B->curve, seg, t));
 }
 
 /* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. */
-static int run_pair(rugo_collide_context* ctx, pair_geo* g, int ka, const rugo_vec2 f[4], int kb,
-                    const rugo_vec2 gb[4], rugo_real cutoff, buffer* xs, size_t* nx, buffer* ss, size_t* ns) {
+static int run_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo_vec2 f[4], int kb,
+                    const rugo_vec2 gb[4], rugo_real cutoff, rugo__array* xs, size_t* nx, rugo__array* ss, size_t* ns) {
     const rugo_vec2 o = f[0];
     rugo_vec2 fl[4], gl[4];
     for (int i = 0; i < 4; ++i) {
@@ -1128,7 +837,7 @@ static int run_pair(rugo_collide_context* ctx, pair_geo* g, int ka, const rugo_v
     for (int pass = 0; pass < 2; ++pass) {
         const int cnt = pass == 0 ? r.crossing_count : r.stationary_count;
         const rugo__pair_point* pp = pass == 0 ? r.crossings : r.stationary;
-        buffer* dst = pass == 0 ? xs : ss;
+        rugo__array* dst = pass == 0 ? xs : ss;
         size_t* nd = pass == 0 ? nx : ns;
         if (dst == NULL) continue;
         for (int i = 0; i < cnt; ++i) {
@@ -1157,27 +866,27 @@ static int run_pair(rugo_collide_context* ctx, pair_geo* g, int ka, const rugo_v
 
 /* Region geometry callbacks for two shapes. */
 static rugo_vec2 sh_point_a(void* u, rugo_real t) {
-    const pair_geo* g = (const pair_geo*)u;
+    const shape_pair* g = (const shape_pair*)u;
     return rugo_contour_point_at(g->A->curve, t);
 }
 static rugo_vec2 sh_point_b(void* u, rugo_real t) {
-    const pair_geo* g = (const pair_geo*)u;
+    const shape_pair* g = (const shape_pair*)u;
     return rugo_transform_point(g->rel, rugo_contour_point_at(g->B->curve, t));
 }
 static int sh_inside_b(void* u, rugo_vec2 p) {
-    const pair_geo* g = (const pair_geo*)u;
+    const shape_pair* g = (const shape_pair*)u;
     return side_contains(g->B, rugo_inv_transform_point(g->rel, p));
 }
 static int sh_inside_a(void* u, rugo_vec2 p) {
-    const pair_geo* g = (const pair_geo*)u;
+    const shape_pair* g = (const shape_pair*)u;
     return side_contains(g->A, p);
 }
 
 /* Extreme point of a curve (A's frame pieces from `piece`) along direction d: the point maximising
  * p·d (sign = +1) or minimising it (sign = -1). Exact: ends and roots of the derivative. */
-static rugo_vec2 support_point(const pair_geo* g, int of_b, rugo_vec2 d, int sign, int* seg_out,
+static rugo_vec2 support_point(const shape_pair* g, int of_b, rugo_vec2 d, int sign, int* seg_out,
                                rugo_real* t_out) {
-    const side* s = of_b ? g->B : g->A;
+    const query_side* s = of_b ? g->B : g->A;
     rugo_real best = -HUGE_VAL;
     rugo_vec2 best_p = rugo_v2(0.0, 0.0);
     int best_k = 0;
@@ -1204,7 +913,7 @@ static rugo_vec2 support_point(const pair_geo* g, int of_b, rugo_vec2 d, int sig
             ts[nt++] = roots[i];
         ts[nt++] = 1.0 - DBL_EPSILON; /* t = 1 is the next segment's start */
         for (int i = 0; i < nt; ++i) {
-            rugo_vec2 p = bez_point(b, ts[i]);
+            rugo_vec2 p = rugo__bezier_point(b, ts[i]);
             const rugo_real val = (rugo_real)sign * rugo_v2_dot(p, d);
             if (val > best) {
                 best = val;
@@ -1220,9 +929,9 @@ static rugo_vec2 support_point(const pair_geo* g, int of_b, rugo_vec2 d, int sig
 }
 
 /* Closest pair of the two curves (a MINIMUM of the distance), searching pairs within `bound`. */
-static rugo_status closest_pair(rugo_collide_context* ctx, pair_geo* g, const tside* ta, const tside* tb,
+static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta, const tree_side* tb,
                                 rugo_real bound, hit* best, int* found) {
-    tside A = *ta, B = *tb;
+    tree_side A = *ta, B = *tb;
     A.slack = 0.5 * bound;
     B.slack = 0.5 * bound;
     size_t np = 0;
@@ -1253,8 +962,8 @@ static rugo_status closest_pair(rugo_collide_context* ctx, pair_geo* g, const ts
 }
 
 /* One curve inside the other without crossing: the way out through the closest pair. */
-static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, const tside* ta,
-                                       const tside* tb, int b_inside_a, out_ctx* o) {
+static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta,
+                                       const tree_side* tb, int b_inside_a, contact_out* o) {
     /* An upper bound of the smallest distance: from one point of the inner curve to the outer. */
     hit best;
     memset(&best, 0, sizeof best);
@@ -1308,10 +1017,9 @@ static rugo_status containment_contact(rugo_collide_context* ctx, pair_geo* g, c
 
 /* Overlaps below the resolution (defined with the primitives, whose type they read): the normal that
  * takes a tiny overlap at pa (A) / pb (B) apart, and the contacts of crossings that closed no region. */
-struct prim;
-static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
+static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa, rugo_real ta,
                                 rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale);
-static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
+static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
                                              const hit* x, int m, rugo_real scale);
 
 /* A sharp corner (zero-speed joint) of curve c at one of segment seg's two joints, within `near` of x
@@ -1321,7 +1029,7 @@ static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rug
         const int k = rugo__wrap(seg + j, c.count);
         rugo_vec2 nin, nout;
         if (!corner_normals(c, k, 0.0, &nin, &nout)) continue;
-        if (v2_len(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
+        if (rugo__v2_length(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
         *n = curve_normal(c, k, 0.0);
         return 1;
     }
@@ -1335,9 +1043,9 @@ static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rug
  * are apart beyond round-off (1e-12 of the size), where A's normal may still face the wrong way, but
  * not below: there pb behind A's tangent is an overlap below the resolution, and turning would point
  * the normal into A. */
-static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
+static rugo_vec2 pair_normal(const shape_pair* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
-    const rugo_real len = v2_len(d);
+    const rugo_real len = rugo__v2_length(d);
     if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
     rugo_vec2 n = normal_a(g, h->sa, h->ta);
     const rugo_real near = OVERLAP_NEAR * g->scale;
@@ -1352,9 +1060,9 @@ static rugo_vec2 pair_normal(const pair_geo* g, const hit* h) {
 
 /* Facing test of a minimum: B lies on A's outward side at pa and A on B's outward side at pb (at
  * corners: within their normal cones). */
-static int facing(const pair_geo* g, const hit* h) {
+static int facing(const shape_pair* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
-    if (v2_len(d) <= SAME_POINT * g->scale) return 1;
+    if (rugo__v2_length(d) <= SAME_POINT * g->scale) return 1;
     rugo_rot id;
     id.c = 1.0;
     id.s = 0.0;
@@ -1363,7 +1071,7 @@ static int facing(const pair_geo* g, const hit* h) {
 }
 
 /* Minima within the band (not inside a region if regs != NULL), each its own region from `first`. */
-static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, const regions* regs, int first,
+static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns, const regions* regs, int first,
                                rugo_real override) {
     int region = first;
     for (size_t i = 0; i < ns; ++i) {
@@ -1388,9 +1096,9 @@ static rugo_status emit_minima(out_ctx* o, pair_geo* g, hit* hs, size_t ns, cons
 }
 
 /* Segments under the arcs of region reg (which = 0: A's, 1: B's), appended to ctx->segs. */
-static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const regions* r, int reg,
+static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, const regions* r, int reg,
                             int which, unsigned char* mark, size_t* nseg) {
-    const side* s = which == 0 ? g->A : g->B;
+    const query_side* s = which == 0 ? g->A : g->B;
     for (int i = 0; i < r->m; ++i) {
         if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
         const int j = which == 0 ? next_a(r, i) : next_b(r, i);
@@ -1402,7 +1110,7 @@ static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const 
             const int kk = rugo__wrap(k, s->n);
             if (mark[kk]) continue;
             mark[kk] = 1;
-            if (!reserve(ctx, &ctx->segs, *nseg + 1, sizeof(seginfo))) return 0;
+            if (!rugo__scratch_reserve(ctx, &ctx->segs, *nseg + 1, sizeof(seginfo))) return 0;
             seginfo* si = (seginfo*)ctx->segs.data + (*nseg)++;
             si->k = kk;
             if (g->tab != NULL)
@@ -1411,7 +1119,7 @@ static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const 
                 rugo_contour_bezier(s->curve, kk, si->b);
             else
                 piece_b(g, kk, si->b);
-            bez_bounds(si->b, &si->lo, &si->hi);
+            rugo__bezier_bounds(si->b, &si->lo, &si->hi);
             tangent_cone(si->b, &si->cone, &si->half);
         }
     }
@@ -1421,17 +1129,17 @@ static int collect_segments(rugo_collide_context* ctx, const pair_geo* g, const 
 /* 1 if the pair (pa, pb) at distance len is a depth: pb is B's closest point to pa, or pa is A's
  * closest point to pb (within round-off). A stationary pair need not be one: a zero-speed corner of A
  * (where (f - g)·f' vanishes for every g) pairs with every foot on B, up to B's far side. */
-static int pair_is_depth(const pair_geo* g, rugo_vec2 pa, rugo_vec2 pb, rugo_real len) {
+static int pair_is_depth(const shape_pair* g, rugo_vec2 pa, rugo_vec2 pb, rugo_real len) {
     const rugo_real slack = len * 1e-9 + SAME_POINT * g->scale;
     if (side_closest(g->B, rugo_inv_transform_point(g->rel, pa)).distance >= len - slack) return 1;
     return side_closest(g->A, pb).distance >= len - slack;
 }
 
 /* Deepest penetration pair of region reg; 0 if none. */
-static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const regions* r, int reg,
-                                  out_ctx* o) {
+static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, const regions* r, int reg,
+                                  contact_out* o) {
     const size_t na = (size_t)g->A->n, nb = (size_t)g->B->n;
-    if (!reserve(ctx, &ctx->marks, na + nb, 1)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (!rugo__scratch_reserve(ctx, &ctx->marks, na + nb, 1)) return RUGO_ERR_OUT_OF_MEMORY;
     unsigned char* marks = (unsigned char*)ctx->marks.data;
     memset(marks, 0, na + nb);
     size_t nseg = 0;
@@ -1444,7 +1152,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
         lo = rugo_v2(fmin(lo.x, segs[i].lo.x), fmin(lo.y, segs[i].lo.y));
         hi = rugo_v2(fmax(hi.x, segs[i].hi.x), fmax(hi.y, segs[i].hi.y));
     }
-    const rugo_real cutoff = v2_len(rugo_v2_sub(hi, lo)) * (1.0 + 1e-9) + CUTOFF_PAD * g->scale;
+    const rugo_real cutoff = rugo__v2_length(rugo_v2_sub(hi, lo)) * (1.0 + 1e-9) + CUTOFF_PAD * g->scale;
 
     hit best;
     int have = 0;
@@ -1467,7 +1175,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
                 const hit* h = &hs[k];
                 if (region_of_pair(r, h->ua, h->ub) != reg) continue;
                 rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
-                const rugo_real len = v2_len(d);
+                const rugo_real len = rugo__v2_length(d);
                 if (len <= SAME_POINT * g->scale) continue;
                 if (!(rugo_v2_dot(normal_a(g, h->sa, h->ta), d) > 0.0)) continue;
                 if (!(rugo_v2_dot(normal_b(g, h->sb, h->tb), d) < 0.0)) continue;
@@ -1534,8 +1242,8 @@ static rugo_status region_contact(rugo_collide_context* ctx, pair_geo* g, const 
     normalise(&fsa, &fta, g->A->n);
     normalise(&fsb, &ftb, g->B->n);
     rugo_vec2 d = rugo_v2_sub(fpa, fpb);
-    rugo_vec2 n = v2_len(d) > SAME_POINT * g->scale
-                      ? v2_unit(d)
+    rugo_vec2 n = rugo__v2_length(d) > SAME_POINT * g->scale
+                      ? rugo__v2_unit(d)
                       : overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
     if (!emit(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
     return RUGO_OK;
@@ -1554,22 +1262,22 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     const rugo_contact_query* q = query != NULL ? query : &defq;
     rugo_status st = check_query(q, contacts, capacity);
     if (st != RUGO_OK) return st;
-    if (!transform_finite(xa) || !transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
 
-    side A, B;
+    query_side A, B;
     side_init(&A, a, q->level, override);
     side_init(&B, b, q->level, override);
-    pair_geo g;
+    shape_pair g;
     memset(&g, 0, sizeof g);
     g.A = &A;
     g.B = &B;
-    g.rel = relative_transform(xa, xb);
-    g.scale = fmax(box_size(rugo_mobb_tree_root(A.tree)), box_size(rugo_mobb_tree_root(B.tree)));
+    g.rel = rugo__relative_transform(xa, xb);
+    g.scale = fmax(rugo__box_size(rugo_mobb_tree_root(A.tree)), rugo__box_size(rugo_mobb_tree_root(B.tree)));
     g.stats = stats;
     g.margin = q->margin;
     if (!piece_table(ctx, &g)) return RUGO_ERR_OUT_OF_MEMORY;
-    out_ctx o;
+    contact_out o;
     memset(&o, 0, sizeof o);
     o.ctx = ctx;
     o.xa = xa;
@@ -1578,7 +1286,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     o.B = &B;
     o.override = override;
 
-    tside ta, tb;
+    tree_side ta, tb;
     memset(&ta, 0, sizeof ta);
     memset(&tb, 0, sizeof tb);
     ta.tree = A.tree;
@@ -1623,7 +1331,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
             for (size_t j = 0; j < nx + ns && !xs[i].coincident; ++j) {
                 const hit* oh = j < nx ? &xs[j] : &hs[j - nx];
                 if (oh->dead || !oh->coincident) continue;
-                xs[i].coincident = v2_len(rugo_v2_sub(oh->pa, xs[i].pa)) <= 1e-6 * g.scale;
+                xs[i].coincident = rugo__v2_length(rugo_v2_sub(oh->pa, xs[i].pa)) <= 1e-6 * g.scale;
             }
         }
     /* Crossings that only touch are zero-distance minima, and so are the coincident points. */
@@ -1636,12 +1344,12 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         }
         int dup = 0;
         for (size_t j = 0; j < ns && !dup; ++j)
-            dup = !hs[j].dead && v2_len(rugo_v2_sub(hs[j].pa, xs[i].pa)) <= eps &&
-                  v2_len(rugo_v2_sub(hs[j].pb, xs[i].pb)) <= eps;
+            dup = !hs[j].dead && rugo__v2_length(rugo_v2_sub(hs[j].pa, xs[i].pa)) <= eps &&
+                  rugo__v2_length(rugo_v2_sub(hs[j].pb, xs[i].pb)) <= eps;
         if (!dup) {
             hit t = xs[i];
             t.kind = RUGO__MINIMUM;
-            t.distance = v2_len(rugo_v2_sub(t.pb, t.pa));
+            t.distance = rugo__v2_length(rugo_v2_sub(t.pb, t.pa));
             if (!push_hit(ctx, &ctx->ss, &ns, &t)) return RUGO_ERR_OUT_OF_MEMORY;
             xs = (hit*)ctx->xs.data;
             hs = (hit*)ctx->ss.data;
@@ -1651,7 +1359,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
 
     if (m > 0) {
         *state = RUGO_STATE_INTERSECTING;
-        if (!reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
+        if (!rugo__scratch_reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
         region_io io;
         io.user = &g;
         io.period_a = (rugo_real)A.n;
@@ -1705,41 +1413,21 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
 /* ---------------------------------------------------------------------------------------------------
  * Primitives: B = convex core K (a point, a segment, a convex polygon) grown by a radius R. */
 
-typedef struct prim {
-    int V;             /* 1 circle, 2 segment (capsule), 3..8 polygon */
-    rugo_vec2 v[8];    /* A's frame */
-    rugo_vec2 m[8];    /* outward unit normal of edge i (v_i -> v_{i+1}) */
-    rugo_real arc0[8]; /* vertex arc i: directions from angle arc0 over span (from m_{i-1} to m_i) */
-    rugo_real span[8];
-    rugo_real R;
-    rugo_real
-        period; /* of the boundary parameter: 1 (circle) or 2V (arc i = [2i, 2i+1), edge i = [2i+1, 2i+2)) */
-    rugo_vec2 lo, hi; /* bounds of B */
-} prim;
-
-typedef struct prim_geo {
-    const side* A;
-    const prim* P;
-    rugo_real scale;
-    rugo_query_stats* stats;
-    int src;
-} prim_geo;
-
 static rugo_real point_segment(rugo_vec2 p, rugo_vec2 a, rugo_vec2 b, rugo_vec2* foot) {
     rugo_vec2 d = rugo_v2_sub(b, a);
     const rugo_real dd = rugo_v2_dot(d, d);
     rugo_real t = dd > 0.0 ? rugo_v2_dot(rugo_v2_sub(p, a), d) / dd : 0.0;
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    *foot = lerp2(a, b, t);
-    return v2_len(rugo_v2_sub(p, *foot));
+    *foot = rugo__lerp2(a, b, t);
+    return rugo__v2_length(rugo_v2_sub(p, *foot));
 }
 
 /* Signed distance to B (negative inside); optionally the nearest boundary point and its normal. */
-static rugo_real prim_sd(const prim* P, rugo_vec2 p, rugo_vec2* q, rugo_vec2* nq) {
+static rugo_real prim_sd(const primitive* P, rugo_vec2 p, rugo_vec2* q, rugo_vec2* nq) {
     rugo_vec2 foot = P->v[0];
     rugo_real dk;
     if (P->V == 1) {
-        dk = v2_len(rugo_v2_sub(p, foot));
+        dk = rugo__v2_length(rugo_v2_sub(p, foot));
     } else if (P->V == 2) {
         dk = point_segment(p, P->v[0], P->v[1], &foot);
     } else {
@@ -1781,7 +1469,7 @@ static rugo_real angle_of(rugo_vec2 u) {
 }
 
 /* Boundary parameter of the point of vertex arc i in direction u, or -1 if u is outside the arc. */
-static rugo_real arc_param(const prim* P, int i, rugo_vec2 u) {
+static rugo_real arc_param(const primitive* P, int i, rugo_vec2 u) {
     if (P->V == 1) return wrap_param(angle_of(u) / (2.0 * PI_VALUE), 1.0);
     rugo_real th = angle_of(u) - P->arc0[i];
     while (th < 0.0)
@@ -1796,13 +1484,13 @@ static rugo_real arc_param(const prim* P, int i, rugo_vec2 u) {
 }
 
 /* Is direction u within the normal cone of corner i (between m_{i-1} and m_i)? */
-static int in_cone(const prim* P, int i, rugo_vec2 u) {
+static int in_cone(const primitive* P, int i, rugo_vec2 u) {
     if (P->V == 1) return 1;
     const rugo_vec2 a = P->m[rugo__wrap(i - 1, P->V)], b = P->m[i];
     return rugo_v2_cross(a, u) >= -1e-9 && rugo_v2_cross(u, b) >= -1e-9;
 }
 
-static rugo_vec2 prim_point(const prim* P, rugo_real w) {
+static rugo_vec2 prim_point(const primitive* P, rugo_real w) {
     if (P->V == 1) {
         const rugo_real th = 2.0 * PI_VALUE * w;
         return rugo_v2(P->v[0].x + P->R * cos(th), P->v[0].y + P->R * sin(th));
@@ -1812,33 +1500,33 @@ static rugo_vec2 prim_point(const prim* P, rugo_real w) {
     const int i = rugo__wrap(f / 2, P->V);
     if (f % 2 == 1) {
         const rugo_vec2 off = rugo_v2_scale(P->R, P->m[i]);
-        return lerp2(rugo_v2_add(P->v[i], off), rugo_v2_add(P->v[(i + 1) % P->V], off), t);
+        return rugo__lerp2(rugo_v2_add(P->v[i], off), rugo_v2_add(P->v[(i + 1) % P->V], off), t);
     }
     const rugo_real th = P->arc0[i] + t * P->span[i];
     return rugo_v2(P->v[i].x + P->R * cos(th), P->v[i].y + P->R * sin(th));
 }
 
 static rugo_vec2 pr_point_a(void* u, rugo_real t) {
-    return rugo_contour_point_at(((const prim_geo*)u)->A->curve, t);
+    return rugo_contour_point_at(((const primitive_pair*)u)->A->curve, t);
 }
-static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const prim_geo*)u)->P, w); }
-static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const prim_geo*)u)->P, p, NULL, NULL) < 0.0; }
+static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const primitive_pair*)u)->P, w); }
+static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const primitive_pair*)u)->P, p, NULL, NULL) < 0.0; }
 static int pr_inside_a(void* u, rugo_vec2 p) {
-    return side_contains(((const prim_geo*)u)->A, p);
+    return side_contains(((const primitive_pair*)u)->A, p);
 }
 
 static rugo_real rho_minus_r(const rugo_vec2 fl[4], rugo_vec2 vl, rugo_real R, rugo_real s) {
-    return v2_len(rugo_v2_sub(bez_point(fl, s), vl)) - R;
+    return rugo__v2_length(rugo_v2_sub(rugo__bezier_point(fl, s), vl)) - R;
 }
 
-static void fill_a(hit* h, int ka, rugo_real s, const prim_geo* g) {
+static void fill_a(hit* h, int ka, rugo_real s, const primitive_pair* g) {
     h->sa = ka;
     h->ta = s;
     normalise(&h->sa, &h->ta, g->A->n);
     h->ua = (rugo_real)h->sa + h->ta;
 }
 
-static void fill_b(hit* h, rugo_real w, const prim* P) {
+static void fill_b(hit* h, rugo_real w, const primitive* P) {
     w = wrap_param(w, P->period);
     h->ub = w;
     h->sb = (int)floor(w);
@@ -1847,17 +1535,17 @@ static void fill_b(hit* h, rugo_real w, const prim* P) {
 
 /* The narrow phase of A's segment ka against every feature of B: crossings into xs (if not NULL) and
  * every stationary pair (with B's normal or corner) into ss. */
-static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* xs, size_t* nx, buffer* ss,
+static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, rugo__array* xs, size_t* nx, rugo__array* ss,
                         size_t* ns) {
-    const prim* P = g->P;
+    const primitive* P = g->P;
     rugo_vec2 f[4], fl[4];
     rugo_contour_bezier(g->A->curve, ka, f);
     const rugo_vec2 o = f[0];
     for (int i = 0; i < 4; ++i)
         fl[i] = rugo_v2_sub(f[i], o);
     rugo_vec2 flo, fhi;
-    bez_bounds(f, &flo, &fhi);
-    const rugo_real reach = v2_len(rugo_v2_sub(rugo_v2(fmax(fhi.x, P->hi.x), fmax(fhi.y, P->hi.y)),
+    rugo__bezier_bounds(f, &flo, &fhi);
+    const rugo_real reach = rugo__v2_length(rugo_v2_sub(rugo_v2(fmax(fhi.x, P->hi.x), fmax(fhi.y, P->hi.y)),
                                                rugo_v2(fmin(flo.x, P->lo.x), fmin(flo.y, P->lo.y)))) *
                                 (1.0 + 1e-9) +
                             CUTOFF_PAD * g->scale;
@@ -1935,7 +1623,7 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
         for (int i = 0; i < cnt; ++i) {
             const rugo_vec2 pa = rugo_v2_add(pp[i].pa, o);
             const rugo_vec2 d = rugo_v2_sub(pa, P->v[vi]);
-            const rugo_real rho = v2_len(d);
+            const rugo_real rho = rugo__v2_length(d);
             if (pp[i].s > 0.0 && pp[i].s < 1.0) brk[nb++] = pp[i].s;
             hit h;
             memset(&h, 0, sizeof h);
@@ -1964,7 +1652,7 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
                 k.pb = rugo_v2_add(P->v[vi], rugo_v2_scale(P->R, nb_));
                 k.nb = nb_;
                 k.vertex = -1;
-                k.distance = v2_len(rugo_v2_sub(k.pb, k.pa));
+                k.distance = rugo__v2_length(rugo_v2_sub(k.pb, k.pa));
                 if (side_ == 1) k.kind = RUGO__SADDLE; /* never a minimum of the distance to B */
                 if (!push_hit(ctx, ss, ns, &k)) return 0;
             }
@@ -1983,9 +1671,9 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
             if (!(s1 > s0)) continue;
             /* End values from the unshifted end points, which neighbouring segments share. */
             const rugo_real g0 =
-                s0 == 0.0 ? v2_len(rugo_v2_sub(f[0], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s0);
+                s0 == 0.0 ? rugo__v2_length(rugo_v2_sub(f[0], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s0);
             const rugo_real g1 =
-                s1 == 1.0 ? v2_len(rugo_v2_sub(f[3], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s1);
+                s1 == 1.0 ? rugo__v2_length(rugo_v2_sub(f[3], P->v[vi])) - P->R : rho_minus_r(fl, vl, P->R, s1);
             if ((g0 > 0.0) == (g1 > 0.0)) continue;
             const int entering = g0 > 0.0;
             for (int it = 0; it < 200 && s1 - s0 > 4.0 * DBL_EPSILON; ++it) {
@@ -1996,9 +1684,9 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
                     s1 = sm;
             }
             const rugo_real s = 0.5 * (s0 + s1);
-            const rugo_vec2 p = rugo_v2_add(bez_point(fl, s), o);
+            const rugo_vec2 p = rugo_v2_add(rugo__bezier_point(fl, s), o);
             const rugo_vec2 d = rugo_v2_sub(p, P->v[vi]);
-            const rugo_real w = arc_param(P, vi, v2_unit(d));
+            const rugo_real w = arc_param(P, vi, rugo__v2_unit(d));
             if (w < 0.0) continue; /* crosses the circle outside this vertex's arc */
             hit h;
             memset(&h, 0, sizeof h);
@@ -2006,7 +1694,7 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
             fill_b(&h, w, P);
             h.pa = p;
             h.pb = p;
-            h.nb = v2_unit(d);
+            h.nb = rugo__v2_unit(d);
             h.kind = entering ? -1 : 1;
             h.src = src;
             h.vertex = -1;
@@ -2017,13 +1705,13 @@ static int prim_segment(rugo_collide_context* ctx, prim_geo* g, int ka, buffer* 
 }
 
 /* B's side of a pair: is n (from A to B) compatible with B's outward normal at pb? */
-static int b_side_ok(const prim* P, const hit* h, rugo_vec2 n) {
+static int b_side_ok(const primitive* P, const hit* h, rugo_vec2 n) {
     if (h->vertex >= 0) return in_cone(P, h->vertex, rugo_v2_scale(-1.0, n));
     if (P->V == 2 && P->R == 0.0) return 1; /* an edge faces both ways */
     return rugo_v2_dot(h->nb, n) < 0.0;
 }
 
-static rugo_vec2 prim_support(const prim* P, rugo_vec2 dir) { /* point of B maximising p·dir */
+static rugo_vec2 prim_support(const primitive* P, rugo_vec2 dir) { /* point of B maximising p·dir */
     int best = 0;
     for (int i = 1; i < P->V; ++i)
         if (rugo_v2_dot(P->v[i], dir) > rugo_v2_dot(P->v[best], dir)) best = i;
@@ -2031,27 +1719,27 @@ static rugo_vec2 prim_support(const prim* P, rugo_vec2 dir) { /* point of B maxi
 }
 
 /* A's extreme point along dir (largest p·dir). */
-static rugo_vec2 curve_support(const side* A, rugo_vec2 dir, int* seg, rugo_real* t) {
-    pair_geo g;
+static rugo_vec2 curve_support(const query_side* A, rugo_vec2 dir, int* seg, rugo_real* t) {
+    shape_pair g;
     memset(&g, 0, sizeof g);
     g.A = A;
     g.B = A;
     return support_point(&g, 0, dir, +1, seg, t);
 }
 
-static int prim_emit(out_ctx* o, const hit* h, rugo_vec2 pa, rugo_vec2 pb, rugo_vec2 n, int region, int type,
+static int prim_emit(contact_out* o, const hit* h, rugo_vec2 pa, rugo_vec2 pb, rugo_vec2 n, int region, int type,
                      int index) {
     int feature = h->sb;
     return emit(o, h->sa, h->ta, -1, 0.0, pa, pb, n, region, type, index, 0xFFF00 | (feature & 0xFF));
 }
 
 /* An edge (segment, R = 0) crossing A: each piece of it inside A gets its deepest point. */
-static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit* xs, size_t m, out_ctx* o) {
-    const prim* P = g->P;
+static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, const hit* xs, size_t m, contact_out* o) {
+    const primitive* P = g->P;
     rugo_real ts[64];
     size_t nt = 0;
     /* Edge parameters of the crossings, sorted (feature 1 = the edge: w - 1). */
-    if (m + 2 > 64 && !reserve(ctx, &ctx->marks, (m + 2) * sizeof(rugo_real), 1)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (m + 2 > 64 && !rugo__scratch_reserve(ctx, &ctx->marks, (m + 2) * sizeof(rugo_real), 1)) return RUGO_ERR_OUT_OF_MEMORY;
     rugo_real* t = m + 2 <= 64 ? ts : (rugo_real*)ctx->marks.data;
     t[nt++] = 0.0;
     for (size_t i = 0; i < m; ++i)
@@ -2067,14 +1755,14 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
     for (size_t i = 0; i + 1 < nt; ++i) {
         const rugo_real t0 = t[i], t1 = t[i + 1];
         if (!(t1 > t0)) continue;
-        if (!side_contains(g->A, lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
+        if (!side_contains(g->A, rugo__lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
         /* Depth along the piece: distance to A's curve, largest where the piece is deepest. */
         rugo_real best = -1.0, bt = t0;
         rugo_curve_point bcp;
         memset(&bcp, 0, sizeof bcp);
         for (int s = 0; s <= EDGE_SAMPLES; ++s) {
             const rugo_real tt = t0 + (t1 - t0) * (rugo_real)s / (rugo_real)EDGE_SAMPLES;
-            rugo_curve_point cp = side_closest(g->A, lerp2(P->v[0], P->v[1], tt));
+            rugo_curve_point cp = side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tt));
             if (cp.distance > best) {
                 best = cp.distance;
                 bt = tt;
@@ -2088,24 +1776,24 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
         for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
             const rugo_real x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
             const rugo_real d1 =
-                side_closest(g->A, lerp2(P->v[0], P->v[1], x1)).distance;
+                side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x1)).distance;
             const rugo_real d2 =
-                side_closest(g->A, lerp2(P->v[0], P->v[1], x2)).distance;
+                side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x2)).distance;
             if (d1 >= d2)
                 hi = x2;
             else
                 lo = x1;
         }
         const rugo_real tm = 0.5 * (lo + hi);
-        rugo_curve_point cp = side_closest(g->A, lerp2(P->v[0], P->v[1], tm));
+        rugo_curve_point cp = side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tm));
         if (cp.distance >= best) {
             bcp = cp;
             bt = tm;
         }
-        const rugo_vec2 pb = lerp2(P->v[0], P->v[1], bt);
+        const rugo_vec2 pb = rugo__lerp2(P->v[0], P->v[1], bt);
         rugo_vec2 d = rugo_v2_sub(bcp.point, pb);
         rugo_vec2 n =
-            v2_len(d) > SAME_POINT * g->scale ? v2_unit(d) : curve_normal(g->A->curve, bcp.segment, bcp.t);
+            rugo__v2_length(d) > SAME_POINT * g->scale ? rugo__v2_unit(d) : curve_normal(g->A->curve, bcp.segment, bcp.t);
         if (!emit(o, bcp.segment, bcp.t, -1, 0.0, bcp.point, pb, n, region, 1, 0, 0xFFF00 | region))
             return RUGO_ERR_OUT_OF_MEMORY;
         ++region;
@@ -2118,10 +1806,10 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, prim_geo* g, const hit
 
 /* Outward normal of a primitive's boundary at (or next to) p: the direction from the core on the
  * rounded skin, else the nearest edge's normal (an edge, R = 0, faces both ways: the caller orients). */
-static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
+static rugo_vec2 prim_normal_at(const primitive* P, rugo_vec2 p) {
     if (P->V == 1) {
         const rugo_vec2 d = rugo_v2_sub(p, P->v[0]);
-        return v2_len(d) > 0.0 ? v2_unit(d) : rugo_v2(1.0, 0.0);
+        return rugo__v2_length(d) > 0.0 ? rugo__v2_unit(d) : rugo_v2(1.0, 0.0);
     }
     const int edges = P->V == 2 ? 1 : P->V;
     rugo_real dk = HUGE_VAL;
@@ -2136,7 +1824,7 @@ static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
             e = i;
         }
     }
-    if (P->R > 0.0 && dk > 0.5 * P->R) return v2_unit(rugo_v2_sub(p, foot));
+    if (P->R > 0.0 && dk > 0.5 * P->R) return rugo__v2_unit(rugo_v2_sub(p, foot));
     return P->m[e];
 }
 
@@ -2144,9 +1832,9 @@ static rugo_vec2 prim_normal_at(const prim* P, rugo_vec2 p) {
 static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d1 = first_derivative(v, w, r, t);
+    const rugo_vec2 d1 = rugo__first_derivative(v, w, r, t);
     const rugo_vec2 d2 = rugo_v2(0.5 * (2.0 * v.x * t + w.x), 0.5 * (2.0 * v.y * t + w.y));
-    const rugo_real l = v2_len(d1);
+    const rugo_real l = rugo__v2_length(d1);
     return l > 0.0 ? fabs(rugo_v2_cross(d1, d2)) / (l * l * l) : HUGE_VAL;
 }
 
@@ -2158,7 +1846,7 @@ static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
  * At corners of both, their chord normals; elsewhere the mean of A's outward and B's inward normals,
  * or, where those point the same way (one curve turns back on itself, as a coarse level of a point-like
  * corner does), the flatter curve's. */
-static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct prim* P, int sa, rugo_real ta,
+static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa, rugo_real ta,
                                 rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
     const rugo_real near = OVERLAP_NEAR * scale;
     const rugo_vec2 na = curve_normal(A->curve, sa, ta);
@@ -2174,7 +1862,7 @@ static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct p
         /* an edge faces both ways: the way A comes from (its corner's middle normal, at a corner) */
         if (P->V == 2 && P->R == 0.0 && rugo_v2_dot(nb, ca) > 0.0) nb = rugo_v2_scale(-1.0, nb);
         for (int v = 0; P->V >= 2 && P->R == 0.0 && v < P->V && !corner_b; ++v)
-            corner_b = v2_len(rugo_v2_sub(P->v[v], pb)) <= near;
+            corner_b = rugo__v2_length(rugo_v2_sub(P->v[v], pb)) <= near;
         if (corner_b) cb = rugo_v2_scale(-1.0, ca); /* a vertex has no normal of its own: A's decides */
     }
     rugo_vec2 n;
@@ -2190,7 +1878,7 @@ static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct p
         n = P != NULL || curvature_at(g->B->curve, sb, tb) <= curvature_at(A->curve, sa, ta)
                 ? rugo_v2_scale(-1.0, nb)
                 : na;
-    return v2_len(n) > 0.0 ? v2_unit(n) : na;
+    return rugo__v2_length(n) > 0.0 ? rugo__v2_unit(n) : na;
 }
 
 /* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
@@ -2199,14 +1887,14 @@ static rugo_vec2 overlap_normal(const side* A, const pair_geo* g, const struct p
  * must get a contact: one per cluster of such crossings (within OVERLAP_NEAR of each other), at the
  * curves' common point (separation 0 to round-off: the overlap is shallower than the resolution), with
  * the normal of overlap_normal. Id index 2 + cluster. */
-static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, const struct prim* P,
+static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
                                              const hit* x, int m, rugo_real scale) {
     const rugo_real near = OVERLAP_NEAR * scale;
     int cluster = 0;
     for (int i = 0; i < m; ++i) {
         int seen = 0;
         for (int j = 0; j < i && !seen; ++j)
-            seen = v2_len(rugo_v2_sub(x[j].pa, x[i].pa)) <= near;
+            seen = rugo__v2_length(rugo_v2_sub(x[j].pa, x[i].pa)) <= near;
         if (seen) continue;
         const rugo_vec2 n =
             overlap_normal(o->A, g, P, x[i].sa, x[i].ta, x[i].pa, x[i].sb, x[i].tb, x[i].pb, scale);
@@ -2219,14 +1907,14 @@ static rugo_status emit_unresolved_crossings(out_ctx* o, const pair_geo* g, cons
     return RUGO_OK;
 }
 
-static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, prim* P,
+static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, primitive* P,
                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
     rugo_contact_query defq = rugo_default_contact_query();
     const rugo_contact_query* q = query != NULL ? query : &defq;
     rugo_status st = check_query(q, contacts, capacity);
     if (st != RUGO_OK) return st;
-    if (!transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
+    if (!rugo__transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
 
     /* Into A's frame. */
@@ -2235,7 +1923,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     if (P->V >= 2) {
         for (int i = 0; i < P->V; ++i) {
             const rugo_vec2 d = rugo_v2_sub(P->v[(i + 1) % P->V], P->v[i]);
-            P->m[i] = v2_unit(rugo_v2(d.y, -d.x));
+            P->m[i] = rugo__v2_unit(rugo_v2(d.y, -d.x));
         }
         for (int i = 0; i < P->V; ++i) {
             const rugo_vec2 a0 = P->m[rugo__wrap(i - 1, P->V)], a1 = P->m[i];
@@ -2258,15 +1946,15 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     P->lo = rugo_v2(P->lo.x - P->R, P->lo.y - P->R);
     P->hi = rugo_v2(P->hi.x + P->R, P->hi.y + P->R);
 
-    side A;
+    query_side A;
     side_init(&A, a, q->level, override);
-    prim_geo g;
+    primitive_pair g;
     memset(&g, 0, sizeof g);
     g.A = &A;
     g.P = P;
-    g.scale = box_size(rugo_mobb_tree_root(A.tree)); /* the shape's: a large primitive must not coarsen it */
+    g.scale = rugo__box_size(rugo_mobb_tree_root(A.tree)); /* the shape's: a large primitive must not coarsen it */
     g.stats = stats;
-    out_ctx o;
+    contact_out o;
     memset(&o, 0, sizeof o);
     o.ctx = ctx;
     o.xa = xa;
@@ -2276,7 +1964,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     o.override = override;
     const int is_edge = P->V == 2 && P->R == 0.0;
 
-    tside ta, tb;
+    tree_side ta, tb;
     memset(&ta, 0, sizeof ta);
     memset(&tb, 0, sizeof tb);
     ta.tree = A.tree;
@@ -2323,7 +2011,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         }
     } else if (m > 0) {
         *state = RUGO_STATE_INTERSECTING;
-        if (!reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
+        if (!rugo__scratch_reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
         region_io io;
         io.user = &g;
         io.period_a = (rugo_real)A.n;
@@ -2342,7 +2030,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const hit* h = &hs[i];
                 if (h->dead || region_of_pair(&r, h->ua, h->ub) != reg) continue;
                 const rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
-                const rugo_real len = v2_len(d);
+                const rugo_real len = rugo__v2_length(d);
                 if (len <= eps) continue;
                 const rugo_vec2 n = rugo_v2_scale(1.0 / len, d);
                 if (!(rugo_v2_dot(curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
@@ -2404,8 +2092,8 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 }
             normalise(&fsa, &fta, A.n);
             const rugo_vec2 d = rugo_v2_sub(fpa, fpb);
-            const rugo_vec2 n = v2_len(d) > eps
-                                    ? v2_unit(d)
+            const rugo_vec2 n = rugo__v2_length(d) > eps
+                                    ? rugo__v2_unit(d)
                                     : overlap_normal(&A, NULL, P, fsa, fta, fpa, -1, 0.0, fpb, g.scale);
             if (!emit(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
                 return RUGO_ERR_OUT_OF_MEMORY;
@@ -2420,7 +2108,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             const rugo_real band =
                 side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
             if (!(h->distance <= band)) continue;
-            const rugo_vec2 n = v2_unit(d);
+            const rugo_vec2 n = rugo__v2_unit(d);
             if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
             if (prim_sd(P, h->pa, NULL, NULL) < 0.0) continue;
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
@@ -2444,7 +2132,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             /* Closest pair of A's curve and B's boundary, searched within the distance from one
              * point of B to A. */
             rugo_curve_point cp = side_closest(&A, pb0);
-            tside tb2 = tb;
+            tree_side tb2 = tb;
             tb2.box = grow_box(tb.box, cp.distance * (1.0 + 1e-9) + CUTOFF_PAD * g.scale);
             size_t np2 = 0;
             long tests2 = 0;
@@ -2497,7 +2185,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const hit* h = &hs[i];
                 if (h->dead || h->kind != RUGO__MINIMUM) continue;
                 const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
-                const rugo_real len = v2_len(d);
+                const rugo_real len = rugo__v2_length(d);
                 const rugo_real band =
                     side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
                 if (!(len <= band)) continue;
@@ -2535,7 +2223,7 @@ rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, 
     if (st != RUGO_OK) return st;
     if (!rugo__v2_finite(center) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
     if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    prim P;
+    primitive P;
     memset(&P, 0, sizeof P);
     P.V = 1;
     P.v[0] = center;
@@ -2551,7 +2239,7 @@ rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a,
     if (st != RUGO_OK) return st;
     if (!rugo__v2_finite(p1) || !rugo__v2_finite(p2) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
     if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    prim P;
+    primitive P;
     memset(&P, 0, sizeof P);
     P.R = radius;
     P.v[0] = p1;
@@ -2576,17 +2264,17 @@ rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a,
     /* Convex and counter-clockwise: every turn strictly left, total turning one revolution. */
     rugo_real size = 0.0, turning = 0.0;
     for (int i = 0; i < vertex_count; ++i)
-        size = fmax(size, v2_len(rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i])));
+        size = fmax(size, rugo__v2_length(rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i])));
     if (!(size > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
     for (int i = 0; i < vertex_count; ++i) {
         const rugo_vec2 e0 = rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i]);
         const rugo_vec2 e1 = rugo_v2_sub(vertices[(i + 2) % vertex_count], vertices[(i + 1) % vertex_count]);
-        if (!(v2_len(e0) > 1e-12 * size)) return RUGO_ERR_BAD_ARGUMENT;
+        if (!(rugo__v2_length(e0) > 1e-12 * size)) return RUGO_ERR_BAD_ARGUMENT;
         if (!(rugo_v2_cross(e0, e1) > 1e-12 * size * size)) return RUGO_ERR_BAD_ARGUMENT;
         turning += atan2(rugo_v2_cross(e0, e1), rugo_v2_dot(e0, e1));
     }
     if (fabs(turning - 2.0 * PI_VALUE) > 1e-6) return RUGO_ERR_BAD_ARGUMENT;
-    prim P;
+    primitive P;
     memset(&P, 0, sizeof P);
     P.V = vertex_count;
     for (int i = 0; i < vertex_count; ++i)
@@ -2629,12 +2317,12 @@ int rugo_reduce_manifold(rugo_contact* contacts, int count, int k) {
             rugo_real best = -1.0;
             for (int i = s; i < count; ++i) {
                 if (contacts[i].region != region) continue;
-                const rugo_vec2 ci = lerp2(contacts[i].point_a, contacts[i].point_b, 0.5);
+                const rugo_vec2 ci = rugo__lerp2(contacts[i].point_a, contacts[i].point_b, 0.5);
                 rugo_real dmin = HUGE_VAL;
                 for (int j = s; j < count; ++j)
                     if (contacts[j].region == -1 - region)
-                        dmin = fmin(dmin, v2_len(rugo_v2_sub(
-                                              ci, lerp2(contacts[j].point_a, contacts[j].point_b, 0.5))));
+                        dmin = fmin(dmin, rugo__v2_length(rugo_v2_sub(
+                                              ci, rugo__lerp2(contacts[j].point_a, contacts[j].point_b, 0.5))));
                 if (dmin > best) {
                     best = dmin;
                     pick = i;

@@ -1,0 +1,300 @@
+/* Private to the contact queries (the collide_*.c files of librugo/query): the types their stages share,
+ * the layout of the scratch context, and the small geometry every stage uses. Not installed.
+ * docs/contacts.md states the semantics of a query; this comment says how they are computed.
+ *
+ * Frame. Everything is computed in A's local frame: B's boxes and pieces are moved there by the
+ * relative transform xa^-1 xb (exact up to one rounding per coordinate even when both poses are far
+ * from the origin), and every narrow-phase call gets its two pieces shifted so that A's piece starts
+ * at the origin. Separations and normals are computed there and only the final points and normals
+ * are moved to world coordinates.
+ *
+ * Shape against shape:
+ *  1. Tree traversal (SPEC 7) from the two roots down to the query's levels, B's boxes moved into A's
+ *     frame. Boxes are grown by the band the query can use beyond what the boxes hold (an override
+ *     tolerance, or the excess of λ(t) over λ^j_k at coarse levels, see shape.c), so that no pair of
+ *     segments within the band is pruned.
+ *  2. First narrow pass on every surviving segment pair, cutoff = the bounds of λ(t) on both segments
+ *     (or twice the override): all crossings, and all stationary pairs within the band.
+ *  3. Results in global parameters; a point found by two segment pairs (a joint: t = 1 belongs to the
+ *     next segment; or a point-like segment) is kept once.
+ *  4. Crossings (kind != 0) => INTERSECTING. Overlap regions are traced as the boundary of A ∩ B:
+ *     sorted along A and along B, each crossing starts an arc of A inside B or an arc of B inside A
+ *     (from the crossing's orientation; if those are inconsistent, e.g. an odd count after a
+ *     near-tangent crossing, from containment tests of arc midpoints), and following those arcs from
+ *     crossing to crossing closes each region. A second narrow pass over the segments of each region,
+ *     cutoff = the region's size, finds the stationary pairs (pa on an A-arc of the region, pb on a
+ *     B-arc of it) whose connecting vector is normal to both curves and points out of A at pa and into
+ *     B at pb — penetration pairs, typically saddles of the distance; the one with the largest
+ *     distance is the region's contact. Pairs of segments whose tangent cones cannot be anti-parallel
+ *     are skipped (a penetration pair has anti-parallel tangents). If a region has no such pair
+ *     (tiny or degenerate overlaps), the point of its arcs farthest from the other curve (samples +
+ *     closest point) is used instead. Local minima within the band outside every region are reported
+ *     too, as their own regions.
+ *  5. No crossing, but one curve inside the other (a point of one inside the other, decided through
+ *     the tree: "Containment through the tree" in collide.c): INTERSECTING, one contact: the
+ *     closest pair of the two curves gives the way out (the outer curve's outward normal there); the
+ *     inner body's support point against that normal gives the depth.
+ *  6. Otherwise each local minimum of the distance within λ_A(t_A) + λ_B(t_B), with the two curves
+ *     facing each other, is a contact (CONTACT), or none (APART).
+ *
+ * Primitives (B = a convex core K — a point, a segment or a polygon — grown by a radius R) follow the
+ * same plan with B's boundary made of straight edges (offset by R) and vertex arcs (radius R); the
+ * narrow phase runs the piece against each edge (rugo__narrow_line) and each vertex
+ * (rugo__narrow_point), crossings with vertex arcs are bracketed between the stationary points of
+ * the distance to the vertex. An edge (a segment with R = 0) has no inside: each piece of it inside A
+ * gets one contact at its point deepest inside A (sampled, refined by golden section). */
+#ifndef RUGO_QUERY_COLLIDE_INTERNAL_H
+#define RUGO_QUERY_COLLIDE_INTERNAL_H
+
+#include "rugo/collide.h"
+
+#include "core/array.h"
+#include "core/internal.h"
+#include "query/narrow.h"
+
+#include <stdint.h>
+
+/* Relative tolerances (times the larger shape's size). */
+#define SAME_POINT 1e-9         /* two results closer than this are the same point */
+#define NORMAL_FROM_POINTS 1e-7 /* below this distance the normal comes from A's curve, not pb - pa */
+#define OVERLAP_NEAR 1e-6       /* points this close belong to one overlap below the resolution */
+#define CUTOFF_PAD 1e-12        /* pad of narrow-phase cutoffs: round-off must not hide a contact */
+#define FALLBACK_SAMPLES 16     /* samples per segment of a region's arcs when no penetration pair exists */
+
+#define PI_VALUE 3.14159265358979323846
+
+/* ---------------------------------------------------------------------------------------------------
+ * The scratch context and what its buffers hold. */
+
+/* A node pair on the traversal's stack. */
+typedef struct traversal_node {
+    int la, ka, lb, kb; /* level -1: the root */
+    int ia, ib;         /* their boxes as tested, in the box pool (see rugo__traverse) */
+    int mark;           /* the pool's size when this node was pushed */
+} traversal_node;
+
+/* A box as tested, with the parts of rugo_obb_overlap's separating-axis test that depend on it alone
+ * (mobb.c): its projected radius on its own two axes and its largest centre coordinate. */
+typedef struct tested_box {
+    rugo_obb b;
+    rugo_real self0, self1; /* projected_radius(b, axis[0]), projected_radius(b, axis[1]) */
+    rugo_real pos;          /* fmax(|centre.x|, |centre.y|) */
+} tested_box;
+
+/* A crossing or a stationary pair found by the narrow phase, in global parameters. */
+typedef struct hit {
+    int sa, sb;       /* segment of A, segment of B (primitives: feature of B's boundary) */
+    rugo_real ta, tb; /* in [0, 1) */
+    rugo_real ua, ub; /* sa + ta, sb + tb */
+    rugo_vec2 pa, pb; /* A's frame */
+    rugo_vec2 nb;     /* primitives: B's outward normal at pb (zero: a corner, use its cone) */
+    rugo_real distance;
+    int kind;
+    int src;        /* the narrow call that found it */
+    int vertex;     /* primitives: the vertex of a corner candidate, else -1 */
+    int dead;       /* removed as a duplicate */
+    int coincident; /* found by a narrow call whose pieces coincide (infinitely many roots) */
+} hit;
+
+/* A segment of an overlap region with what its second narrow pass needs. */
+typedef struct seginfo {
+    int k;
+    rugo_vec2 b[4];   /* Bezier points in A's frame */
+    rugo_vec2 lo, hi; /* their bounds */
+    rugo_vec2 cone;   /* unit centre of the tangent directions */
+    rugo_real half;   /* half-angle of the tangent cone (>= pi: unknown) */
+} seginfo;
+
+struct rugo_collide_context {
+    rugo_allocator al;
+    rugo__array stack;    /* traversal_node */
+    rugo__array box_pool; /* tested_box: the box pool of a traversal */
+    rugo__array pairs;    /* rugo_node_pair */
+    rugo__array xs;       /* hit: crossings */
+    rugo__array ss;       /* hit: stationary pairs of the first pass */
+    rugo__array ss2;      /* hit: stationary pairs of later passes */
+    rugo__array ints;     /* int: region bookkeeping, 8 per crossing */
+    rugo__array marks;    /* unsigned char: segment marks of A then B */
+    rugo__array segs;     /* seginfo: segments of one region */
+    rugo__array out;      /* rugo_contact: contacts before truncation */
+    rugo__array ptab;     /* rugo_vec2[4]: Bezier pieces of a query's segments, A's then B's (shape_pair) */
+    rugo__array pstamp;   /* uint32_t: the query (epoch) whose piece a ptab entry holds */
+    size_t pstamp_zeroed; /* pstamp entries initialised */
+    uint32_t epoch;
+};
+
+/* Room for `need` elements of `elem` bytes in one of the context's buffers; 0 if out of memory. Every
+ * buffer starts at 64 elements and doubles, so that a context reserved once never allocates again. */
+static inline int rugo__scratch_reserve(rugo_collide_context* c, rugo__array* b, size_t need, size_t elem) {
+    return rugo__array_reserve(b, &c->al, need, elem, 64) == RUGO_OK;
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * Small geometry. */
+
+static inline rugo_vec2 rugo__lerp2(rugo_vec2 a, rugo_vec2 b, rugo_real t) {
+    return rugo_v2(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+}
+
+static inline rugo_vec2 rugo__bezier_point(const rugo_vec2 b[4], rugo_real t) {
+    const rugo_real s = 1.0 - t;
+    const rugo_real w0 = s * s * s, w1 = 3.0 * s * s * t, w2 = 3.0 * s * t * t, w3 = t * t * t;
+    return rugo_v2(w0 * b[0].x + w1 * b[1].x + w2 * b[2].x + w3 * b[3].x,
+                   w0 * b[0].y + w1 * b[1].y + w2 * b[2].y + w3 * b[3].y);
+}
+
+/* v / l for l = rugo__v2_length(v) computed by the caller (0 for l = 0). */
+static inline rugo_vec2 rugo__v2_unit_len(rugo_vec2 v, rugo_real l) {
+    return l > 0.0 ? rugo_v2(v.x / l, v.y / l) : rugo_v2(0.0, 0.0);
+}
+
+static inline rugo_vec2 rugo__v2_unit(rugo_vec2 v) { return rugo__v2_unit_len(v, rugo__v2_length(v)); }
+
+/* xa^-1 xb: B's frame into A's. */
+static inline rugo_transform rugo__relative_transform(rugo_transform xa, rugo_transform xb) {
+    rugo_transform r;
+    r.q.c = xa.q.c * xb.q.c + xa.q.s * xb.q.s;
+    r.q.s = xa.q.c * xb.q.s - xa.q.s * xb.q.c;
+    r.p = rugo_inv_rotate(xa.q, rugo_v2_sub(xb.p, xa.p));
+    return r;
+}
+
+static inline int rugo__transform_finite(rugo_transform t) {
+    return isfinite(t.p.x) && isfinite(t.p.y) && isfinite(t.q.c) && isfinite(t.q.s);
+}
+
+/* The diagonal of a box: the size that the relative tolerances scale. */
+static inline rugo_real rugo__box_size(const rugo_obb* b) {
+    return b ? 2.0 * hypot(b->half[0], b->half[1]) : 0.0;
+}
+
+static inline void rugo__bezier_bounds(const rugo_vec2 b[4], rugo_vec2* lo, rugo_vec2* hi) {
+    *lo = *hi = b[0];
+    for (int i = 1; i < 4; ++i) {
+        lo->x = fmin(lo->x, b[i].x);
+        lo->y = fmin(lo->y, b[i].y);
+        hi->x = fmax(hi->x, b[i].x);
+        hi->y = fmax(hi->y, b[i].y);
+    }
+}
+
+/* First derivative of a segment at t from rugo_contour_derivative_coefficients' v, w, r. */
+static inline rugo_vec2 rugo__first_derivative(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_real t) {
+    return rugo_v2(0.5 * ((v.x * t + w.x) * t + r.x), 0.5 * ((v.y * t + w.y) * t + r.y));
+}
+
+/* ---------------------------------------------------------------------------------------------------
+ * A shape at the query's level. */
+
+typedef struct query_side {
+    const rugo_shape* shape;
+    const rugo_mobb_tree* tree;
+    rugo_contour curve; /* level curve, local frame */
+    int level, n, jmin;
+    const rugo_real* lambda; /* total λ of the level */
+    const rugo_real* band;   /* upper bounds of λ(t) per segment */
+    rugo_real slack;         /* growth of the boxes */
+} query_side;
+
+/* ---------------------------------------------------------------------------------------------------
+ * Tree traversal: one side of it. */
+
+typedef struct tree_side {
+    const rugo_mobb_tree* tree; /* NULL: a single fixed box (a primitive) */
+    int jmin, stop;
+    rugo_real slack;
+    rugo_obb box;
+} tree_side;
+
+/* ---------------------------------------------------------------------------------------------------
+ * Overlap regions. */
+
+/* The geometry a region needs of the two boundaries, for shapes and primitives alike. */
+typedef struct region_io {
+    void* user;
+    rugo_real period_a, period_b;
+    rugo_vec2 (*point_a)(void* user, rugo_real u); /* A's frame */
+    rugo_vec2 (*point_b)(void* user, rugo_real w);
+    int (*inside_b)(void* user, rugo_vec2 p);
+    int (*inside_a)(void* user, rugo_vec2 p);
+} region_io;
+
+typedef struct regions {
+    int m;        /* crossings */
+    const hit* x; /* sorted by ua */
+    int* order_b; /* crossing indices sorted by ub */
+    int* pos_b;   /* rank of each crossing in order_b */
+    int* a_in;    /* A's arc from crossing i to the next along A lies inside B */
+    int* b_in;    /* B's arc from crossing i to the next along B lies inside A */
+    int* reg_a;   /* region of A's arc i, or -1 */
+    int* reg_b;   /* region of B's arc i, or -1 */
+    int count;    /* regions */
+    rugo_real period_a, period_b;
+} regions;
+
+/* ---------------------------------------------------------------------------------------------------
+ * Contacts being reported. */
+
+typedef struct contact_out {
+    rugo_collide_context* ctx;
+    size_t n;
+    rugo_transform xa;
+    const rugo_contact_query* q;
+    const query_side* A;
+    const query_side* B; /* NULL for primitives */
+    rugo_real override;
+} contact_out;
+
+/* ---------------------------------------------------------------------------------------------------
+ * Two shapes. */
+
+typedef struct shape_pair {
+    const query_side* A;
+    const query_side* B;
+    rugo_transform rel; /* B's frame -> A's frame */
+    rugo_real scale;
+    rugo_query_stats* stats;
+    int src;
+    int coincident;   /* some pieces coincide */
+    rugo_real margin; /* query margin: minima up to band + margin count */
+    /* Bezier pieces computed at most once per query and segment (NULL: not set up, see piece table) */
+    rugo_vec2 (*tab)[4]; /* A's n pieces, then B's n (in A's frame) */
+    uint32_t* stamp;     /* entry valid iff stamp == epoch */
+    uint32_t epoch;
+} shape_pair;
+
+/* The Bezier pieces of a query's segment pairs, each computed once: the pairs come sorted by A's
+ * segment, with B's segments of a small range repeating for each (direct-mapped by the low bits). */
+enum { PIECE_CACHE = 16 };
+typedef struct piece_cache {
+    int ka;
+    rugo_vec2 fa[4];
+    int kb[PIECE_CACHE];
+    rugo_vec2 gb[PIECE_CACHE][4];
+} piece_cache;
+
+/* ---------------------------------------------------------------------------------------------------
+ * A shape and a primitive: B = convex core K (a point, a segment, a convex polygon) grown by a radius
+ * R. */
+
+typedef struct primitive {
+    int V;             /* 1 circle, 2 segment (capsule), 3..8 polygon */
+    rugo_vec2 v[8];    /* A's frame */
+    rugo_vec2 m[8];    /* outward unit normal of edge i (v_i -> v_{i+1}) */
+    rugo_real arc0[8]; /* vertex arc i: directions from angle arc0 over span (from m_{i-1} to m_i) */
+    rugo_real span[8];
+    rugo_real R;
+    /* period of the boundary parameter: 1 (circle) or 2V (arc i = [2i, 2i+1), edge i = [2i+1, 2i+2)) */
+    rugo_real period;
+    rugo_vec2 lo, hi; /* bounds of B */
+} primitive;
+
+typedef struct primitive_pair {
+    const query_side* A;
+    const primitive* P;
+    rugo_real scale;
+    rugo_query_stats* stats;
+    int src;
+} primitive_pair;
+
+#endif

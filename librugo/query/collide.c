@@ -42,142 +42,10 @@ const char* rugo_contact_state_name(rugo_contact_state s) {
     }
 }
 
-/* ---------------------------------------------------------------------------------------------------
- * Small geometry. */
-
 static rugo_obb grow_box(rugo_obb b, rugo_real d) {
     b.half[0] += d;
     b.half[1] += d;
     return b;
-}
-
-/* The cone of tangent directions of a Bezier piece: the hodograph's control points span it. */
-static void tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* half) {
-    rugo_vec2 u[3], d[3];
-    rugo_real len[3];
-    int m = 0;
-    rugo_real size = 0.0;
-    /* each length once */
-    for (int i = 0; i < 3; ++i) {
-        d[i] = rugo_v2_sub(b[i + 1], b[i]);
-        len[i] = rugo__v2_length(d[i]);
-        size = fmax(size, len[i]);
-    }
-    rugo_vec2 sum = rugo_v2(0.0, 0.0);
-    for (int i = 0; i < 3; ++i) {
-        if (len[i] > 1e-9 * size) {
-            u[m] = rugo__v2_unit_len(d[i], len[i]);
-            sum = rugo_v2_add(sum, u[m]);
-            ++m;
-        }
-    }
-    *centre = rugo_v2(1.0, 0.0);
-    *half = 4.0; /* > pi: no information */
-    const rugo_real ls = rugo__v2_length(sum);
-    if (m == 0 || ls < 1e-6) return;
-    *centre = rugo__v2_unit_len(sum, ls);
-    rugo_real h = 0.0;
-    for (int i = 0; i < m; ++i) {
-        rugo_real c = rugo_v2_dot(*centre, u[i]);
-        c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
-        h = fmax(h, acos(c));
-    }
-    *half = h;
-}
-
-/* Size of the curve around segment seg (its control points and a few neighbours): chords shorter
- * than a tiny fraction of it are round-off, not directions. */
-static rugo_real local_extent(rugo_contour c, int seg) {
-    const rugo_vec2 o = c.points[rugo__wrap(seg, c.count)];
-    rugo_real e = 0.0;
-    for (int i = seg - 4; i <= seg + 5; ++i)
-        e = fmax(e, rugo__v2_length(rugo_v2_sub(c.points[rugo__wrap(i, c.count)], o)));
-    return e;
-}
-
-/* Whether len > 1e-9 (|v| + |w| + |r|) (the lengths as rugo__v2_length computes them), without the three
- * lengths when an upper bound of their sum already decides it: |a| <= |a.x| + |a.y|, so the sum of
- * the lengths is at most the sum of the absolute coordinates (padded against its rounding), and len
- * above 1e-9 times that is above 1e-9 times the sum. Otherwise the lengths decide, as before. */
-static int speed_regular(rugo_real len, rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
-    const rugo_real l1 = (fabs(v.x) + fabs(v.y)) + (fabs(w.x) + fabs(w.y)) + (fabs(r.x) + fabs(r.y));
-    if (len > 1e-9 * (l1 * (1.0 + 1e-9))) return 1;
-    return len > 1e-9 * (rugo__v2_length(v) + rugo__v2_length(w) + rugo__v2_length(r));
-}
-
-/* At a regular point of the curve (speed not vanishing against the segment's size), 1 and the
- * outward normal of the derivative in *n; 0 (n untouched) at a zero-speed point. */
-static int regular_normal(rugo_contour c, int seg, rugo_real t, rugo_vec2* n) {
-    rugo_vec2 v, w, r;
-    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = rugo__first_derivative(v, w, r, t);
-    const rugo_real len = rugo__v2_length(d);
-    if (!(speed_regular(len, v, w, r) && len > 0.0)) return 0;
-    *n = rugo_v2(d.y / len, -d.x / len);
-    return 1;
-}
-
-/* Outward normal of a counter-clockwise curve at (seg, t). Where the speed vanishes (coincident
- * control points: a sharp corner, or a segment shrunk to a point) the normal is that of a chord
- * across the spot, i.e. the middle of the corner's normal cone. */
-static rugo_vec2 curve_normal(rugo_contour c, int seg, rugo_real t) {
-    rugo_vec2 nr;
-    if (regular_normal(c, seg, t, &nr)) return nr;
-    const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, tiny = 1e-8 * local_extent(c, seg);
-    for (rugo_real h = 1e-4; h < (rugo_real)c.count; h *= 2.0) {
-        const rugo_vec2 p1 = rugo_contour_point_at(c, u + h);
-        const rugo_vec2 p0 = rugo_contour_point_at(c, u - h + (rugo_real)c.count);
-        const rugo_vec2 ch = rugo_v2_sub(p1, p0);
-        const rugo_real l = rugo__v2_length(ch);
-        if (l > tiny && l > 0.0) return rugo_v2(ch.y / l, -ch.x / l);
-    }
-    return rugo_contour_normal(c, seg, t);
-}
-
-/* At a zero-speed point of the curve (a sharp corner made by coincident control points), the normals
- * of the curve just before and just after it (one-sided chords); 0 at a regular point. */
-static int corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in, rugo_vec2* n_out) {
-    rugo_vec2 v, w, r;
-    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d = rugo__first_derivative(v, w, r, t);
-    const rugo_real scale = rugo__v2_length(v) + rugo__v2_length(w) + rugo__v2_length(r);
-    if (rugo__v2_length(d) > 1e-9 * scale && rugo__v2_length(d) > 0.0) return 0;
-    const rugo_real u = (rugo_real)rugo__wrap(seg, c.count) + t, n = (rugo_real)c.count;
-    const rugo_vec2 p = rugo_contour_point_at(c, u);
-    const rugo_real tiny = 1e-8 * local_extent(c, seg);
-    int got = 0;
-    /* Chords long enough to be directions (1e-8 of the local size) yet short: the flank's tangent
-     * to ~1e-4 where the corner's neighbours are cubic ramps. */
-    for (int side = 0; side < 2; ++side)
-        for (rugo_real h = 1e-4; h < n; h *= 2.0) {
-            const rugo_vec2 q = rugo_contour_point_at(c, side ? u + h : u - h + n);
-            const rugo_vec2 ch = side ? rugo_v2_sub(q, p) : rugo_v2_sub(p, q);
-            const rugo_real l = rugo__v2_length(ch);
-            if (l > tiny && l > 0.0) {
-                *(side ? n_out : n_in) = rugo_v2(ch.y / l, -ch.x / l);
-                ++got;
-                break;
-            }
-        }
-    return got == 2;
-}
-
-/* Does direction d (from the curve's point toward the other body) leave the curve on its outward
- * side? At a regular point: d·n >= 0. At a corner: d must lie in the corner's normal cone (a local
- * minimum of the distance cannot sit at a corner otherwise: one of its flanks comes closer); a reflex
- * corner has no such direction. rot turns the curve's frame into the query's. */
-static int faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_rot rot) {
-    rugo_vec2 a, b;
-    /* A regular point (the usual case): corner_normals would return 0 and curve_normal this normal. */
-    if (regular_normal(c, seg, t, &a)) return rugo_v2_dot(rugo_rotate(rot, a), d) >= 0.0;
-    if (!corner_normals(c, seg, t, &a, &b))
-        return rugo_v2_dot(rugo_rotate(rot, curve_normal(c, seg, t)), d) >= 0.0;
-    a = rugo_rotate(rot, a);
-    b = rugo_rotate(rot, b);
-    const rugo_real turn = rugo_v2_cross(a, b), tol = 1e-9 * rugo__v2_length(d);
-    if (turn < -1e-12) return 0;                                                    /* reflex */
-    if (turn <= 1e-12) return rugo_v2_dot(a, d) >= 0.0 && rugo_v2_dot(b, d) >= 0.0; /* no turn */
-    return rugo_v2_cross(a, d) >= -tol && rugo_v2_cross(d, b) >= -tol;
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -810,10 +678,10 @@ static int piece_table(rugo_collide_context* ctx, shape_pair* g) {
 }
 
 static rugo_vec2 normal_a(const shape_pair* g, int seg, rugo_real t) {
-    return curve_normal(g->A->curve, seg, t);
+    return rugo__curve_normal(g->A->curve, seg, t);
 }
 static rugo_vec2 normal_b(const shape_pair* g, int seg, rugo_real t) {
-    return rugo_rotate(g->rel.q, curve_normal(g->B->curve, seg, t));
+    return rugo_rotate(g->rel.q, rugo__curve_normal(g->B->curve, seg, t));
 }
 
 /* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. */
@@ -1022,20 +890,6 @@ static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const 
 static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
                                              const hit* x, int m, rugo_real scale);
 
-/* A sharp corner (zero-speed joint) of curve c at one of segment seg's two joints, within `near` of x
- * (c's frame): 1 and the corner's chord normal in *n. */
-static int corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n) {
-    for (int j = 0; j < 2; ++j) {
-        const int k = rugo__wrap(seg + j, c.count);
-        rugo_vec2 nin, nout;
-        if (!corner_normals(c, k, 0.0, &nin, &nout)) continue;
-        if (rugo__v2_length(rugo_v2_sub(rugo_contour_point(c, k, 0.0), x)) > near) continue;
-        *n = curve_normal(c, k, 0.0);
-        return 1;
-    }
-    return 0;
-}
-
 /* Normal of a minimum: from the points when they are far enough apart to give a direction to ~1e-9,
  * else A's outward normal (exact at a stationary pair), or overlap_normal's where either curve has a
  * sharp corner there (A's normal is then a flank's) or the two normals point the same way (a coarse
@@ -1050,8 +904,8 @@ static rugo_vec2 pair_normal(const shape_pair* g, const hit* h) {
     rugo_vec2 n = normal_a(g, h->sa, h->ta);
     const rugo_real near = OVERLAP_NEAR * g->scale;
     rugo_vec2 c;
-    if (corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
-        corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
+    if (rugo__corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
+        rugo__corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
         rugo_v2_dot(n, normal_b(g, h->sb, h->tb)) > 0.0)
         n = overlap_normal(g->A, g, NULL, h->sa, h->ta, h->pa, h->sb, h->tb, h->pb, g->scale);
     if (len > 1e-12 * g->scale && rugo_v2_dot(n, d) < 0.0) n = rugo_v2_scale(-1.0, n);
@@ -1066,8 +920,8 @@ static int facing(const shape_pair* g, const hit* h) {
     rugo_rot id;
     id.c = 1.0;
     id.s = 0.0;
-    return faces_outward(g->A->curve, h->sa, h->ta, d, id) &&
-           faces_outward(g->B->curve, h->sb, h->tb, rugo_v2_scale(-1.0, d), g->rel.q);
+    return rugo__faces_outward(g->A->curve, h->sa, h->ta, d, id) &&
+           rugo__faces_outward(g->B->curve, h->sb, h->tb, rugo_v2_scale(-1.0, d), g->rel.q);
 }
 
 /* Minima within the band (not inside a region if regs != NULL), each its own region from `first`. */
@@ -1120,7 +974,7 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
             else
                 piece_b(g, kk, si->b);
             rugo__bezier_bounds(si->b, &si->lo, &si->hi);
-            tangent_cone(si->b, &si->cone, &si->half);
+            rugo__tangent_cone(si->b, &si->cone, &si->half);
         }
     }
     return 1;
@@ -1793,7 +1647,7 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
         const rugo_vec2 pb = rugo__lerp2(P->v[0], P->v[1], bt);
         rugo_vec2 d = rugo_v2_sub(bcp.point, pb);
         rugo_vec2 n =
-            rugo__v2_length(d) > SAME_POINT * g->scale ? rugo__v2_unit(d) : curve_normal(g->A->curve, bcp.segment, bcp.t);
+            rugo__v2_length(d) > SAME_POINT * g->scale ? rugo__v2_unit(d) : rugo__curve_normal(g->A->curve, bcp.segment, bcp.t);
         if (!emit(o, bcp.segment, bcp.t, -1, 0.0, bcp.point, pb, n, region, 1, 0, 0xFFF00 | region))
             return RUGO_ERR_OUT_OF_MEMORY;
         ++region;
@@ -1849,13 +1703,13 @@ static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
 static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa, rugo_real ta,
                                 rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
     const rugo_real near = OVERLAP_NEAR * scale;
-    const rugo_vec2 na = curve_normal(A->curve, sa, ta);
+    const rugo_vec2 na = rugo__curve_normal(A->curve, sa, ta);
     rugo_vec2 nb, ca = na, cb = rugo_v2_scale(-1.0, na);
-    const int corner_a = corner_near(A->curve, sa, pa, near, &ca);
+    const int corner_a = rugo__corner_near(A->curve, sa, pa, near, &ca);
     int corner_b = 0;
     if (P == NULL) {
-        nb = rugo_rotate(g->rel.q, curve_normal(g->B->curve, sb, tb));
-        corner_b = corner_near(g->B->curve, sb, rugo_inv_transform_point(g->rel, pb), near, &cb);
+        nb = rugo_rotate(g->rel.q, rugo__curve_normal(g->B->curve, sb, tb));
+        corner_b = rugo__corner_near(g->B->curve, sb, rugo_inv_transform_point(g->rel, pb), near, &cb);
         if (corner_b) cb = rugo_rotate(g->rel.q, cb);
     } else {
         nb = prim_normal_at(P, pb);
@@ -2033,7 +1887,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const rugo_real len = rugo__v2_length(d);
                 if (len <= eps) continue;
                 const rugo_vec2 n = rugo_v2_scale(1.0 / len, d);
-                if (!(rugo_v2_dot(curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
+                if (!(rugo_v2_dot(rugo__curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
                 if (!b_side_ok(P, h, n)) continue;
                 if (len > depth || (len == depth && hit_cmp(h, best) < 0)) {
                     /* a depth, as pair_is_depth: pb is B's closest point to pa, or pa is A's to pb */
@@ -2109,7 +1963,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
             if (!(h->distance <= band)) continue;
             const rugo_vec2 n = rugo__v2_unit(d);
-            if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
+            if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
             if (prim_sd(P, h->pa, NULL, NULL) < 0.0) continue;
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
         }
@@ -2154,7 +2008,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             best.distance = cp.distance;
             for (size_t i = 0; i < n2; ++i)
                 if (is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
-            const rugo_vec2 n = curve_normal(A.curve, best.sa, best.ta);
+            const rugo_vec2 n = rugo__curve_normal(A.curve, best.sa, best.ta);
             const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
             if (!emit(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))
                 return RUGO_ERR_OUT_OF_MEMORY;
@@ -2189,11 +2043,11 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const rugo_real band =
                     side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
                 if (!(len <= band)) continue;
-                const rugo_vec2 na = curve_normal(A.curve, h->sa, h->ta);
+                const rugo_vec2 na = rugo__curve_normal(A.curve, h->sa, h->ta);
                 rugo_vec2 n;
                 if (len > NORMAL_FROM_POINTS * g.scale) {
                     n = rugo_v2_scale(1.0 / len, d);
-                    if (!faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
+                    if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
                 } else {
                     n = na;
                 }

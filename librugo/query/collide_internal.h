@@ -297,4 +297,19 @@ typedef struct primitive_pair {
     int src;
 } primitive_pair;
 
+/* ---------------------------------------------------------------------------------------------------
+ * Curve geometry (collide_geometry.c). */
+
+/* The cone of tangent directions of a Bezier piece: unit centre and half-angle (> pi: unknown). */
+void rugo__tangent_cone(const rugo_vec2 b[4], rugo_vec2* centre, rugo_real* half);
+/* Outward normal of a counter-clockwise curve at (seg, t); at a zero-speed point, a chord's. */
+rugo_vec2 rugo__curve_normal(rugo_contour c, int seg, rugo_real t);
+/* At a zero-speed point (a sharp corner), 1 and the normals just before and after it; 0 elsewhere. */
+int rugo__corner_normals(rugo_contour c, int seg, rugo_real t, rugo_vec2* n_in, rugo_vec2* n_out);
+/* Does direction d leave the curve at (seg, t) on its outward side (at a corner: in its normal cone)?
+ * rot turns the curve's frame into the query's. */
+int rugo__faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_rot rot);
+/* A sharp corner of c at one of segment seg's joints within `near` of x: 1 and its chord normal. */
+int rugo__corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n);
+
 #endif

@@ -3,7 +3,6 @@
  * contacts are computed. */
 #include "query/collide_internal.h"
 
-#include "shape/internal.h"
 #include "curve/poly.h"
 
 #include <float.h>
@@ -46,55 +45,6 @@ static rugo_obb grow_box(rugo_obb b, rugo_real d) {
     b.half[0] += d;
     b.half[1] += d;
     return b;
-}
-
-/* ---------------------------------------------------------------------------------------------------
- * Levels, bands, surfaces. */
-
-static int resolve_level(const rugo_shape* s, int level) {
-    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-    int l = level <= 0 ? J + level : level;
-    if (level <= 0 && level < -(J - Jmin)) l = Jmin; /* avoid overflow of J + level */
-    if (l < Jmin) l = Jmin;
-    if (l > J) l = J;
-    return l;
-}
-
-static void side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override) {
-    s->shape = shape;
-    s->tree = rugo_shape_tree(shape);
-    s->level = resolve_level(shape, level);
-    s->jmin = rugo_shape_coarsest_level(shape);
-    rugo_shape_level(shape, s->level, &s->curve);
-    s->n = s->curve.count;
-    rugo_tolerance_level tl;
-    rugo_shape_tolerance_level(shape, s->level, &tl);
-    s->lambda = tl.total;
-    s->band = rugo__shape_band_bounds(shape, s->level);
-    s->slack = override >= 0.0 ? override : rugo__shape_band_excess(shape, s->level);
-}
-
-static rugo_real side_lambda(const query_side* s, int seg, rugo_real t, rugo_real override) {
-    if (override >= 0.0) return override;
-    return rugo_tolerance_at(s->lambda, s->n, seg, t, 0.0);
-}
-
-/* Containment through the tree (point_query.c): the same answer as rugo_contour_contains on the side's
- * curve, from the segments under the boxes the ray from p towards +x may meet. */
-static int side_contains(const query_side* s, rugo_vec2 p) { return rugo__level_contains(s->shape, s->level, p, NULL); }
-
-/* rugo_contour_closest_point on the side's curve, through the tree (point_query.c): the same answer
- * (non-finite p, which the tree version refuses, takes the pass over all segments). */
-static rugo_curve_point side_closest(const query_side* s, rugo_vec2 p) {
-    rugo_curve_point cp;
-    if (rugo_shape_closest_point(s->shape, s->level, p, &cp) != RUGO_OK) return rugo_contour_closest_point(s->curve, p);
-    return cp;
-}
-
-int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited) {
-    if (visited != NULL) *visited = 0;
-    if (shape == NULL) return 0;
-    return rugo__level_contains(shape, resolve_level(shape, level), p, visited);
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -544,7 +494,7 @@ static int emit(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo
     c->segment_a = sa;
     c->t_a = ta;
     c->level_a = o->A->level;
-    c->tolerance_a = side_lambda(o->A, sa, ta, o->override);
+    c->tolerance_a = rugo__query_side_tolerance(o->A, sa, ta, o->override);
     rugo_friction_map fa = rugo_shape_friction_map(o->A->shape);
     rugo_restitution ra = rugo_shape_restitution(o->A->shape);
     const rugo_real mu_a = rugo_friction(&fa, c->tolerance_a);
@@ -552,7 +502,7 @@ static int emit(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo
         c->segment_b = sb;
         c->t_b = tb;
         c->level_b = o->B->level;
-        c->tolerance_b = side_lambda(o->B, sb, tb, o->override);
+        c->tolerance_b = rugo__query_side_tolerance(o->B, sb, tb, o->override);
         rugo_friction_map fb = rugo_shape_friction_map(o->B->shape);
         rugo_restitution rb = rugo_shape_restitution(o->B->shape);
         c->friction = rugo_mix(o->q->friction_mix, mu_a, rugo_friction(&fb, c->tolerance_b));
@@ -743,11 +693,11 @@ static rugo_vec2 sh_point_b(void* u, rugo_real t) {
 }
 static int sh_inside_b(void* u, rugo_vec2 p) {
     const shape_pair* g = (const shape_pair*)u;
-    return side_contains(g->B, rugo_inv_transform_point(g->rel, p));
+    return rugo__query_side_contains(g->B, rugo_inv_transform_point(g->rel, p));
 }
 static int sh_inside_a(void* u, rugo_vec2 p) {
     const shape_pair* g = (const shape_pair*)u;
-    return side_contains(g->A, p);
+    return rugo__query_side_contains(g->A, p);
 }
 
 /* Extreme point of a curve (A's frame pieces from `piece`) along direction d: the point maximising
@@ -840,10 +790,10 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
     rugo_curve_point cp;
     if (b_inside_a) {
         p0 = sh_point_b(g, 0.0);
-        cp = side_closest(g->A, p0);
+        cp = rugo__query_side_closest(g->A, p0);
     } else {
         p0 = sh_point_a(g, 0.0);
-        cp = side_closest(g->B, rugo_inv_transform_point(g->rel, p0));
+        cp = rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p0));
     }
     rugo_status st = closest_pair(ctx, g, ta, tb, cp.distance, &best, &found);
     if (st != RUGO_OK) return st;
@@ -936,7 +886,7 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
             if (in_any_region(regs, h->ua, h->ub)) continue;
         }
         const rugo_real band =
-            side_lambda(g->A, h->sa, h->ta, override) + side_lambda(g->B, h->sb, h->tb, override) + g->margin;
+            rugo__query_side_tolerance(g->A, h->sa, h->ta, override) + rugo__query_side_tolerance(g->B, h->sb, h->tb, override) + g->margin;
         if (!(h->distance <= band)) continue;
         if (!facing(g, h)) continue;
         /* Index within its segment pair: minima of one pair are sorted by A's parameter already. */
@@ -985,8 +935,8 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
  * (where (f - g)·f' vanishes for every g) pairs with every foot on B, up to B's far side. */
 static int pair_is_depth(const shape_pair* g, rugo_vec2 pa, rugo_vec2 pb, rugo_real len) {
     const rugo_real slack = len * 1e-9 + SAME_POINT * g->scale;
-    if (side_closest(g->B, rugo_inv_transform_point(g->rel, pa)).distance >= len - slack) return 1;
-    return side_closest(g->A, pb).distance >= len - slack;
+    if (rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, pa)).distance >= len - slack) return 1;
+    return rugo__query_side_closest(g->A, pb).distance >= len - slack;
 }
 
 /* Deepest penetration pair of region reg; 0 if none. */
@@ -1068,7 +1018,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                 if (which == 0) {
                     const rugo_vec2 p = sh_point_a(g, u);
                     rugo_curve_point cp =
-                        side_closest(g->B, rugo_inv_transform_point(g->rel, p));
+                        rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p));
                     if (cp.distance > far) {
                         far = cp.distance;
                         fpa = p;
@@ -1080,7 +1030,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                     }
                 } else {
                     const rugo_vec2 p = sh_point_b(g, u);
-                    rugo_curve_point cp = side_closest(g->A, p);
+                    rugo_curve_point cp = rugo__query_side_closest(g->A, p);
                     if (cp.distance > far) {
                         far = cp.distance;
                         fpb = p;
@@ -1120,8 +1070,8 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
 
     query_side A, B;
-    side_init(&A, a, q->level, override);
-    side_init(&B, b, q->level, override);
+    rugo__query_side_init(&A, a, q->level, override);
+    rugo__query_side_init(&B, b, q->level, override);
     shape_pair g;
     memset(&g, 0, sizeof g);
     g.A = &A;
@@ -1242,11 +1192,11 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         int b_in_a = 0, a_in_b = 0;
         const rugo_vec2 pb0 = sh_point_b(&g, 0.0), pa0 = sh_point_a(&g, 0.0);
         if (!g.coincident && rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
-            b_in_a = side_contains(&A, pb0);
+            b_in_a = rugo__query_side_contains(&A, pb0);
         if (!b_in_a && !g.coincident) {
             const rugo_vec2 pa0b = rugo_inv_transform_point(g.rel, pa0);
             if (rugo_obb_contains(rugo_mobb_tree_root(B.tree), pa0b, 0.0))
-                a_in_b = side_contains(&B, pa0b);
+                a_in_b = rugo__query_side_contains(&B, pa0b);
         }
         if (b_in_a || a_in_b) {
             *state = RUGO_STATE_INTERSECTING;
@@ -1366,7 +1316,7 @@ static rugo_vec2 pr_point_a(void* u, rugo_real t) {
 static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const primitive_pair*)u)->P, w); }
 static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const primitive_pair*)u)->P, p, NULL, NULL) < 0.0; }
 static int pr_inside_a(void* u, rugo_vec2 p) {
-    return side_contains(((const primitive_pair*)u)->A, p);
+    return rugo__query_side_contains(((const primitive_pair*)u)->A, p);
 }
 
 static rugo_real rho_minus_r(const rugo_vec2 fl[4], rugo_vec2 vl, rugo_real R, rugo_real s) {
@@ -1609,14 +1559,14 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
     for (size_t i = 0; i + 1 < nt; ++i) {
         const rugo_real t0 = t[i], t1 = t[i + 1];
         if (!(t1 > t0)) continue;
-        if (!side_contains(g->A, rugo__lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
+        if (!rugo__query_side_contains(g->A, rugo__lerp2(P->v[0], P->v[1], 0.5 * (t0 + t1)))) continue;
         /* Depth along the piece: distance to A's curve, largest where the piece is deepest. */
         rugo_real best = -1.0, bt = t0;
         rugo_curve_point bcp;
         memset(&bcp, 0, sizeof bcp);
         for (int s = 0; s <= EDGE_SAMPLES; ++s) {
             const rugo_real tt = t0 + (t1 - t0) * (rugo_real)s / (rugo_real)EDGE_SAMPLES;
-            rugo_curve_point cp = side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tt));
+            rugo_curve_point cp = rugo__query_side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tt));
             if (cp.distance > best) {
                 best = cp.distance;
                 bt = tt;
@@ -1630,16 +1580,16 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
         for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
             const rugo_real x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
             const rugo_real d1 =
-                side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x1)).distance;
+                rugo__query_side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x1)).distance;
             const rugo_real d2 =
-                side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x2)).distance;
+                rugo__query_side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], x2)).distance;
             if (d1 >= d2)
                 hi = x2;
             else
                 lo = x1;
         }
         const rugo_real tm = 0.5 * (lo + hi);
-        rugo_curve_point cp = side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tm));
+        rugo_curve_point cp = rugo__query_side_closest(g->A, rugo__lerp2(P->v[0], P->v[1], tm));
         if (cp.distance >= best) {
             bcp = cp;
             bt = tm;
@@ -1801,7 +1751,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     P->hi = rugo_v2(P->hi.x + P->R, P->hi.y + P->R);
 
     query_side A;
-    side_init(&A, a, q->level, override);
+    rugo__query_side_init(&A, a, q->level, override);
     primitive_pair g;
     memset(&g, 0, sizeof g);
     g.A = &A;
@@ -1893,7 +1843,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                     /* a depth, as pair_is_depth: pb is B's closest point to pa, or pa is A's to pb */
                     const rugo_real slack = len * 1e-9 + eps;
                     if (fabs(prim_sd(P, h->pa, NULL, NULL)) < len - slack &&
-                        side_closest(&A, h->pb).distance < len - slack)
+                        rugo__query_side_closest(&A, h->pb).distance < len - slack)
                         continue;
                     depth = len;
                     best = h;
@@ -1933,7 +1883,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                             }
                         } else {
                             const rugo_vec2 p = prim_point(P, u);
-                            rugo_curve_point cp = side_closest(&A, p);
+                            rugo_curve_point cp = rugo__query_side_closest(&A, p);
                             if (cp.distance > far) {
                                 far = cp.distance;
                                 fpb = p;
@@ -1960,7 +1910,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             if (in_any_region(&r, h->ua, h->ub)) continue;
             const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
             const rugo_real band =
-                side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
+                rugo__query_side_tolerance(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
             if (!(h->distance <= band)) continue;
             const rugo_vec2 n = rugo__v2_unit(d);
             if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
@@ -1976,7 +1926,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         const rugo_vec2 pb0 = is_edge ? P->v[0] : prim_point(P, 0.0);
         int b_in_a = 0, a_in_b = 0;
         if (rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
-            b_in_a = side_contains(&A, pb0);
+            b_in_a = rugo__query_side_contains(&A, pb0);
         if (!b_in_a && !is_edge && P->R + (P->V >= 3 ? 1.0 : 0.0) > 0.0)
             a_in_b = prim_sd(P, rugo_contour_point_at(A.curve, 0.0), NULL, NULL) < 0.0;
         if (b_in_a && !want) {
@@ -1985,7 +1935,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             *state = RUGO_STATE_INTERSECTING;
             /* Closest pair of A's curve and B's boundary, searched within the distance from one
              * point of B to A. */
-            rugo_curve_point cp = side_closest(&A, pb0);
+            rugo_curve_point cp = rugo__query_side_closest(&A, pb0);
             tree_side tb2 = tb;
             tb2.box = grow_box(tb.box, cp.distance * (1.0 + 1e-9) + CUTOFF_PAD * g.scale);
             size_t np2 = 0;
@@ -2041,7 +1991,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
                 const rugo_real len = rugo__v2_length(d);
                 const rugo_real band =
-                    side_lambda(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
+                    rugo__query_side_tolerance(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
                 if (!(len <= band)) continue;
                 const rugo_vec2 na = rugo__curve_normal(A.curve, h->sa, h->ta);
                 rugo_vec2 n;

@@ -312,4 +312,17 @@ int rugo__faces_outward(rugo_contour c, int seg, rugo_real t, rugo_vec2 d, rugo_
 /* A sharp corner of c at one of segment seg's joints within `near` of x: 1 and its chord normal. */
 int rugo__corner_near(rugo_contour c, int seg, rugo_vec2 x, rugo_real near, rugo_vec2* n);
 
+/* ---------------------------------------------------------------------------------------------------
+ * A shape at the query's level (collide_levels.c). */
+
+/* s for shape at the query's level (0 finest, < 0 coarser, > 0 absolute); override >= 0: the query's
+ * tolerance instead of the shape's. */
+void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override);
+/* λ at (seg, t) of the side's level, or the override. */
+rugo_real rugo__query_side_tolerance(const query_side* s, int seg, rugo_real t, rugo_real override);
+/* rugo_contour_contains on the side's curve, through the tree. */
+int rugo__query_side_contains(const query_side* s, rugo_vec2 p);
+/* rugo_contour_closest_point on the side's curve, through the tree. */
+rugo_curve_point rugo__query_side_closest(const query_side* s, rugo_vec2 p);
+
 #endif

@@ -83,7 +83,7 @@ int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo
 void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff, rugo__narrow_result* out);
 
 /* rugo__level_contains (shape/internal.h) with the level as rugo_contact_query.level (0 finest, < 0
- * coarser, > 0 absolute; collide.c). */
+ * coarser, > 0 absolute; collide_levels.c). */
 int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
 
 #endif

@@ -27,14 +27,14 @@ void rugo_collide_context_destroy(rugo_collide_context* c) {
     rugo__free(&al, c);
 }
 
-/* Room for the queries between two shapes the size of s (the same coarsest and finest levels, or
- * smaller) with up to `contacts` contacts. The traversal's stack holds at most the root's children
- * (2^j0 x 2^j0) plus 3 per level descended on either side (each later expansion pops one node and pushes
- * at most 2 x 2), and its box pool 2 + 2 x 2^j0 boxes plus 4 per level on either side (see rugo__traverse);
- * the per-segment tables take both shapes' segments. What grows with the contacts is sized from what
- * the benchmarks measure per contact (about 25 segment pairs near one contact at the finest level, a
- * few hits each), with room to spare, and the pair list holds every segment pair when there are at
- * most 2^18; a query beyond that (shapes over 512 segments deeply overlapping) still grows. */
+/* Room for the queries between two shapes the size of s (the same coarsest and finest levels, or smaller)
+ * with up to `contacts` contacts. The traversal's stack holds at most the root's children (2^j0 x 2^j0)
+ * plus 3 per level descended on either side (each later expansion pops one node and pushes at most 2 x 2),
+ * and its box pool 2 + 2 x 2^j0 boxes plus 4 per level on either side (see rugo__traverse); the
+ * per-segment tables take both shapes' segments. What grows with the contacts is sized from what the
+ * benchmarks measure per contact (about 25 segment pairs near one contact at the finest level, a few hits
+ * each), with room to spare, and the pair list holds every segment pair when there are at most 2^18; a
+ * query beyond that (shapes over 512 segments deeply overlapping) still grows. */
 rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* s, int contacts) {
     if (ctx == NULL || s == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (contacts < 0 || contacts > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_ARGUMENT;

@@ -325,4 +325,12 @@ int rugo__query_side_contains(const query_side* s, rugo_vec2 p);
 /* rugo_contour_closest_point on the side's curve, through the tree. */
 rugo_curve_point rugo__query_side_closest(const query_side* s, rugo_vec2 p);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Tree traversal (collide_traverse.c). */
+
+/* Node pairs at the stop levels of A and B whose boxes (B's moved by rel) overlap, in increasing
+ * order, into ctx->pairs (*count of them); *tests grows by the box tests made. */
+rugo_status rugo__traverse(rugo_collide_context* ctx, const tree_side* A, const tree_side* B,
+                           rugo_transform rel, long* tests, size_t* count);
+
 #endif

@@ -48,86 +48,6 @@ static rugo_obb grow_box(rugo_obb b, rugo_real d) {
 }
 
 /* ---------------------------------------------------------------------------------------------------
- * Hits: recording, global parameters, duplicates. */
-
-static int push_hit(rugo_collide_context* ctx, rugo__array* b, size_t* n, const hit* h) {
-    if (!rugo__scratch_reserve(ctx, b, *n + 1, sizeof(hit))) return 0;
-    ((hit*)b->data)[(*n)++] = *h;
-    return 1;
-}
-
-/* Segment and parameter with t = 1 moved to the next segment. */
-static void normalise(int* seg, rugo_real* t, int n) {
-    if (!(*t > 0.0)) *t = 0.0;
-    if (*t >= 1.0) {
-        *seg += 1;
-        *t = 0.0;
-    }
-    *seg = rugo__wrap(*seg, n);
-}
-
-static int hit_cmp(const void* pa, const void* pb) {
-    const hit* a = (const hit*)pa;
-    const hit* b = (const hit*)pb;
-    if (a->ua != b->ua) return a->ua < b->ua ? -1 : 1;
-    if (a->ub != b->ub) return a->ub < b->ub ? -1 : 1;
-    if (a->src != b->src) return a->src < b->src ? -1 : 1;
-    if (a->kind != b->kind) return a->kind < b->kind ? -1 : 1;
-    return 0;
-}
-
-/* A stationary pair that may be the closest pair of two curves: a minimum, or a one-sided one (the
- * smallest distance overall is a minimum on every side, so a one-sided minimum that is not one loses
- * to a smaller distance reported elsewhere). */
-static int is_minimum_candidate(int kind) { return kind == RUGO__MINIMUM || kind == RUGO__END_MINIMUM; }
-
-/* Sorts by A's parameter and marks as dead every hit that repeats an earlier one found by another
- * narrow call (same points within `eps`, A parameters within one segment, cyclically). A crossing
- * beats a touching; for stationary pairs a minimum beats other kinds: at a joint next to a point-like
- * segment, the piece that holds the point inside its domain classifies it. Pieces that reach the point
- * only at an end of their domain where they stop (a zero-speed corner of three coincident control
- * points) see one side of it (RUGO__END_MINIMUM when it rises there): it is a minimum when no other
- * piece reports the same point as a saddle or maximum, i.e. when it rises on every side seen. */
-static void dedupe(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stationary) {
-    if (n == 0) return;
-    qsort(h, n, sizeof(hit), hit_cmp);
-    for (size_t i = 0; i < n; ++i) {
-        if (h[i].dead) continue;
-        int any_min = h[i].kind == RUGO__MINIMUM, any_end = h[i].kind == RUGO__END_MINIMUM;
-        int any_other = h[i].kind == RUGO__SADDLE || h[i].kind == RUGO__MAXIMUM;
-        for (size_t jj = 1; jj < n; ++jj) {
-            const size_t j = (i + jj) % n;
-            rugo_real du = h[j].ua - h[i].ua;
-            if (du < 0.0) du += period_a;
-            if (du > 3.0 + 1e-9) break; /* a point-like segment or two may lie between duplicates */
-            /* One call reports distinct roots, except stationary points spread over a zero-speed plateau
-             * (a corner made by coincident control points): those merge by position too. */
-            if (h[j].dead || (h[j].src == h[i].src && !stationary)) continue;
-            int same =
-                rugo__v2_length(rugo_v2_sub(h[j].pa, h[i].pa)) <= eps && rugo__v2_length(rugo_v2_sub(h[j].pb, h[i].pb)) <= eps;
-            /* Flat minima (straight or nearly straight pieces facing each other) are located only to
-             * ~sqrt(eps) at joints; at the same distance to round-off, points that close are one. */
-            if (!same && stationary && fabs(h[j].distance - h[i].distance) <= 1e-3 * eps)
-                same = rugo__v2_length(rugo_v2_sub(h[j].pa, h[i].pa)) <= 1e3 * eps &&
-                       rugo__v2_length(rugo_v2_sub(h[j].pb, h[i].pb)) <= 1e3 * eps;
-            if (same) {
-                h[i].coincident |= h[j].coincident;
-                if (stationary) {
-                    any_min |= h[j].kind == RUGO__MINIMUM;
-                    any_end |= h[j].kind == RUGO__END_MINIMUM;
-                    any_other |= h[j].kind == RUGO__SADDLE || h[j].kind == RUGO__MAXIMUM;
-                } else if (h[i].kind == 0 && h[j].kind != 0) {
-                    h[i].kind = h[j].kind;
-                }
-                h[j].dead = 1;
-            }
-        }
-        if (stationary && (any_min || any_end))
-            h[i].kind = any_min || !any_other ? RUGO__MINIMUM : RUGO__SADDLE;
-    }
-}
-
-/* ---------------------------------------------------------------------------------------------------
  * Overlap regions: the boundary of A ∩ B traced through the crossings. */
 
 static int next_a(const regions* r, int i) { return (i + 1) % r->m; }
@@ -461,8 +381,8 @@ static int run_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo
             h.ta = pp[i].s;
             h.sb = kb;
             h.tb = pp[i].t;
-            normalise(&h.sa, &h.ta, g->A->n);
-            normalise(&h.sb, &h.tb, g->B->n);
+            rugo__normalise_segment_param(&h.sa, &h.ta, g->A->n);
+            rugo__normalise_segment_param(&h.sb, &h.tb, g->B->n);
             h.ua = (rugo_real)h.sa + h.ta;
             h.ub = (rugo_real)h.sb + h.tb;
             h.pa = rugo_v2_add(pp[i].pa, o);
@@ -472,7 +392,7 @@ static int run_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo
             h.src = src;
             h.vertex = -1;
             h.coincident = r.overflow;
-            if (!push_hit(ctx, dst, nd, &h)) return 0;
+            if (!rugo__push_hit(ctx, dst, nd, &h)) return 0;
         }
     }
     return 1;
@@ -567,7 +487,7 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
             return RUGO_ERR_OUT_OF_MEMORY;
         const hit* hs = (const hit*)ctx->ss2.data;
         for (size_t j = 0; j < ns; ++j)
-            if (is_minimum_candidate(hs[j].kind) && (!*found || hs[j].distance < best->distance)) {
+            if (rugo__is_minimum_candidate(hs[j].kind) && (!*found || hs[j].distance < best->distance)) {
                 *best = hs[j];
                 *found = 1;
             }
@@ -779,7 +699,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                 if (len <= SAME_POINT * g->scale) continue;
                 if (!(rugo_v2_dot(normal_a(g, h->sa, h->ta), d) > 0.0)) continue;
                 if (!(rugo_v2_dot(normal_b(g, h->sb, h->tb), d) < 0.0)) continue;
-                if (!have || len > best.distance || (len == best.distance && hit_cmp(h, &best) < 0)) {
+                if (!have || len > best.distance || (len == best.distance && rugo__hit_cmp(h, &best) < 0)) {
                     if (!pair_is_depth(g, h->pa, h->pb, len)) continue;
                     best = *h;
                     best.distance = len;
@@ -839,8 +759,8 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                 }
             }
         }
-    normalise(&fsa, &fta, g->A->n);
-    normalise(&fsb, &ftb, g->B->n);
+    rugo__normalise_segment_param(&fsa, &fta, g->A->n);
+    rugo__normalise_segment_param(&fsb, &ftb, g->B->n);
     rugo_vec2 d = rugo_v2_sub(fpa, fpb);
     rugo_vec2 n = rugo__v2_length(d) > SAME_POINT * g->scale
                       ? rugo__v2_unit(d)
@@ -920,8 +840,8 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     hit* xs = (hit*)ctx->xs.data;
     hit* hs = (hit*)ctx->ss.data;
     const rugo_real eps = SAME_POINT * g.scale;
-    dedupe(xs, nx, (rugo_real)A.n, eps, 0);
-    dedupe(hs, ns, (rugo_real)A.n, eps, 1);
+    rugo__dedupe_hits(xs, nx, (rugo_real)A.n, eps, 0);
+    rugo__dedupe_hits(hs, ns, (rugo_real)A.n, eps, 1);
 
     /* Where pieces coincide the curves run together: their "crossings" (and the tangential meetings
      * next to them that the adjacent pieces report as crossings) are no crossing. */
@@ -950,12 +870,12 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
             hit t = xs[i];
             t.kind = RUGO__MINIMUM;
             t.distance = rugo__v2_length(rugo_v2_sub(t.pb, t.pa));
-            if (!push_hit(ctx, &ctx->ss, &ns, &t)) return RUGO_ERR_OUT_OF_MEMORY;
+            if (!rugo__push_hit(ctx, &ctx->ss, &ns, &t)) return RUGO_ERR_OUT_OF_MEMORY;
             xs = (hit*)ctx->xs.data;
             hs = (hit*)ctx->ss.data;
         }
     }
-    if (ns > 1) qsort(hs, ns, sizeof(hit), hit_cmp);
+    if (ns > 1) qsort(hs, ns, sizeof(hit), rugo__hit_cmp);
 
     if (m > 0) {
         *state = RUGO_STATE_INTERSECTING;
@@ -1122,7 +1042,7 @@ static rugo_real rho_minus_r(const rugo_vec2 fl[4], rugo_vec2 vl, rugo_real R, r
 static void fill_a(hit* h, int ka, rugo_real s, const primitive_pair* g) {
     h->sa = ka;
     h->ta = s;
-    normalise(&h->sa, &h->ta, g->A->n);
+    rugo__normalise_segment_param(&h->sa, &h->ta, g->A->n);
     h->ua = (rugo_real)h->sa + h->ta;
 }
 
@@ -1206,7 +1126,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
                 h.kind = pp[i].kind;
                 h.src = src;
                 h.vertex = -1;
-                if (!push_hit(ctx, pass == 0 ? xs : ss, pass == 0 ? nx : ns, &h)) return 0;
+                if (!rugo__push_hit(ctx, pass == 0 ? xs : ss, pass == 0 ? nx : ns, &h)) return 0;
             }
         }
     }
@@ -1238,7 +1158,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
                 h.nb = rugo_v2(0.0, 0.0);
                 h.vertex = vi;
                 h.distance = rho;
-                if (!push_hit(ctx, ss, ns, &h)) return 0;
+                if (!rugo__push_hit(ctx, ss, ns, &h)) return 0;
                 continue;
             }
             if (!(rho > 0.0)) continue; /* the vertex itself on A: its arc's crossings cover it */
@@ -1254,7 +1174,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
                 k.vertex = -1;
                 k.distance = rugo__v2_length(rugo_v2_sub(k.pb, k.pa));
                 if (side_ == 1) k.kind = RUGO__SADDLE; /* never a minimum of the distance to B */
-                if (!push_hit(ctx, ss, ns, &k)) return 0;
+                if (!rugo__push_hit(ctx, ss, ns, &k)) return 0;
             }
         }
         if (xs == NULL || !(P->R > 0.0)) continue;
@@ -1298,7 +1218,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
             h.kind = entering ? -1 : 1;
             h.src = src;
             h.vertex = -1;
-            if (!push_hit(ctx, xs, nx, &h)) return 0;
+            if (!rugo__push_hit(ctx, xs, nx, &h)) return 0;
         }
     }
     return 1;
@@ -1592,8 +1512,8 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     const rugo_real eps = SAME_POINT * g.scale;
     hit* xs = (hit*)ctx->xs.data;
     hit* hs = (hit*)ctx->ss.data;
-    dedupe(xs, nx, (rugo_real)A.n, eps, 0);
-    dedupe(hs, ns, (rugo_real)A.n, eps, 1);
+    rugo__dedupe_hits(xs, nx, (rugo_real)A.n, eps, 0);
+    rugo__dedupe_hits(hs, ns, (rugo_real)A.n, eps, 1);
     size_t m = 0;
     for (size_t i = 0; i < nx; ++i)
         if (!xs[i].dead && xs[i].kind != 0) xs[m++] = xs[i];
@@ -1635,7 +1555,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 const rugo_vec2 n = rugo_v2_scale(1.0 / len, d);
                 if (!(rugo_v2_dot(rugo__curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
                 if (!b_side_ok(P, h, n)) continue;
-                if (len > depth || (len == depth && hit_cmp(h, best) < 0)) {
+                if (len > depth || (len == depth && rugo__hit_cmp(h, best) < 0)) {
                     /* a depth, as pair_is_depth: pb is B's closest point to pa, or pa is A's to pb */
                     const rugo_real slack = len * 1e-9 + eps;
                     if (fabs(prim_sd(P, h->pa, NULL, NULL)) < len - slack &&
@@ -1690,7 +1610,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                         }
                     }
                 }
-            normalise(&fsa, &fta, A.n);
+            rugo__normalise_segment_param(&fsa, &fta, A.n);
             const rugo_vec2 d = rugo_v2_sub(fpa, fpb);
             const rugo_vec2 n = rugo__v2_length(d) > eps
                                     ? rugo__v2_unit(d)
@@ -1753,7 +1673,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             best.pb = pb0;
             best.distance = cp.distance;
             for (size_t i = 0; i < n2; ++i)
-                if (is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
+                if (rugo__is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
             const rugo_vec2 n = rugo__curve_normal(A.curve, best.sa, best.ta);
             const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
             if (!emit(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))

@@ -333,4 +333,19 @@ rugo_curve_point rugo__query_side_closest(const query_side* s, rugo_vec2 p);
 rugo_status rugo__traverse(rugo_collide_context* ctx, const tree_side* A, const tree_side* B,
                            rugo_transform rel, long* tests, size_t* count);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Hits (collide_hits.c). */
+
+/* Appends *h to the hit buffer b (*n used); 0 if out of memory. */
+int rugo__push_hit(rugo_collide_context* ctx, rugo__array* b, size_t* n, const hit* h);
+/* Segment and parameter with t = 1 moved to the next segment (t below 0 or NaN: 0), seg wrapped to n. */
+void rugo__normalise_segment_param(int* seg, rugo_real* t, int n);
+/* qsort order of hits: along A, then along B, then by narrow call and kind. */
+int rugo__hit_cmp(const void* pa, const void* pb);
+/* A stationary pair that may be the closest pair of two curves (RUGO__MINIMUM or RUGO__END_MINIMUM). */
+int rugo__is_minimum_candidate(int kind);
+/* Sorts the n hits along A and marks as dead the repeats of points found by other narrow calls
+ * (within eps; stationary: the stationary pairs' rules of kinds). */
+void rugo__dedupe_hits(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stationary);
+
 #endif

@@ -43,7 +43,7 @@ typedef enum rugo__stationary_kind {
     /* a minimum on this piece's side of an end of its domain, where the piece cannot see past the end:
      * at a zero-speed joint (a corner of coincident control points) its polynomial does not continue
      * as the curve does. A minimum of the curve only if the neighbouring segment's piece agrees (or
-     * holds the point inside); callers decide (collide.c, dedupe) */
+     * holds the point inside); callers decide (collide_hits.c, rugo__dedupe_hits) */
     RUGO__END_MINIMUM = 3
 } rugo__stationary_kind;
 

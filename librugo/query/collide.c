@@ -48,146 +48,6 @@ static rugo_obb grow_box(rugo_obb b, rugo_real d) {
 }
 
 /* ---------------------------------------------------------------------------------------------------
- * Overlap regions: the boundary of A ∩ B traced through the crossings. */
-
-static int next_a(const regions* r, int i) { return (i + 1) % r->m; }
-static int next_b(const regions* r, int i) { return r->order_b[(r->pos_b[i] + 1) % r->m]; }
-
-static rugo_real arc_length(rugo_real from, rugo_real to, rugo_real period, int single) {
-    rugo_real d = to - from;
-    while (d < 0.0)
-        d += period;
-    if (single || d == 0.0) d = period;
-    return d;
-}
-
-static rugo_real wrap_param(rugo_real u, rugo_real period) {
-    rugo_real r = fmod(u, period);
-    if (r < 0.0) r += period;
-    if (r >= period) r = 0.0;
-    return r;
-}
-
-/* Index of the arc (of A if which == 0, of B otherwise) holding parameter u. */
-static int arc_of(const regions* r, rugo_real u, int which) {
-    int lo = 0, hi = r->m - 1, best = -1;
-    while (lo <= hi) { /* last rank whose start <= u */
-        const int mid = (lo + hi) / 2;
-        const rugo_real start = which == 0 ? r->x[mid].ua : r->x[r->order_b[mid]].ub;
-        if (start <= u) {
-            best = mid;
-            lo = mid + 1;
-        } else {
-            hi = mid - 1;
-        }
-    }
-    if (best < 0) best = r->m - 1; /* before the first crossing: the arc that wraps around */
-    return which == 0 ? best : r->order_b[best];
-}
-
-/* Region of a pair (ua on A, ub on B) if both lie on arcs of the same region, else -1. */
-static int region_of_pair(const regions* r, rugo_real ua, rugo_real ub) {
-    if (r->m == 0) return -1;
-    const int ra = r->reg_a[arc_of(r, ua, 0)], rb = r->reg_b[arc_of(r, ub, 1)];
-    return ra >= 0 && ra == rb ? ra : -1;
-}
-
-/* Region touching a point of A or B (either arc), for filtering minima. */
-static int in_any_region(const regions* r, rugo_real ua, rugo_real ub) {
-    if (r->m == 0) return 0;
-    return r->reg_a[arc_of(r, ua, 0)] >= 0 || r->reg_b[arc_of(r, ub, 1)] >= 0;
-}
-
-static void sort_order_b(regions* r) {
-    /* Insertion sort by (ub, index): m is small, and this keeps the order deterministic without a
-     * global comparator context. */
-    for (int i = 0; i < r->m; ++i)
-        r->order_b[i] = i;
-    for (int i = 1; i < r->m; ++i) {
-        const int v = r->order_b[i];
-        int j = i - 1;
-        while (j >= 0 && (r->x[r->order_b[j]].ub > r->x[v].ub ||
-                          (r->x[r->order_b[j]].ub == r->x[v].ub && r->order_b[j] > v))) {
-            r->order_b[j + 1] = r->order_b[j];
-            --j;
-        }
-        r->order_b[j + 1] = v;
-    }
-    for (int i = 0; i < r->m; ++i)
-        r->pos_b[r->order_b[i]] = i;
-}
-
-static int kinds_consistent(const regions* r) {
-    if (r->m % 2 != 0) return 0;
-    for (int i = 0; i < r->m; ++i) {
-        if (r->a_in[i] == r->b_in[i]) return 0;
-        if (r->a_in[i] == r->a_in[next_a(r, i)]) return 0;
-        if (r->b_in[i] == r->b_in[next_b(r, i)]) return 0;
-    }
-    return 1;
-}
-
-/* Builds the regions of the m crossings x (sorted by ua; ctx->ints must hold 6 m ints). */
-static void build_regions(regions* r, const hit* x, int m, int* ints, const region_io* io) {
-    r->m = m;
-    r->x = x;
-    r->order_b = ints;
-    r->pos_b = ints + m;
-    r->a_in = ints + 2 * m;
-    r->b_in = ints + 3 * m;
-    r->reg_a = ints + 4 * m;
-    r->reg_b = ints + 5 * m;
-    r->count = 0;
-    r->period_a = io->period_a;
-    r->period_b = io->period_b;
-    if (m == 0) return;
-    sort_order_b(r);
-    for (int i = 0; i < m; ++i) {
-        r->a_in[i] = x[i].kind < 0;
-        r->b_in[i] = x[i].kind > 0;
-        r->reg_a[i] = r->reg_b[i] = -1;
-    }
-    if (!kinds_consistent(r)) {
-        /* Orientation of some crossing not trustworthy (near-tangent, or a crossing lost to a
-         * duplicate): decide each arc by a containment test of its midpoint. */
-        for (int i = 0; i < m; ++i) {
-            const int j = next_a(r, i);
-            const rugo_real la = arc_length(x[i].ua, x[j].ua, io->period_a, m == 1);
-            r->a_in[i] =
-                io->inside_b(io->user, io->point_a(io->user, wrap_param(x[i].ua + 0.5 * la, io->period_a)));
-            const int k = next_b(r, i);
-            const rugo_real lb = arc_length(x[i].ub, x[k].ub, io->period_b, m == 1);
-            r->b_in[i] =
-                io->inside_a(io->user, io->point_b(io->user, wrap_param(x[i].ub + 0.5 * lb, io->period_b)));
-        }
-    }
-    for (int pass = 0; pass < 2; ++pass)
-        for (int i = 0; i < m; ++i) {
-            /* Regions start from A's arcs; B's arcs no A-arc reached (inconsistent data) start their own. */
-            const int start_ok =
-                pass == 0 ? (r->a_in[i] && r->reg_a[i] < 0) : (r->b_in[i] && r->reg_b[i] < 0);
-            if (!start_ok) continue;
-            const int reg = r->count++;
-            int cur = i, use_a = pass == 0;
-            for (int steps = 0; steps < 2 * m + 2; ++steps) {
-                if (use_a && r->a_in[cur] && r->reg_a[cur] < 0) {
-                    r->reg_a[cur] = reg;
-                    cur = next_a(r, cur);
-                } else if (r->b_in[cur] && r->reg_b[cur] < 0) {
-                    r->reg_b[cur] = reg;
-                    cur = next_b(r, cur);
-                } else if (r->a_in[cur] && r->reg_a[cur] < 0) {
-                    r->reg_a[cur] = reg;
-                    cur = next_a(r, cur);
-                } else {
-                    break;
-                }
-                use_a = 1;
-            }
-        }
-}
-
-/* ---------------------------------------------------------------------------------------------------
  * Contacts: filling, ordering, output. */
 
 static uint64_t make_id(int level_a, int level_b, int seg_a, int seg_b, int type, int index) {
@@ -599,7 +459,7 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
         if (h->dead || h->kind != RUGO__MINIMUM) continue;
         if (regs != NULL && regs->m > 0) {
             if (h->distance <= SAME_POINT * g->scale) continue; /* a crossing point */
-            if (in_any_region(regs, h->ua, h->ub)) continue;
+            if (rugo__in_any_region(regs, h->ua, h->ub)) continue;
         }
         const rugo_real band =
             rugo__query_side_tolerance(g->A, h->sa, h->ta, override) + rugo__query_side_tolerance(g->B, h->sb, h->tb, override) + g->margin;
@@ -621,9 +481,9 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
     const query_side* s = which == 0 ? g->A : g->B;
     for (int i = 0; i < r->m; ++i) {
         if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
-        const int j = which == 0 ? next_a(r, i) : next_b(r, i);
+        const int j = which == 0 ? rugo__next_along_a(r, i) : rugo__next_along_b(r, i);
         const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub, u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
-        const rugo_real len = arc_length(u0, u1, (rugo_real)s->n, r->m == 1);
+        const rugo_real len = rugo__arc_length(u0, u1, (rugo_real)s->n, r->m == 1);
         const int k0 = (int)floor(u0);
         const int k1 = (int)floor(u0 + len);
         for (int k = k0; k <= k1 && k - k0 < s->n; ++k) {
@@ -693,7 +553,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
             const hit* hs = (const hit*)ctx->ss2.data;
             for (size_t k = 0; k < ns; ++k) {
                 const hit* h = &hs[k];
-                if (region_of_pair(r, h->ua, h->ub) != reg) continue;
+                if (rugo__region_of_pair(r, h->ua, h->ub) != reg) continue;
                 rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
                 const rugo_real len = rugo__v2_length(d);
                 if (len <= SAME_POINT * g->scale) continue;
@@ -723,14 +583,14 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
     for (int which = 0; which < 2; ++which)
         for (int i = 0; i < r->m; ++i) {
             if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
-            const int j = which == 0 ? next_a(r, i) : next_b(r, i);
+            const int j = which == 0 ? rugo__next_along_a(r, i) : rugo__next_along_b(r, i);
             const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub,
                             u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
             const rugo_real period = (rugo_real)(which == 0 ? g->A->n : g->B->n);
-            const rugo_real len = arc_length(u0, u1, period, r->m == 1);
+            const rugo_real len = rugo__arc_length(u0, u1, period, r->m == 1);
             const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
             for (int s = 1; s < samples; ++s) {
-                const rugo_real u = wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
+                const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
                 if (which == 0) {
                     const rugo_vec2 p = sh_point_a(g, u);
                     rugo_curve_point cp =
@@ -889,7 +749,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         io.inside_b = sh_inside_b;
         io.inside_a = sh_inside_a;
         regions r;
-        build_regions(&r, (const hit*)ctx->xs.data, (int)m, (int*)ctx->ints.data, &io);
+        rugo__build_regions(&r, (const hit*)ctx->xs.data, (int)m, (int*)ctx->ints.data, &io);
         /* A caller that only asks for the state (no room for contacts, no statistics) is done. */
         if (capacity == 0 && stats == NULL) r.count = 0;
         for (int reg = 0; reg < r.count; ++reg) {
@@ -990,7 +850,7 @@ static rugo_real angle_of(rugo_vec2 u) {
 
 /* Boundary parameter of the point of vertex arc i in direction u, or -1 if u is outside the arc. */
 static rugo_real arc_param(const primitive* P, int i, rugo_vec2 u) {
-    if (P->V == 1) return wrap_param(angle_of(u) / (2.0 * PI_VALUE), 1.0);
+    if (P->V == 1) return rugo__wrap_param(angle_of(u) / (2.0 * PI_VALUE), 1.0);
     rugo_real th = angle_of(u) - P->arc0[i];
     while (th < 0.0)
         th += 2.0 * PI_VALUE;
@@ -1047,7 +907,7 @@ static void fill_a(hit* h, int ka, rugo_real s, const primitive_pair* g) {
 }
 
 static void fill_b(hit* h, rugo_real w, const primitive* P) {
-    w = wrap_param(w, P->period);
+    w = rugo__wrap_param(w, P->period);
     h->ub = w;
     h->sb = (int)floor(w);
     h->tb = w - floor(w);
@@ -1541,14 +1401,14 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         io.inside_b = pr_inside_b;
         io.inside_a = pr_inside_a;
         regions r;
-        build_regions(&r, xs, (int)m, (int*)ctx->ints.data, &io);
+        rugo__build_regions(&r, xs, (int)m, (int*)ctx->ints.data, &io);
         if (!want) r.count = 0;
         for (int reg = 0; reg < r.count; ++reg) {
             const hit* best = NULL;
             rugo_real depth = -1.0;
             for (size_t i = 0; i < ns; ++i) {
                 const hit* h = &hs[i];
-                if (h->dead || region_of_pair(&r, h->ua, h->ub) != reg) continue;
+                if (h->dead || rugo__region_of_pair(&r, h->ua, h->ub) != reg) continue;
                 const rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
                 const rugo_real len = rugo__v2_length(d);
                 if (len <= eps) continue;
@@ -1578,14 +1438,14 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             for (int which = 0; which < 2; ++which)
                 for (int i = 0; i < r.m; ++i) {
                     if ((which == 0 ? r.reg_a[i] : r.reg_b[i]) != reg) continue;
-                    const int j = which == 0 ? next_a(&r, i) : next_b(&r, i);
+                    const int j = which == 0 ? rugo__next_along_a(&r, i) : rugo__next_along_b(&r, i);
                     const rugo_real u0 = which == 0 ? r.x[i].ua : r.x[i].ub,
                                     u1 = which == 0 ? r.x[j].ua : r.x[j].ub;
                     const rugo_real period = which == 0 ? (rugo_real)A.n : P->period;
-                    const rugo_real len = arc_length(u0, u1, period, r.m == 1);
+                    const rugo_real len = rugo__arc_length(u0, u1, period, r.m == 1);
                     const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
                     for (int s = 1; s < samples; ++s) {
-                        const rugo_real u = wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
+                        const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
                         if (which == 0) {
                             const rugo_vec2 p = rugo_contour_point_at(A.curve, u);
                             rugo_vec2 qb;
@@ -1623,7 +1483,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         for (size_t i = 0; i < ns; ++i) {
             const hit* h = &hs[i];
             if (h->dead || h->kind != RUGO__MINIMUM || h->distance <= eps) continue;
-            if (in_any_region(&r, h->ua, h->ub)) continue;
+            if (rugo__in_any_region(&r, h->ua, h->ub)) continue;
             const rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
             const rugo_real band =
                 rugo__query_side_tolerance(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;

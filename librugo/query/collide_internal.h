@@ -348,4 +348,36 @@ int rugo__is_minimum_candidate(int kind);
  * (within eps; stationary: the stationary pairs' rules of kinds). */
 void rugo__dedupe_hits(hit* h, size_t n, rugo_real period_a, rugo_real eps, int stationary);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Overlap regions (collide_regions.c). */
+
+/* The crossing after crossing i along A, and along B. */
+static inline int rugo__next_along_a(const regions* r, int i) { return (i + 1) % r->m; }
+static inline int rugo__next_along_b(const regions* r, int i) { return r->order_b[(r->pos_b[i] + 1) % r->m]; }
+
+/* Length of the arc from parameter `from` to `to` along a curve of the given period (a single crossing:
+ * the whole curve). */
+static inline rugo_real rugo__arc_length(rugo_real from, rugo_real to, rugo_real period, int single) {
+    rugo_real d = to - from;
+    while (d < 0.0)
+        d += period;
+    if (single || d == 0.0) d = period;
+    return d;
+}
+
+/* u wrapped into [0, period). */
+static inline rugo_real rugo__wrap_param(rugo_real u, rugo_real period) {
+    rugo_real r = fmod(u, period);
+    if (r < 0.0) r += period;
+    if (r >= period) r = 0.0;
+    return r;
+}
+
+/* Builds the regions of the m crossings x (sorted by ua) into r; ints must hold 6 m ints. */
+void rugo__build_regions(regions* r, const hit* x, int m, int* ints, const region_io* io);
+/* Region of a pair (ua on A, ub on B) if both lie on arcs of the same region, else -1. */
+int rugo__region_of_pair(const regions* r, rugo_real ua, rugo_real ub);
+/* Whether a point of A or of B lies on an arc of some region. */
+int rugo__in_any_region(const regions* r, rugo_real ua, rugo_real ub);
+
 #endif

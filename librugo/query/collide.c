@@ -10,122 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* "RUGQ": catches queries that did not come from rugo_default_contact_query. */
-#define QUERY_COOKIE 0x52554751
-
 #define EDGE_SAMPLES 32 /* samples of an edge piece inside A */
-/* ---------------------------------------------------------------------------------------------------
- * Context: growable scratch. */
-
-rugo_contact_query rugo_default_contact_query(void) {
-    rugo_contact_query q;
-    memset(&q, 0, sizeof q);
-    q.level = 0;
-    q.tolerance = -1.0;
-    q.friction_mix = RUGO_MIX_MAX;
-    q.restitution_mix = RUGO_MIX_MIN;
-    q.cookie = QUERY_COOKIE;
-    return q;
-}
-
-const char* rugo_contact_state_name(rugo_contact_state s) {
-    switch (s) {
-    case RUGO_STATE_APART:
-        return "apart";
-    case RUGO_STATE_CONTACT:
-        return "contact";
-    case RUGO_STATE_INTERSECTING:
-        return "intersecting";
-    default:
-        return "unknown";
-    }
-}
 
 static rugo_obb grow_box(rugo_obb b, rugo_real d) {
     b.half[0] += d;
     b.half[1] += d;
     return b;
-}
-
-/* ---------------------------------------------------------------------------------------------------
- * Contacts: filling, ordering, output. */
-
-static uint64_t make_id(int level_a, int level_b, int seg_a, int seg_b, int type, int index) {
-    return ((uint64_t)(level_a & 31) << 59) | ((uint64_t)(level_b & 31) << 54) |
-           ((uint64_t)(seg_a & 0xFFFFF) << 34) | ((uint64_t)(seg_b & 0xFFFFF) << 14) |
-           ((uint64_t)(type & 3) << 12) | (uint64_t)(index & 0xFFF);
-}
-
-/* Adds a contact from a pair in A's frame: n unit from A to B. id_b: B's segment, or the primitive's
- * feature, for the id. */
-static int emit(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
-                rugo_vec2 n, int region, int type, int index, int id_b) {
-    if (!rugo__scratch_reserve(o->ctx, &o->ctx->out, o->n + 1, sizeof(rugo_contact))) return 0;
-    rugo_contact* c = (rugo_contact*)o->ctx->out.data + o->n++;
-    memset(c, 0, sizeof *c);
-    c->point_a = rugo_transform_point(o->xa, pa);
-    c->point_b = rugo_transform_point(o->xa, pb);
-    c->normal = rugo_rotate(o->xa.q, n);
-    c->separation = rugo_v2_dot(rugo_v2_sub(pb, pa), n);
-    c->segment_a = sa;
-    c->t_a = ta;
-    c->level_a = o->A->level;
-    c->tolerance_a = rugo__query_side_tolerance(o->A, sa, ta, o->override);
-    rugo_friction_map fa = rugo_shape_friction_map(o->A->shape);
-    rugo_restitution ra = rugo_shape_restitution(o->A->shape);
-    const rugo_real mu_a = rugo_friction(&fa, c->tolerance_a);
-    if (o->B != NULL) {
-        c->segment_b = sb;
-        c->t_b = tb;
-        c->level_b = o->B->level;
-        c->tolerance_b = rugo__query_side_tolerance(o->B, sb, tb, o->override);
-        rugo_friction_map fb = rugo_shape_friction_map(o->B->shape);
-        rugo_restitution rb = rugo_shape_restitution(o->B->shape);
-        c->friction = rugo_mix(o->q->friction_mix, mu_a, rugo_friction(&fb, c->tolerance_b));
-        c->restitution = rugo_mix(o->q->restitution_mix, ra.epsilon, rb.epsilon);
-    } else {
-        /* A primitive has no surface of its own: the shape's values, for the caller to mix. */
-        c->segment_b = -1;
-        c->t_b = 0.0;
-        c->level_b = 0;
-        c->tolerance_b = o->override >= 0.0 ? o->override : 0.0;
-        c->friction = mu_a;
-        c->restitution = ra.epsilon;
-    }
-    c->region = region;
-    c->id = make_id(c->level_a, c->level_b, sa, id_b, type, index);
-    return 1;
-}
-
-static int contact_cmp(const void* pa, const void* pb) {
-    const rugo_contact* a = (const rugo_contact*)pa;
-    const rugo_contact* b = (const rugo_contact*)pb;
-    if (a->region != b->region) return a->region < b->region ? -1 : 1;
-    if (a->separation != b->separation) return a->separation < b->separation ? -1 : 1;
-    if (a->id != b->id) return a->id < b->id ? -1 : 1;
-    return 0;
-}
-
-static void finish(contact_out* o, rugo_contact* contacts, int capacity, int* count, rugo_query_stats* stats) {
-    rugo_contact* all = (rugo_contact*)o->ctx->out.data;
-    if (o->n > 1) qsort(all, o->n, sizeof(rugo_contact), contact_cmp);
-    size_t w = o->n < (size_t)capacity ? o->n : (size_t)capacity;
-    for (size_t i = 0; i < w; ++i)
-        contacts[i] = all[i];
-    *count = (int)w;
-    if (stats != NULL) stats->contacts_found = o->n > (size_t)INT32_MAX ? INT32_MAX : (int)o->n;
-}
-
-static rugo_status check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity) {
-    if (q->cookie != QUERY_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
-    if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
-    if (capacity > 0 && contacts == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!isfinite(q->tolerance) || !isfinite(q->margin)) return RUGO_ERR_NOT_FINITE;
-    if (q->margin < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    if ((unsigned)q->friction_mix > (unsigned)RUGO_MIX_GEOMETRIC ||
-        (unsigned)q->restitution_mix > (unsigned)RUGO_MIX_GEOMETRIC)
-        return RUGO_ERR_BAD_ARGUMENT;
-    return RUGO_OK;
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -397,13 +287,13 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
         /* B leaves A through A's curve at pa: along A's outward normal there. */
         n = normal_a(g, best.sa, best.ta);
         rugo_vec2 pb = support_point(g, 1, n, -1, &seg, &t);
-        if (!emit(o, best.sa, best.ta, seg, t, best.pa, pb, n, 0, 2, 0, seg)) return RUGO_ERR_OUT_OF_MEMORY;
+        if (!rugo__emit_contact(o, best.sa, best.ta, seg, t, best.pa, pb, n, 0, 2, 0, seg)) return RUGO_ERR_OUT_OF_MEMORY;
     } else {
         /* A leaves B through B's curve at pb, along B's outward normal m; B moves along n = -m. */
         const rugo_vec2 m = normal_b(g, best.sb, best.tb);
         n = rugo_v2_scale(-1.0, m);
         rugo_vec2 pa = support_point(g, 0, n, +1, &seg, &t);
-        if (!emit(o, seg, t, best.sb, best.tb, pa, best.pb, n, 0, 2, 0, best.sb))
+        if (!rugo__emit_contact(o, seg, t, best.sb, best.tb, pa, best.pb, n, 0, 2, 0, best.sb))
             return RUGO_ERR_OUT_OF_MEMORY;
     }
     return RUGO_OK;
@@ -469,7 +359,7 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
         int index = 0;
         for (size_t j = 0; j < i; ++j)
             if (!hs[j].dead && hs[j].kind == RUGO__MINIMUM && hs[j].sa == h->sa && hs[j].sb == h->sb) ++index;
-        if (!emit(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, pair_normal(g, h), region++, 0, index, h->sb))
+        if (!rugo__emit_contact(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, pair_normal(g, h), region++, 0, index, h->sb))
             return RUGO_ERR_OUT_OF_MEMORY;
     }
     return RUGO_OK;
@@ -569,7 +459,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
         }
     if (have) {
         rugo_vec2 d = rugo_v2_sub(best.pa, best.pb);
-        if (!emit(o, best.sa, best.ta, best.sb, best.tb, best.pa, best.pb,
+        if (!rugo__emit_contact(o, best.sa, best.ta, best.sb, best.tb, best.pa, best.pb,
                   rugo_v2_scale(1.0 / best.distance, d), reg, 1, 0, best.sb))
             return RUGO_ERR_OUT_OF_MEMORY;
         return RUGO_OK;
@@ -625,7 +515,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
     rugo_vec2 n = rugo__v2_length(d) > SAME_POINT * g->scale
                       ? rugo__v2_unit(d)
                       : overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
-    if (!emit(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (!rugo__emit_contact(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
     return RUGO_OK;
 }
 
@@ -640,7 +530,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         return RUGO_ERR_NULL_ARGUMENT;
     rugo_contact_query defq = rugo_default_contact_query();
     const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = check_query(q, contacts, capacity);
+    rugo_status st = rugo__check_query(q, contacts, capacity);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
@@ -786,7 +676,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
             *state = o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
         }
     }
-    finish(&o, contacts, capacity, count, stats);
+    rugo__finish_contacts(&o, contacts, capacity, count, stats);
     return RUGO_OK;
 }
 
@@ -1110,7 +1000,7 @@ static rugo_vec2 curve_support(const query_side* A, rugo_vec2 dir, int* seg, rug
 static int prim_emit(contact_out* o, const hit* h, rugo_vec2 pa, rugo_vec2 pb, rugo_vec2 n, int region, int type,
                      int index) {
     int feature = h->sb;
-    return emit(o, h->sa, h->ta, -1, 0.0, pa, pb, n, region, type, index, 0xFFF00 | (feature & 0xFF));
+    return rugo__emit_contact(o, h->sa, h->ta, -1, 0.0, pa, pb, n, region, type, index, 0xFFF00 | (feature & 0xFF));
 }
 
 /* An edge (segment, R = 0) crossing A: each piece of it inside A gets its deepest point. */
@@ -1174,7 +1064,7 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
         rugo_vec2 d = rugo_v2_sub(bcp.point, pb);
         rugo_vec2 n =
             rugo__v2_length(d) > SAME_POINT * g->scale ? rugo__v2_unit(d) : rugo__curve_normal(g->A->curve, bcp.segment, bcp.t);
-        if (!emit(o, bcp.segment, bcp.t, -1, 0.0, bcp.point, pb, n, region, 1, 0, 0xFFF00 | region))
+        if (!rugo__emit_contact(o, bcp.segment, bcp.t, -1, 0.0, bcp.point, pb, n, region, 1, 0, 0xFFF00 | region))
             return RUGO_ERR_OUT_OF_MEMORY;
         ++region;
     }
@@ -1279,7 +1169,7 @@ static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g
         const rugo_vec2 n =
             overlap_normal(o->A, g, P, x[i].sa, x[i].ta, x[i].pa, x[i].sb, x[i].tb, x[i].pb, scale);
         const int id_b = P != NULL ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
-        if (!emit(o, x[i].sa, x[i].ta, P != NULL ? -1 : x[i].sb, P != NULL ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
+        if (!rugo__emit_contact(o, x[i].sa, x[i].ta, P != NULL ? -1 : x[i].sb, P != NULL ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
                   n, cluster, 1, 2 + cluster, id_b))
             return RUGO_ERR_OUT_OF_MEMORY;
         ++cluster;
@@ -1292,7 +1182,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
     rugo_contact_query defq = rugo_default_contact_query();
     const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = check_query(q, contacts, capacity);
+    rugo_status st = rugo__check_query(q, contacts, capacity);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
@@ -1475,7 +1365,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             const rugo_vec2 n = rugo__v2_length(d) > eps
                                     ? rugo__v2_unit(d)
                                     : overlap_normal(&A, NULL, P, fsa, fta, fpa, -1, 0.0, fpb, g.scale);
-            if (!emit(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
+            if (!rugo__emit_contact(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
                 return RUGO_ERR_OUT_OF_MEMORY;
         }
         /* Minima within the band outside the regions. */
@@ -1536,7 +1426,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 if (rugo__is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
             const rugo_vec2 n = rugo__curve_normal(A.curve, best.sa, best.ta);
             const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
-            if (!emit(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))
+            if (!rugo__emit_contact(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))
                 return RUGO_ERR_OUT_OF_MEMORY;
         } else if (a_in_b) {
             *state = RUGO_STATE_INTERSECTING;
@@ -1558,7 +1448,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             int seg;
             rugo_real t;
             const rugo_vec2 pa = curve_support(&A, n, &seg, &t);
-            if (!emit(&o, seg, t, -1, 0.0, pa, pb, n, 0, 2, 0, 0xFFF00)) return RUGO_ERR_OUT_OF_MEMORY;
+            if (!rugo__emit_contact(&o, seg, t, -1, 0.0, pa, pb, n, 0, 2, 0, 0xFFF00)) return RUGO_ERR_OUT_OF_MEMORY;
         } else {
             int region = 0;
             for (size_t i = 0; i < ns; ++i) {
@@ -1582,7 +1472,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             *state = o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
         }
     }
-    finish(&o, contacts, capacity, count, stats);
+    rugo__finish_contacts(&o, contacts, capacity, count, stats);
     return RUGO_OK;
 }
 

@@ -380,4 +380,17 @@ int rugo__region_of_pair(const regions* r, rugo_real ua, rugo_real ub);
 /* Whether a point of A or of B lies on an arc of some region. */
 int rugo__in_any_region(const regions* r, rugo_real ua, rugo_real ub);
 
+/* ---------------------------------------------------------------------------------------------------
+ * The query and its contacts (collide_output.c). */
+
+/* RUGO_OK, or what is wrong with the query or the caller's room for contacts. */
+rugo_status rugo__check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity);
+/* Adds a contact from a pair in A's frame: pa on A (segment sa at ta), pb on B, n unit from A to B.
+ * id_b: B's segment, or the primitive's feature, for the id. 0 if out of memory. */
+int rugo__emit_contact(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
+                       rugo_vec2 n, int region, int type, int index, int id_b);
+/* Orders the contacts and copies what fits into the caller's array. */
+void rugo__finish_contacts(contact_out* o, rugo_contact* contacts, int capacity, int* count,
+                           rugo_query_stats* stats);
+
 #endif

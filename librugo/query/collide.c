@@ -21,78 +21,6 @@ static rugo_obb grow_box(rugo_obb b, rugo_real d) {
 /* ---------------------------------------------------------------------------------------------------
  * Shape against shape. */
 
-static void piece_b(const shape_pair* g, int k, rugo_vec2 out[4]) {
-    rugo_vec2 q[4];
-    rugo_contour_bezier(g->B->curve, k, q);
-    for (int i = 0; i < 4; ++i)
-        out[i] = rugo_transform_point(g->rel, q[i]);
-}
-
-static void piece_cache_init(piece_cache* pc) {
-    pc->ka = -1;
-    for (int i = 0; i < PIECE_CACHE; ++i)
-        pc->kb[i] = -1;
-}
-
-/* Pieces from the query's table (g->tab set: piece_table). */
-static const rugo_vec2* tab_piece_a(const shape_pair* g, int k) {
-    if (g->stamp[k] != g->epoch) {
-        rugo_contour_bezier(g->A->curve, k, g->tab[k]);
-        g->stamp[k] = g->epoch;
-    }
-    return g->tab[k];
-}
-
-static const rugo_vec2* tab_piece_b(const shape_pair* g, int k) {
-    const size_t e = (size_t)g->A->n + (size_t)k;
-    if (g->stamp[e] != g->epoch) {
-        piece_b(g, k, g->tab[e]);
-        g->stamp[e] = g->epoch;
-    }
-    return g->tab[e];
-}
-
-static const rugo_vec2* cached_piece_a(piece_cache* pc, const shape_pair* g, int k) {
-    if (g->tab != NULL) return tab_piece_a(g, k);
-    if (pc->ka != k) {
-        rugo_contour_bezier(g->A->curve, k, pc->fa);
-        pc->ka = k;
-    }
-    return pc->fa;
-}
-
-static const rugo_vec2* cached_piece_b(piece_cache* pc, const shape_pair* g, int k) {
-    if (g->tab != NULL) return tab_piece_b(g, k);
-    const int slot = k & (PIECE_CACHE - 1);
-    if (pc->kb[slot] != k) {
-        piece_b(g, k, pc->gb[slot]);
-        pc->kb[slot] = k;
-    }
-    return pc->gb[slot];
-}
-
-/* Sets up g's piece table in ctx for the query (A->n + B->n entries); 0 if out of memory. A new epoch
- * invalidates every entry without clearing; stamps are zeroed once when first allocated, and all of
- * them when the epoch wraps. */
-static int piece_table(rugo_collide_context* ctx, shape_pair* g) {
-    const size_t n = (size_t)g->A->n + (size_t)g->B->n;
-    if (!rugo__scratch_reserve(ctx, &ctx->ptab, n, sizeof(rugo_vec2[4])) || !rugo__scratch_reserve(ctx, &ctx->pstamp, n, sizeof(uint32_t)))
-        return 0;
-    uint32_t* stamp = (uint32_t*)ctx->pstamp.data;
-    if (ctx->pstamp_zeroed < n) {
-        memset(stamp + ctx->pstamp_zeroed, 0, (n - ctx->pstamp_zeroed) * sizeof(uint32_t));
-        ctx->pstamp_zeroed = n;
-    }
-    if (++ctx->epoch == 0) {
-        memset(stamp, 0, ctx->pstamp_zeroed * sizeof(uint32_t));
-        ctx->epoch = 1;
-    }
-    g->tab = (rugo_vec2(*)[4])ctx->ptab.data;
-    g->stamp = stamp;
-    g->epoch = ctx->epoch;
-    return 1;
-}
-
 static rugo_vec2 normal_a(const shape_pair* g, int seg, rugo_real t) {
     return rugo__curve_normal(g->A->curve, seg, t);
 }
@@ -178,7 +106,7 @@ static rugo_vec2 support_point(const shape_pair* g, int of_b, rugo_vec2 d, int s
     for (int k = 0; k < s->n; ++k) {
         rugo_vec2 b[4];
         if (of_b)
-            piece_b(g, k, b);
+            rugo__piece_of_b(g, k, b);
         else
             rugo_contour_bezier(s->curve, k, b);
         rugo_real v[4];
@@ -226,11 +154,11 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
     *found = 0;
     size_t ns = 0;
     piece_cache pc;
-    piece_cache_init(&pc);
+    rugo__piece_cache_init(&pc);
     for (size_t i = 0; i < np; ++i) {
         const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
-        const rugo_vec2* f = cached_piece_a(&pc, g, p.k_a);
-        const rugo_vec2* h = cached_piece_b(&pc, g, p.k_b);
+        const rugo_vec2* f = rugo__cached_piece_a(&pc, g, p.k_a);
+        const rugo_vec2* h = rugo__cached_piece_b(&pc, g, p.k_b);
         ns = 0;
         if (!run_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
                       NULL, &ctx->ss2, &ns))
@@ -384,11 +312,11 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
             seginfo* si = (seginfo*)ctx->segs.data + (*nseg)++;
             si->k = kk;
             if (g->tab != NULL)
-                memcpy(si->b, which == 0 ? tab_piece_a(g, kk) : tab_piece_b(g, kk), sizeof si->b);
+                memcpy(si->b, which == 0 ? rugo__table_piece_a(g, kk) : rugo__table_piece_b(g, kk), sizeof si->b);
             else if (which == 0)
                 rugo_contour_bezier(s->curve, kk, si->b);
             else
-                piece_b(g, kk, si->b);
+                rugo__piece_of_b(g, kk, si->b);
             rugo__bezier_bounds(si->b, &si->lo, &si->hi);
             rugo__tangent_cone(si->b, &si->cone, &si->half);
         }
@@ -546,7 +474,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     g.scale = fmax(rugo__box_size(rugo_mobb_tree_root(A.tree)), rugo__box_size(rugo_mobb_tree_root(B.tree)));
     g.stats = stats;
     g.margin = q->margin;
-    if (!piece_table(ctx, &g)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (!rugo__piece_table_setup(ctx, &g)) return RUGO_ERR_OUT_OF_MEMORY;
     contact_out o;
     memset(&o, 0, sizeof o);
     o.ctx = ctx;
@@ -577,11 +505,11 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
     /* First pass: crossings and stationary pairs within the band. */
     size_t nx = 0, ns = 0;
     piece_cache pc;
-    piece_cache_init(&pc);
+    rugo__piece_cache_init(&pc);
     for (size_t i = 0; i < np; ++i) {
         const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
-        const rugo_vec2* f = cached_piece_a(&pc, &g, p.k_a);
-        const rugo_vec2* h = cached_piece_b(&pc, &g, p.k_b);
+        const rugo_vec2* f = rugo__cached_piece_a(&pc, &g, p.k_a);
+        const rugo_vec2* h = rugo__cached_piece_b(&pc, &g, p.k_b);
         const rugo_real cut = (override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b]) + q->margin;
         if (!run_pair(ctx, &g, p.k_a, f, p.k_b, h, cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g.scale, &ctx->xs,
                       &nx, &ctx->ss, &ns))

@@ -393,4 +393,19 @@ int rugo__emit_contact(contact_out* o, int sa, rugo_real ta, int sb, rugo_real t
 void rugo__finish_contacts(contact_out* o, rugo_contact* contacts, int capacity, int* count,
                            rugo_query_stats* stats);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Bezier pieces of a shape pair (collide_pieces.c). */
+
+/* B's segment k as a Bezier piece in A's frame. */
+void rugo__piece_of_b(const shape_pair* g, int k, rugo_vec2 out[4]);
+/* Sets up g's piece table in ctx for the query (A's and B's segments); 0 if out of memory. */
+int rugo__piece_table_setup(rugo_collide_context* ctx, shape_pair* g);
+/* Pieces from the query's table (g->tab set up). */
+const rugo_vec2* rugo__table_piece_a(const shape_pair* g, int k);
+const rugo_vec2* rugo__table_piece_b(const shape_pair* g, int k);
+/* Pieces from the table, or without one from the cache pc (rugo__piece_cache_init first). */
+void rugo__piece_cache_init(piece_cache* pc);
+const rugo_vec2* rugo__cached_piece_a(piece_cache* pc, const shape_pair* g, int k);
+const rugo_vec2* rugo__cached_piece_b(piece_cache* pc, const shape_pair* g, int k);
+
 #endif

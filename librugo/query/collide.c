@@ -611,104 +611,11 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
 /* ---------------------------------------------------------------------------------------------------
  * Primitives: B = convex core K (a point, a segment, a convex polygon) grown by a radius R. */
 
-static rugo_real point_segment(rugo_vec2 p, rugo_vec2 a, rugo_vec2 b, rugo_vec2* foot) {
-    rugo_vec2 d = rugo_v2_sub(b, a);
-    const rugo_real dd = rugo_v2_dot(d, d);
-    rugo_real t = dd > 0.0 ? rugo_v2_dot(rugo_v2_sub(p, a), d) / dd : 0.0;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    *foot = rugo__lerp2(a, b, t);
-    return rugo__v2_length(rugo_v2_sub(p, *foot));
-}
-
-/* Signed distance to B (negative inside); optionally the nearest boundary point and its normal. */
-static rugo_real prim_sd(const primitive* P, rugo_vec2 p, rugo_vec2* q, rugo_vec2* nq) {
-    rugo_vec2 foot = P->v[0];
-    rugo_real dk;
-    if (P->V == 1) {
-        dk = rugo__v2_length(rugo_v2_sub(p, foot));
-    } else if (P->V == 2) {
-        dk = point_segment(p, P->v[0], P->v[1], &foot);
-    } else {
-        rugo_real s = -HUGE_VAL;
-        int e = 0;
-        for (int i = 0; i < P->V; ++i) {
-            const rugo_real si = rugo_v2_dot(P->m[i], rugo_v2_sub(p, P->v[i]));
-            if (si > s) {
-                s = si;
-                e = i;
-            }
-        }
-        if (s <= 0.0) { /* inside the core: the nearest edge */
-            if (q != NULL) *q = rugo_v2_add(p, rugo_v2_scale(P->R - s, P->m[e]));
-            if (nq != NULL) *nq = P->m[e];
-            return s - P->R;
-        }
-        dk = HUGE_VAL;
-        for (int i = 0; i < P->V; ++i) {
-            rugo_vec2 f;
-            const rugo_real d = point_segment(p, P->v[i], P->v[(i + 1) % P->V], &f);
-            if (d < dk) {
-                dk = d;
-                foot = f;
-            }
-        }
-    }
-    if (q != NULL || nq != NULL) {
-        rugo_vec2 u = dk > 0.0 ? rugo_v2_scale(1.0 / dk, rugo_v2_sub(p, foot)) : rugo_v2(1.0, 0.0);
-        if (q != NULL) *q = rugo_v2_add(foot, rugo_v2_scale(P->R, u));
-        if (nq != NULL) *nq = u;
-    }
-    return dk - P->R;
-}
-
-static rugo_real angle_of(rugo_vec2 u) {
-    rugo_real a = atan2(u.y, u.x);
-    return a < 0.0 ? a + 2.0 * PI_VALUE : a;
-}
-
-/* Boundary parameter of the point of vertex arc i in direction u, or -1 if u is outside the arc. */
-static rugo_real arc_param(const primitive* P, int i, rugo_vec2 u) {
-    if (P->V == 1) return rugo__wrap_param(angle_of(u) / (2.0 * PI_VALUE), 1.0);
-    rugo_real th = angle_of(u) - P->arc0[i];
-    while (th < 0.0)
-        th += 2.0 * PI_VALUE;
-    while (th >= 2.0 * PI_VALUE)
-        th -= 2.0 * PI_VALUE;
-    if (th > P->span[i] + 1e-12) {
-        if (th > 2.0 * PI_VALUE - 1e-12) return 2.0 * (rugo_real)i; /* just before the arc's start */
-        return -1.0;
-    }
-    return 2.0 * (rugo_real)i + (P->span[i] > 0.0 ? fmin(th / P->span[i], 1.0 - DBL_EPSILON) : 0.0);
-}
-
-/* Is direction u within the normal cone of corner i (between m_{i-1} and m_i)? */
-static int in_cone(const primitive* P, int i, rugo_vec2 u) {
-    if (P->V == 1) return 1;
-    const rugo_vec2 a = P->m[rugo__wrap(i - 1, P->V)], b = P->m[i];
-    return rugo_v2_cross(a, u) >= -1e-9 && rugo_v2_cross(u, b) >= -1e-9;
-}
-
-static rugo_vec2 prim_point(const primitive* P, rugo_real w) {
-    if (P->V == 1) {
-        const rugo_real th = 2.0 * PI_VALUE * w;
-        return rugo_v2(P->v[0].x + P->R * cos(th), P->v[0].y + P->R * sin(th));
-    }
-    const int f = (int)floor(w);
-    const rugo_real t = w - floor(w);
-    const int i = rugo__wrap(f / 2, P->V);
-    if (f % 2 == 1) {
-        const rugo_vec2 off = rugo_v2_scale(P->R, P->m[i]);
-        return rugo__lerp2(rugo_v2_add(P->v[i], off), rugo_v2_add(P->v[(i + 1) % P->V], off), t);
-    }
-    const rugo_real th = P->arc0[i] + t * P->span[i];
-    return rugo_v2(P->v[i].x + P->R * cos(th), P->v[i].y + P->R * sin(th));
-}
-
 static rugo_vec2 pr_point_a(void* u, rugo_real t) {
     return rugo_contour_point_at(((const primitive_pair*)u)->A->curve, t);
 }
-static rugo_vec2 pr_point_b(void* u, rugo_real w) { return prim_point(((const primitive_pair*)u)->P, w); }
-static int pr_inside_b(void* u, rugo_vec2 p) { return prim_sd(((const primitive_pair*)u)->P, p, NULL, NULL) < 0.0; }
+static rugo_vec2 pr_point_b(void* u, rugo_real w) { return rugo__primitive_point(((const primitive_pair*)u)->P, w); }
+static int pr_inside_b(void* u, rugo_vec2 p) { return rugo__primitive_signed_distance(((const primitive_pair*)u)->P, p, NULL, NULL) < 0.0; }
 static int pr_inside_a(void* u, rugo_vec2 p) {
     return rugo__query_side_contains(((const primitive_pair*)u)->A, p);
 }
@@ -843,7 +750,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
             const rugo_vec2 u = rugo_v2_scale(1.0 / rho, d);
             for (int side_ = 0; side_ < 2; ++side_) { /* near point of the arc, far point */
                 const rugo_vec2 nb_ = side_ == 0 ? u : rugo_v2_scale(-1.0, u);
-                const rugo_real w = arc_param(P, vi, nb_);
+                const rugo_real w = rugo__primitive_arc_param(P, vi, nb_);
                 if (w < 0.0) continue;
                 hit k = h;
                 fill_b(&k, w, P);
@@ -884,7 +791,7 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
             const rugo_real s = 0.5 * (s0 + s1);
             const rugo_vec2 p = rugo_v2_add(rugo__bezier_point(fl, s), o);
             const rugo_vec2 d = rugo_v2_sub(p, P->v[vi]);
-            const rugo_real w = arc_param(P, vi, rugo__v2_unit(d));
+            const rugo_real w = rugo__primitive_arc_param(P, vi, rugo__v2_unit(d));
             if (w < 0.0) continue; /* crosses the circle outside this vertex's arc */
             hit h;
             memset(&h, 0, sizeof h);
@@ -900,20 +807,6 @@ static int prim_segment(rugo_collide_context* ctx, primitive_pair* g, int ka, ru
         }
     }
     return 1;
-}
-
-/* B's side of a pair: is n (from A to B) compatible with B's outward normal at pb? */
-static int b_side_ok(const primitive* P, const hit* h, rugo_vec2 n) {
-    if (h->vertex >= 0) return in_cone(P, h->vertex, rugo_v2_scale(-1.0, n));
-    if (P->V == 2 && P->R == 0.0) return 1; /* an edge faces both ways */
-    return rugo_v2_dot(h->nb, n) < 0.0;
-}
-
-static rugo_vec2 prim_support(const primitive* P, rugo_vec2 dir) { /* point of B maximising p·dir */
-    int best = 0;
-    for (int i = 1; i < P->V; ++i)
-        if (rugo_v2_dot(P->v[i], dir) > rugo_v2_dot(P->v[best], dir)) best = i;
-    return rugo_v2_add(P->v[best], rugo_v2_scale(P->R, dir));
 }
 
 /* A's extreme point along dir (largest p·dir). */
@@ -1002,30 +895,6 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
 /* ---------------------------------------------------------------------------------------------------
  * Overlaps below the resolution. */
 
-/* Outward normal of a primitive's boundary at (or next to) p: the direction from the core on the
- * rounded skin, else the nearest edge's normal (an edge, R = 0, faces both ways: the caller orients). */
-static rugo_vec2 prim_normal_at(const primitive* P, rugo_vec2 p) {
-    if (P->V == 1) {
-        const rugo_vec2 d = rugo_v2_sub(p, P->v[0]);
-        return rugo__v2_length(d) > 0.0 ? rugo__v2_unit(d) : rugo_v2(1.0, 0.0);
-    }
-    const int edges = P->V == 2 ? 1 : P->V;
-    rugo_real dk = HUGE_VAL;
-    rugo_vec2 foot = P->v[0];
-    int e = 0;
-    for (int i = 0; i < edges; ++i) {
-        rugo_vec2 f;
-        const rugo_real d = point_segment(p, P->v[i], P->v[(i + 1) % P->V], &f);
-        if (d < dk) {
-            dk = d;
-            foot = f;
-            e = i;
-        }
-    }
-    if (P->R > 0.0 && dk > 0.5 * P->R) return rugo__v2_unit(rugo_v2_sub(p, foot));
-    return P->m[e];
-}
-
 /* Curvature |f' x f''| / |f'|^3 of curve c at (seg, t); infinite where the speed vanishes. */
 static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
     rugo_vec2 v, w, r;
@@ -1056,7 +925,7 @@ static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const 
         corner_b = rugo__corner_near(g->B->curve, sb, rugo_inv_transform_point(g->rel, pb), near, &cb);
         if (corner_b) cb = rugo_rotate(g->rel.q, cb);
     } else {
-        nb = prim_normal_at(P, pb);
+        nb = rugo__primitive_normal_at(P, pb);
         /* an edge faces both ways: the way A comes from (its corner's middle normal, at a corner) */
         if (P->V == 2 && P->R == 0.0 && rugo_v2_dot(nb, ca) > 0.0) nb = rugo_v2_scale(-1.0, nb);
         for (int v = 0; P->V >= 2 && P->R == 0.0 && v < P->V && !corner_b; ++v)
@@ -1115,34 +984,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
     if (!rugo__transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
     const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
 
-    /* Into A's frame. */
-    for (int i = 0; i < P->V; ++i)
-        P->v[i] = rugo_inv_transform_point(xa, P->v[i]);
-    if (P->V >= 2) {
-        for (int i = 0; i < P->V; ++i) {
-            const rugo_vec2 d = rugo_v2_sub(P->v[(i + 1) % P->V], P->v[i]);
-            P->m[i] = rugo__v2_unit(rugo_v2(d.y, -d.x));
-        }
-        for (int i = 0; i < P->V; ++i) {
-            const rugo_vec2 a0 = P->m[rugo__wrap(i - 1, P->V)], a1 = P->m[i];
-            P->arc0[i] = angle_of(a0);
-            rugo_real sp = angle_of(a1) - P->arc0[i];
-            while (sp < 0.0)
-                sp += 2.0 * PI_VALUE;
-            if (sp >= 2.0 * PI_VALUE - 1e-15) sp = 0.0;
-            P->span[i] = sp;
-        }
-        P->period = 2.0 * (rugo_real)P->V;
-    } else {
-        P->period = 1.0;
-    }
-    P->lo = P->hi = P->v[0];
-    for (int i = 1; i < P->V; ++i) {
-        P->lo = rugo_v2(fmin(P->lo.x, P->v[i].x), fmin(P->lo.y, P->v[i].y));
-        P->hi = rugo_v2(fmax(P->hi.x, P->v[i].x), fmax(P->hi.y, P->v[i].y));
-    }
-    P->lo = rugo_v2(P->lo.x - P->R, P->lo.y - P->R);
-    P->hi = rugo_v2(P->hi.x + P->R, P->hi.y + P->R);
+    rugo__primitive_into_frame(P, xa);
 
     query_side A;
     rugo__query_side_init(&A, a, q->level, override);
@@ -1232,11 +1074,11 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 if (len <= eps) continue;
                 const rugo_vec2 n = rugo_v2_scale(1.0 / len, d);
                 if (!(rugo_v2_dot(rugo__curve_normal(A.curve, h->sa, h->ta), n) > 0.0)) continue;
-                if (!b_side_ok(P, h, n)) continue;
+                if (!rugo__primitive_normal_fits(P, h, n)) continue;
                 if (len > depth || (len == depth && rugo__hit_cmp(h, best) < 0)) {
                     /* a depth, as pair_is_depth: pb is B's closest point to pa, or pa is A's to pb */
                     const rugo_real slack = len * 1e-9 + eps;
-                    if (fabs(prim_sd(P, h->pa, NULL, NULL)) < len - slack &&
+                    if (fabs(rugo__primitive_signed_distance(P, h->pa, NULL, NULL)) < len - slack &&
                         rugo__query_side_closest(&A, h->pb).distance < len - slack)
                         continue;
                     depth = len;
@@ -1267,7 +1109,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                         if (which == 0) {
                             const rugo_vec2 p = rugo_contour_point_at(A.curve, u);
                             rugo_vec2 qb;
-                            const rugo_real sd = prim_sd(P, p, &qb, NULL);
+                            const rugo_real sd = rugo__primitive_signed_distance(P, p, &qb, NULL);
                             if (-sd > far) {
                                 far = -sd;
                                 fpa = p;
@@ -1276,7 +1118,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                                 fta = u - floor(u);
                             }
                         } else {
-                            const rugo_vec2 p = prim_point(P, u);
+                            const rugo_vec2 p = rugo__primitive_point(P, u);
                             rugo_curve_point cp = rugo__query_side_closest(&A, p);
                             if (cp.distance > far) {
                                 far = cp.distance;
@@ -1307,8 +1149,8 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 rugo__query_side_tolerance(&A, h->sa, h->ta, override) + (override >= 0.0 ? override : 0.0) + q->margin;
             if (!(h->distance <= band)) continue;
             const rugo_vec2 n = rugo__v2_unit(d);
-            if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
-            if (prim_sd(P, h->pa, NULL, NULL) < 0.0) continue;
+            if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !rugo__primitive_normal_fits(P, h, n)) continue;
+            if (rugo__primitive_signed_distance(P, h->pa, NULL, NULL) < 0.0) continue;
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
         }
         if (o.n == 0 && want) {
@@ -1317,12 +1159,12 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
         }
     } else {
         /* No crossing: B inside A, A inside B, or apart / in contact. */
-        const rugo_vec2 pb0 = is_edge ? P->v[0] : prim_point(P, 0.0);
+        const rugo_vec2 pb0 = is_edge ? P->v[0] : rugo__primitive_point(P, 0.0);
         int b_in_a = 0, a_in_b = 0;
         if (rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
             b_in_a = rugo__query_side_contains(&A, pb0);
         if (!b_in_a && !is_edge && P->R + (P->V >= 3 ? 1.0 : 0.0) > 0.0)
-            a_in_b = prim_sd(P, rugo_contour_point_at(A.curve, 0.0), NULL, NULL) < 0.0;
+            a_in_b = rugo__primitive_signed_distance(P, rugo_contour_point_at(A.curve, 0.0), NULL, NULL) < 0.0;
         if (b_in_a && !want) {
             *state = RUGO_STATE_INTERSECTING;
         } else if (b_in_a) {
@@ -1353,7 +1195,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             for (size_t i = 0; i < n2; ++i)
                 if (rugo__is_minimum_candidate(h2[i].kind) && h2[i].distance < best.distance) best = h2[i];
             const rugo_vec2 n = rugo__curve_normal(A.curve, best.sa, best.ta);
-            const rugo_vec2 pb = prim_support(P, rugo_v2_scale(-1.0, n));
+            const rugo_vec2 pb = rugo__primitive_support(P, rugo_v2_scale(-1.0, n));
             if (!rugo__emit_contact(&o, best.sa, best.ta, -1, 0.0, best.pa, pb, n, 0, 2, 0, 0xFFF00))
                 return RUGO_ERR_OUT_OF_MEMORY;
         } else if (a_in_b) {
@@ -1370,7 +1212,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 pb = best->pb;
                 mb = best->nb;
             } else {
-                prim_sd(P, rugo_contour_point_at(A.curve, 0.0), &pb, &mb);
+                rugo__primitive_signed_distance(P, rugo_contour_point_at(A.curve, 0.0), &pb, &mb);
             }
             const rugo_vec2 n = rugo_v2_scale(-1.0, mb);
             int seg;
@@ -1391,7 +1233,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
                 rugo_vec2 n;
                 if (len > NORMAL_FROM_POINTS * g.scale) {
                     n = rugo_v2_scale(1.0 / len, d);
-                    if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !b_side_ok(P, h, n)) continue;
+                    if (!rugo__faces_outward(A.curve, h->sa, h->ta, d, ident.q) || !rugo__primitive_normal_fits(P, h, n)) continue;
                 } else {
                     n = na;
                 }

@@ -408,4 +408,22 @@ void rugo__piece_cache_init(piece_cache* pc);
 const rugo_vec2* rugo__cached_piece_a(piece_cache* pc, const shape_pair* g, int k);
 const rugo_vec2* rugo__cached_piece_b(piece_cache* pc, const shape_pair* g, int k);
 
+/* ---------------------------------------------------------------------------------------------------
+ * A primitive's boundary (collide_primitive_boundary.c). */
+
+/* P (vertices V, radius R, in world coordinates) into A's frame, with its normals, arcs and bounds. */
+void rugo__primitive_into_frame(primitive* P, rugo_transform xa);
+/* Signed distance of p to B (negative inside); q, nq (may be NULL): nearest boundary point, its normal. */
+rugo_real rugo__primitive_signed_distance(const primitive* P, rugo_vec2 p, rugo_vec2* q, rugo_vec2* nq);
+/* Boundary parameter of the point of vertex arc i in direction u, or -1 if u is outside the arc. */
+rugo_real rugo__primitive_arc_param(const primitive* P, int i, rugo_vec2 u);
+/* The boundary point at parameter w. */
+rugo_vec2 rugo__primitive_point(const primitive* P, rugo_real w);
+/* The point of B maximising p·dir. */
+rugo_vec2 rugo__primitive_support(const primitive* P, rugo_vec2 dir);
+/* Outward normal of B's boundary at or next to p (an edge, R = 0, faces both ways: the caller orients). */
+rugo_vec2 rugo__primitive_normal_at(const primitive* P, rugo_vec2 p);
+/* Whether n (from A to B) fits B's outward normal at the hit's point pb (at a corner: its cone). */
+int rugo__primitive_normal_fits(const primitive* P, const hit* h, rugo_vec2 n);
+
 #endif

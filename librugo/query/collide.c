@@ -227,15 +227,8 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
     return RUGO_OK;
 }
 
-/* Overlaps below the resolution (defined with the primitives, whose type they read): the normal that
- * takes a tiny overlap at pa (A) / pb (B) apart, and the contacts of crossings that closed no region. */
-static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa, rugo_real ta,
-                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale);
-static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
-                                             const hit* x, int m, rugo_real scale);
-
 /* Normal of a minimum: from the points when they are far enough apart to give a direction to ~1e-9,
- * else A's outward normal (exact at a stationary pair), or overlap_normal's where either curve has a
+ * else A's outward normal (exact at a stationary pair), or rugo__overlap_normal's where either curve has a
  * sharp corner there (A's normal is then a flank's) or the two normals point the same way (a coarse
  * level's curl turns one of them back: the flatter curve's). Turned to follow pb - pa while the points
  * are apart beyond round-off (1e-12 of the size), where A's normal may still face the wrong way, but
@@ -251,7 +244,7 @@ static rugo_vec2 pair_normal(const shape_pair* g, const hit* h) {
     if (rugo__corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
         rugo__corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
         rugo_v2_dot(n, normal_b(g, h->sb, h->tb)) > 0.0)
-        n = overlap_normal(g->A, g, NULL, h->sa, h->ta, h->pa, h->sb, h->tb, h->pb, g->scale);
+        n = rugo__overlap_normal(g->A, g, NULL, h->sa, h->ta, h->pa, h->sb, h->tb, h->pb, g->scale);
     if (len > 1e-12 * g->scale && rugo_v2_dot(n, d) < 0.0) n = rugo_v2_scale(-1.0, n);
     return n;
 }
@@ -442,7 +435,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
     rugo_vec2 d = rugo_v2_sub(fpa, fpb);
     rugo_vec2 n = rugo__v2_length(d) > SAME_POINT * g->scale
                       ? rugo__v2_unit(d)
-                      : overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
+                      : rugo__overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
     if (!rugo__emit_contact(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
     return RUGO_OK;
 }
@@ -578,7 +571,7 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         st = emit_minima(&o, &g, (hit*)ctx->ss.data, ns, &r, r.count, override);
         if (st != RUGO_OK) return st;
         if (o.n == 0 && (capacity > 0 || stats != NULL)) {
-            st = emit_unresolved_crossings(&o, &g, NULL, (const hit*)ctx->xs.data, (int)m, g.scale);
+            st = rugo__emit_unresolved_crossings(&o, &g, NULL, (const hit*)ctx->xs.data, (int)m, g.scale);
             if (st != RUGO_OK) return st;
         }
     } else {
@@ -892,88 +885,6 @@ static rugo_status edge_pieces(rugo_collide_context* ctx, primitive_pair* g, con
     return RUGO_OK;
 }
 
-/* ---------------------------------------------------------------------------------------------------
- * Overlaps below the resolution. */
-
-/* Curvature |f' x f''| / |f'|^3 of curve c at (seg, t); infinite where the speed vanishes. */
-static rugo_real curvature_at(rugo_contour c, int seg, rugo_real t) {
-    rugo_vec2 v, w, r;
-    rugo_contour_derivative_coefficients(c, seg, &v, &w, &r);
-    const rugo_vec2 d1 = rugo__first_derivative(v, w, r, t);
-    const rugo_vec2 d2 = rugo_v2(0.5 * (2.0 * v.x * t + w.x), 0.5 * (2.0 * v.y * t + w.y));
-    const rugo_real l = rugo__v2_length(d1);
-    return l > 0.0 ? fabs(rugo_v2_cross(d1, d2)) / (l * l * l) : HUGE_VAL;
-}
-
-/* The normal (from A to B) that takes apart an overlap too shallow to be resolved, at pa on A
- * (segment sa) and pb on B (segment sb at tb, or a primitive P's boundary), A's frame. At a sharp
- * corner of one curve the overlap is the corner poking through the other's face, and a point found on
- * the corner's flank has the flank's normal, up to 90 degrees off: the other curve's normal decides.
- * (Review of the first version: the flank's normal, and at a triangle's corner one pointing into A.)
- * At corners of both, their chord normals; elsewhere the mean of A's outward and B's inward normals,
- * or, where those point the same way (one curve turns back on itself, as a coarse level of a point-like
- * corner does), the flatter curve's. */
-static rugo_vec2 overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa, rugo_real ta,
-                                rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb, rugo_real scale) {
-    const rugo_real near = OVERLAP_NEAR * scale;
-    const rugo_vec2 na = rugo__curve_normal(A->curve, sa, ta);
-    rugo_vec2 nb, ca = na, cb = rugo_v2_scale(-1.0, na);
-    const int corner_a = rugo__corner_near(A->curve, sa, pa, near, &ca);
-    int corner_b = 0;
-    if (P == NULL) {
-        nb = rugo_rotate(g->rel.q, rugo__curve_normal(g->B->curve, sb, tb));
-        corner_b = rugo__corner_near(g->B->curve, sb, rugo_inv_transform_point(g->rel, pb), near, &cb);
-        if (corner_b) cb = rugo_rotate(g->rel.q, cb);
-    } else {
-        nb = rugo__primitive_normal_at(P, pb);
-        /* an edge faces both ways: the way A comes from (its corner's middle normal, at a corner) */
-        if (P->V == 2 && P->R == 0.0 && rugo_v2_dot(nb, ca) > 0.0) nb = rugo_v2_scale(-1.0, nb);
-        for (int v = 0; P->V >= 2 && P->R == 0.0 && v < P->V && !corner_b; ++v)
-            corner_b = rugo__v2_length(rugo_v2_sub(P->v[v], pb)) <= near;
-        if (corner_b) cb = rugo_v2_scale(-1.0, ca); /* a vertex has no normal of its own: A's decides */
-    }
-    rugo_vec2 n;
-    if (corner_a && !corner_b)
-        n = rugo_v2_scale(-1.0, nb);
-    else if (corner_b && !corner_a)
-        n = na;
-    else if (corner_a && corner_b)
-        n = rugo_v2_sub(ca, cb);
-    else if (rugo_v2_dot(na, nb) <= 0.0) /* facing each other, as at a touching */
-        n = rugo_v2_sub(na, nb);
-    else /* one of them turns back on itself there (a coarse level's curl): the flatter curve decides */
-        n = P != NULL || curvature_at(g->B->curve, sb, tb) <= curvature_at(A->curve, sa, ta)
-                ? rugo_v2_scale(-1.0, nb)
-                : na;
-    return rugo__v2_length(n) > 0.0 ? rugo__v2_unit(n) : na;
-}
-
-/* Crossings that closed no region: an overlap below the resolution of its crossings (entry and exit
- * within SAME_POINT of the size of each other, merged, or one of them taken for a touching), so that
- * no arc between them is seen inside. The curves do cross, the state is INTERSECTING, and the caller
- * must get a contact: one per cluster of such crossings (within OVERLAP_NEAR of each other), at the
- * curves' common point (separation 0 to round-off: the overlap is shallower than the resolution), with
- * the normal of overlap_normal. Id index 2 + cluster. */
-static rugo_status emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
-                                             const hit* x, int m, rugo_real scale) {
-    const rugo_real near = OVERLAP_NEAR * scale;
-    int cluster = 0;
-    for (int i = 0; i < m; ++i) {
-        int seen = 0;
-        for (int j = 0; j < i && !seen; ++j)
-            seen = rugo__v2_length(rugo_v2_sub(x[j].pa, x[i].pa)) <= near;
-        if (seen) continue;
-        const rugo_vec2 n =
-            overlap_normal(o->A, g, P, x[i].sa, x[i].ta, x[i].pa, x[i].sb, x[i].tb, x[i].pb, scale);
-        const int id_b = P != NULL ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
-        if (!rugo__emit_contact(o, x[i].sa, x[i].ta, P != NULL ? -1 : x[i].sb, P != NULL ? 0.0 : x[i].tb, x[i].pa, x[i].pb,
-                  n, cluster, 1, 2 + cluster, id_b))
-            return RUGO_ERR_OUT_OF_MEMORY;
-        ++cluster;
-    }
-    return RUGO_OK;
-}
-
 static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, primitive* P,
                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
@@ -1045,7 +956,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             st = edge_pieces(ctx, &g, xs, m, &o);
             if (st != RUGO_OK) return st;
             if (o.n == 0) {
-                st = emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
+                st = rugo__emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
                 if (st != RUGO_OK) return st;
             }
         }
@@ -1134,7 +1045,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             const rugo_vec2 d = rugo_v2_sub(fpa, fpb);
             const rugo_vec2 n = rugo__v2_length(d) > eps
                                     ? rugo__v2_unit(d)
-                                    : overlap_normal(&A, NULL, P, fsa, fta, fpa, -1, 0.0, fpb, g.scale);
+                                    : rugo__overlap_normal(&A, NULL, P, fsa, fta, fpa, -1, 0.0, fpb, g.scale);
             if (!rugo__emit_contact(&o, fsa, fta, -1, 0.0, fpa, fpb, n, reg, 1, 1, 0xFFF00 | reg))
                 return RUGO_ERR_OUT_OF_MEMORY;
         }
@@ -1154,7 +1065,7 @@ static rugo_status collide_prim(rugo_collide_context* ctx, const rugo_shape* a, 
             if (!prim_emit(&o, h, h->pa, h->pb, n, region++, 0, 0)) return RUGO_ERR_OUT_OF_MEMORY;
         }
         if (o.n == 0 && want) {
-            st = emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
+            st = rugo__emit_unresolved_crossings(&o, NULL, P, xs, (int)m, g.scale);
             if (st != RUGO_OK) return st;
         }
     } else {

@@ -426,4 +426,16 @@ rugo_vec2 rugo__primitive_normal_at(const primitive* P, rugo_vec2 p);
 /* Whether n (from A to B) fits B's outward normal at the hit's point pb (at a corner: its cone). */
 int rugo__primitive_normal_fits(const primitive* P, const hit* h, rugo_vec2 n);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Overlaps below the resolution (collide_below_resolution.c). */
+
+/* The normal (from A to B) that takes apart an overlap too shallow to be resolved, at pa on A (segment
+ * sa at ta) and pb on B (g's B at segment sb, tb; or the primitive P when g is NULL), A's frame. */
+rugo_vec2 rugo__overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa,
+                               rugo_real ta, rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb,
+                               rugo_real scale);
+/* Contacts for the m crossings x that closed no region: one per cluster, normal of rugo__overlap_normal. */
+rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
+                                            const hit* x, int m, rugo_real scale);
+
 #endif

@@ -438,4 +438,12 @@ rugo_vec2 rugo__overlap_normal(const query_side* A, const shape_pair* g, const p
 rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
                                             const hit* x, int m, rugo_real scale);
 
+/* ---------------------------------------------------------------------------------------------------
+ * A shape's piece against a primitive (collide_primitive_narrow.c). */
+
+/* The narrow phase of A's segment ka against every feature of B: crossings into xs (if not NULL) and
+ * every stationary pair (with B's normal or corner) into ss. 0 if out of memory. */
+int rugo__primitive_narrow(rugo_collide_context* ctx, primitive_pair* g, int ka, rugo__array* xs, size_t* nx,
+                           rugo__array* ss, size_t* ns);
+
 #endif

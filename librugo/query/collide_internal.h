@@ -446,4 +446,12 @@ rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g,
 int rugo__primitive_narrow(rugo_collide_context* ctx, primitive_pair* g, int ka, rugo__array* xs, size_t* nx,
                            rugo__array* ss, size_t* ns);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Shape against shape (collide.c). */
+
+/* Extreme point of A's curve (of_b = 0) or B's (of_b = 1, in A's frame) along direction d: the point
+ * maximising p·d (sign = +1) or minimising it (sign = -1); its segment and parameter too. */
+rugo_vec2 rugo__support_point(const shape_pair* g, int of_b, rugo_vec2 d, int sign, int* seg_out,
+                              rugo_real* t_out);
+
 #endif

@@ -1,4 +1,5 @@
-/* Private accessors of shape.c for collide.c. Not installed, not public API. */
+/* Private accessors of shape.c for the contact queries (query/collide_*.c). Not installed, not public
+ * API. */
 #ifndef RUGO_SHAPE_INTERNAL_H
 #define RUGO_SHAPE_INTERNAL_H
 

@@ -1,6 +1,9 @@
-/* Contact queries between rough curves at a chosen level of detail (SPEC 7, 8; thesis 6.2; DESIGN
- * "Contact semantics"): shape against shape and against primitives. collide_internal.h says how the
- * contacts are computed. */
+/* Shape against shape, rugo_collide_shapes: the plan that collide_internal.h describes (traversal, a
+ * narrow pass on every candidate segment pair, crossings and the overlap regions they close, a second
+ * narrow pass inside each region for its deepest penetration pair, the minima within the band,
+ * containment), cut into its stages, with the helpers only it needs: support points and closest pairs
+ * of two curves, the normal and the facing test of a minimum. Separate from the primitives because
+ * both sides here are shapes, with trees, levels and surfaces. */
 #include "query/collide_internal.h"
 
 #include "curve/poly.h"
@@ -10,19 +13,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---------------------------------------------------------------------------------------------------
- * Shape against shape. */
-
-static rugo_vec2 normal_a(const shape_pair* g, int seg, rugo_real t) {
+static rugo_vec2 normal_on_a(const shape_pair* g, int seg, rugo_real t) {
     return rugo__curve_normal(g->A->curve, seg, t);
 }
-static rugo_vec2 normal_b(const shape_pair* g, int seg, rugo_real t) {
+static rugo_vec2 normal_on_b(const shape_pair* g, int seg, rugo_real t) {
     return rugo_rotate(g->rel.q, rugo__curve_normal(g->B->curve, seg, t));
 }
 
 /* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. */
-static int run_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo_vec2 f[4], int kb,
-                    const rugo_vec2 gb[4], rugo_real cutoff, rugo__array* xs, size_t* nx, rugo__array* ss, size_t* ns) {
+static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo_vec2 f[4], int kb,
+                       const rugo_vec2 gb[4], rugo_real cutoff, rugo__array* xs, size_t* nx, rugo__array* ss,
+                       size_t* ns) {
     const rugo_vec2 o = f[0];
     rugo_vec2 fl[4], gl[4];
     for (int i = 0; i < 4; ++i) {
@@ -69,19 +70,19 @@ static int run_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo
 }
 
 /* Region geometry callbacks for two shapes. */
-static rugo_vec2 sh_point_a(void* u, rugo_real t) {
+static rugo_vec2 shape_pair_point_a(void* u, rugo_real t) {
     const shape_pair* g = (const shape_pair*)u;
     return rugo_contour_point_at(g->A->curve, t);
 }
-static rugo_vec2 sh_point_b(void* u, rugo_real t) {
+static rugo_vec2 shape_pair_point_b(void* u, rugo_real t) {
     const shape_pair* g = (const shape_pair*)u;
     return rugo_transform_point(g->rel, rugo_contour_point_at(g->B->curve, t));
 }
-static int sh_inside_b(void* u, rugo_vec2 p) {
+static int shape_pair_inside_b(void* u, rugo_vec2 p) {
     const shape_pair* g = (const shape_pair*)u;
     return rugo__query_side_contains(g->B, rugo_inv_transform_point(g->rel, p));
 }
-static int sh_inside_a(void* u, rugo_vec2 p) {
+static int shape_pair_inside_a(void* u, rugo_vec2 p) {
     const shape_pair* g = (const shape_pair*)u;
     return rugo__query_side_contains(g->A, p);
 }
@@ -133,8 +134,8 @@ rugo_vec2 rugo__support_point(const shape_pair* g, int of_b, rugo_vec2 d, int si
 }
 
 /* Closest pair of the two curves (a MINIMUM of the distance), searching pairs within `bound`. */
-static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta, const tree_side* tb,
-                                rugo_real bound, hit* best, int* found) {
+static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta,
+                                const tree_side* tb, rugo_real bound, hit* best, int* found) {
     tree_side A = *ta, B = *tb;
     A.slack = 0.5 * bound;
     B.slack = 0.5 * bound;
@@ -152,7 +153,7 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
         const rugo_vec2* f = rugo__cached_piece_a(&pc, g, p.k_a);
         const rugo_vec2* h = rugo__cached_piece_b(&pc, g, p.k_b);
         ns = 0;
-        if (!run_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
+        if (!narrow_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
                       NULL, &ctx->ss2, &ns))
             return RUGO_ERR_OUT_OF_MEMORY;
         const hit* hs = (const hit*)ctx->ss2.data;
@@ -166,7 +167,7 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
 }
 
 /* One curve inside the other without crossing: the way out through the closest pair. */
-static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta,
+static rugo_status emit_containment_contact(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta,
                                        const tree_side* tb, int b_inside_a, contact_out* o) {
     /* An upper bound of the smallest distance: from one point of the inner curve to the outer. */
     hit best;
@@ -175,10 +176,10 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
     rugo_vec2 p0;
     rugo_curve_point cp;
     if (b_inside_a) {
-        p0 = sh_point_b(g, 0.0);
+        p0 = shape_pair_point_b(g, 0.0);
         cp = rugo__query_side_closest(g->A, p0);
     } else {
-        p0 = sh_point_a(g, 0.0);
+        p0 = shape_pair_point_a(g, 0.0);
         cp = rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p0));
     }
     rugo_status st = closest_pair(ctx, g, ta, tb, cp.distance, &best, &found);
@@ -205,12 +206,13 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
     rugo_real t;
     if (b_inside_a) {
         /* B leaves A through A's curve at pa: along A's outward normal there. */
-        n = normal_a(g, best.sa, best.ta);
+        n = normal_on_a(g, best.sa, best.ta);
         rugo_vec2 pb = rugo__support_point(g, 1, n, -1, &seg, &t);
-        if (!rugo__emit_contact(o, best.sa, best.ta, seg, t, best.pa, pb, n, 0, 2, 0, seg)) return RUGO_ERR_OUT_OF_MEMORY;
+        if (!rugo__emit_contact(o, best.sa, best.ta, seg, t, best.pa, pb, n, 0, 2, 0, seg))
+            return RUGO_ERR_OUT_OF_MEMORY;
     } else {
         /* A leaves B through B's curve at pb, along B's outward normal m; B moves along n = -m. */
-        const rugo_vec2 m = normal_b(g, best.sb, best.tb);
+        const rugo_vec2 m = normal_on_b(g, best.sb, best.tb);
         n = rugo_v2_scale(-1.0, m);
         rugo_vec2 pa = rugo__support_point(g, 0, n, +1, &seg, &t);
         if (!rugo__emit_contact(o, seg, t, best.sb, best.tb, pa, best.pb, n, 0, 2, 0, best.sb))
@@ -226,16 +228,16 @@ static rugo_status containment_contact(rugo_collide_context* ctx, shape_pair* g,
  * are apart beyond round-off (1e-12 of the size), where A's normal may still face the wrong way, but
  * not below: there pb behind A's tangent is an overlap below the resolution, and turning would point
  * the normal into A. */
-static rugo_vec2 pair_normal(const shape_pair* g, const hit* h) {
+static rugo_vec2 minimum_normal(const shape_pair* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
     const rugo_real len = rugo__v2_length(d);
     if (len > NORMAL_FROM_POINTS * g->scale) return rugo_v2_scale(1.0 / len, d);
-    rugo_vec2 n = normal_a(g, h->sa, h->ta);
+    rugo_vec2 n = normal_on_a(g, h->sa, h->ta);
     const rugo_real near = OVERLAP_NEAR * g->scale;
     rugo_vec2 c;
     if (rugo__corner_near(g->A->curve, h->sa, h->pa, near, &c) ||
         rugo__corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &c) ||
-        rugo_v2_dot(n, normal_b(g, h->sb, h->tb)) > 0.0)
+        rugo_v2_dot(n, normal_on_b(g, h->sb, h->tb)) > 0.0)
         n = rugo__overlap_normal(g->A, g, NULL, h->sa, h->ta, h->pa, h->sb, h->tb, h->pb, g->scale);
     if (len > 1e-12 * g->scale && rugo_v2_dot(n, d) < 0.0) n = rugo_v2_scale(-1.0, n);
     return n;
@@ -243,7 +245,7 @@ static rugo_vec2 pair_normal(const shape_pair* g, const hit* h) {
 
 /* Facing test of a minimum: B lies on A's outward side at pa and A on B's outward side at pb (at
  * corners: within their normal cones). */
-static int facing(const shape_pair* g, const hit* h) {
+static int minimum_faces(const shape_pair* g, const hit* h) {
     rugo_vec2 d = rugo_v2_sub(h->pb, h->pa);
     if (rugo__v2_length(d) <= SAME_POINT * g->scale) return 1;
     rugo_rot id;
@@ -254,8 +256,8 @@ static int facing(const shape_pair* g, const hit* h) {
 }
 
 /* Minima within the band (not inside a region if regs != NULL), each its own region from `first`. */
-static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns, const regions* regs, int first,
-                               rugo_real override) {
+static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns, const regions* regs,
+                               int first, rugo_real override) {
     int region = first;
     for (size_t i = 0; i < ns; ++i) {
         const hit* h = &hs[i];
@@ -264,15 +266,16 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
             if (h->distance <= SAME_POINT * g->scale) continue; /* a crossing point */
             if (rugo__in_any_region(regs, h->ua, h->ub)) continue;
         }
-        const rugo_real band =
-            rugo__query_side_tolerance(g->A, h->sa, h->ta, override) + rugo__query_side_tolerance(g->B, h->sb, h->tb, override) + g->margin;
+        const rugo_real band = rugo__query_side_tolerance(g->A, h->sa, h->ta, override) +
+                               rugo__query_side_tolerance(g->B, h->sb, h->tb, override) + g->margin;
         if (!(h->distance <= band)) continue;
-        if (!facing(g, h)) continue;
+        if (!minimum_faces(g, h)) continue;
         /* Index within its segment pair: minima of one pair are sorted by A's parameter already. */
         int index = 0;
         for (size_t j = 0; j < i; ++j)
             if (!hs[j].dead && hs[j].kind == RUGO__MINIMUM && hs[j].sa == h->sa && hs[j].sb == h->sb) ++index;
-        if (!rugo__emit_contact(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, pair_normal(g, h), region++, 0, index, h->sb))
+        const rugo_vec2 n = minimum_normal(g, h);
+        if (!rugo__emit_contact(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, n, region++, 0, index, h->sb))
             return RUGO_ERR_OUT_OF_MEMORY;
     }
     return RUGO_OK;
@@ -297,7 +300,8 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
             seginfo* si = (seginfo*)ctx->segs.data + (*nseg)++;
             si->k = kk;
             if (g->tab != NULL)
-                memcpy(si->b, which == 0 ? rugo__table_piece_a(g, kk) : rugo__table_piece_b(g, kk), sizeof si->b);
+                memcpy(si->b, which == 0 ? rugo__table_piece_a(g, kk) : rugo__table_piece_b(g, kk),
+                       sizeof si->b);
             else if (which == 0)
                 rugo_contour_bezier(s->curve, kk, si->b);
             else
@@ -314,12 +318,13 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
  * (where (f - g)·f' vanishes for every g) pairs with every foot on B, up to B's far side. */
 static int pair_is_depth(const shape_pair* g, rugo_vec2 pa, rugo_vec2 pb, rugo_real len) {
     const rugo_real slack = len * 1e-9 + SAME_POINT * g->scale;
-    if (rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, pa)).distance >= len - slack) return 1;
+    const rugo_vec2 pa_in_b = rugo_inv_transform_point(g->rel, pa);
+    if (rugo__query_side_closest(g->B, pa_in_b).distance >= len - slack) return 1;
     return rugo__query_side_closest(g->A, pb).distance >= len - slack;
 }
 
 /* Deepest penetration pair of region reg; 0 if none. */
-static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, const regions* r, int reg,
+static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g, const regions* r, int reg,
                                   contact_out* o) {
     const size_t na = (size_t)g->A->n, nb = (size_t)g->B->n;
     if (!rugo__scratch_reserve(ctx, &ctx->marks, na + nb, 1)) return RUGO_ERR_OUT_OF_MEMORY;
@@ -351,7 +356,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                 if (acos(c) > sa->half + sb->half + 1e-9) continue;
             }
             size_t ns = 0;
-            if (!run_pair(ctx, g, sa->k, sa->b, sb->k, sb->b, cutoff, NULL, NULL, &ctx->ss2, &ns))
+            if (!narrow_pair(ctx, g, sa->k, sa->b, sb->k, sb->b, cutoff, NULL, NULL, &ctx->ss2, &ns))
                 return RUGO_ERR_OUT_OF_MEMORY;
             const hit* hs = (const hit*)ctx->ss2.data;
             for (size_t k = 0; k < ns; ++k) {
@@ -360,8 +365,8 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                 rugo_vec2 d = rugo_v2_sub(h->pa, h->pb);
                 const rugo_real len = rugo__v2_length(d);
                 if (len <= SAME_POINT * g->scale) continue;
-                if (!(rugo_v2_dot(normal_a(g, h->sa, h->ta), d) > 0.0)) continue;
-                if (!(rugo_v2_dot(normal_b(g, h->sb, h->tb), d) < 0.0)) continue;
+                if (!(rugo_v2_dot(normal_on_a(g, h->sa, h->ta), d) > 0.0)) continue;
+                if (!(rugo_v2_dot(normal_on_b(g, h->sb, h->tb), d) < 0.0)) continue;
                 if (!have || len > best.distance || (len == best.distance && rugo__hit_cmp(h, &best) < 0)) {
                     if (!pair_is_depth(g, h->pa, h->pb, len)) continue;
                     best = *h;
@@ -395,7 +400,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
             for (int s = 1; s < samples; ++s) {
                 const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
                 if (which == 0) {
-                    const rugo_vec2 p = sh_point_a(g, u);
+                    const rugo_vec2 p = shape_pair_point_a(g, u);
                     rugo_curve_point cp =
                         rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p));
                     if (cp.distance > far) {
@@ -408,7 +413,7 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
                         ftb = cp.t;
                     }
                 } else {
-                    const rugo_vec2 p = sh_point_b(g, u);
+                    const rugo_vec2 p = shape_pair_point_b(g, u);
                     rugo_curve_point cp = rugo__query_side_closest(g->A, p);
                     if (cp.distance > far) {
                         far = cp.distance;
@@ -428,93 +433,130 @@ static rugo_status region_contact(rugo_collide_context* ctx, shape_pair* g, cons
     rugo_vec2 n = rugo__v2_length(d) > SAME_POINT * g->scale
                       ? rugo__v2_unit(d)
                       : rugo__overlap_normal(g->A, g, NULL, fsa, fta, fpa, fsb, ftb, fpb, g->scale);
-    if (!rugo__emit_contact(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb)) return RUGO_ERR_OUT_OF_MEMORY;
+    if (!rugo__emit_contact(o, fsa, fta, fsb, ftb, fpa, fpb, n, reg, 1, 1, fsb))
+        return RUGO_ERR_OUT_OF_MEMORY;
     return RUGO_OK;
 }
 
-rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
-                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                rugo_query_stats* stats) {
-    if (count != NULL) *count = 0;
-    if (state != NULL) *state = RUGO_STATE_APART;
-    if (stats != NULL) memset(stats, 0, sizeof *stats);
-    if (ctx == NULL || a == NULL || b == NULL || count == NULL || state == NULL)
-        return RUGO_ERR_NULL_ARGUMENT;
-    rugo_contact_query defq = rugo_default_contact_query();
-    const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = rugo__check_query(q, contacts, capacity);
-    if (st != RUGO_OK) return st;
-    if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
-    const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
+/* ---------------------------------------------------------------------------------------------------
+ * The stages of rugo_collide_shapes, in its order (collide_primitive.c has the same stages for a
+ * primitive B). */
 
+/* What one query between two shapes holds from stage to stage. */
+typedef struct shape_query {
+    rugo_collide_context* ctx;
+    const rugo_contact_query* q;
+    rugo_real override; /* the query's tolerance, or -1 */
     query_side A, B;
-    rugo__query_side_init(&A, a, q->level, override);
-    rugo__query_side_init(&B, b, q->level, override);
-    shape_pair g;
-    memset(&g, 0, sizeof g);
-    g.A = &A;
-    g.B = &B;
-    g.rel = rugo__relative_transform(xa, xb);
-    g.scale = fmax(rugo__box_size(rugo_mobb_tree_root(A.tree)), rugo__box_size(rugo_mobb_tree_root(B.tree)));
-    g.stats = stats;
-    g.margin = q->margin;
-    if (!rugo__piece_table_setup(ctx, &g)) return RUGO_ERR_OUT_OF_MEMORY;
+    shape_pair g; /* A, B and B's frame in A's, for the narrow passes and the regions */
     contact_out o;
-    memset(&o, 0, sizeof o);
-    o.ctx = ctx;
-    o.xa = xa;
-    o.q = q;
-    o.A = &A;
-    o.B = &B;
-    o.override = override;
+    tree_side ta, tb; /* the traversal's sides */
+    size_t np;        /* candidate node pairs (segment pairs) in ctx->pairs */
+    size_t nx, ns;    /* hits: crossings in ctx->xs, stationary pairs in ctx->ss */
+    size_t m;         /* crossings that survive: the first m of ctx->xs */
+    rugo_real eps;    /* SAME_POINT of the larger shape's size */
+    int want;         /* contacts or statistics asked for (else only the state) */
+} shape_query;
 
-    tree_side ta, tb;
-    memset(&ta, 0, sizeof ta);
-    memset(&tb, 0, sizeof tb);
-    ta.tree = A.tree;
-    ta.jmin = A.jmin;
-    ta.stop = A.level;
+/* Frame and levels: both shapes at the query's level, B's pieces in A's frame, the output. */
+static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context* ctx, const rugo_shape* a,
+                                           rugo_transform xa, const rugo_shape* b, rugo_transform xb,
+                                           const rugo_contact_query* q, rugo_query_stats* stats) {
+    const rugo_real override = q->tolerance >= 0.0 ? q->tolerance : -1.0;
+    s->ctx = ctx;
+    s->q = q;
+    s->override = override;
+    rugo__query_side_init(&s->A, a, q->level, override);
+    rugo__query_side_init(&s->B, b, q->level, override);
+    shape_pair* g = &s->g;
+    memset(g, 0, sizeof *g);
+    g->A = &s->A;
+    g->B = &s->B;
+    g->rel = rugo__relative_transform(xa, xb);
+    /* the larger shape's size */
+    g->scale = fmax(rugo__box_size(rugo_mobb_tree_root(s->A.tree)),
+                    rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
+    g->stats = stats;
+    g->margin = q->margin;
+    if (!rugo__piece_table_setup(ctx, g)) return RUGO_ERR_OUT_OF_MEMORY;
+    contact_out* o = &s->o;
+    memset(o, 0, sizeof *o);
+    o->ctx = ctx;
+    o->xa = xa;
+    o->q = q;
+    o->A = &s->A;
+    o->B = &s->B;
+    o->override = override;
+    return RUGO_OK;
+}
+
+/* Candidates: the two trees descended together down to the query's levels. */
+static rugo_status shapes_candidates(shape_query* s) {
+    tree_side* ta = &s->ta;
+    tree_side* tb = &s->tb;
+    memset(ta, 0, sizeof *ta);
+    memset(tb, 0, sizeof *tb);
+    ta->tree = s->A.tree;
+    ta->jmin = s->A.jmin;
+    ta->stop = s->A.level;
     /* The margin is split between the two sides: boxes within margin of each other then overlap. */
-    ta.slack = A.slack + 0.5 * q->margin;
-    tb.tree = B.tree;
-    tb.jmin = B.jmin;
-    tb.stop = B.level;
-    tb.slack = B.slack + 0.5 * q->margin;
-    size_t np = 0;
+    ta->slack = s->A.slack + 0.5 * s->q->margin;
+    tb->tree = s->B.tree;
+    tb->jmin = s->B.jmin;
+    tb->stop = s->B.level;
+    tb->slack = s->B.slack + 0.5 * s->q->margin;
+    s->np = 0;
     long tests = 0;
-    st = rugo__traverse(ctx, &ta, &tb, g.rel, &tests, &np);
-    if (stats != NULL) stats->box_tests += tests;
-    if (st != RUGO_OK) return st;
+    rugo_status st = rugo__traverse(s->ctx, ta, tb, s->g.rel, &tests, &s->np);
+    if (s->g.stats != NULL) s->g.stats->box_tests += tests;
+    return st;
+}
 
-    /* First pass: crossings and stationary pairs within the band. */
-    size_t nx = 0, ns = 0;
+/* Narrow phase, the first pass: crossings and stationary pairs within the band of every candidate
+ * segment pair (cutoff: the bounds of λ(t) on both segments, or twice the override, plus the margin),
+ * then each point once. */
+static rugo_status shapes_narrow_phase(shape_query* s) {
+    rugo_collide_context* ctx = s->ctx;
+    shape_pair* g = &s->g;
+    const rugo_real override = s->override;
+    s->nx = 0;
+    s->ns = 0;
     piece_cache pc;
     rugo__piece_cache_init(&pc);
-    for (size_t i = 0; i < np; ++i) {
+    for (size_t i = 0; i < s->np; ++i) {
         const rugo_node_pair p = ((const rugo_node_pair*)ctx->pairs.data)[i];
-        const rugo_vec2* f = rugo__cached_piece_a(&pc, &g, p.k_a);
-        const rugo_vec2* h = rugo__cached_piece_b(&pc, &g, p.k_b);
-        const rugo_real cut = (override >= 0.0 ? 2.0 * override : A.band[p.k_a] + B.band[p.k_b]) + q->margin;
-        if (!run_pair(ctx, &g, p.k_a, f, p.k_b, h, cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g.scale, &ctx->xs,
-                      &nx, &ctx->ss, &ns))
+        const rugo_vec2* f = rugo__cached_piece_a(&pc, g, p.k_a);
+        const rugo_vec2* h = rugo__cached_piece_b(&pc, g, p.k_b);
+        const rugo_real band = override >= 0.0 ? 2.0 * override : s->A.band[p.k_a] + s->B.band[p.k_b];
+        const rugo_real cut = band + s->q->margin;
+        const rugo_real cutoff = cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale;
+        if (!narrow_pair(ctx, g, p.k_a, f, p.k_b, h, cutoff, &ctx->xs, &s->nx, &ctx->ss, &s->ns))
             return RUGO_ERR_OUT_OF_MEMORY;
     }
+    s->eps = SAME_POINT * g->scale;
+    rugo__dedupe_hits((hit*)ctx->xs.data, s->nx, (rugo_real)s->A.n, s->eps, 0);
+    rugo__dedupe_hits((hit*)ctx->ss.data, s->ns, (rugo_real)s->A.n, s->eps, 1);
+    return RUGO_OK;
+}
+
+/* Crossings: the ones that cross, first in ctx->xs; touchings and coincident stretches join the
+ * stationary pairs as zero-distance minima, which are then sorted. */
+static rugo_status shapes_crossings(shape_query* s) {
+    rugo_collide_context* ctx = s->ctx;
+    const size_t nx = s->nx;
+    size_t ns = s->ns;
+    const rugo_real eps = s->eps;
     hit* xs = (hit*)ctx->xs.data;
     hit* hs = (hit*)ctx->ss.data;
-    const rugo_real eps = SAME_POINT * g.scale;
-    rugo__dedupe_hits(xs, nx, (rugo_real)A.n, eps, 0);
-    rugo__dedupe_hits(hs, ns, (rugo_real)A.n, eps, 1);
-
     /* Where pieces coincide the curves run together: their "crossings" (and the tangential meetings
      * next to them that the adjacent pieces report as crossings) are no crossing. */
-    if (g.coincident)
+    if (s->g.coincident)
         for (size_t i = 0; i < nx; ++i) {
             if (xs[i].dead || xs[i].coincident) continue;
             for (size_t j = 0; j < nx + ns && !xs[i].coincident; ++j) {
                 const hit* oh = j < nx ? &xs[j] : &hs[j - nx];
                 if (oh->dead || !oh->coincident) continue;
-                xs[i].coincident = rugo__v2_length(rugo_v2_sub(oh->pa, xs[i].pa)) <= 1e-6 * g.scale;
+                xs[i].coincident = rugo__v2_length(rugo_v2_sub(oh->pa, xs[i].pa)) <= 1e-6 * s->g.scale;
             }
         }
     /* Crossings that only touch are zero-distance minima, and so are the coincident points. */
@@ -539,57 +581,113 @@ rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
         }
     }
     if (ns > 1) qsort(hs, ns, sizeof(hit), rugo__hit_cmp);
+    s->ns = ns;
+    s->m = m;
+    return RUGO_OK;
+}
 
-    if (m > 0) {
-        *state = RUGO_STATE_INTERSECTING;
-        if (!rugo__scratch_reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
-        region_io io;
-        io.user = &g;
-        io.period_a = (rugo_real)A.n;
-        io.period_b = (rugo_real)B.n;
-        io.point_a = sh_point_a;
-        io.point_b = sh_point_b;
-        io.inside_b = sh_inside_b;
-        io.inside_a = sh_inside_a;
-        regions r;
-        rugo__build_regions(&r, (const hit*)ctx->xs.data, (int)m, (int*)ctx->ints.data, &io);
-        /* A caller that only asks for the state (no room for contacts, no statistics) is done. */
-        if (capacity == 0 && stats == NULL) r.count = 0;
-        for (int reg = 0; reg < r.count; ++reg) {
-            st = region_contact(ctx, &g, &r, reg, &o);
-            if (st != RUGO_OK) return st;
-        }
-        /* Local minima within the band away from every overlap region are contacts too. */
-        st = emit_minima(&o, &g, (hit*)ctx->ss.data, ns, &r, r.count, override);
+/* Crossings and regions: the regions traced through the crossings, the deepest penetration pair of
+ * each, the minima outside them, and, when none of that gave a contact, the overlaps below the
+ * resolution. */
+static rugo_status shapes_regions(shape_query* s) {
+    rugo_collide_context* ctx = s->ctx;
+    const size_t m = s->m;
+    rugo_status st;
+    if (!rugo__scratch_reserve(ctx, &ctx->ints, 6 * m, sizeof(int))) return RUGO_ERR_OUT_OF_MEMORY;
+    region_io io;
+    io.user = &s->g;
+    io.period_a = (rugo_real)s->A.n;
+    io.period_b = (rugo_real)s->B.n;
+    io.point_a = shape_pair_point_a;
+    io.point_b = shape_pair_point_b;
+    io.inside_b = shape_pair_inside_b;
+    io.inside_a = shape_pair_inside_a;
+    regions r;
+    rugo__build_regions(&r, (const hit*)ctx->xs.data, (int)m, (int*)ctx->ints.data, &io);
+    /* A caller that only asks for the state (no room for contacts, no statistics) is done. */
+    if (!s->want) r.count = 0;
+    for (int reg = 0; reg < r.count; ++reg) {
+        st = emit_region_contact(ctx, &s->g, &r, reg, &s->o);
         if (st != RUGO_OK) return st;
-        if (o.n == 0 && (capacity > 0 || stats != NULL)) {
-            st = rugo__emit_unresolved_crossings(&o, &g, NULL, (const hit*)ctx->xs.data, (int)m, g.scale);
-            if (st != RUGO_OK) return st;
-        }
-    } else {
-        /* One curve inside the other? Cheap rejections first: a point outside the other's root box. */
-        int b_in_a = 0, a_in_b = 0;
-        const rugo_vec2 pb0 = sh_point_b(&g, 0.0), pa0 = sh_point_a(&g, 0.0);
-        if (!g.coincident && rugo_obb_contains(rugo_mobb_tree_root(A.tree), pb0, 0.0))
-            b_in_a = rugo__query_side_contains(&A, pb0);
-        if (!b_in_a && !g.coincident) {
-            const rugo_vec2 pa0b = rugo_inv_transform_point(g.rel, pa0);
-            if (rugo_obb_contains(rugo_mobb_tree_root(B.tree), pa0b, 0.0))
-                a_in_b = rugo__query_side_contains(&B, pa0b);
-        }
-        if (b_in_a || a_in_b) {
-            *state = RUGO_STATE_INTERSECTING;
-            if (capacity > 0 || stats != NULL) {
-                st = containment_contact(ctx, &g, &ta, &tb, b_in_a, &o);
-                if (st != RUGO_OK) return st;
-            }
-        } else {
-            st = emit_minima(&o, &g, hs, ns, NULL, 0, override);
-            if (st != RUGO_OK) return st;
-            *state = o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
-        }
     }
-    rugo__finish_contacts(&o, contacts, capacity, count, stats);
+    /* Local minima within the band away from every overlap region are contacts too. */
+    st = emit_minima(&s->o, &s->g, (hit*)ctx->ss.data, s->ns, &r, r.count, s->override);
+    if (st != RUGO_OK) return st;
+    if (s->o.n == 0 && s->want) {
+        const hit* xs = (const hit*)ctx->xs.data;
+        st = rugo__emit_unresolved_crossings(&s->o, &s->g, NULL, xs, (int)m, s->g.scale);
+        if (st != RUGO_OK) return st;
+    }
+    return RUGO_OK;
+}
+
+/* No crossing: one curve inside the other (a point of each inside the other; cheap rejections first:
+ * a point outside the other's root box) gives one contact, the way out; else the minima. */
+static rugo_status shapes_no_crossing(shape_query* s, rugo_contact_state* state) {
+    shape_pair* g = &s->g;
+    int b_in_a = 0, a_in_b = 0;
+    const rugo_vec2 pb0 = shape_pair_point_b(g, 0.0), pa0 = shape_pair_point_a(g, 0.0);
+    if (!g->coincident && rugo_obb_contains(rugo_mobb_tree_root(s->A.tree), pb0, 0.0))
+        b_in_a = rugo__query_side_contains(&s->A, pb0);
+    if (!b_in_a && !g->coincident) {
+        const rugo_vec2 pa0b = rugo_inv_transform_point(g->rel, pa0);
+        if (rugo_obb_contains(rugo_mobb_tree_root(s->B.tree), pa0b, 0.0))
+            a_in_b = rugo__query_side_contains(&s->B, pa0b);
+    }
+    if (b_in_a || a_in_b) {
+        *state = RUGO_STATE_INTERSECTING;
+        if (!s->want) return RUGO_OK;
+        return emit_containment_contact(s->ctx, g, &s->ta, &s->tb, b_in_a, &s->o);
+    }
+    rugo_status st = emit_minima(&s->o, g, (hit*)s->ctx->ss.data, s->ns, NULL, 0, s->override);
+    if (st != RUGO_OK) return st;
+    *state = s->o.n > 0 ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
+    return RUGO_OK;
+}
+
+/* The plan (collide_internal.h): checks, frame and levels, candidates, narrow phase, crossings, then
+ * the regions or, without crossings, containment or the minima, then finish. The state is
+ * INTERSECTING as soon as crossings are found, whatever their contacts. */
+rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats) {
+    /* checks */
+    if (count != NULL) *count = 0;
+    if (state != NULL) *state = RUGO_STATE_APART;
+    if (stats != NULL) memset(stats, 0, sizeof *stats);
+    if (ctx == NULL || a == NULL || b == NULL || count == NULL || state == NULL)
+        return RUGO_ERR_NULL_ARGUMENT;
+    rugo_contact_query defq = rugo_default_contact_query();
+    const rugo_contact_query* q = query != NULL ? query : &defq;
+    rugo_status st = rugo__check_query(q, contacts, capacity);
+    if (st != RUGO_OK) return st;
+    if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+
+    /* frame and levels */
+    shape_query s;
+    st = shapes_frame_and_levels(&s, ctx, a, xa, b, xb, q, stats);
+    if (st != RUGO_OK) return st;
+    s.want = capacity > 0 || stats != NULL;
+    /* traversal: candidate segment pairs */
+    st = shapes_candidates(&s);
+    if (st != RUGO_OK) return st;
+    /* narrow phase */
+    st = shapes_narrow_phase(&s);
+    if (st != RUGO_OK) return st;
+    /* crossings and regions, with the minima outside them and the overlaps below the resolution;
+     * without crossings, containment or the minima */
+    st = shapes_crossings(&s);
+    if (st != RUGO_OK) return st;
+    if (s.m > 0) {
+        *state = RUGO_STATE_INTERSECTING;
+        st = shapes_regions(&s);
+    } else {
+        st = shapes_no_crossing(&s, state);
+    }
+    if (st != RUGO_OK) return st;
+    /* finish */
+    rugo__finish_contacts(&s.o, contacts, capacity, count, stats);
     return RUGO_OK;
 }
 

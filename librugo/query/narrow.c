@@ -83,7 +83,7 @@
  * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). Work is
  * not repeated: a search keeps the sub-pieces of the last box's parameter ranges (piece_memo: the
  * next box usually keeps one of them), Newton starts from the values the box tests already computed at
- * the centre and hands back those at its root, cone_sign skips the lengths when the cross products
+ * the centre and hands back those at its root, rugo__cone_sign skips the lengths when the cross products
  * are not even of one sign, and stat_prune runs its rarely pruning hull test last (the tests are pure:
  * their order does not change the answer). Same bits as before (issue 7). */
 #include "query/narrow_internal.h"
@@ -93,151 +93,9 @@
 #include <stdint.h>
 #include <string.h>
 
-/* Unit normal of the chord of a control polygon (or of its middle leg for a closed loop), or 0. */
-static rugo_vec2 chord_normal(const rugo_vec2* p) {
-    rugo_vec2 d = rugo_v2_sub(p[3], p[0]);
-    rugo_real l = rugo__v2_norm(d);
-    if (!(l > 0.25 * rugo__polygon_diameter(p, 3)) || !(l > 0.0)) {
-        d = rugo_v2_sub(p[2], p[1]);
-        l = rugo__v2_norm(d);
-        if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
-    }
-    return rugo_v2(-d.y / l, d.x / l);
-}
-
-/* The gap between the projections of F and G (4 points each) on direction d. */
-static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
-    rugo_real flo = INFINITY, fhi = -INFINITY, glo = INFINITY, ghi = -INFINITY;
-    for (int i = 0; i < 4; ++i) {
-        rugo_real a = rugo_v2_dot(d, F[i]), b = rugo_v2_dot(d, G[i]);
-        flo = rugo__min(flo, a);
-        fhi = rugo__max(fhi, a);
-        glo = rugo__min(glo, b);
-        ghi = rugo__max(ghi, b);
-    }
-    return rugo__max(flo - ghi, glo - fhi);
-}
-
-/* Whether a lower bound of the distance between the convex hulls of F and G exceeds thr: the largest
- * gap between their projections on x, y, the two chord normals and the line between the polygons'
- * centres. The directions are tried in that order and the first gap above thr decides (the max of the
- * gaps exceeds thr iff one of them does), so the square roots of the later ones are often saved. */
-static int hull_gap_above(const rugo_vec2 F[4], const rugo_vec2 G[4], rugo_real thr) {
-    if (thr > 64.0 * EPS) {
-        /* No projection gap exceeds the distance of any point of F from any point of G. With the
-         * coordinates in [-1, 1] (the local frame), a computed gap is within ~8 eps of the true one
-         * for its (unit up to 4 eps) direction; so two control points closer than thr by a margin
-         * decide "not above" without the five projections (the usual case near a contact, where
-         * this test rarely prunes). */
-        const rugo_real lim = thr - 64.0 * EPS;
-        rugo_real d2 = INFINITY;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) {
-                const rugo_vec2 d = rugo_v2_sub(F[i], G[j]);
-                d2 = rugo__min(d2, rugo_v2_dot(d, d));
-            }
-        if (d2 <= lim * lim * (1.0 - 64.0 * EPS)) return 0;
-    }
-    if (projection_gap(rugo_v2(1.0, 0.0), F, G) > thr) return 1;
-    if (projection_gap(rugo_v2(0.0, 1.0), F, G) > thr) return 1;
-    rugo_vec2 nf = chord_normal(F);
-    if ((nf.x != 0.0 || nf.y != 0.0) && projection_gap(nf, F, G) > thr) return 1;
-    rugo_vec2 ng = chord_normal(G);
-    if ((ng.x != 0.0 || ng.y != 0.0) && projection_gap(ng, F, G) > thr) return 1;
-    rugo_vec2 cf =
-        rugo_v2(0.25 * (F[0].x + F[1].x + F[2].x + F[3].x), 0.25 * (F[0].y + F[1].y + F[2].y + F[3].y));
-    rugo_vec2 cg =
-        rugo_v2(0.25 * (G[0].x + G[1].x + G[2].x + G[3].x), 0.25 * (G[0].y + G[1].y + G[2].y + G[3].y));
-    rugo_vec2 dc = rugo_v2_sub(cf, cg);
-    rugo_real lc = rugo__v2_norm(dc);
-    return lc > 0.0 && projection_gap(rugo_v2(dc.x / lc, dc.y / lc), F, G) > thr;
-}
-
 /* Whether four values are all above tau or all below -tau (as rugo__one_sign would find them). */
 static int corners_one_sign(rugo_real a, rugo_real b, rugo_real c, rugo_real d, rugo_real tau) {
     return (a > tau && b > tau && c > tau && d > tau) || (a < -tau && b < -tau && c < -tau && d < -tau);
-}
-
-/* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
- * (0 if not one-signed). */
-static int cone_sign_of(const rugo_real c[9], const rugo_vec2 dF[3], const rugo_vec2 dG[3],
-                        rugo_real* radius) {
-    rugo_real mf = 0.0, mg = 0.0, cmin = INFINITY;
-    int pos = 0, neg = 0;
-    for (int i = 0; i < 9; ++i) {
-        pos += c[i] > 0.0;
-        neg += c[i] < 0.0;
-    }
-    /* Not all of one strict sign: rugo__one_sign below gives 0 for any tau >= 0, without the lengths. */
-    if (pos != 9 && neg != 9) {
-        if (radius) *radius = INFINITY;
-        return 0;
-    }
-    for (int i = 0; i < 3; ++i) {
-        /* squared lengths: sqrt is monotone and correctly rounded, so the max of the roots is the
-         * root of the max, bit for bit */
-        mf = rugo__max(mf, rugo_v2_dot(dF[i], dF[i]));
-        mg = rugo__max(mg, rugo_v2_dot(dG[i], dG[i]));
-        for (int j = 0; j < 3; ++j)
-            cmin = rugo__min(cmin, fabs(c[3 * i + j]));
-    }
-    mf = sqrt(mf);
-    mg = sqrt(mg);
-    int sign = rugo__one_sign(c, 9, 16.0 * EPS * mf * mg);
-    /* Over the box |det J| = |cross(f', g')| >= cmin and |J| <= mf + mg, so a point with |F| <= 16 eps
-     * (computed residual plus evaluation error) has a root within 2 * 16 eps (mf + mg) / cmin. */
-    if (radius) *radius = sign ? 32.0 * EPS * (mf + mg) / cmin : INFINITY;
-    return sign;
-}
-
-static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
-    rugo_real c[9];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
-    return cone_sign_of(c, dF, dG, radius);
-}
-
-/* cone_sign of the whole pieces, computed once for both searches (the sub-hodographs of the whole
- * square are the hodographs themselves). */
-static int root_cone(narrow_ctx* c) {
-    if (!c->root_cone_done) {
-        c->root_cone = cone_sign_of(c->root_cross, c->df, c->dg, &c->root_rho);
-        c->root_cone_done = 1;
-    }
-    return c->root_cone;
-}
-
-/* Krawczyk's exclusion test (interval Newton). Every root in the box lies in
- *   K = m - Y v(m) + (I - Y J(box)) (box - m),
- * m the centre, v(m) the system there (round-off n), Y the inverse of the point Jacobian jc at m,
- * J(box) the interval Jacobian with rows (a b) and (c d). Returns 1 if K misses the box. */
-static int krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4],
-                             ival a, ival b, ival c, ival d) {
-    rugo_real det = jc[0] * jc[3] - jc[1] * jc[2];
-    if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
-    rugo_real y11 = jc[3] / det, y12 = -jc[1] / det, y21 = -jc[2] / det, y22 = jc[0] / det;
-    if (!isfinite(y11) || !isfinite(y12) || !isfinite(y21) || !isfinite(y22)) return 0;
-    ival m11 = rugo__iv_add(rugo__iv(1.0, 1.0),
-                            rugo__iv_neg(rugo__iv_add(rugo__iv_scale(y11, a), rugo__iv_scale(y12, c))));
-    ival m12 = rugo__iv_neg(rugo__iv_add(rugo__iv_scale(y11, b), rugo__iv_scale(y12, d)));
-    ival m21 = rugo__iv_neg(rugo__iv_add(rugo__iv_scale(y21, a), rugo__iv_scale(y22, c)));
-    ival m22 = rugo__iv_add(rugo__iv(1.0, 1.0),
-                            rugo__iv_neg(rugo__iv_add(rugo__iv_scale(y21, b), rugo__iv_scale(y22, d))));
-    rugo_real rs = 0.5 * (bx.s1 - bx.s0), rt = 0.5 * (bx.t1 - bx.t0);
-    rugo_real ms = bx.s0 + rs, mt = bx.t0 + rt;
-    rugo_real ps = y11 * v[0] + y12 * v[1], pt = y21 * v[0] + y22 * v[1];
-    rugo_real jm =
-        rugo__max(rugo__max(rugo__iv_mag(a), rugo__iv_mag(b)), rugo__max(rugo__iv_mag(c), rugo__iv_mag(d)));
-    rugo_real ys = fabs(y11) + fabs(y12), yt = fabs(y21) + fabs(y22);
-    /* widths, with the round-off of v, of the products and of the centre */
-    rugo_real ws = rugo__iv_mag(m11) * rs + rugo__iv_mag(m12) * rt + fabs(y11) * n[0] + fabs(y12) * n[1] +
-                   16.0 * EPS * (fabs(y11 * v[0]) + fabs(y12 * v[1]) + ys * jm * (rs + rt) + 1.0);
-    rugo_real wt = rugo__iv_mag(m21) * rs + rugo__iv_mag(m22) * rt + fabs(y21) * n[0] + fabs(y22) * n[1] +
-                   16.0 * EPS * (fabs(y21 * v[0]) + fabs(y22 * v[1]) + yt * jm * (rs + rt) + 1.0);
-    rugo_real ks = ms - ps, kt = mt - pt;
-    if (!isfinite(ks) || !isfinite(kt) || !isfinite(ws) || !isfinite(wt)) return 0;
-    return ks - ws > bx.s1 || ks + ws < bx.s0 || kt - wt > bx.t1 || kt + wt < bx.t0;
 }
 
 /* Adds a root unless one within the larger of the two radii exists (a Newton root replaces a leaf
@@ -447,25 +305,6 @@ static int newton_stat(narrow_ctx* c, int mode, const box* lim, rugo_real* s, ru
     return conv;
 }
 
-/* 1 if the hull of a hodograph's control points (3) keeps away from the origin. */
-static int hodograph_nonzero(const rugo_vec2 d[3]) {
-    rugo_real m = rugo__max(rugo__max(rugo__v2_norm(d[0]), rugo__v2_norm(d[1])), rugo__v2_norm(d[2]));
-    rugo_vec2 dirs[4] = {d[0], d[1], d[2], rugo_v2_add(d[0], d[2])};
-    for (int k = 0; k < 4; ++k) {
-        rugo_real l = rugo__v2_norm(dirs[k]);
-        if (!(l > 0.0)) continue;
-        /* min_i (x_i / l) = (min_i x_i) / l for l > 0, as rounded division is monotone: one division
-         * instead of three, the same value (up to the sign of an underflowed zero, which the test
-         * below cannot see) */
-        rugo_real lo = INFINITY;
-        for (int i = 0; i < 3; ++i)
-            lo = rugo__min(lo, rugo_v2_dot(dirs[k], d[i]));
-        lo = lo / l;
-        if (lo > 1e-9 * m) return 1;
-    }
-    return 0;
-}
-
 static int push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
     if (*ns >= STACK_MAX) return 0;
     st[*ns].s0 = s0;
@@ -503,8 +342,8 @@ static int cross_excluded(const narrow_ctx* c, box b, rugo_real s, rugo_real t, 
     rugo_vec2 dF[3], dG[3];
     rugo__sub_bezier(c->df, 2, e.s0, e.s1, dF);
     rugo__sub_bezier(c->dg, 2, e.t0, e.t1, dG);
-    if (cone_sign(dF, dG, &unit) == 0) return 0;
-    /* cone_sign's radius holds for a residual of 16 eps; it scales with the residual */
+    if (rugo__cone_sign(dF, dG, &unit) == 0) return 0;
+    /* rugo__cone_sign's radius holds for a residual of 16 eps; it scales with the residual */
     const rugo_real rho = unit * (res + 16.0 * EPS) / (16.0 * EPS);
     return rho < r0;
 }
@@ -528,7 +367,7 @@ static void search_crossings(narrow_ctx* c) {
         rugo__memo_range(&mg, c->g, c->dg, b.t0, b.t1);
         const rugo_vec2 *F = mf.P, *G = mg.P;
         const int whole = rugo__is_whole_square(b);
-        if (whole ? c->root_apart : hull_gap_above(F, G, TAU_F)) continue;
+        if (whole ? c->root_apart : rugo__hull_gap_above(F, G, TAU_F)) continue;
         rugo_real diam_f = rugo__polygon_diameter(F, 3), diam_g = rugo__polygon_diameter(G, 3);
         rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
         const rugo_vec2 *dF = mf.dP, *dG = mg.dP;
@@ -544,15 +383,16 @@ static void search_crossings(narrow_ctx* c) {
             const rugo_vec2 r = centre[0], fp = centre[1], gp = centre[2];
             rugo_real v[2] = {r.x, r.y}, n[2] = {8.0 * EPS, 8.0 * EPS};
             rugo_real jc[4] = {fp.x, -gp.x, fp.y, -gp.y};
-            if (krawczyk_excludes(b, v, n, jc, fpx, rugo__iv_neg(gpx), fpy, rugo__iv_neg(gpy))) continue;
+            if (rugo__krawczyk_excludes(b, v, n, jc, fpx, rugo__iv_neg(gpx), fpy, rugo__iv_neg(gpy)))
+                continue;
         }
         rugo_real rho;
         int sign;
         if (whole) {
-            sign = root_cone(c);
+            sign = rugo__whole_square_cone(c);
             rho = c->root_rho;
         } else {
-            sign = cone_sign(dF, dG, &rho);
+            sign = rugo__cone_sign(dF, dG, &rho);
         }
         if (sign != 0) {
             rugo_real s = sc, t = tc, res;
@@ -574,7 +414,8 @@ static void search_crossings(narrow_ctx* c) {
             /* Small, tangents not separated: maybe a touching. Its point is a well-conditioned root of
              * (C, H) (stationary forms), which Newton finds; at distance ~0 it is recorded (kind by
              * probing) and everything within R_FALLBACK of it is resolved. */
-            int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
+            int mode =
+                rugo__hodograph_nonzero(dG) ? STAT_CH2 : (rugo__hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
             rugo_real s = sc, t = tc, res;
             if (newton_stat(c, mode, &b, &s, &t, &res, NULL, NULL) && rugo__in_domain(s, t) &&
                 rugo__v2_max_abs(rugo_v2_sub(rugo__bezier_eval(c->f, 3, s), rugo__bezier_eval(c->g, 3, t))) <=
@@ -707,7 +548,7 @@ static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6,
 /* The last test of stat_prune: 1 if the hulls keep more than the cutoff apart (never for the whole
  * square, whose hull test solve has already made). */
 static int hull_left(const narrow_ctx* c, int whole, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
-    return !whole && hull_gap_above(F, G, c->cutoff + TAU_F);
+    return !whole && rugo__hull_gap_above(F, G, c->cutoff + TAU_F);
 }
 
 /* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. When it returns 0,
@@ -720,7 +561,7 @@ static int stat_prune(narrow_ctx* c, box bx, const rugo_vec2 F[4], const rugo_ve
      * (cutoff) rarely prunes: it runs last, only for a box that the others leave (hull_left). (The
      * hull test of the whole square is known to fail when the search runs: see solve.) */
     const int whole = rugo__is_whole_square(bx);
-    if (whole ? root_cone(c) != 0 : cone_sign(dF, dG, NULL) != 0) return 1;
+    if (whole ? rugo__whole_square_cone(c) != 0 : rugo__cone_sign(dF, dG, NULL) != 0) return 1;
     rugo_vec2 D[4][4];
     rugo_real md = 0.0, mf = 0.0, mg = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -870,13 +711,14 @@ static void search_stationary(narrow_ctx* c) {
         rugo__memo_dd(&mf, c->ddf);
         rugo__memo_dd(&mg, c->ddg);
         const rugo_vec2 *ddF = mf.ddP, *ddG = mg.ddP;
-        int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
+        int mode =
+            rugo__hodograph_nonzero(dG) ? STAT_CH2 : (rugo__hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
         ival J[4];
         stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
         {
             rugo_real v[2], n[2], jc[4];
             stat_system(&ec, mode, v, n, jc);
-            if (krawczyk_excludes(b, v, n, jc, J[0], J[1], J[2], J[3])) continue;
+            if (rugo__krawczyk_excludes(b, v, n, jc, J[0], J[1], J[2], J[3])) continue;
         }
         rugo_real detmin, jmax;
         if (jacobian_regular(J, &detmin, &jmax)) {
@@ -1348,11 +1190,11 @@ static void solve(narrow_ctx* c, rugo__narrow_result* out) {
      * stationary pairs: gap > cutoff + TAU_F, then the tangent cones). When it decides everything,
      * the searches are skipped; when a search runs, the hull test of the stationary search on the
      * whole square is known to fail (gap <= TAU_F, or it was tested below), so stat_prune skips it. */
-    c->root_apart = hull_gap_above(c->f, c->g, TAU_F);
+    c->root_apart = rugo__hull_gap_above(c->f, c->g, TAU_F);
     if (c->root_apart) {
         if (!(c->cutoff >= 0.0)) return;         /* no stationary search */
-        if (root_cone(c) != 0) return;           /* tangents nowhere parallel */
-        if (hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
+        if (rugo__whole_square_cone(c) != 0) return;           /* tangents nowhere parallel */
+        if (rugo__hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
     }
 
     search_crossings(c);

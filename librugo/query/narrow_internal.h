@@ -328,4 +328,24 @@ static inline void rugo__memo_dd(piece_memo* m, const rugo_vec2 ddp[2]) {
     m->have_dd = 1;
 }
 
+/* ---------------------------------------------------------------------------------------------------
+ * Bounds that prune a box (narrow_bounds.c). */
+
+/* Whether a lower bound of the distance between the convex hulls of F and G (4 points each) exceeds
+ * thr. */
+int rugo__hull_gap_above(const rugo_vec2 F[4], const rugo_vec2 G[4], rugo_real thr);
+/* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs (0 if
+ * not one-signed), from the 9 cross products c; *radius (may be NULL): the existence radius of a root
+ * whose residual is at round-off. */
+int rugo__cone_sign_of(const rugo_real c[9], const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius);
+int rugo__cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius);
+/* rugo__cone_sign of the whole pieces, computed once per call for both searches. */
+int rugo__whole_square_cone(narrow_ctx* c);
+/* Krawczyk's test: 1 if no root of the system (values v at the box's centre, round-off n, point
+ * Jacobian jc there, interval Jacobian rows (a b), (c d) over the box) lies in the box. */
+int rugo__krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4], ival a,
+                            ival b, ival c, ival d);
+/* 1 if the hull of a hodograph's control points (3) keeps away from the origin. */
+int rugo__hodograph_nonzero(const rugo_vec2 d[3]);
+
 #endif

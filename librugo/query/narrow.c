@@ -98,76 +98,6 @@ static int corners_one_sign(rugo_real a, rugo_real b, rugo_real c, rugo_real d, 
     return (a > tau && b > tau && c > tau && d > tau) || (a < -tau && b < -tau && c < -tau && d < -tau);
 }
 
-/* Adds a root unless one within the larger of the two radii exists (a Newton root replaces a leaf
- * root). Returns 0 when the list is full (overflow). */
-static int add_root(root* list, int* n, int cap, rugo_real s, rugo_real t, rugo_real radius, int kind,
-                    int fb) {
-    for (int i = 0; i < *n; ++i) {
-        rugo_real r = rugo__max(radius, list[i].radius);
-        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) {
-            if (list[i].fallback && !fb) {
-                list[i].s = s;
-                list[i].t = t;
-                list[i].radius = rugo__max(radius, list[i].radius);
-                list[i].kind = kind;
-                list[i].fallback = 0;
-            }
-            return 1;
-        }
-    }
-    if (*n >= cap) return 0;
-    list[*n].s = s;
-    list[*n].t = t;
-    list[*n].radius = radius;
-    list[*n].kind = kind;
-    list[*n].fallback = fb;
-    ++*n;
-    return 1;
-}
-
-static int near_root(const root* list, int n, rugo_real s, rugo_real t, rugo_real r) {
-    for (int i = 0; i < n; ++i)
-        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) return 1;
-    return 0;
-}
-
-/* Whether the box lies within the merge radius of a root accepted without a certificate. */
-static int covered(const root* list, int n, box b) {
-    for (int i = 0; i < n; ++i) {
-        if (!list[i].fallback) continue;
-        rugo_real r = list[i].radius;
-        if (fabs(b.s0 - list[i].s) <= r && fabs(b.s1 - list[i].s) <= r && fabs(b.t0 - list[i].t) <= r &&
-            fabs(b.t1 - list[i].t) <= r)
-            return 1;
-    }
-    return 0;
-}
-
-/* Dedupe radius from a condition estimate (uncertainty of a root ~ eps * condition). */
-static rugo_real root_radius(rugo_real cond) {
-    rugo_real r = 64.0 * EPS * cond;
-    if (!(r > R_ROOT)) r = R_ROOT;
-    if (r > R_FALLBACK) r = R_FALLBACK;
-    return r;
-}
-
-/* For a root (s, t) found outside box b (widened as rugo__in_box): the box E spanning b and the square of
- * half-width *r0 about the root, r0 half the root's max-norm distance to the widened box. 0 if the
- * root is not clearly outside. */
-static int exclusion_box(box b, rugo_real s, rugo_real t, box* e, rugo_real* r0) {
-    rugo_real sl = b.s0 == 0.0 ? DOM_SLACK : SLACK, sh = b.s1 == 1.0 ? DOM_SLACK : SLACK;
-    rugo_real tl = b.t0 == 0.0 ? DOM_SLACK : SLACK, th = b.t1 == 1.0 ? DOM_SLACK : SLACK;
-    rugo_real d =
-        rugo__max(rugo__max((b.s0 - sl) - s, s - (b.s1 + sh)), rugo__max((b.t0 - tl) - t, t - (b.t1 + th)));
-    if (!(d > 0.0) || !isfinite(d)) return 0;
-    *r0 = 0.5 * d;
-    e->s0 = rugo__min(b.s0, s - *r0);
-    e->s1 = rugo__max(b.s1, s + *r0);
-    e->t0 = rugo__min(b.t0, t - *r0);
-    e->t1 = rugo__max(b.t1, t + *r0);
-    return e->s1 > 0.0 && e->t1 > 0.0; /* (always: b lies in [0,1]^2 and has positive width) */
-}
-
 /* Newton on F = f(s) - g(t) (6.12). Returns 1 if it converged (residual at round-off or a step at
  * round-off); (s, t) is then the root. Otherwise (s, t) is the iterate with the smallest |F| and *res
  * its residual (max-norm, local frame). */
@@ -305,40 +235,13 @@ static int newton_stat(narrow_ctx* c, int mode, const box* lim, rugo_real* s, ru
     return conv;
 }
 
-static int push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
-    if (*ns >= STACK_MAX) return 0;
-    st[*ns].s0 = s0;
-    st[*ns].s1 = s1;
-    st[*ns].t0 = t0;
-    st[*ns].t1 = t1;
-    ++*ns;
-    return 1;
-}
-
-/* Splits b into two halves on the stack (first half on top). Returns 0 if nothing can be split. */
-static int split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g) {
-    int can_s = b.s1 - b.s0 > H_MIN && diam_f > D_MIN;
-    int can_t = b.t1 - b.t0 > H_MIN && diam_g > D_MIN;
-    if (!can_s && !can_t) return 0;
-    if (can_s && (!can_t || diam_f >= diam_g)) {
-        rugo_real m = 0.5 * (b.s0 + b.s1);
-        push_box(st, ns, m, b.s1, b.t0, b.t1);
-        push_box(st, ns, b.s0, m, b.t0, b.t1);
-    } else {
-        rugo_real m = 0.5 * (b.t0 + b.t1);
-        push_box(st, ns, b.s0, b.s1, m, b.t1);
-        push_box(st, ns, b.s0, b.s1, b.t0, m);
-    }
-    return 1;
-}
-
 /* Newton found a crossing (s, t) outside box b (residual res). If the tangents are not parallel
  * anywhere on a box E spanning b and a ball about the root, E holds at most one crossing (see the
  * top of the file), the certain one in the ball, which lies outside b: b holds none. */
 static int cross_excluded(const narrow_ctx* c, box b, rugo_real s, rugo_real t, rugo_real res) {
     box e;
     rugo_real r0, unit;
-    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
+    if (!rugo__exclusion_box(b, s, t, &e, &r0)) return 0;
     rugo_vec2 dF[3], dG[3];
     rugo__sub_bezier(c->df, 2, e.s0, e.s1, dF);
     rugo__sub_bezier(c->dg, 2, e.t0, e.t1, dG);
@@ -354,10 +257,10 @@ static void search_crossings(narrow_ctx* c) {
     piece_memo mf, mg;
     rugo__memo_init(&mf);
     rugo__memo_init(&mg);
-    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
+    rugo__push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
     while (ns > 0) {
         box b = st[--ns];
-        if (covered(c->cross, c->ncross, b)) continue;
+        if (rugo__box_covered(c->cross, c->ncross, b)) continue;
         if (++boxes > BOX_BUDGET) {
             c->overflow = 1;
             ++c->fallback;
@@ -402,7 +305,8 @@ static void search_crossings(narrow_ctx* c) {
             if (conv && rugo__in_box_ball(b, s, t, rho)) {
                 rugo_vec2 fp = rugo__bezier_eval(c->df, 2, s), gp = rugo__bezier_eval(c->dg, 2, t);
                 rugo_real cond = (rugo_v2_dot(fp, fp) + rugo_v2_dot(gp, gp)) / fabs(rugo_v2_cross(fp, gp));
-                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, root_radius(cond), sign, 0)) {
+                const rugo_real radius = rugo__root_radius(cond);
+                if (!rugo__add_root(c->cross, &c->ncross, TMP_CROSS, s, t, radius, sign, 0)) {
                     c->overflow = 1;
                     return;
                 }
@@ -421,21 +325,21 @@ static void search_crossings(narrow_ctx* c) {
                 rugo__v2_max_abs(rugo_v2_sub(rugo__bezier_eval(c->f, 3, s), rugo__bezier_eval(c->g, 3, t))) <=
                     TAU_TOUCH) {
                 ++c->fallback;
-                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
+                if (!rugo__add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
                     c->overflow = 1;
                     return;
                 }
-                if (covered(c->cross, c->ncross, b)) continue;
+                if (rugo__box_covered(c->cross, c->ncross, b)) continue;
             }
         }
-        if (split_box(st, &ns, b, diam_f, diam_g)) continue;
+        if (rugo__split_box(st, &ns, b, diam_f, diam_g)) continue;
         /* A leaf: the root (if any) is tangential or degenerate. */
         ++c->fallback;
-        if (near_root(c->cross, c->ncross, sc, tc, R_FALLBACK)) continue;
+        if (rugo__near_root(c->cross, c->ncross, sc, tc, R_FALLBACK)) continue;
         rugo_real s = sc, t = tc, res;
         newton_cross(c, &b, &s, &t, &res, centre);
         if (res <= TAU_TOUCH && rugo__in_domain(s, t)) {
-            if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
+            if (!rugo__add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
                 c->overflow = 1;
                 return;
             }
@@ -654,7 +558,7 @@ static int stat_prune(narrow_ctx* c, box bx, const rugo_vec2 F[4], const rugo_ve
 static rugo_real stat_radius_of(const pair_eval* e) {
     rugo_real det = fabs(e->j11 * e->j22 - e->j12 * e->j21);
     rugo_real fro = e->j11 * e->j11 + e->j12 * e->j12 + e->j21 * e->j21 + e->j22 * e->j22;
-    return root_radius(det > 0.0 ? fro / det : INFINITY);
+    return rugo__root_radius(det > 0.0 ? fro / det : INFINITY);
 }
 
 /* Newton found a root (s, t) of the stationary system (form mode) outside box b. If
@@ -668,7 +572,7 @@ static int stat_excluded(const narrow_ctx* c, int mode, box b, rugo_real s, rugo
                          const pair_eval* ev) {
     box e;
     rugo_real r0;
-    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
+    if (!rugo__exclusion_box(b, s, t, &e, &r0)) return 0;
     rugo_vec2 F[4], G[4], dF[3], dG[3], ddF[2], ddG[2];
     rugo__sub_bezier(c->f, 3, e.s0, e.s1, F);
     rugo__sub_bezier(c->g, 3, e.t0, e.t1, G);
@@ -693,10 +597,10 @@ static void search_stationary(narrow_ctx* c) {
     piece_memo mf, mg;
     rugo__memo_init(&mf);
     rugo__memo_init(&mg);
-    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
+    rugo__push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
     while (ns > 0) {
         box b = st[--ns];
-        if (covered(c->stat, c->nstat, b)) continue;
+        if (rugo__box_covered(c->stat, c->nstat, b)) continue;
         if (++boxes > BOX_BUDGET) {
             c->overflow = 1;
             ++c->fallback;
@@ -733,7 +637,7 @@ static void search_stationary(narrow_ctx* c) {
                  * the ball is small against the box) */
                 if (rugo__in_box_ball(b, s, t, rho) ||
                     (rugo__in_box(b, s, t) && rho <= 0.125 * rugo__min(b.s1 - b.s0, b.t1 - b.t0))) {
-                    if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius_of(&e), 0, 0)) {
+                    if (!rugo__add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius_of(&e), 0, 0)) {
                         c->overflow = 1;
                         return;
                     }
@@ -748,20 +652,20 @@ static void search_stationary(narrow_ctx* c) {
             rugo_real s = sc, t = tc, res;
             if (newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL) && rugo__in_box(b, s, t)) {
                 ++c->fallback;
-                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                if (!rugo__add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                     c->overflow = 1;
                     return;
                 }
                 continue;
             }
         }
-        if (split_box(st, &ns, b, rugo__polygon_diameter(F, 3), rugo__polygon_diameter(G, 3))) continue;
+        if (rugo__split_box(st, &ns, b, rugo__polygon_diameter(F, 3), rugo__polygon_diameter(G, 3))) continue;
         /* A leaf. */
         ++c->fallback;
         rugo_real s = sc, t = tc, res;
         newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL);
         if (res <= 1024.0 && rugo__in_domain(s, t)) {
-            if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+            if (!rugo__add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                 c->overflow = 1;
                 return;
             }
@@ -1140,8 +1044,8 @@ static void add_zero_speed_ends(narrow_ctx* c) {
             for (int i = 0; i < n; ++i) {
                 const rugo_real s = which == 0 ? (rugo_real)end : us[i],
                                 t = which == 0 ? us[i] : (rugo_real)end;
-                if (near_root(c->stat, c->nstat, s, t, END_ZONE)) continue;
-                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                if (rugo__near_root(c->stat, c->nstat, s, t, END_ZONE)) continue;
+                if (!rugo__add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                     c->overflow = 1;
                     return;
                 }
@@ -1261,7 +1165,7 @@ static void solve(narrow_ctx* c, rugo__narrow_result* out) {
                 if (fabs(c->cross[i].s - s) <= r && fabs(c->cross[i].t - t) <= r) match = i;
             }
             if (match >= 0 && c->cross[match].kind != 0) continue;
-            if (match < 0 && !add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, 0, 1))
+            if (match < 0 && !rugo__add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, 0, 1))
                 c->overflow = 1;
         }
         c->stat[k].kind = classify_stat(c, s, t, dist);

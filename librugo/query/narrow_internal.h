@@ -348,4 +348,24 @@ int rugo__krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], 
 /* 1 if the hull of a hodograph's control points (3) keeps away from the origin. */
 int rugo__hodograph_nonzero(const rugo_vec2 d[3]);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Root lists and the box stack (narrow_roots.c). */
+
+/* Adds a root unless one within the larger of the two radii exists (a certified root replaces one
+ * accepted without a certificate, fb). 0 when the list (cap) is full: overflow. */
+int rugo__add_root(root* list, int* n, int cap, rugo_real s, rugo_real t, rugo_real radius, int kind, int fb);
+/* Whether a root lies within r of (s, t) (max-norm). */
+int rugo__near_root(const root* list, int n, rugo_real s, rugo_real t, rugo_real r);
+/* Whether box b lies within the merge radius of a root accepted without a certificate. */
+int rugo__box_covered(const root* list, int n, box b);
+/* Dedupe radius from a condition estimate (uncertainty of a root ~ eps * condition). */
+rugo_real rugo__root_radius(rugo_real cond);
+/* For a root (s, t) found outside box b: the box e spanning b and a square of half-width *r0 about the
+ * root; 0 if the root is not clearly outside. */
+int rugo__exclusion_box(box b, rugo_real s, rugo_real t, box* e, rugo_real* r0);
+/* Pushes a box on the search stack (*ns boxes); 0 when the stack is full. */
+int rugo__push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1);
+/* Splits b in two halves on the stack (the larger sub-piece's parameter); 0 if neither can be split. */
+int rugo__split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g);
+
 #endif

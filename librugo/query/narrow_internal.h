@@ -368,4 +368,18 @@ int rugo__push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, r
 /* Splits b in two halves on the stack (the larger sub-piece's parameter); 0 if neither can be split. */
 int rugo__split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Stationary pairs (narrow_stationary.c). */
+
+/* Values of the stationary system's terms at (s, t). */
+pair_eval rugo__eval_pair(const narrow_ctx* c, rugo_real s, rugo_real t);
+/* Newton on the stationary system in form mode (STAT_*), from (*s, *t) within lim's neighbourhood: 1 and
+ * the root if it converged, else 0 and the best iterate; *res its residual in round-off units (0 when
+ * converged). start (may be NULL): rugo__eval_pair at the start; last (may be NULL): the values at the
+ * root. */
+int rugo__newton_stat(narrow_ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res,
+                      const pair_eval* start, pair_eval* last);
+/* All stationary pairs within the cutoff into c->stat (c->overflow when the list or the budget ends). */
+void rugo__search_stationary(narrow_ctx* c);
+
 #endif

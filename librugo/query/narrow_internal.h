@@ -382,4 +382,14 @@ int rugo__newton_stat(narrow_ctx* c, int mode, const box* lim, rugo_real* s, rug
 /* All stationary pairs within the cutoff into c->stat (c->overflow when the list or the budget ends). */
 void rugo__search_stationary(narrow_ctx* c);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Crossings (narrow_crossings.c). */
+
+/* All crossings into c->cross (c->overflow when the list or the budget ends); uncertified ones with kind
+ * KIND_PROBE. */
+void rugo__search_crossings(narrow_ctx* c);
+/* The kind of a crossing at (s, t) from the side of g(t -+ delta) relative to f: +1 into f's inside, -1
+ * out of it, 0 undecided (a touching). */
+int rugo__probe_crossing_kind(narrow_ctx* c, rugo_real s, rugo_real t);
+
 #endif

@@ -16,11 +16,12 @@
  * of (H1, H2) has determinant ~ d dk at a near-touching (distance d, curvature difference dk) while
  * that of (C, H) has ~ dk: it stays well conditioned down to touching curves. For (H1, H2):
  *   J = [[ |f'|^2 + (f-g)·f'', -g'·f' ], [ g'·f', -|g'|^2 + (f-g)·g'' ]]  (= dH/d(s,t); J u = -H).
- * Uniqueness: the interval Jacobian with rows at independent points of the box is non-singular (two
- * roots would make both gradients normal to the segment joining them, mean value theorem). Then
- * Newton and the same existence ball. Boxes of side <= 2^-18 that are still not certified (nearly
- * degenerate pairs, e.g. almost touching curves) accept a Newton root inside the box and resolve
- * everything within R_MERGE of it; leaves keep a Newton root whose residual is near round-off. */
+ * Uniqueness: the interval Jacobian with rows at independent points of the box is non-singular (two roots
+ * would make both gradients normal to the segment joining them, mean value theorem). Then Newton and the
+ * existence ball of a crossing's (narrow_crossings.c). Boxes of side <= 2^-18 that are still not
+ * certified (nearly degenerate pairs, e.g. almost touching curves) accept a Newton root inside the box
+ * and resolve everything within R_MERGE of it; leaves keep a Newton root whose residual is near
+ * round-off. */
 #include "query/narrow_internal.h"
 
 pair_eval rugo__eval_pair(const narrow_ctx* c, rugo_real s, rugo_real t) {

@@ -392,4 +392,12 @@ void rugo__search_crossings(narrow_ctx* c);
  * out of it, 0 undecided (a touching). */
 int rugo__probe_crossing_kind(narrow_ctx* c, rugo_real s, rugo_real t);
 
+/* ---------------------------------------------------------------------------------------------------
+ * Kinds of stationary pairs (narrow_classify.c). */
+
+/* Moves a stationary pair near an end where its piece stops (zero speed) onto that end. */
+void rugo__snap_to_zero_speed_end(const narrow_ctx* c, rugo_real* s, rugo_real* t);
+/* The kind (rugo__stationary_kind) of the stationary pair (s, t) at distance dist (local frame). */
+int rugo__classify_stationary(const narrow_ctx* c, rugo_real s, rugo_real t, rugo_real dist);
+
 #endif

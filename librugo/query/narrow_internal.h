@@ -400,4 +400,13 @@ void rugo__snap_to_zero_speed_end(const narrow_ctx* c, rugo_real* s, rugo_real* 
 /* The kind (rugo__stationary_kind) of the stationary pair (s, t) at distance dist (local frame). */
 int rugo__classify_stationary(const narrow_ctx* c, rugo_real s, rugo_real t, rugo_real dist);
 
+/* ---------------------------------------------------------------------------------------------------
+ * A piece against a point (narrow_point.c). */
+
+/* The point query in a local frame: a[] are the Bezier points of f - c (already scaled). Parameters,
+ * local distances and kinds of the stationary points within the cutoff into s_out, d_out, k_out; returns
+ * their count (<= 6). */
+int rugo__point_stationary(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, rugo_real* d_out,
+                           int* k_out);
+
 #endif

@@ -1,4 +1,12 @@
-/* Narrow phase between two cubic Bezier pieces (narrow.h; SPEC 8; DESIGN "Contact semantics").
+/* The narrow phase between two cubic Bezier pieces (narrow.h; SPEC 8; DESIGN "Contact semantics"): its
+ * driver. It sets up the local frame, sends degenerate pairs to their own paths (a point-like piece to
+ * the point query, straight parallel pieces to the end pairs of their overlap), runs the two searches
+ * on the general case, merges what they found and writes the result; rugo__narrow_line is the same
+ * with the second piece a straight segment. The parts, each in its own file: the bounds that prune a
+ * box (narrow_bounds.c), the root lists and box stack (narrow_roots.c), the search for crossings
+ * (narrow_crossings.c) and for stationary pairs (narrow_stationary.c), the kinds of stationary pairs
+ * (narrow_classify.c), and a piece against a point (narrow_point.c); narrow_internal.h holds what they
+ * share.
  *
  * Frame. Everything runs in a local frame: the centroid of the 8 control points is subtracted (exact,
  * by Sterbenz, for pieces far from the origin) and the result scaled by a power of two so that every
@@ -24,22 +32,23 @@
  * without a uniqueness certificate: leaves, touchings, small-box acceptances, budget exhaustion.
  * Non-finite input gives an empty result; a NaN or negative cutoff gives crossings only.
  *
- * Speed (issue 7: most pairs a contact query hands over are near each other but hold nothing). The
- * whole square is tested once for both searches (hulls apart: no crossing; then the tangent cones: no
+ * Speed: most pairs a contact query hands over are near each other but hold nothing. The whole
+ * square is tested once for both searches (hulls apart: no crossing; then the tangent cones: no
  * stationary pair), and a pair decided there costs a frame and those two tests. The hull test stops
  * at the first separating direction, and near the cutoff it first checks whether two control points
  * are closer than the cutoff (then no direction can separate). The Bernstein tests of the stationary
  * search first look at their corner coefficients, which decide most failures. A box whose Newton run
  * ends at a certified root outside it is dropped when the Jacobian is regular on a box spanning both
- * (crossings: the tangent cones stay apart), because then that root is the only one there: without
- * this a minimum just across a segment joint made the search subdivide toward the joint. Each
- * shortcut decides a box as before or drops a box that provably holds no root, so the results do not
- * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). Work is
- * not repeated: a search keeps the sub-pieces of the last box's parameter ranges (piece_memo: the
- * next box usually keeps one of them), Newton starts from the values the box tests already computed at
- * the centre and hands back those at its root, rugo__cone_sign skips the lengths when the cross products
- * are not even of one sign, and stat_prune runs its rarely pruning hull test last (the tests are pure:
- * their order does not change the answer). Same bits as before (issue 7). */
+ * (crossings: the tangent cones stay apart), because then that root is the only one there; otherwise
+ * a minimum just across a segment joint would make the search subdivide toward the joint. Each
+ * shortcut decides a box as the full tests would, or drops a box that provably holds no root, so the
+ * results are the same bits with or without it (on all segment pairs of bench_queries; only the
+ * number of Newton steps differs). Work is not repeated: a search keeps the sub-pieces of the last
+ * box's parameter ranges (piece_memo: the next box usually keeps one of them), Newton starts from the
+ * values the box tests already computed at the centre and hands back those at its root,
+ * rugo__cone_sign skips the lengths when the cross products are not even of one sign, and the
+ * stationary search runs its rarely pruning hull test last (the tests are pure: their order does not
+ * change the answer). */
 #include "query/narrow_internal.h"
 
 #include "curve/poly.h"

@@ -9,7 +9,7 @@
  * isolated root with Newton (J u = -H, thesis 6.11-6.14). So no crossing and no stationary pair
  * within the cutoff is missed.
  *
- * Conventions (see narrow.c for the pruning tests and limits):
+ * Conventions (narrow.c describes the searches, their pruning tests and limits):
  *  - `fallback` counts every decision made without a uniqueness proof: size-limit leaves (2^-26 in
  *    parameter), touchings, small-box acceptances, and the box limit (6000) being hit; `overflow`
  *    is also set when the box limit is hit.

@@ -1,6 +1,7 @@
-/* Private to the narrow phase (the narrow*.c files of librugo/query): the limits and tolerances of its
- * searches, the state a call carries through them, and the small Bezier, interval and parameter-box
- * helpers they all use. Not installed; narrow.h is the narrow phase's interface. */
+/* Private to the narrow phase (the narrow*.c files of librugo/query; narrow.c describes how it works):
+ * the limits and tolerances of its searches, the state a call carries through them, the small Bezier,
+ * interval and parameter-box helpers they all use, and what each file offers the others. Not
+ * installed; narrow.h is the narrow phase's interface for the contact queries. */
 #ifndef RUGO_QUERY_NARROW_INTERNAL_H
 #define RUGO_QUERY_NARROW_INTERNAL_H
 
@@ -36,10 +37,12 @@ enum {
 #define POINT_TOL 1e-13           /* a piece within this extent is a point */
 #define END_ZONE 1e-4             /* a root this close to a zero-speed end is at that end (rugo__near_end) */
 
+/* A box of the parameter square: s in [s0, s1], t in [t0, t1]. */
 typedef struct box {
     rugo_real s0, s1, t0, t1;
 } box;
 
+/* A root of a search, with the radius within which another is the same one. */
 typedef struct root {
     rugo_real s, t;
     rugo_real radius; /* dedupe radius in parameter */
@@ -47,6 +50,8 @@ typedef struct root {
     int fallback;
 } root;
 
+/* What one call of the narrow phase carries through its searches: the pieces in the local frame, the
+ * counters it reports, the tests of the whole square both searches share, and the root lists. */
 typedef struct narrow_ctx {
     rugo_vec2 f[4], g[4];     /* local frame */
     rugo_vec2 df[3], dg[3];   /* hodographs (derivative in the global parameter) */
@@ -261,7 +266,7 @@ static inline int rugo__in_unit(rugo_real u) { return u >= -1e-12 && u <= 1.0 + 
 static inline int rugo__in_square(rugo_real s, rugo_real t) { return rugo__in_unit(s) && rugo__in_unit(t); }
 
 /* ---------------------------------------------------------------------------------------------------
- * Speeds, distances, sub-pieces. */
+ * Speeds and distances. */
 
 /* Whether a speed |d| is round-off against a derivative size m of its piece. */
 static inline int rugo__zero_speed(rugo_vec2 d, rugo_real m) {
@@ -274,10 +279,14 @@ static inline int rugo__speed_vanishes(rugo_vec2 d, const rugo_vec2 h[3]) {
         d, rugo__max(rugo__v2_max_abs(h[0]), rugo__max(rugo__v2_max_abs(h[1]), rugo__v2_max_abs(h[2]))));
 }
 
+/* D = |f(s) - g(t)|^2 / 2. */
 static inline rugo_real rugo__half_dist2(const narrow_ctx* c, rugo_real s, rugo_real t) {
     rugo_vec2 r = rugo_v2_sub(rugo__bezier_eval(c->f, 3, s), rugo__bezier_eval(c->g, 3, t));
     return 0.5 * rugo_v2_dot(r, r);
 }
+
+/* ---------------------------------------------------------------------------------------------------
+ * The stationary system's forms and values; the sub-pieces a search keeps from box to box. */
 
 /* The stationary system in one of three equivalent forms (away from crossings):
  *   STAT_HH: (H1, H2)  (6.14);
@@ -289,7 +298,6 @@ static inline rugo_real rugo__half_dist2(const narrow_ctx* c, rugo_real s, rugo_
  * they do not have the transversal crossings as roots. */
 enum { STAT_HH = 0, STAT_CH2 = 1, STAT_CH1 = 2 };
 
-
 /* Values at a parameter pair for the stationary system. */
 typedef struct pair_eval {
     rugo_vec2 r, fp, gp, fpp, gpp; /* r = f - g */
@@ -299,8 +307,8 @@ typedef struct pair_eval {
 } pair_eval;
 
 /* The sub-pieces of one piece on the parameter range [a, b] of the last box (a depth-first search
- * splits one parameter at a time, so the next box often keeps the other's range): rugo__sub_bezier of the
- * piece (P), its hodograph (dP) and, once asked for, its second derivative (ddP). */
+ * splits one parameter at a time, so the next box often keeps the other's range): rugo__sub_bezier of
+ * the piece (P), its hodograph (dP) and, once asked for, its second derivative (ddP). */
 typedef struct piece_memo {
     rugo_real a, b;
     int have_dd;

@@ -188,12 +188,6 @@ typedef struct rugo_impulse_result {
 rugo_status rugo_collision_impulse(const rugo_impulse_input* in, rugo_impulse_result* out);
 
 /* ---- sweep and prune (SPEC 7), exposed for tests and the benchmarks --------------------------- */
-/** An axis-aligned box. */
-typedef struct rugo_aabb {
-    /** Lower and upper corners (lower <= upper on both axes). @{ */
-    rugo_vec2 lower, upper;
-    /** @} */
-} rugo_aabb;
 /** A pair of overlapping boxes, by index. */
 typedef struct rugo_pair {
     /** Indices of the two boxes, a < b. @{ */

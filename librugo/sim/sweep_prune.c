@@ -13,7 +13,7 @@
  * Pairs live in a hash table of h buckets, bucket (s + t) mod h, chained through a pool with a free
  * list; nothing allocates unless the pool or n grows. */
 #include "core/internal.h"
-#include "rugo/world.h"
+#include "sim/internal.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -16,6 +16,7 @@
  * incoming speed as at most sqrt(2 g δ) and leaves with ε_c(δ) times it (dissipative). */
 #include "core/internal.h"
 #include "rugo/world.h"
+#include "sim/internal.h"
 
 #include <string.h>
 

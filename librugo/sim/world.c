@@ -14,8 +14,10 @@
  * its centre of pressure; support probing adds the patch's ends (see below and docs/simulator.md).
  * Micro-collisions (7.3): a point inside its band approaching slower than sqrt(2 g λ) counts its
  * incoming speed as at most sqrt(2 g δ) and leaves with ε_c(δ) times it (dissipative). */
-#include "core/internal.h"
 #include "rugo/world.h"
+
+#include "core/array.h"
+#include "core/internal.h"
 #include "sim/internal.h"
 
 #include <string.h>
@@ -69,27 +71,44 @@ typedef struct world_contact {
 struct rugo_world {
     rugo_world_def def;
     rugo_allocator allocator;
-    rugo_real g; /* |gravity| for micro-collisions */
-    body* bodies;
-    int count, capacity;
-    /* per body, capacity entries */
-    pose* start;      /* poses at the start of a move */
-    rugo_aabb* boxes;
-    struct pair_depth* pair_depth0; /* deepest overlap of each pair at the start of the step, by (a, b) */
-    int pair_depth_count, pair_depth_capacity;
-    saved_body* saved; /* the step's initial state, restored if the step fails */
+    rugo_real g;        /* |gravity| for micro-collisions */
+    rugo__array bodies; /* body: count of them */
+    int count;
+    /* per body */
+    rugo__array start; /* pose: poses at the start of a move */
+    rugo__array boxes; /* rugo_aabb */
+    rugo__array saved; /* saved_body: the step's initial state, restored if the step fails */
+    /* pair_depth: deepest overlap of each pair at the start of the step, by (a, b) */
+    rugo__array pair_depth0;
+    int pair_depth_count;
     rugo_sweep_prune* sap;
     rugo_collide_context* ctx;
     rugo_contact_query query;
-    rugo_contact* scratch;
-    int scratch_capacity;
-    world_contact* contacts;
-    int contact_count, contact_capacity;
-    int contacts_valid; /* contacts describe the current poses */
-    rugo_contact_record* records;
-    int record_count, record_capacity;
+    rugo__array scratch;  /* rugo_contact: one query's contacts (its capacity is the query's room) */
+    rugo__array contacts; /* world_contact */
+    int contact_count;
+    int contacts_valid;  /* contacts describe the current poses */
+    rugo__array records; /* rugo_contact_record */
+    int record_count;
     rugo_step_stats stats;
 };
+
+/* The world's arrays as their elements. */
+static body* bodies_of(const rugo_world* w) { return (body*)w->bodies.data; }
+static pose* start_of(const rugo_world* w) { return (pose*)w->start.data; }
+static rugo_aabb* boxes_of(const rugo_world* w) { return (rugo_aabb*)w->boxes.data; }
+static saved_body* saved_of(const rugo_world* w) { return (saved_body*)w->saved.data; }
+static pair_depth* pair_depth0_of(const rugo_world* w) { return (pair_depth*)w->pair_depth0.data; }
+static rugo_contact* scratch_of(const rugo_world* w) { return (rugo_contact*)w->scratch.data; }
+static world_contact* contacts_of(const rugo_world* w) { return (world_contact*)w->contacts.data; }
+static rugo_contact_record* records_of(const rugo_world* w) { return (rugo_contact_record*)w->records.data; }
+
+/* Room for `need` elements of `elem` bytes in one of the world's arrays: the capacity doubles from 8,
+ * up to 2^29 elements (counts stay ints). 0 on failure, the array then unchanged. */
+static int world_reserve(rugo_world* w, rugo__array* a, int need, size_t elem) {
+    if (need > (1 << 29)) return 0;
+    return rugo__array_reserve(a, &w->allocator, (size_t)need, elem, 8) == RUGO_OK;
+}
 
 rugo_world_def rugo_default_world_def(void) {
     rugo_world_def d;
@@ -156,32 +175,11 @@ void rugo_world_destroy(rugo_world* w) {
     rugo_allocator a = w->allocator;
     rugo_sweep_prune_destroy(w->sap);
     rugo_collide_context_destroy(w->ctx);
-    rugo__free(&a, w->bodies);
-    rugo__free(&a, w->start);
-    rugo__free(&a, w->boxes);
-    rugo__free(&a, w->saved);
-    rugo__free(&a, w->pair_depth0);
-    rugo__free(&a, w->scratch);
-    rugo__free(&a, w->contacts);
-    rugo__free(&a, w->records);
+    rugo__array* all[] = {&w->bodies,      &w->start,   &w->boxes,    &w->saved,
+                          &w->pair_depth0, &w->scratch, &w->contacts, &w->records};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
+        rugo__array_free(all[i], &a);
     rugo__free(&a, w);
-}
-
-/* Grows *p (count used elements of size `size`) to at least `need`; 0 on failure (nothing changed). */
-static int grow(const rugo_allocator* a, void** p, int* capacity, int used, int need, size_t size) {
-    if (need <= *capacity) return 1;
-    int cap = *capacity < 8 ? 8 : *capacity;
-    while (cap < need) {
-        if (cap > (1 << 28)) return 0;
-        cap *= 2;
-    }
-    void* q = rugo__alloc_array(a, (size_t)cap, size);
-    if (q == NULL) return 0;
-    if (used > 0) memcpy(q, *p, (size_t)used * size);
-    rugo__free(a, *p);
-    *p = q;
-    *capacity = cap;
-    return 1;
 }
 
 static int rot_ok(rugo_rot q) { return fabs(q.c * q.c + q.s * q.s - 1.0) <= 1e-6; }
@@ -212,19 +210,14 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
         (!isfinite(mass) || !isfinite(inertia) || !isfinite(1.0 / mass) || !isfinite(1.0 / inertia)))
         return RUGO_ERR_NOT_FINITE;
 
-    int need = w->count + 1;
-    int caps[4] = {w->capacity, w->capacity, w->capacity, w->capacity};
-    int ok = grow(&w->allocator, (void**)&w->bodies, &caps[0], w->count, need, sizeof *w->bodies) &&
-             grow(&w->allocator, (void**)&w->start, &caps[1], w->count, need, sizeof *w->start) &&
-             grow(&w->allocator, (void**)&w->boxes, &caps[2], w->count, need, sizeof *w->boxes) &&
-             grow(&w->allocator, (void**)&w->saved, &caps[3], w->count, need, sizeof *w->saved);
-    /* Arrays grown before a failure keep their larger size; the capacity is the smallest of them. */
-    w->capacity = caps[0];
-    for (int k = 1; k < 4; ++k)
-        if (caps[k] < w->capacity) w->capacity = caps[k];
-    if (!ok) return RUGO_ERR_OUT_OF_MEMORY;
+    /* Arrays grown before a failure keep their larger size. */
+    const int need = w->count + 1;
+    if (!world_reserve(w, &w->bodies, need, sizeof(body)) || !world_reserve(w, &w->start, need, sizeof(pose)) ||
+        !world_reserve(w, &w->boxes, need, sizeof(rugo_aabb)) ||
+        !world_reserve(w, &w->saved, need, sizeof(saved_body)))
+        return RUGO_ERR_OUT_OF_MEMORY;
 
-    body* b = &w->bodies[w->count];
+    body* b = &bodies_of(w)[w->count];
     memset(b, 0, sizeof *b);
     b->shape = def->shape;
     b->type = def->type;
@@ -258,7 +251,7 @@ static rugo_vec2 body_center(const body* b) { return rugo_transform_point(b->xf,
 rugo_status rugo_world_body(const rugo_world* w, int id, rugo_body_state* out) {
     if (w == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (id < 0 || id >= w->count) return RUGO_ERR_BAD_ARGUMENT;
-    const body* b = &w->bodies[id];
+    const body* b = &bodies_of(w)[id];
     out->transform = b->xf;
     out->center = body_center(b);
     out->linear_velocity = b->v;
@@ -274,7 +267,7 @@ rugo_status rugo_world_set_velocity(rugo_world* w, int id, rugo_vec2 linear, rug
     if (w == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (id < 0 || id >= w->count) return RUGO_ERR_BAD_ARGUMENT;
     if (!rugo__v2_finite(linear) || !isfinite(angular)) return RUGO_ERR_NOT_FINITE;
-    body* b = &w->bodies[id];
+    body* b = &bodies_of(w)[id];
     if (b->type == RUGO_BODY_STATIC) {
         /* a static body never moves */
         if (linear.x != 0.0 || linear.y != 0.0 || angular != 0.0) return RUGO_ERR_BAD_ARGUMENT;
@@ -290,7 +283,7 @@ rugo_status rugo_world_set_transform(rugo_world* w, int id, rugo_transform xf) {
     if (id < 0 || id >= w->count) return RUGO_ERR_BAD_ARGUMENT;
     if (!rugo__v2_finite(xf.p) || !isfinite(xf.q.c) || !isfinite(xf.q.s)) return RUGO_ERR_NOT_FINITE;
     if (!rot_ok(xf.q)) return RUGO_ERR_BAD_ARGUMENT;
-    body_set_transform(&w->bodies[id], xf);
+    body_set_transform(&bodies_of(w)[id], xf);
     w->contacts_valid = 0;
     return RUGO_OK;
 }
@@ -299,7 +292,7 @@ rugo_real rugo_world_kinetic_energy(const rugo_world* w) {
     if (w == NULL) return NAN;
     rugo_real e = 0.0;
     for (int i = 0; i < w->count; ++i) {
-        const body* b = &w->bodies[i];
+        const body* b = &bodies_of(w)[i];
         if (b->type != RUGO_BODY_DYNAMIC) continue;
         e += 0.5 * b->mass * rugo_v2_dot(b->v, b->v) + 0.5 * b->inertia * b->w * b->w;
     }
@@ -308,31 +301,31 @@ rugo_real rugo_world_kinetic_energy(const rugo_world* w) {
 
 const rugo_contact_record* rugo_world_contact_records(const rugo_world* w, int* count) {
     if (count != NULL) *count = w != NULL ? w->record_count : 0;
-    return w != NULL ? w->records : NULL;
+    return w != NULL ? records_of(w) : NULL;
 }
 
 /* ---- the step ----------------------------------------------------------------------------------- */
 
 static void save_poses(rugo_world* w) {
     for (int i = 0; i < w->count; ++i) {
-        const body* b = &w->bodies[i];
-        w->start[i].c = body_center(b);
-        w->start[i].angle = b->angle;
-        w->start[i].xf = b->xf;
+        const body* b = &bodies_of(w)[i];
+        start_of(w)[i].c = body_center(b);
+        start_of(w)[i].angle = b->angle;
+        start_of(w)[i].xf = b->xf;
     }
 }
 
 /* Poses start + (velocities) * dt; dt = 0 restores the start exactly. */
 static void move_from_start(rugo_world* w, rugo_real dt) {
     for (int i = 0; i < w->count; ++i) {
-        body* b = &w->bodies[i];
+        body* b = &bodies_of(w)[i];
         if (b->type != RUGO_BODY_DYNAMIC || dt == 0.0) {
-            b->xf = w->start[i].xf;
-            b->angle = w->start[i].angle;
+            b->xf = start_of(w)[i].xf;
+            b->angle = start_of(w)[i].angle;
             continue;
         }
-        rugo_vec2 c = rugo_v2_add(w->start[i].c, rugo_v2_scale(dt, b->v));
-        b->angle = w->start[i].angle + b->w * dt;
+        rugo_vec2 c = rugo_v2_add(start_of(w)[i].c, rugo_v2_scale(dt, b->v));
+        b->angle = start_of(w)[i].angle + b->w * dt;
         b->xf.q = rugo_rot_from_angle(b->angle);
         b->xf.p = rugo_v2_sub(c, rugo_rotate(b->xf.q, b->c_local));
     }
@@ -363,8 +356,8 @@ static rugo_aabb body_aabb(const body* b) {
 #define FACE_COS 0.99985
 
 static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contact* c, world_contact out[2]) {
-    const body* A = &w->bodies[ia];
-    const body* B = &w->bodies[ib];
+    const body* A = &bodies_of(w)[ia];
+    const body* B = &bodies_of(w)[ib];
     int s_is_a = A->size <= B->size;
     const body* S = s_is_a ? A : B;
     const body* O = s_is_a ? B : A;
@@ -423,47 +416,45 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
 
 /* Broad phase and contacts at the current poses into w->contacts. */
 static rugo_status gather(rugo_world* w) {
-    for (int i = 0; i < w->count; ++i) w->boxes[i] = body_aabb(&w->bodies[i]);
-    rugo_status st = rugo_sweep_prune_update(w->sap, w->boxes, w->count);
+    for (int i = 0; i < w->count; ++i) boxes_of(w)[i] = body_aabb(&bodies_of(w)[i]);
+    rugo_status st = rugo_sweep_prune_update(w->sap, boxes_of(w), w->count);
     if (st != RUGO_OK) return st;
     int npairs = 0;
     const rugo_pair* pairs = rugo_sweep_prune_pairs(w->sap, &npairs);
     w->stats.candidate_pairs = npairs;
     w->contact_count = 0;
-    if (w->scratch_capacity == 0 &&
-        !grow(&w->allocator, (void**)&w->scratch, &w->scratch_capacity, 0, 32, sizeof *w->scratch))
+    if (w->scratch.capacity == 0 && !world_reserve(w, &w->scratch, 32, sizeof(rugo_contact)))
         return RUGO_ERR_OUT_OF_MEMORY;
     for (int p = 0; p < npairs; ++p) {
-        const body* a = &w->bodies[pairs[p].a];
-        const body* b = &w->bodies[pairs[p].b];
+        const body* a = &bodies_of(w)[pairs[p].a];
+        const body* b = &bodies_of(w)[pairs[p].b];
         if (a->type == RUGO_BODY_STATIC && b->type == RUGO_BODY_STATIC) continue;
         int count = 0;
         rugo_contact_state state;
         rugo_query_stats qs;
-        st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, w->scratch,
-                                 w->scratch_capacity, &count, &state, &qs);
+        st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, scratch_of(w),
+                                 (int)w->scratch.capacity, &count, &state, &qs);
         if (st != RUGO_OK) return st;
         w->stats.box_tests += qs.box_tests;
-        if (qs.contacts_found > w->scratch_capacity) {
-            if (!grow(&w->allocator, (void**)&w->scratch, &w->scratch_capacity, 0, qs.contacts_found,
-                      sizeof *w->scratch))
+        if ((size_t)qs.contacts_found > w->scratch.capacity) {
+            if (!world_reserve(w, &w->scratch, qs.contacts_found, sizeof(rugo_contact)))
                 return RUGO_ERR_OUT_OF_MEMORY;
-            st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, w->scratch,
-                                     w->scratch_capacity, &count, &state, &qs);
+            st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, scratch_of(w),
+                                     (int)w->scratch.capacity, &count, &state, &qs);
             if (st != RUGO_OK) return st;
         }
         if (count == 0) continue;
-        count = rugo_reduce_manifold(w->scratch, count, w->def.max_contacts_per_pair);
+        count = rugo_reduce_manifold(scratch_of(w), count, w->def.max_contacts_per_pair);
         if (count > w->def.max_contacts_per_pair) count = w->def.max_contacts_per_pair;
-        if (!grow(&w->allocator, (void**)&w->contacts, &w->contact_capacity, w->contact_count,
-                  w->contact_count + 3 * count, sizeof *w->contacts))
+        if (!world_reserve(w, &w->contacts, w->contact_count + 3 * count, sizeof(world_contact)))
             return RUGO_ERR_OUT_OF_MEMORY;
         for (int k = 0; k < count; ++k) {
-            world_contact* c = &w->contacts[w->contact_count++];
+            world_contact* c = &contacts_of(w)[w->contact_count++];
             c->a = pairs[p].a;
             c->b = pairs[p].b;
-            c->c = w->scratch[k];
-            w->contact_count += probe_supports(w, pairs[p].a, pairs[p].b, &w->scratch[k], &w->contacts[w->contact_count]);
+            c->c = scratch_of(w)[k];
+            world_contact* supports = &contacts_of(w)[w->contact_count];
+            w->contact_count += probe_supports(w, pairs[p].a, pairs[p].b, &scratch_of(w)[k], supports);
         }
     }
     w->contacts_valid = 1;
@@ -475,7 +466,7 @@ static rugo_real pair_depth_at_start(const rugo_world* w, int a, int b) {
     int lo = 0, hi = w->pair_depth_count - 1;
     while (lo <= hi) {
         int mid = (lo + hi) / 2;
-        const pair_depth* p = &w->pair_depth0[mid];
+        const pair_depth* p = &pair_depth0_of(w)[mid];
         if (p->a == a && p->b == b) return p->depth;
         if (p->a < a || (p->a == a && p->b < b))
             lo = mid + 1;
@@ -488,17 +479,17 @@ static rugo_real pair_depth_at_start(const rugo_world* w, int a, int b) {
 /* An overlap may deepen by frac × the tolerance beyond what this pair (not either body with some
  * third body) already had at the start of the step. */
 static rugo_real pair_allowance(const rugo_world* w, int a, int b, rugo_real frac) {
-    rugo_real sa = w->bodies[a].size, sb = w->bodies[b].size;
+    rugo_real sa = bodies_of(w)[a].size, sb = bodies_of(w)[b].size;
     return frac * w->def.penetration_tolerance * (sa < sb ? sa : sb) + pair_depth_at_start(w, a, b);
 }
 
-/* 1 if some contact of w->contacts overlaps deeper than frac × its allowance. The advance is found
+/* 1 if some contact of the world's contacts overlaps deeper than frac × its allowance. The advance is found
  * penetrating at frac = 1; the bisection then stops it where the overlap is within STOP_FRAC of the
  * tolerance, so that impulses act on overlaps well inside it (not at its edge). */
 #define STOP_FRAC 0.5
 static int penetrating(const rugo_world* w, rugo_real frac) {
     for (int k = 0; k < w->contact_count; ++k) {
-        const world_contact* c = &w->contacts[k];
+        const world_contact* c = &contacts_of(w)[k];
         if (-c->c.separation > pair_allowance(w, c->a, c->b, frac)) return 1;
     }
     return 0;
@@ -510,13 +501,13 @@ static rugo_vec2 point_velocity(const body* b, rugo_vec2 r) { return rugo_v2_add
  * of a flat piece, its joints); opposite normals (a body wedged between two sides) stay apart. */
 #define GROUP_COS 0.9
 
-/* Assigns w->contacts[k].group: the index of the group's first contact. */
+/* Assigns each contact's group: the index of the group's first contact. */
 static void group_contacts(rugo_world* w) {
     for (int k = 0; k < w->contact_count; ++k) {
-        world_contact* c = &w->contacts[k];
+        world_contact* c = &contacts_of(w)[k];
         c->group = k;
         for (int m = k - 1; m >= 0; --m) {
-            const world_contact* o = &w->contacts[m];
+            const world_contact* o = &contacts_of(w)[m];
             if (o->a != c->a || o->b != c->b) break;
             if (o->group == m && rugo_v2_dot(o->c.normal, c->c.normal) > GROUP_COS) c->group = m;
         }
@@ -525,8 +516,8 @@ static void group_contacts(rugo_world* w) {
 
 /* Relative normal velocity (SPEC 10 sign: < 0 approaching) of a contact's midpoint. */
 static rugo_real contact_vn(const rugo_world* w, const world_contact* wc, rugo_vec2* point) {
-    const body* A = &w->bodies[wc->a];
-    const body* B = &w->bodies[wc->b];
+    const body* A = &bodies_of(w)[wc->a];
+    const body* B = &bodies_of(w)[wc->b];
     *point = rugo_v2_scale(0.5, rugo_v2_add(wc->c.point_a, wc->c.point_b));
     rugo_vec2 va = point_velocity(A, rugo_v2_sub(*point, body_center(A)));
     rugo_vec2 vb = point_velocity(B, rugo_v2_sub(*point, body_center(B)));
@@ -561,15 +552,16 @@ static rugo_real contact_restitution(const rugo_world* w, const body* A, const b
  * resting on a flat face gets its impulse in the middle rather than at one end first. Returns 1 if an
  * impulse was applied. */
 static int resolve_group(rugo_world* w, int g, rugo_status* status) {
-    const world_contact* lead = &w->contacts[g];
-    body* A = &w->bodies[lead->a];
-    body* B = &w->bodies[lead->b];
+    const world_contact* contacts = contacts_of(w); /* no contact is added here */
+    const world_contact* lead = &contacts[g];
+    body* A = &bodies_of(w)[lead->a];
+    body* B = &bodies_of(w)[lead->b];
     rugo_real sw = 0.0, wmax = -1.0;
     rugo_vec2 sn = rugo_v2(0, 0);
     rugo_real sl = 0.0, sla = 0.0, sd = 0.0, ss = 0.0, smu = 0.0, seps = 0.0;
     int best = -1;
-    for (int k = g; k < w->contact_count && w->contacts[k].a == lead->a && w->contacts[k].b == lead->b; ++k) {
-        const world_contact* wc = &w->contacts[k];
+    for (int k = g; k < w->contact_count && contacts[k].a == lead->a && contacts[k].b == lead->b; ++k) {
+        const world_contact* wc = &contacts[k];
         if (wc->group != g) continue;
         rugo_vec2 pt;
         rugo_real vn = contact_vn(w, wc, &pt);
@@ -595,7 +587,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     }
     if (best < 0 || !(sw > 0.0)) return 0;
     rugo_real nl = rugo__v2_length(sn);
-    rugo_vec2 normal = nl > 0.0 ? rugo_v2_scale(1.0 / nl, sn) : w->contacts[best].c.normal;
+    rugo_vec2 normal = nl > 0.0 ? rugo_v2_scale(1.0 / nl, sn) : contacts[best].c.normal;
     rugo_real lam = sl / sw, la = sla / sw, delta = sd / sw, sep = ss / sw;
     rugo_real mu = smu / sw, base_eps = seps / sw;
     rugo_real lb = lam - la;
@@ -609,9 +601,9 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     rugo_vec2 tau = rugo_v2_perp(normal);
     rugo_vec2 p1 = rugo_v2(0, 0), p2 = rugo_v2(0, 0);
     rugo_real u1 = INFINITY, u2 = -INFINITY;
-    for (int k = g; k < w->contact_count && w->contacts[k].a == lead->a && w->contacts[k].b == lead->b; ++k) {
-        if (w->contacts[k].group != g) continue;
-        rugo_vec2 pt = rugo_v2_scale(0.5, rugo_v2_add(w->contacts[k].c.point_a, w->contacts[k].c.point_b));
+    for (int k = g; k < w->contact_count && contacts[k].a == lead->a && contacts[k].b == lead->b; ++k) {
+        if (contacts[k].group != g) continue;
+        rugo_vec2 pt = rugo_v2_scale(0.5, rugo_v2_add(contacts[k].c.point_a, contacts[k].c.point_b));
         rugo_real u = rugo_v2_dot(pt, tau);
         if (u < u1) {
             u1 = u;
@@ -682,12 +674,11 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     B->v = rugo_v2_sub(B->v, rugo_v2_scale(B->inv_mass, r.impulse));
     B->w -= B->inv_inertia * rugo_v2_cross(in.r_b, r.impulse);
     w->stats.impulses++;
-    if (!grow(&w->allocator, (void**)&w->records, &w->record_capacity, w->record_count, w->record_count + 1,
-              sizeof *w->records)) {
+    if (!world_reserve(w, &w->records, w->record_count + 1, sizeof(rugo_contact_record))) {
         *status = RUGO_ERR_OUT_OF_MEMORY;
         return 1;
     }
-    rugo_contact_record* rec = &w->records[w->record_count++];
+    rugo_contact_record* rec = &records_of(w)[w->record_count++];
     rec->body_a = lead->a;
     rec->body_b = lead->b;
     rec->point = point;
@@ -706,7 +697,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     return 1;
 }
 
-/* Impulses at every contact group of w->contacts, one after another (7.4), in up to CONTACT_SWEEPS
+/* Impulses at every contact group of the world's contacts, one after another (7.4), in up to CONTACT_SWEEPS
  * sweeps (a sweep after the first only acts where points approach again). */
 static rugo_status resolve(rugo_world* w) {
     w->stats.contacts += w->contact_count;
@@ -714,7 +705,7 @@ static rugo_status resolve(rugo_world* w) {
     for (int sweep = 0; sweep < CONTACT_SWEEPS; ++sweep) {
         int applied = 0;
         for (int k = 0; k < w->contact_count; ++k) {
-            if (w->contacts[k].group != k) continue;
+            if (contacts_of(w)[k].group != k) continue;
             rugo_status st = RUGO_OK;
             applied += resolve_group(w, k, &st);
             if (st != RUGO_OK) return st;
@@ -729,7 +720,7 @@ static rugo_status resolve(rugo_world* w) {
 static int advance_samples(const rugo_world* w, rugo_real dt) {
     rugo_real worst = 0.0;
     for (int i = 0; i < w->count; ++i) {
-        const body* b = &w->bodies[i];
+        const body* b = &bodies_of(w)[i];
         if (b->type != RUGO_BODY_DYNAMIC) continue;
         rugo_real reach = b->size + rugo__v2_length(rugo_v2_sub(b->root.center, b->c_local));
         rugo_real travel = (rugo__v2_length(b->v) + fabs(b->w) * reach) * dt;
@@ -755,21 +746,22 @@ static int advance_samples(const rugo_world* w, rugo_real dt) {
 static rugo_status project_overlaps(rugo_world* w) {
     for (int pass = 0; pass < PROJECT_PASSES; ++pass) {
         group_contacts(w);
+        const world_contact* contacts = contacts_of(w); /* until the gather at the end of the pass */
         int moved = 0;
         for (int g = 0; g < w->contact_count; ++g) {
-            const world_contact* lead = &w->contacts[g];
+            const world_contact* lead = &contacts[g];
             if (lead->group != g) continue;
-            body* A = &w->bodies[lead->a];
-            body* B = &w->bodies[lead->b];
+            body* A = &bodies_of(w)[lead->a];
+            body* B = &bodies_of(w)[lead->b];
             rugo_real im = A->inv_mass + B->inv_mass;
             if (!(im > 0.0)) continue;
             rugo_real deepest = 0.0;
             rugo_vec2 n = lead->c.normal;
-            for (int k = g; k < w->contact_count && w->contacts[k].a == lead->a && w->contacts[k].b == lead->b; ++k) {
-                if (w->contacts[k].group != g) continue;
-                if (-w->contacts[k].c.separation > deepest) {
-                    deepest = -w->contacts[k].c.separation;
-                    n = w->contacts[k].c.normal;
+            for (int k = g; k < w->contact_count && contacts[k].a == lead->a && contacts[k].b == lead->b; ++k) {
+                if (contacts[k].group != g) continue;
+                if (-contacts[k].c.separation > deepest) {
+                    deepest = -contacts[k].c.separation;
+                    n = contacts[k].c.normal;
                 }
             }
             rugo_real smin = A->size < B->size ? A->size : B->size;
@@ -804,18 +796,17 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
      * beyond the tolerance: bisection cannot undo them. */
     w->pair_depth_count = 0;
     for (int k = 0; k < w->contact_count; ++k) {
-        const world_contact* c = &w->contacts[k];
+        const world_contact* c = &contacts_of(w)[k];
         rugo_real d = -c->c.separation;
         if (!(d > 0.0)) continue;
-        pair_depth* last = w->pair_depth_count > 0 ? &w->pair_depth0[w->pair_depth_count - 1] : NULL;
+        pair_depth* last = w->pair_depth_count > 0 ? &pair_depth0_of(w)[w->pair_depth_count - 1] : NULL;
         if (last != NULL && last->a == c->a && last->b == c->b) {
             if (d > last->depth) last->depth = d;
             continue;
         }
-        if (!grow(&w->allocator, (void**)&w->pair_depth0, &w->pair_depth_capacity, w->pair_depth_count,
-                  w->pair_depth_count + 1, sizeof *w->pair_depth0))
+        if (!world_reserve(w, &w->pair_depth0, w->pair_depth_count + 1, sizeof(pair_depth)))
             return RUGO_ERR_OUT_OF_MEMORY;
-        pair_depth* pd = &w->pair_depth0[w->pair_depth_count++];
+        pair_depth* pd = &pair_depth0_of(w)[w->pair_depth_count++];
         pd->a = c->a;
         pd->b = c->b;
         pd->depth = d;
@@ -893,23 +884,25 @@ rugo_status rugo_world_step(rugo_world* w, rugo_step_stats* stats) {
     rugo_real h = w->def.time_step;
     rugo_vec2 gh = rugo_v2_scale(h, w->def.gravity);
     int symplectic = w->def.integrator == RUGO_INTEGRATE_SYMPLECTIC_EULER;
+    body* bodies = bodies_of(w); /* no body is added during a step */
+    saved_body* saved = saved_of(w);
 
     for (int i = 0; i < w->count; ++i) {
-        w->saved[i].xf = w->bodies[i].xf;
-        w->saved[i].angle = w->bodies[i].angle;
-        w->saved[i].v = w->bodies[i].v;
-        w->saved[i].w = w->bodies[i].w;
+        saved[i].xf = bodies[i].xf;
+        saved[i].angle = bodies[i].angle;
+        saved[i].v = bodies[i].v;
+        saved[i].w = bodies[i].w;
     }
     if (symplectic)
         for (int i = 0; i < w->count; ++i)
-            if (w->bodies[i].type == RUGO_BODY_DYNAMIC) w->bodies[i].v = rugo_v2_add(w->bodies[i].v, gh);
+            if (bodies[i].type == RUGO_BODY_DYNAMIC) bodies[i].v = rugo_v2_add(bodies[i].v, gh);
     rugo_status st = step_contacts_and_move(w);
     if (st != RUGO_OK) {
         for (int i = 0; i < w->count; ++i) {
-            w->bodies[i].xf = w->saved[i].xf;
-            w->bodies[i].angle = w->saved[i].angle;
-            w->bodies[i].v = w->saved[i].v;
-            w->bodies[i].w = w->saved[i].w;
+            bodies[i].xf = saved[i].xf;
+            bodies[i].angle = saved[i].angle;
+            bodies[i].v = saved[i].v;
+            bodies[i].w = saved[i].w;
         }
         w->contacts_valid = 0;
         w->record_count = 0;
@@ -917,7 +910,7 @@ rugo_status rugo_world_step(rugo_world* w, rugo_step_stats* stats) {
     }
     if (!symplectic)
         for (int i = 0; i < w->count; ++i)
-            if (w->bodies[i].type == RUGO_BODY_DYNAMIC) w->bodies[i].v = rugo_v2_add(w->bodies[i].v, gh);
+            if (bodies[i].type == RUGO_BODY_DYNAMIC) bodies[i].v = rugo_v2_add(bodies[i].v, gh);
     w->stats.kinetic_energy = rugo_world_kinetic_energy(w);
     if (stats != NULL) *stats = w->stats;
     return RUGO_OK;

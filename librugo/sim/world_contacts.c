@@ -112,8 +112,8 @@ rugo_status rugo__gather_contacts(rugo_world* w) {
         if ((size_t)qs.contacts_found > w->scratch.capacity) {
             if (!rugo__world_reserve(w, &w->scratch, qs.contacts_found, sizeof(rugo_contact)))
                 return RUGO_ERR_OUT_OF_MEMORY;
-            st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, rugo__world_scratch(w),
-                                     (int)w->scratch.capacity, &count, &state, &qs);
+            st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query,
+                                     rugo__world_scratch(w), (int)w->scratch.capacity, &count, &state, &qs);
             if (st != RUGO_OK) return st;
         }
         if (count == 0) continue;

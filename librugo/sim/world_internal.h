@@ -89,7 +89,9 @@ static inline saved_body* rugo__world_saved(const rugo_world* w) { return (saved
 static inline pair_depth* rugo__world_pair_depth0(const rugo_world* w) {
     return (pair_depth*)w->pair_depth0.data;
 }
-static inline rugo_contact* rugo__world_scratch(const rugo_world* w) { return (rugo_contact*)w->scratch.data; }
+static inline rugo_contact* rugo__world_scratch(const rugo_world* w) {
+    return (rugo_contact*)w->scratch.data;
+}
 static inline world_contact* rugo__world_contacts(const rugo_world* w) {
     return (world_contact*)w->contacts.data;
 }

@@ -94,7 +94,8 @@ static rugo_status project_overlaps(rugo_world* w) {
             if (!(im > 0.0)) continue;
             rugo_real deepest = 0.0;
             rugo_vec2 n = lead->c.normal;
-            for (int k = g; k < w->contact_count && contacts[k].a == lead->a && contacts[k].b == lead->b; ++k) {
+            for (int k = g; k < w->contact_count && contacts[k].a == lead->a && contacts[k].b == lead->b;
+                 ++k) {
                 if (contacts[k].group != g) continue;
                 if (-contacts[k].c.separation > deepest) {
                     deepest = -contacts[k].c.separation;

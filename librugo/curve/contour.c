@@ -506,8 +506,9 @@ rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p) {
  * one. Only the x of a change (left or right of p) can be affected by round-off, which matters only
  * when p is within round-off of the curve.
  *
- * The count is a sum over segments of rugo__contour_winding_segment (narrow.h), so a caller with a
- * bounding-box tree may skip segments whose count is certainly 0 and get the same sum (collide.c). */
+ * The count is a sum over segments of rugo__contour_winding_segment (curve/internal.h), so a caller
+ * with a bounding-box tree may skip segments whose count is certainly 0 and get the same sum
+ * (shape/point_query.c). */
 
 int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p) {
     rugo_vec2 q[4], b[4], k[4];

@@ -28,7 +28,7 @@
  *  - brute: the same narrow phase (librugo's internal rugo__narrow_pieces, cutoff band + margin) on
  *    every segment pair whose Bezier-hull boxes overlap, no tree: n^2 box tests per query. Its contact
  *    assembly is this program's (minima that face each other, penetration pairs), not the overlap
- *    region tracing of collide.c, so its time is a lower bound of a tree-less librugo.
+ *    region tracing of collide_regions.c, so its time is a lower bound of a tree-less librugo.
  *  - box2d m (m = 16 ... 4096): each finest curve approximated by the polygon of m vertices on the
  *    curve at equal arc length (in floats), decomposed into convex pieces of at most 8 vertices by
  *    this program's own code: for a star-shaped outline (all of these) a strip of truncated wedges

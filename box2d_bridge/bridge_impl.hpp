@@ -157,7 +157,15 @@ class QueryRun {
 
 using namespace detail; // NOLINT: the bridge's own sources only (this header is not installed)
 
-struct Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b2DestructionListener {
+// Not API: a nested class takes the visibility of its enclosing class, and Bridge is exported
+// (RUGO_API), so without this the implementation's methods, vtable and typeinfo would be exported too.
+#if defined(__GNUC__) || defined(__clang__)
+#define RUGO_BRIDGE_HIDDEN __attribute__((visibility("hidden")))
+#else
+#define RUGO_BRIDGE_HIDDEN
+#endif
+
+struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b2DestructionListener {
     b2World* world = nullptr;
     BridgeDef def;
     b2ContactListener* prevListener = nullptr;

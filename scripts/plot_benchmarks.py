@@ -2,24 +2,26 @@
 """Plots of the benchmarks' CSV files as SVG (Python 3 standard library only, no matplotlib).
 
 Usage:
-    python3 scripts/plot_benchmarks.py [CSV_DIR] [OUT_DIR]
+    python3 scripts/plot_benchmarks.py [RESULTS_DIR] [OUT_DIR]
 
-CSV_DIR holds what `bench_queries` wrote (default out/bench_queries); OUT_DIR receives the SVG files
-(default docs/img). Written:
+RESULTS_DIR holds one machine's results as the benchmarks write them (samples/bench/results/<machine>/,
+samples/bench/results/README.md; default: samples/bench/results/vm-2core, the runs the documents
+quote); OUT_DIR receives the SVG files (default docs/img). Written, from the files present:
     bench_queries_pareto.svg  time per query against the effective maximum separation error, log-log,
                               one panel each for all pose pairs, smooth pairs and rough pairs
+                              (bench_queries.csv, _smooth.csv, _rough.csv)
     bench_queries_sweep.svg   box tests, segment pairs and time per query against the segment count
                               (one contact) and against the contact count (1024 segments)
-A configuration with a missed or spurious contact is drawn hollow at an error of at least D = 0.005
-(the benchmark's contact window), as the benchmark's summary counts it.
-
-If CSV_DIR (or out/bench_box2d_scenes) holds bench_box2d_scenes.csv (the stdout of
-`bench_box2d_scenes`), also written:
+                              (bench_queries_sweep.csv)
     bench_box2d_scenes.svg    ms per step of the four variants (bridge auto / finest level, polygon
                               compounds, native circles) against the body count (S = 64) and against
-                              the segment count (N = 256), log-log
+                              the segment count (N = 256), log-log (bench_box2d_scenes.csv, and the
+                              largest sizes from bench_box2d_scenes_large.csv when that run was separate)
+A configuration with a missed or spurious contact is drawn hollow at an error of at least D = 0.005
+(the benchmark's contact window), as the benchmark's summary counts it.
 """
 
+import argparse
 import csv
 import math
 import os
@@ -271,8 +273,15 @@ B2_VARIANTS = [("bridge_auto", "#1f6fb4", "bridge, automatic level of detail"),
                ("circle", "#2a9d55", "native b2CircleShape (floor)")]
 
 
-def box2d_scenes_plot(csv_path, out_path):
-    rows = [r for r in read_csv_comments(csv_path) if r.get("variant") in {v for v, _, _ in B2_VARIANTS}]
+def box2d_scenes_plot(csv_paths, out_path):
+    """csv_paths: the runs to draw, the first one's row winning for a (variant, N, S) in several."""
+    rows, seen = [], set()
+    for path in csv_paths:
+        for r in read_csv_comments(path):
+            key = (r.get("variant"), r.get("N"), r.get("S"))
+            if key[0] in {v for v, _, _ in B2_VARIANTS} and key not in seen:
+                seen.add(key)
+                rows.append(r)
     W, H, left, top, gap = 360, 280, 70, 40, 80
     body = []
     ms = [float(r["ms_per_step"]) for r in rows]
@@ -319,8 +328,15 @@ def read_csv_comments(path):
 
 
 def main(argv):
-    csv_dir = argv[1] if len(argv) > 1 else "out/bench_queries"
-    out_dir = argv[2] if len(argv) > 2 else "docs/img"
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    parser = argparse.ArgumentParser(description="SVG plots of the benchmarks' results (see the module's docstring).")
+    parser.add_argument("results_dir", nargs="?",
+                        help="one machine's results, as the benchmarks write them "
+                             "(default: samples/bench/results/vm-2core of this repository)")
+    parser.add_argument("out_dir", nargs="?", help="where the SVG files go (default: docs/img of this repository)")
+    args = parser.parse_args(argv[1:])
+    csv_dir = args.results_dir or os.path.join(root, "samples", "bench", "results", "vm-2core")
+    out_dir = args.out_dir or os.path.join(root, "docs", "img")
     os.makedirs(out_dir, exist_ok=True)
     written = []
     if os.path.exists(os.path.join(csv_dir, "bench_queries.csv")):
@@ -331,12 +347,11 @@ def main(argv):
         path = os.path.join(out_dir, "bench_queries_sweep.svg")
         sweep_plot(csv_dir, path)
         written.append(path)
-    for d in (csv_dir, os.path.join("out", "bench_box2d_scenes")):
-        if os.path.exists(os.path.join(d, "bench_box2d_scenes.csv")):
-            path = os.path.join(out_dir, "bench_box2d_scenes.svg")
-            box2d_scenes_plot(os.path.join(d, "bench_box2d_scenes.csv"), path)
-            written.append(path)
-            break
+    b2 = [os.path.join(csv_dir, name) for name in ("bench_box2d_scenes.csv", "bench_box2d_scenes_large.csv")]
+    if os.path.exists(b2[0]):
+        path = os.path.join(out_dir, "bench_box2d_scenes.svg")
+        box2d_scenes_plot([p for p in b2 if os.path.exists(p)], path)
+        written.append(path)
     if not written:
         sys.stderr.write(f"plot_benchmarks.py: no benchmark CSV in {csv_dir}\n")
         return 1

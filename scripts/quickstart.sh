@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 sh scripts/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRUGO_BUILD_TESTS=OFF >/dev/null
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)"
-./build/samples/b2_demo out/demo
+./build/samples/box2d/b2_demo out/demo

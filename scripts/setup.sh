@@ -2,7 +2,7 @@
 # Installs what librugo needs on a Debian machine, if anything is missing.
 # As root it runs apt-get; otherwise it prints the exact install line and stops with status 1.
 set -eu
-PACKAGES="cmake make gcc g++ pkg-config check libeigen3-dev libbox2d-dev clang libclang-rt-14-dev doxygen"
+PACKAGES="cmake make gcc g++ pkg-config check libeigen3-dev libbox2d-dev clang libclang-rt-14-dev doxygen clang-format"
 missing=""
 for p in $PACKAGES; do
     # "installed" exactly: a removed package whose configuration files remain is not installed.

@@ -3166,7 +3166,7 @@ START_TEST(test_query_margin) {
 END_TEST
 
 
-/* ---- containment through the tree (collide.c "Containment through the tree") ------------------- */
+/* ---- containment through the tree (collide_levels.c, "Containment through the tree") ------------ */
 
 typedef struct contain_tally {
     long cases, inside, mismatches, closest_mismatches;

@@ -41,16 +41,16 @@ typedef struct rugo_baked_error {
 
 /** 1 if the buffer starts with the magic bytes of a baked shape (use it to tell a baked file from a
  * JSON one: a JSON text cannot start with them). 0 for NULL or a shorter buffer. */
-int rugo_is_baked(const void* buffer, size_t size);
+RUGO_API int rugo_is_baked(const void* buffer, size_t size);
 
 /** Bytes rugo_shape_bake writes for this shape, into *size. Errors: NULL_ARGUMENT, TOO_LARGE (beyond
  * RUGO_MAX_BAKED_BYTES). */
-rugo_status rugo_shape_bake_size(const rugo_shape* shape, size_t* size);
+RUGO_API rugo_status rugo_shape_bake_size(const rugo_shape* shape, size_t* size);
 
 /** Writes the shape into buffer (capacity bytes, caller-owned). *written receives the size (also on TOO_LARGE, the
  * capacity needed). Errors: NULL_ARGUMENT, TOO_LARGE (capacity below rugo_shape_bake_size, or the
  * shape beyond RUGO_MAX_BAKED_BYTES). Deterministic: the same shape gives the same bytes. */
-rugo_status rugo_shape_bake(const rugo_shape* shape, void* buffer, size_t capacity, size_t* written);
+RUGO_API rugo_status rugo_shape_bake(const rugo_shape* shape, void* buffer, size_t capacity, size_t* written);
 
 /** Loads a baked shape from memory (size bytes; the buffer is only read and may be freed afterwards).
  * The shape allocates with `allocator` (NULL = malloc/free); destroy it with rugo_shape_destroy.
@@ -59,8 +59,8 @@ rugo_status rugo_shape_bake(const rugo_shape* shape, void* buffer, size_t capaci
  * (the header's size beyond RUGO_MAX_BAKED_BYTES); BAD_FORMAT (bytes after the payload); CHECKSUM;
  * BAD_FORMAT (any field out of range, a payload whose length does not match its levels);
  * OUT_OF_MEMORY. detail may be NULL. On error *out is NULL. */
-rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_allocator* allocator,
-                                  rugo_shape** out, rugo_baked_error* detail);
+RUGO_API rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_allocator* allocator,
+                                           rugo_shape** out, rugo_baked_error* detail);
 
 /** Replaces how rugo_shape_write_baked_file writes bytes, so that tests can simulate a full disk.
  * write(data, size, ctx) returns the bytes it accepted (fewer = failure). */
@@ -76,14 +76,15 @@ typedef struct rugo_baked_write_hook {
  * 0644 on POSIX. hook may be NULL; when given, each chunk is first offered to hook->write and only the
  * bytes it accepts are written, a short count failing the write like a full disk. allocator (NULL = malloc/free) holds the bytes
  * meanwhile. Errors: NULL_ARGUMENT, TOO_LARGE, OUT_OF_MEMORY, IO (detail names the step). */
-rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path, const rugo_allocator* allocator,
-                                        const rugo_baked_write_hook* hook, rugo_baked_error* detail);
+RUGO_API rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path,
+                                                 const rugo_allocator* allocator,
+                                                 const rugo_baked_write_hook* hook, rugo_baked_error* detail);
 
 /** Reads and loads a baked file (path: a file name, not kept). On success *out is a new shape owned by
  * the caller (free with rugo_shape_destroy); on error NULL. detail may be NULL. Errors: those of rugo_shape_load_baked, IO (cannot open or read),
  * TOO_LARGE (a file beyond RUGO_MAX_BAKED_BYTES, refused before reading it). */
-rugo_status rugo_shape_read_baked_file(const char* path, const rugo_allocator* allocator, rugo_shape** out,
-                                       rugo_baked_error* detail);
+RUGO_API rugo_status rugo_shape_read_baked_file(const char* path, const rugo_allocator* allocator,
+                                                rugo_shape** out, rugo_baked_error* detail);
 
 #ifdef __cplusplus
 }

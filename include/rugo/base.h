@@ -1,5 +1,6 @@
 /** @file rugo/base.h
- * librugo — base types: reals, 2-D vectors, status codes, allocator hooks, version.
+ * librugo — base types: reals, 2-D vectors, transforms, axis-aligned boxes, status codes, allocator hooks,
+ * version.
  *
  * Every public function that takes outside input returns a rugo_status and never aborts, prints or
  * exits. Memory goes through a rugo_allocator carried by the def of each object that allocates; a NULL
@@ -19,7 +20,8 @@
  * pictures, the API by example); docs/box2d.md covers the Box2D bridge.
  *
  * One header per concept (rugo/rugo.h includes the C ones):
- * - rugo/base.h: reals, vectors, transforms, status codes, allocator hooks, version macros
+ * - rugo/base.h: reals, vectors, transforms, axis-aligned boxes, status codes, allocator hooks, version
+ *   macros
  * - rugo/contour.h: closed cubic B-spline contours: evaluation, arc length, mass, queries, validation
  * - rugo/wavelet.h: CDF(4, m~) wavelet filters, analysis and synthesis
  * - rugo/multires.h: the multiresolution pyramid, direct manipulation and deformation
@@ -40,6 +42,18 @@
 
 #include <math.h>
 #include <stddef.h>
+
+/** Marks the public API: every function declared in include/rugo/ and the Box2D bridge's class
+ * carry it. librugo, rugo::fit and rugo::box2d are compiled with hidden default visibility, so a shared
+ * library exports exactly what is marked so and none of the internals (the rugo__ helpers): its symbol
+ * table is the documented API, and calls between internals need no dynamic lookup. With GCC and clang
+ * it is the default-visibility attribute; elsewhere it is empty, and the libraries are meant to be
+ * built static there. */
+#if defined(__GNUC__) || defined(__clang__)
+#define RUGO_API __attribute__((visibility("default")))
+#else
+#define RUGO_API
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -115,7 +129,7 @@ typedef enum rugo_status {
 
 /** A short constant English name for a status, e.g. "self-intersecting outline". The string is static
  * (never free it); an unknown value gives a generic name. Never NULL, never fails. */
-const char* rugo_status_string(rugo_status status);
+RUGO_API const char* rugo_status_string(rugo_status status);
 
 /** Largest control-point count any function accepts (2^20): bounds memory use on hostile input
  * (RUGO_ERR_TOO_MANY_POINTS beyond it). */
@@ -136,11 +150,11 @@ typedef struct rugo_allocator {
 } rugo_allocator;
 
 /** The malloc/free allocator (ctx NULL). Never fails. */
-rugo_allocator rugo_default_allocator(void);
+RUGO_API rugo_allocator rugo_default_allocator(void);
 
 /** The version of the linked library, "MAJOR.MINOR.PATCH" (a static string; never NULL), for checking
  * that headers and library agree: compare with RUGO_VERSION_STRING. */
-const char* rugo_version_string(void);
+RUGO_API const char* rugo_version_string(void);
 
 /** The vector (x, y). Inline, like the small vector helpers below, so that hot loops stay cheap;
  * none of them checks for NaN (NaN in, NaN out). */
@@ -202,6 +216,13 @@ static inline rugo_vec2 rugo_transform_point(rugo_transform t, rugo_vec2 v) { re
 static inline rugo_vec2 rugo_inv_transform_point(rugo_transform t, rugo_vec2 v) {
     return rugo_inv_rotate(t.q, rugo_v2_sub(v, t.p));
 }
+
+/** An axis-aligned box, in the caller's length units. */
+typedef struct rugo_aabb {
+    /** Lower and upper corners (lower <= upper on both axes). @{ */
+    rugo_vec2 lower, upper;
+    /** @} */
+} rugo_aabb;
 
 #ifdef __cplusplus
 }

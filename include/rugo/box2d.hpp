@@ -136,7 +136,7 @@ struct BodyMemory {
 };
 
 /// Rough curved bodies in one b2World (see the top of this file). Not copyable.
-class Bridge {
+class RUGO_API Bridge {
 public:
     /// Installs the bridge's contact listener, contact filter and destruction listener on `world`,
     /// chaining to those the world had (world is not owned; nullptr makes an inert bridge, and so does a

@@ -49,7 +49,7 @@ typedef enum rugo_contact_state {
 
 /** The state's name, "apart", "contact" or "intersecting" (a static string; "unknown" for an invalid
  * value). */
-const char* rugo_contact_state_name(rugo_contact_state s);
+RUGO_API const char* rugo_contact_state_name(rugo_contact_state s);
 
 /** One contact point pair between shape A and shape B (or a primitive as B). */
 typedef struct rugo_contact {
@@ -105,7 +105,7 @@ typedef struct rugo_contact_query {
 } rugo_contact_query;
 
 /** Level 0 (finest), the shapes' tolerances, max for μ, min for ε, margin 0, cookie set. */
-rugo_contact_query rugo_default_contact_query(void);
+RUGO_API rugo_contact_query rugo_default_contact_query(void);
 
 /** Reusable scratch for queries (node stacks, pair lists; opaque). One per thread. */
 typedef struct rugo_collide_context rugo_collide_context;
@@ -113,9 +113,9 @@ typedef struct rugo_collide_context rugo_collide_context;
  * It allocates through a copy of `allocator` (NULL = malloc/free; its functions and ctx must outlive
  * the context) when a query needs more room, and keeps that room. Errors: NULL_ARGUMENT,
  * OUT_OF_MEMORY. */
-rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out);
+RUGO_API rugo_status rugo_collide_context_create(const rugo_allocator* allocator, rugo_collide_context** out);
 /** Frees the context and its buffers; NULL is allowed. */
-void rugo_collide_context_destroy(rugo_collide_context* ctx);
+RUGO_API void rugo_collide_context_destroy(rugo_collide_context* ctx);
 /** Allocates now the room that queries between two shapes no larger than `shape` (its coarsest and
  * finest levels) with up to `contacts` contacts would grow the context to, so that such queries do
  * not allocate later (e.g. call it when a body is added, not during a step). Queries at coarser
@@ -123,38 +123,43 @@ void rugo_collide_context_destroy(rugo_collide_context* ctx);
  * deeply overlapping, many more contacts) still grows the context. Calls add up to the largest
  * sizes asked for; the context never shrinks. Errors: NULL_ARGUMENT, BAD_ARGUMENT (contacts < 0 or
  * beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY (the context keeps what it had). */
-rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* shape, int contacts);
+RUGO_API rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* shape,
+                                                  int contacts);
 
 /** Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
  * first within each region, regions in a stable order), the number written to *count, the state to
  * *state; stats may be NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (query cookie, capacity < 0),
  * NOT_FINITE (a transform), OUT_OF_MEMORY (the context could not grow). */
-rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
-                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                rugo_query_stats* stats);
+RUGO_API rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                         const rugo_shape* b, rugo_transform xb,
+                                         const rugo_contact_query* query, rugo_contact* contacts,
+                                         int capacity, int* count, rugo_contact_state* state,
+                                         rugo_query_stats* stats);
 
 /** A shape against a circle (B, smooth, tolerance 0, in world coordinates) of the given centre and
  * radius; see rugo_collide_polygon for the primitives and rugo_collide_shapes for outputs and errors
  * (BAD_ARGUMENT also for a negative radius). */
-rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
-                                rugo_real radius, const rugo_contact_query* query, rugo_contact* contacts,
-                                int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats);
+RUGO_API rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                         rugo_vec2 center, rugo_real radius, const rugo_contact_query* query,
+                                         rugo_contact* contacts, int capacity, int* count,
+                                         rugo_contact_state* state, rugo_query_stats* stats);
 /** A shape against a segment p1-p2 with a radius (a capsule; radius 0 is an edge), in world
  * coordinates; see rugo_collide_polygon. */
-rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
-                                 rugo_vec2 p2, rugo_real radius, const rugo_contact_query* query,
-                                 rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                 rugo_query_stats* stats);
+RUGO_API rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                          rugo_vec2 p1, rugo_vec2 p2, rugo_real radius,
+                                          const rugo_contact_query* query, rugo_contact* contacts,
+                                          int capacity, int* count, rugo_contact_state* state,
+                                          rugo_query_stats* stats);
 /** A shape against Box2D-like primitives (B, smooth, tolerance 0, in world coordinates): a circle, a
  * segment with radius (a capsule; radius 0 is an edge), a convex polygon of 3..8 counter-clockwise
  * vertices with radius (Box2D's polygon skin). Same outputs and errors as rugo_collide_shapes;
  * BAD_ARGUMENT also for a negative radius or a polygon that is not convex and counter-clockwise.
  * This function: the convex polygon (vertices borrowed for the call). */
-rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                 const rugo_vec2* vertices, int vertex_count, rugo_real radius,
-                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity, int* count,
-                                 rugo_contact_state* state, rugo_query_stats* stats);
+RUGO_API rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                          const rugo_vec2* vertices, int vertex_count, rugo_real radius,
+                                          const rugo_contact_query* query, rugo_contact* contacts,
+                                          int capacity, int* count, rugo_contact_state* state,
+                                          rugo_query_stats* stats);
 
 /** A pair of MOBBtree nodes whose boxes overlap (rugo_tree_pairs). */
 typedef struct rugo_node_pair {
@@ -167,14 +172,14 @@ typedef struct rugo_node_pair {
  * tree). Writes at most capacity pairs; *count = number found (may exceed capacity);
  * *box_tests = OBB tests done (box_tests may be NULL). Errors: NULL_ARGUMENT (ctx, a tree, count, or
  * pairs with capacity > 0), BAD_ARGUMENT (capacity < 0), NOT_FINITE (a transform), OUT_OF_MEMORY. */
-rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa, int level_a,
-                            const rugo_mobb_tree* b, rugo_transform xb, int level_b, rugo_node_pair* pairs,
-                            int capacity, int* count, long* box_tests);
+RUGO_API rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
+                                     int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
+                                     rugo_node_pair* pairs, int capacity, int* count, long* box_tests);
 
 /** Manifold reduction in place: keeps at most k contacts per region (k >= 1; smaller k counts as 1):
  * the deepest, then repeatedly the one farthest from those kept. Order is preserved otherwise. Returns
  * the new count (0 for NULL or count <= 0). Allocates nothing. */
-int rugo_reduce_manifold(rugo_contact* contacts, int count, int k);
+RUGO_API int rugo_reduce_manifold(rugo_contact* contacts, int count, int k);
 
 #ifdef __cplusplus
 }

@@ -55,53 +55,53 @@ typedef struct rugo_contour_problem {
  * about 1e-15 of the diagonal. Segments shrunk to a point are allowed (their neighbours count as
  * adjacent); a spike where the curve retraces itself counts as self-intersecting, a cusp does not.
  * Cost: about 3 ms for 4096 points, 0.65 s for 2^20 (optimised build). */
-rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags, rugo_contour_problem* problem,
-                               const rugo_allocator* allocator);
+RUGO_API rugo_status rugo_contour_check(const rugo_vec2* points, int count, int flags,
+                                        rugo_contour_problem* problem, const rugo_allocator* allocator);
 
 /** Signed area of the region bounded by the curve (squared length units; positive when
  * counter-clockwise), exact for the cubic curve (not the control polygon). 0 for an empty contour. */
-rugo_real rugo_contour_signed_area(rugo_contour c);
+RUGO_API rugo_real rugo_contour_signed_area(rugo_contour c);
 
 /** Reverses points in place if the curve is clockwise, so it becomes counter-clockwise.
  * Returns 1 if it reversed, 0 if not (also for NULL or count < 2). Reversal maps segment j to segment
  * n-2-j, t to 1-t. The caller owns points. */
-int rugo_contour_orient_ccw(rugo_vec2* points, int count);
+RUGO_API int rugo_contour_orient_ccw(rugo_vec2* points, int count);
 
 /** The point f_segment(t) in the matrix form (2.4), in length units. The segment index wraps
  * cyclically; t in [0, 1] (other values extrapolate the segment's cubic). Zeros for count < 1. */
-rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_contour_point(rugo_contour c, int segment, rugo_real t);
 /** First derivative f'_segment(t) with respect to t (2.6), in length units per unit of t. As
  * rugo_contour_point for the arguments. */
-rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_contour_d1(rugo_contour c, int segment, rugo_real t);
 /** Second derivative f''_segment(t) with respect to t (2.7), in length units per unit of t squared. As
  * rugo_contour_point for the arguments. */
-rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_contour_d2(rugo_contour c, int segment, rugo_real t);
 /** Point at a global parameter u in [0, n): segment floor(u), t = u - floor(u) (wraps cyclically).
  * NaN for a non-finite u or an empty contour. Query functions given count < 1 return zeros. */
-rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u);
+RUGO_API rugo_vec2 rugo_contour_point_at(rugo_contour c, rugo_real u);
 
 /** The four cubic Bezier control points of segment j into out (caller-owned; a uniform cubic
  * B-spline segment is a cubic Bezier curve; the convex hull of these points contains the segment).
  * The segment index wraps; zeros for count < 1. */
-void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4]);
+RUGO_API void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4]);
 
 /** The coefficients of (3.8): f'_j(t) = 1/2 (v t^2 + w t + r), written to v, w and r (caller-owned;
  * each may be NULL). The segment index wraps; zeros for count < 1. */
-void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
-                                          rugo_vec2* r);
+RUGO_API void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
+                                                   rugo_vec2* r);
 
 /** Arc length of one segment (length units) by 4-point Gauss-Legendre (3.6)-(3.7). The segment
  * index wraps; 0 for count < 1. */
-rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
+RUGO_API rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
 /** Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
  * estimate of the error actually reached, round-off included, goes to *error_bound (may be NULL).
  * Returns RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached,
  * e.g. for a tolerance tighter than double precision allows; NULL_ARGUMENT, TOO_FEW_POINTS,
  * BAD_ARGUMENT (tolerance not finite and > 0). */
-rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
-                                                 rugo_real* length, rugo_real* error_bound);
+RUGO_API rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
+                                                          rugo_real* length, rugo_real* error_bound);
 /** Whole perimeter (length units), 4-point Gauss-Legendre per segment. 0 for count < 1. */
-rugo_real rugo_contour_perimeter(rugo_contour c);
+RUGO_API rugo_real rugo_contour_perimeter(rugo_contour c);
 
 /** Exact mass properties of the enclosed region for unit density, by Green's theorem with Gauss
  * quadrature exact for the polynomial integrands (no sampling), evaluated about an interior
@@ -115,11 +115,11 @@ typedef struct rugo_mass_properties {
 } rugo_mass_properties;
 /** The mass properties of the region bounded by the curve (see rugo_mass_properties). All zero for
  * count < 1; NaN or infinite values propagate. Never fails otherwise. */
-rugo_mass_properties rugo_contour_mass_properties(rugo_contour c);
+RUGO_API rugo_mass_properties rugo_contour_mass_properties(rugo_contour c);
 
 /** Axis-aligned bounds of the curve itself (exact, from the derivative's roots) into *lower and *upper
  * (caller-owned, not NULL); both (0, 0) for count < 1. */
-void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper);
+RUGO_API void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper);
 
 /** A point on a curve: where, and how far from a query point or ray origin. */
 typedef struct rugo_curve_point {
@@ -131,31 +131,31 @@ typedef struct rugo_curve_point {
 /** Closest point on the curve to p (global minimum of the distance over all segments). For count < 1
  * the result is p itself with distance HUGE_VAL. p must lie within about 1e150 of the curve: farther,
  * squared distances overflow (distance inf; rugo_shape_closest_point says NOT_FINITE). */
-rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
+RUGO_API rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
 
 /** 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the
  * curve itself (within round-off) may go either way. */
-int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
+RUGO_API int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
 
 /** First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
  * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal, hit->distance = s |d|) or
  * 0 for no hit. direction must be non-zero; fraction, hit and normal may be NULL. An origin on the
  * curve hits at s = 0; a ray along a straight segment hits its first point; a hit at a joint is
  * reported as t = 0 of the next segment. */
-int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
-                          rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
-                          rugo_vec2* normal);
+RUGO_API int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
+                                   rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
+                                   rugo_vec2* normal);
 
 /** Unit tangent at f_j(t), in the direction of increasing t. Degenerate (zero-speed) points take the
  * direction of the second, then third derivative. The segment index wraps. */
-rugo_vec2 rugo_contour_tangent(rugo_contour c, int segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_contour_tangent(rugo_contour c, int segment, rugo_real t);
 /** Outward unit normal (for a counter-clockwise contour; inward for a clockwise one) at f_j(t): the
  * tangent turned clockwise. Degenerate points as rugo_contour_tangent. */
-rugo_vec2 rugo_contour_normal(rugo_contour c, int segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_contour_normal(rugo_contour c, int segment, rugo_real t);
 
 /** Uniform cubic B-spline basis values N_1..N_4 at t into out (caller-owned; weights of c_{j-1}, c_j,
  * c_{j+1}, c_{j+2}); they sum to 1. */
-void rugo_bspline_basis(rugo_real t, rugo_real out[4]);
+RUGO_API void rugo_bspline_basis(rugo_real t, rugo_real out[4]);
 
 #ifdef __cplusplus
 }

@@ -39,7 +39,7 @@ typedef struct rugo_fit_def {
 
 /** A def with no samples, control_count 0, chord-length parameters, the malloc/free allocator and the
  * cookie that marks an initialised def. Never fails. */
-rugo_fit_def rugo_default_fit_def(void);
+RUGO_API rugo_fit_def rugo_default_fit_def(void);
 
 /** How well rugo_fit_contour fitted, in length units. */
 typedef struct rugo_fit_result {
@@ -61,7 +61,8 @@ typedef struct rugo_fit_result {
  * singular (condition number beyond about 1e11): with chord-length parameters and about as many
  * samples as control points this happens often), OUT_OF_MEMORY. Buffers of its own use
  * def->allocator; Eigen's containers use the default heap. */
-rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points, rugo_fit_result* result);
+RUGO_API rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points,
+                                      rugo_fit_result* result);
 
 /** Simultaneous direct manipulation of several points of one level (2.30-2.31 generalised): move
  * f^level_{segments[i]}(ts[i]) by deltas[i] for all i with the least-norm change of that level's
@@ -75,8 +76,9 @@ rugo_status rugo_fit_contour(const rugo_fit_def* def, rugo_vec2* control_points,
  * mode, count < 1), NOT_FINITE (a delta, or a displacement that overflows in the rebuild),
  * TOO_MANY_POINTS, OUT_OF_MEMORY, and SINGULAR if the constraints conflict (e.g. the same point
  * twice with different deltas); on error the pyramid is unchanged. */
-rugo_status rugo_pyramid_move_points(rugo_pyramid* p, int level, int count, const int* segments,
-                                     const rugo_real* ts, const rugo_vec2* deltas, rugo_detail_mode mode);
+RUGO_API rugo_status rugo_pyramid_move_points(rugo_pyramid* p, int level, int count, const int* segments,
+                                              const rugo_real* ts, const rugo_vec2* deltas,
+                                              rugo_detail_mode mode);
 
 /* ---- fitting an imported outline (rugo/import.h, docs/import.md) ------------------------------- */
 
@@ -99,7 +101,7 @@ typedef struct rugo_outline_fit_def {
 } rugo_outline_fit_def;
 
 /** The defaults described in rugo_outline_fit_def (tolerance 0: set it for the automatic count). */
-rugo_outline_fit_def rugo_default_outline_fit_def(void);
+RUGO_API rugo_outline_fit_def rugo_default_outline_fit_def(void);
 
 /** A fitted outline; owns control_points (allocated with `allocator`). */
 typedef struct rugo_outline_fit {
@@ -130,10 +132,10 @@ typedef struct rugo_outline_fit {
  * rugo_fit_contour for the counts tried (including SINGULAR, also when one count of the search is
  * singular), OUT_OF_MEMORY.
  * Free the result with rugo_outline_fit_free. */
-rugo_status rugo_fit_outline(const rugo_outline_fit_def* def, rugo_outline_fit* out);
+RUGO_API rugo_status rugo_fit_outline(const rugo_outline_fit_def* def, rugo_outline_fit* out);
 
 /** Frees the control points and zeroes the struct (NULL and a zeroed struct are fine). */
-void rugo_outline_fit_free(rugo_outline_fit* fit);
+RUGO_API void rugo_outline_fit_free(rugo_outline_fit* fit);
 
 #ifdef __cplusplus
 }

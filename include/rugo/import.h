@@ -89,8 +89,8 @@ static inline rugo_vec2 rugo_affine_apply(rugo_affine m, rugo_vec2 p) {
  * Errors (*out is the identity then; error may be NULL, its line and column are within the text):
  * NULL_ARGUMENT, TOO_LARGE (beyond RUGO_MAX_SVG_BYTES), PARSE (unknown function, wrong argument
  * count, syntax), NOT_FINITE (a number that overflows, or a product that does). */
-rugo_status rugo_svg_transform_parse(const char* text, size_t length, rugo_affine* out,
-                                     rugo_parse_error* error);
+RUGO_API rugo_status rugo_svg_transform_parse(const char* text, size_t length, rugo_affine* out,
+                                              rugo_parse_error* error);
 
 /* ---- path data -------------------------------------------------------------------------------- */
 
@@ -153,25 +153,25 @@ typedef struct rugo_path {
  * comma, numbers after Z, a number longer than RUGO_SVG_MAX_NUMBER_CHARS), NOT_FINITE (a number that
  * overflows such as 1e999, or coordinates whose sums overflow), OUT_OF_MEMORY. allocator may be NULL
  * (malloc/free); free the path with rugo_path_free. */
-rugo_status rugo_path_parse(const char* d, size_t length, const rugo_allocator* allocator, rugo_path* out,
-                            rugo_parse_error* error);
+RUGO_API rugo_status rugo_path_parse(const char* d, size_t length, const rugo_allocator* allocator,
+                                     rugo_path* out, rugo_parse_error* error);
 
 /** Frees the path's arrays and zeroes it (NULL and a zeroed path are fine). */
-void rugo_path_free(rugo_path* path);
+RUGO_API void rugo_path_free(rugo_path* path);
 
 /** A closed polygon path (one closed subpath of lines) through points[0..count), copied: what a point
  * list means as an outline. Repeated consecutive points (and a last point equal to the first) give no
  * segment. allocator may be NULL. Errors (out zeroed): NULL_ARGUMENT, TOO_FEW_POINTS (count < 3),
  * TOO_LARGE (count beyond RUGO_MAX_PATH_SEGMENTS), NOT_FINITE, OUT_OF_MEMORY. */
-rugo_status rugo_path_from_points(const rugo_vec2* points, int count, const rugo_allocator* allocator,
-                                  rugo_path* out);
+RUGO_API rugo_status rugo_path_from_points(const rugo_vec2* points, int count,
+                                           const rugo_allocator* allocator, rugo_path* out);
 
 /** The point at t in [0, 1] of a segment, in the path's coordinates (t = 0 and t = 1 give the exact
  * end points). Pure evaluation of a parsed segment, no validation; (NaN, NaN) for a NULL segment. */
-rugo_vec2 rugo_path_segment_point(const rugo_path_segment* segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_path_segment_point(const rugo_path_segment* segment, rugo_real t);
 /** The derivative d/dt of the same parametrisation, in length units per unit t (for an arc, dtheta
  * times the derivative in θ). (NaN, NaN) for a NULL segment. */
-rugo_vec2 rugo_path_segment_derivative(const rugo_path_segment* segment, rugo_real t);
+RUGO_API rugo_vec2 rugo_path_segment_derivative(const rugo_path_segment* segment, rugo_real t);
 
 /* ---- sampling an outline ---------------------------------------------------------------------- */
 
@@ -188,7 +188,7 @@ typedef struct rugo_outline_sample_def {
 } rugo_outline_sample_def;
 
 /** The defaults described in rugo_outline_sample_def, with the cookie that marks an initialised def. */
-rugo_outline_sample_def rugo_default_outline_sample_def(void);
+RUGO_API rugo_outline_sample_def rugo_default_outline_sample_def(void);
 
 /** Samples of one closed outline; owns `points` (allocated with `allocator`). */
 typedef struct rugo_outline_samples {
@@ -219,11 +219,11 @@ typedef struct rugo_outline_samples {
  * chosen one is open or empty), ZERO_AREA (zero length, or the samples enclose no area, e.g. under a
  * degenerate transform, or an area so small that it underflows to 0), OUT_OF_MEMORY.
  * Free the result with rugo_outline_samples_free. */
-rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline_samples* out,
-                                rugo_parse_error* error);
+RUGO_API rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline_samples* out,
+                                         rugo_parse_error* error);
 
 /** Frees the points and zeroes the struct (NULL and a zeroed struct are fine). */
-void rugo_outline_samples_free(rugo_outline_samples* samples);
+RUGO_API void rugo_outline_samples_free(rugo_outline_samples* samples);
 
 /* ---- SVG documents ---------------------------------------------------------------------------- */
 
@@ -259,12 +259,12 @@ typedef struct rugo_svg_path_element {
  * NOT_FINITE (a transform that overflows), BAD_FIELD (no element with that id; the element is not a
  * `<path>` or has no `d`; id NULL and none or several `<path>` elements), OUT_OF_MEMORY.
  * allocator may be NULL; free the result with rugo_svg_path_element_free. */
-rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
-                               const rugo_allocator* allocator, rugo_svg_path_element* out,
-                               rugo_parse_error* error);
+RUGO_API rugo_status rugo_svg_find_path(const char* text, size_t length, const char* id,
+                                        const rugo_allocator* allocator, rugo_svg_path_element* out,
+                                        rugo_parse_error* error);
 
 /** Frees `d` and zeroes the struct (NULL and a zeroed struct are fine). */
-void rugo_svg_path_element_free(rugo_svg_path_element* element);
+RUGO_API void rugo_svg_path_element_free(rugo_svg_path_element* element);
 
 /** The SVG import up to the samples: rugo_svg_find_path (id as there), rugo_path_parse of its d
  * (errors reported at their line and column in the document), then rugo_outline_sample with the
@@ -275,9 +275,9 @@ void rugo_svg_path_element_free(rugo_svg_path_element* element);
  * Errors: NULL_ARGUMENT, BAD_ARGUMENT (def not from rugo_default_outline_sample_def), and those of the
  * three steps; sampling errors point at the d attribute. Free the result with
  * rugo_outline_samples_free. */
-rugo_status rugo_svg_import_outline(const char* text, size_t length, const char* id,
-                                    const rugo_outline_sample_def* def, rugo_outline_samples* out,
-                                    rugo_parse_error* error);
+RUGO_API rugo_status rugo_svg_import_outline(const char* text, size_t length, const char* id,
+                                             const rugo_outline_sample_def* def, rugo_outline_samples* out,
+                                             rugo_parse_error* error);
 
 /* ---- point lists ------------------------------------------------------------------------------ */
 
@@ -293,8 +293,8 @@ rugo_status rugo_svg_import_outline(const char* text, size_t length, const char*
  * TOO_LARGE (beyond RUGO_MAX_JSON_BYTES), PARSE (a line that is not two numbers), NOT_FINITE (a number
  * that overflows, e.g. 1e999), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY, and
  * the errors of rugo_points_parse for JSON. */
-rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                                   rugo_vec2** points, int* count, rugo_parse_error* error);
+RUGO_API rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_allocator* allocator,
+                                            rugo_vec2** points, int* count, rugo_parse_error* error);
 
 #ifdef __cplusplus
 }

@@ -41,30 +41,30 @@ typedef struct rugo_obb {
  * (1/n) Σ p_k; b = 0 or equal eigenvalues give the coordinate axes. Returns unit axis[0], and
  * axis[1] = perp(axis[0]), into axis (caller-owned). n >= 1 (NULL points or n < 1 give the coordinate
  * axes; a NULL axis does nothing). */
-void rugo_covariance_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]);
+RUGO_API void rugo_covariance_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]);
 
 /** Leaf box of segment j (SPEC 5.2): covariance axes of 5 samples (2 if the arc length <= min_length),
  * exact extents from the segment's end points and the roots in [0,1] of f'(t)·e = 0 for each axis
  * (all degenerate cases: cubic, linear when v·e = 0, straight and point-like segments), centre
  * recomputed from the extents, both half-extents inflated by `band` (>= 0, length units). min_length is
  * in length units. The segment index wraps. */
-rugo_obb rugo_segment_box(rugo_contour c, int segment, rugo_real band, rugo_real min_length);
+RUGO_API rugo_obb rugo_segment_box(rugo_contour c, int segment, rugo_real band, rugo_real min_length);
 
 /** Smallest box with the axes of box_with_axes (only its axes are used, not its extent) containing
  * the box b (its four corners). */
-rugo_obb rugo_obb_enclose(rugo_obb box_with_axes, const rugo_obb* b);
+RUGO_API rugo_obb rugo_obb_enclose(rugo_obb box_with_axes, const rugo_obb* b);
 /** The box moved by a rigid transform (a zeroed box for NULL). */
-rugo_obb rugo_obb_transform(rugo_transform t, const rugo_obb* b);
+RUGO_API rugo_obb rugo_obb_transform(rugo_transform t, const rugo_obb* b);
 /** Separating-axis test on the four box axes (SPEC 7, 6.7-6.8): 1 if the boxes overlap (touching
  * counts as overlap), 0 if an axis separates them. Both boxes in the same frame. */
-int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b);
+RUGO_API int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b);
 /** 1 if p lies in the box grown by `slack` (length units) on every side (a negative slack shrinks
  * it). */
-int rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack);
+RUGO_API int rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack);
 /** Area 4 half[0] half[1] (squared length units); 0 for NULL. */
-rugo_real rugo_obb_area(const rugo_obb* b);
+RUGO_API rugo_real rugo_obb_area(const rugo_obb* b);
 /** The four corners into out (caller-owned), counter-clockwise; nothing for NULL. */
-void rugo_obb_corners(const rugo_obb* b, rugo_vec2 out[4]);
+RUGO_API void rugo_obb_corners(const rugo_obb* b, rugo_vec2 out[4]);
 
 /** How upper boxes are built (SPEC 5.3); both are required, (b) is the default. */
 typedef enum rugo_box_method {
@@ -87,30 +87,30 @@ typedef struct rugo_mobb_tree_def {
 } rugo_mobb_tree_def;
 
 /** A def with the defaults above and its cookie set; fill in pyramid (and tolerances). */
-rugo_mobb_tree_def rugo_default_mobb_tree_def(void);
+RUGO_API rugo_mobb_tree_def rugo_default_mobb_tree_def(void);
 
 /** Builds the tree for every level of the pyramid. On success *out is new and owned by the caller
  * (free with rugo_mobb_tree_destroy); on error it is NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie,
  * method, min_length < 0 or not finite), BAD_LEVEL (tolerances built for another pyramid),
  * OUT_OF_MEMORY. */
-rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree** out);
+RUGO_API rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree** out);
 /** Frees the tree through its allocator; NULL is allowed. */
-void rugo_mobb_tree_destroy(rugo_mobb_tree* tree);
+RUGO_API void rugo_mobb_tree_destroy(rugo_mobb_tree* tree);
 
 /** The finest level J (the leaves); -1 for NULL. */
-int rugo_mobb_tree_finest_level(const rugo_mobb_tree* tree);
+RUGO_API int rugo_mobb_tree_finest_level(const rugo_mobb_tree* tree);
 /** The coarsest level J_min; -1 for NULL. */
-int rugo_mobb_tree_coarsest_level(const rugo_mobb_tree* tree);
+RUGO_API int rugo_mobb_tree_coarsest_level(const rugo_mobb_tree* tree);
 /** The method the upper boxes were built with (RUGO_BOXES_MULTIRES for NULL). */
-rugo_box_method rugo_mobb_tree_method(const rugo_mobb_tree* tree);
+RUGO_API rugo_box_method rugo_mobb_tree_method(const rugo_mobb_tree* tree);
 /** Node (level, k), k in [0, 2^level), in the shape's local frame: a pointer into the tree, valid until
  * it is destroyed; NULL outside the tree. */
-const rugo_obb* rugo_mobb_tree_node(const rugo_mobb_tree* tree, int level, int k);
+RUGO_API const rugo_obb* rugo_mobb_tree_node(const rugo_mobb_tree* tree, int level, int k);
 /** A box around the whole shape (covariance axes of the coarsest level's box corners, enclosing every
  * coarsest node): the tree's root, for broad phases. Owned by the tree; NULL for NULL. */
-const rugo_obb* rugo_mobb_tree_root(const rugo_mobb_tree* tree);
+RUGO_API const rugo_obb* rugo_mobb_tree_root(const rugo_mobb_tree* tree);
 /** Sum of the box areas of one level (thesis Fig. 4.6); NaN outside the tree. */
-rugo_real rugo_mobb_tree_level_area(const rugo_mobb_tree* tree, int level);
+RUGO_API rugo_real rugo_mobb_tree_level_area(const rugo_mobb_tree* tree, int level);
 
 #ifdef __cplusplus
 }

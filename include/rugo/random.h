@@ -29,18 +29,18 @@ typedef struct rugo_rng {
 } rugo_rng;
 
 /** Seeds the generator (any seed, including 0, is valid); does nothing for NULL. */
-void rugo_rng_seed(rugo_rng* rng, uint64_t seed);
+RUGO_API void rugo_rng_seed(rugo_rng* rng, uint64_t seed);
 /** Next 64 random bits. */
-uint64_t rugo_rng_next(rugo_rng* rng);
+RUGO_API uint64_t rugo_rng_next(rugo_rng* rng);
 /** Uniform in [0, 1), multiples of 2^-53. */
-rugo_real rugo_rng_uniform(rugo_rng* rng);
+RUGO_API rugo_real rugo_rng_uniform(rugo_rng* rng);
 /** Uniform in [lo, hi] (hi itself can come out by rounding of lo + (hi - lo) u; when hi - lo overflows,
  * lo (1 - u) + hi u); not checked: NaN in, NaN out. */
-rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi);
+RUGO_API rugo_real rugo_rng_range(rugo_rng* rng, rugo_real lo, rugo_real hi);
 /** Uniform integer in [0, n) for n >= 1 (unbiased, by rejection). 0 if n < 1. */
-uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n);
+RUGO_API uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n);
 /** Standard normal N(0, 1) (dimensionless; scale by σ). */
-rugo_real rugo_rng_gaussian(rugo_rng* rng);
+RUGO_API rugo_real rugo_rng_gaussian(rugo_rng* rng);
 
 #ifdef __cplusplus
 }

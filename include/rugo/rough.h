@@ -39,32 +39,33 @@ typedef enum rugo_tolerance_preset {
 
 /** The preset's name, "tipo_1", "tipo_2", "tipo_3" or "tipo_5" (a static string); NULL for an invalid
  * value. */
-const char* rugo_preset_name(rugo_tolerance_preset p);
+RUGO_API const char* rugo_preset_name(rugo_tolerance_preset p);
 /** Parses a preset name as above into *out. Errors: NULL_ARGUMENT, BAD_ARGUMENT (unknown name). */
-rugo_status rugo_preset_from_name(const char* name, rugo_tolerance_preset* out);
+RUGO_API rugo_status rugo_preset_from_name(const char* name, rugo_tolerance_preset* out);
 
 /** Fills out[0..n) with a preset. tipo_2 is the only seeded one: consecutive blocks of 1 to 4 segments
  * (length uniform), each with a value uniform in [0.04, 0.65] (the range of the thesis' library),
  * drawn from rugo_rng seeded with `seed`; the other presets ignore the seed. Patterns start at
  * segment 0 exactly as in Fig. 5.5. Errors: NULL_ARGUMENT, BAD_ARGUMENT (bad preset), TOO_FEW_POINTS
  * (n < 1), TOO_MANY_POINTS. */
-rugo_status rugo_tolerances_preset(rugo_tolerance_preset p, uint64_t seed, int n, rugo_real* out);
+RUGO_API rugo_status rugo_tolerances_preset(rugo_tolerance_preset p, uint64_t seed, int n, rugo_real* out);
 
 /** The same tolerance `value` (length units) on all n segments: out[0..n) (caller-owned). The
  * constructors below validate their values (NOT_FINITE, NEGATIVE_TOLERANCE) and counts
  * (TOO_FEW_POINTS for n < 1, TOO_MANY_POINTS), and return NULL_ARGUMENT for a NULL array. */
-rugo_status rugo_tolerances_constant(rugo_real value, int n, rugo_real* out);
+RUGO_API rugo_status rugo_tolerances_constant(rugo_real value, int n, rugo_real* out);
 /** out[i] = pattern[i mod period]. BAD_ARGUMENT for period < 1. */
-rugo_status rugo_tolerances_pattern(const rugo_real* pattern, int period, int n, rugo_real* out);
+RUGO_API rugo_status rugo_tolerances_pattern(const rugo_real* pattern, int period, int n, rugo_real* out);
 /** values[0] on the first block_length segments, values[1] on the next, ..., cycling through values
  * (count of them). BAD_ARGUMENT for count < 1 or block_length < 1. */
-rugo_status rugo_tolerances_blocks(const rugo_real* values, int count, int block_length, int n, rugo_real* out);
+RUGO_API rugo_status rugo_tolerances_blocks(const rugo_real* values, int count, int block_length, int n,
+                                            rugo_real* out);
 /** Independent uniform values in [lo, hi] from rugo_rng seeded with `seed` (EMPTY_RANGE if lo > hi,
  * NEGATIVE_TOLERANCE if lo < 0). */
-rugo_status rugo_tolerances_random(rugo_real lo, rugo_real hi, uint64_t seed, int n, rugo_real* out);
+RUGO_API rugo_status rugo_tolerances_random(rugo_real lo, rugo_real hi, uint64_t seed, int n, rugo_real* out);
 /** Validates caller-supplied values per segment: NULL_ARGUMENT, TOO_FEW_POINTS, NOT_FINITE,
  * NEGATIVE_TOLERANCE (the index of the first bad value goes to *bad_index if not NULL). */
-rugo_status rugo_tolerances_check(const rugo_real* values, int n, int* bad_index);
+RUGO_API rugo_status rugo_tolerances_check(const rugo_real* values, int n, int* bad_index);
 
 /* ---- perturbation generators -------------------------------------------------------------------- */
 
@@ -90,7 +91,7 @@ typedef struct rugo_roughen_def {
 } rugo_roughen_def;
 
 /** A def with the defaults above and its cookie set; fill in points, count and tolerances. */
-rugo_roughen_def rugo_default_roughen_def(void);
+RUGO_API rugo_roughen_def rugo_default_roughen_def(void);
 
 /** Generates perturbation geometry: out receives count << levels control points (caller-owned).
  *   wavelet: for each added level, details d_s = (0, N(0, σ²)) in the local frame (tangent, outward
@@ -111,7 +112,7 @@ rugo_roughen_def rugo_default_roughen_def(void);
  * RUGO_MAX_CONTROL_POINTS), TOO_FEW_POINTS, TOO_MANY_POINTS, NOT_POWER_OF_TWO, NOT_FINITE (input,
  * or a result that overflows; out is then untouched), NEGATIVE_TOLERANCE, BAD_QUANTILE, BAD_FILTER
  * (checked for both methods), OUT_OF_MEMORY. */
-rugo_status rugo_roughen(const rugo_roughen_def* def, rugo_vec2* out);
+RUGO_API rugo_status rugo_roughen(const rugo_roughen_def* def, rugo_vec2* out);
 
 #ifdef __cplusplus
 }

@@ -58,7 +58,7 @@ typedef struct rugo_shape_def {
 } rugo_shape_def;
 
 /** A def with the defaults above and its cookie set; fill in points and count (and tolerances). */
-rugo_shape_def rugo_default_shape_def(void);
+RUGO_API rugo_shape_def rugo_default_shape_def(void);
 
 /** Validates and builds everything. A clockwise input is reversed, and its tolerances with it.
  * On success *out is a new shape owned by the caller (free with rugo_shape_destroy); on error NULL.
@@ -67,53 +67,56 @@ rugo_shape_def rugo_default_shape_def(void);
  * RUGO_SHAPE_MAX_SIZE: either would leave the baked format's value range), those of rugo_pyramid_create,
  * rugo_tolerances_create, rugo_mobb_tree_create, rugo_friction_map_check and rugo_restitution_check.
  * problem may be NULL. */
-rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem);
+RUGO_API rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out,
+                                       rugo_contour_problem* problem);
 /** Frees the shape through its allocator; NULL is allowed. Nothing may use it afterwards. */
-void rugo_shape_destroy(rugo_shape* shape);
+RUGO_API void rugo_shape_destroy(rugo_shape* shape);
 
 /** The finest level J (2^J segments); -1 for NULL. */
-int rugo_shape_finest_level(const rugo_shape* s);
+RUGO_API int rugo_shape_finest_level(const rugo_shape* s);
 /** The coarsest level J_min; -1 for NULL. */
-int rugo_shape_coarsest_level(const rugo_shape* s);
+RUGO_API int rugo_shape_coarsest_level(const rugo_shape* s);
 /** The curve of a level (a view valid for the shape's lifetime), in the shape's local frame. Errors:
  * NULL_ARGUMENT, BAD_LEVEL (outside [J_min, J]). */
-rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out);
+RUGO_API rugo_status rugo_shape_level(const rugo_shape* s, int level, rugo_contour* out);
 /** The tolerances λ, own estimates and hard bounds β of a level (views valid for the shape's
  * lifetime, length units; all zero for a smooth shape). Errors: NULL_ARGUMENT, BAD_LEVEL. */
-rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out);
+RUGO_API rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tolerance_level* out);
 /** The certified level-of-detail error of `level` against the finest level (rugo_tolerance_level_error
  * on the shape's curves and λ): *max_error bounds how far the level's curve-plus-band lies from the
  * finest one's anywhere, so a contact computed at this level has a band-adjusted separation within the
  * sum of the two bodies' values of the finest level's. per_segment (may be NULL) gets 2^level values.
  * 0 at the finest level. Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_LEVEL. */
-rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment, rugo_real* max_error);
+RUGO_API rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment,
+                                            rugo_real* max_error);
 /** Closest point on the curve of `level` (J_min..J) to p (shape's local frame) into *out: the same
  * answer, bit for bit, as rugo_contour_closest_point on that level's curve, computed through the
  * MOBBtree (the boxes near p and the few segments under them instead of a pass over all segments).
  * Re-entrant, no allocation. On error *out (if not NULL) is p itself with distance HUGE_VAL. Errors:
  * NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p not finite, or a coordinate beyond 1e150, where squared
  * distances overflow). */
-rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p, rugo_curve_point* out);
+RUGO_API rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p,
+                                              rugo_curve_point* out);
 /** *inside = rugo_contour_contains on the curve of `level` (J_min..J) at p (shape's local frame): the
  * same answer on every input, computed through the MOBBtree (the boxes along the ray from p towards
  * +x and the segments under them). Re-entrant, no allocation. On error *inside (if not NULL) is 0.
  * Errors: NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
-rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside);
+RUGO_API rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside);
 /** The shape's MOBBtree (owned by the shape); NULL for NULL. */
-const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
+RUGO_API const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
 /** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */
-const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s);
+RUGO_API const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s);
 /** Area, centroid and polar inertia about the centroid for unit density (positive: the shape is
  * counter-clockwise); multiply by a density for mass and moment. NaN values for NULL. */
-rugo_mass_properties rugo_shape_mass(const rugo_shape* s);
+RUGO_API rugo_mass_properties rugo_shape_mass(const rugo_shape* s);
 /** The surface's friction map (NaN values for NULL). */
-rugo_friction_map rugo_shape_friction_map(const rugo_shape* s);
+RUGO_API rugo_friction_map rugo_shape_friction_map(const rugo_shape* s);
 /** The surface's restitution (NaN values for NULL). */
-rugo_restitution rugo_shape_restitution(const rugo_shape* s);
+RUGO_API rugo_restitution rugo_shape_restitution(const rugo_shape* s);
 /** 1 if any finest tolerance is > 0 (0 for NULL). */
-int rugo_shape_is_rough(const rugo_shape* s);
+RUGO_API int rugo_shape_is_rough(const rugo_shape* s);
 /** 1 if the input was clockwise and was reversed (segment j of the input is segment n-2-j here). */
-int rugo_shape_was_reversed(const rugo_shape* s);
+RUGO_API int rugo_shape_was_reversed(const rugo_shape* s);
 
 #ifdef __cplusplus
 }

@@ -131,7 +131,7 @@ typedef struct rugo_roughness_desc {
 
 /** Preset tipo_1, seed 0, q = RUGO_DEFAULT_Q, the detail estimator, the default friction map and
  * restitution, no perturbation, no arrays, background 0. Never fails. */
-rugo_roughness_desc rugo_default_roughness_desc(void);
+RUGO_API rugo_roughness_desc rugo_default_roughness_desc(void);
 
 /** A parsed shape file: its control points, filter and optional roughness. Owns its arrays. */
 typedef struct rugo_shape_desc {
@@ -171,11 +171,11 @@ typedef struct rugo_shape_desc {
  * not strictly increasing), TOO_MANY_POINTS (more than RUGO_MAX_PROFILE_SAMPLES),
  * NEGATIVE_TOLERANCE, NOT_FINITE. Paths name the value, e.g. "roughness.ranges[2].from",
  * "roughness.profile[5][0]". */
-rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                                  rugo_shape_desc* out, rugo_parse_error* error);
+RUGO_API rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
+                                           rugo_shape_desc* out, rugo_parse_error* error);
 /** Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0 (NULL is
  * fine; a zeroed desc is fine). */
-void rugo_shape_desc_free(rugo_shape_desc* desc);
+RUGO_API void rugo_shape_desc_free(rugo_shape_desc* desc);
 
 /** The tolerance of every finest segment, out[0..n) (caller-owned, n entries, length units; n = the
  * control point count, in the file's own
@@ -184,7 +184,7 @@ void rugo_shape_desc_free(rugo_shape_desc* desc);
  * not n, or kind RANGES or PROFILE, which need the geometry: use
  * rugo_roughness_tolerances_on_contour), TOO_FEW_POINTS (n < 1), TOO_MANY_POINTS, NOT_FINITE,
  * NEGATIVE_TOLERANCE. Allocates nothing. */
-rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, rugo_real* out);
+RUGO_API rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, rugo_real* out);
 
 /** The tolerance of every finest segment, out[0..contour.count), for a shape whose control points are
  * `contour` in the file's own order (not reversed; the caller keeps them alive). Any kind: the
@@ -209,8 +209,9 @@ rugo_status rugo_roughness_tolerances(const rugo_roughness_desc* desc, int n, ru
  * reports (BAD_ARGUMENT for a range or sample out of its range, NEGATIVE_TOLERANCE, NOT_FINITE,
  * TOO_MANY_POINTS, NULL_ARGUMENT for a missing array, BAD_ARGUMENT for an empty profile),
  * OUT_OF_MEMORY. */
-rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc, rugo_contour contour,
-                                                 const rugo_allocator* allocator, rugo_real* out);
+RUGO_API rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc,
+                                                          rugo_contour contour,
+                                                          const rugo_allocator* allocator, rugo_real* out);
 
 /** Parses a profile λ(s) from CSV text of `length` bytes (need not be NUL-terminated; one leading
  * UTF-8 byte order mark is skipped): one sample per line, "s,lambda" (two numbers separated by a
@@ -229,11 +230,12 @@ rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_desc* desc
  * number overflowing to infinity); BAD_FIELD (no samples; s outside [0, 1] or not strictly
  * increasing); NEGATIVE_TOLERANCE (λ < 0); TOO_MANY_POINTS (more than RUGO_MAX_PROFILE_SAMPLES
  * rows); OUT_OF_MEMORY. On error *samples is NULL and *count 0. */
-rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, const rugo_allocator* allocator,
-                                             rugo_profile_sample** samples, int* count,
-                                             rugo_parse_error* error);
+RUGO_API rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length,
+                                                      const rugo_allocator* allocator,
+                                                      rugo_profile_sample** samples, int* count,
+                                                      rugo_parse_error* error);
 /** Frees samples from rugo_roughness_profile_parse_csv (allocator as given there; NULL is fine). */
-void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples);
+RUGO_API void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples);
 
 /** Parses the array under `key` (NUL-terminated, e.g. "points" or "control_points") of a JSON object
  * of `length` bytes into an owned point array: *points (allocated with `allocator`, NULL: malloc/free;
@@ -241,12 +243,12 @@ void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_s
  * error may be NULL): NULL_ARGUMENT, PARSE (JSON syntax, depth, size), BAD_FIELD (not an object,
  * the key missing or repeated, not an array of [x, y] pairs of numbers), NOT_FINITE (a number that
  * overflows), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY. */
-rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
-                              const rugo_allocator* allocator, rugo_vec2** points, int* count,
-                              rugo_parse_error* error);
+RUGO_API rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
+                                       const rugo_allocator* allocator, rugo_vec2** points, int* count,
+                                       rugo_parse_error* error);
 /** Frees points from rugo_points_parse or rugo_points_text_parse (allocator as given there; NULL is
  * fine). */
-void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
+RUGO_API void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
 
 /** Writes a shape description as JSON into a newly allocated NUL-terminated string (*text, *length
  * without the NUL; both required; allocated with `allocator`, free with rugo_text_free). One point
@@ -260,16 +262,17 @@ void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
  * checks listed for parsing (NULL_ARGUMENT for a missing ranges or profile array); TOO_MANY_POINTS also when
  * the text would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object);
  * OUT_OF_MEMORY. */
-rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator, char** text,
-                                  size_t* length);
+RUGO_API rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator,
+                                           char** text, size_t* length);
 /** Frees text from rugo_shape_desc_write or rugo_read_file (allocator as given there; NULL is fine). */
-void rugo_text_free(const rugo_allocator* allocator, char* text);
+RUGO_API void rugo_text_free(const rugo_allocator* allocator, char* text);
 
 /** Reads a whole file into a newly allocated NUL-terminated buffer (at most RUGO_MAX_JSON_BYTES):
  * *text (allocated with `allocator`, NULL: malloc/free; free with rugo_text_free) and *length
  * (bytes, without the NUL). Errors (*text NULL and *length 0): NULL_ARGUMENT, IO if it cannot be
  * opened or read, PARSE if it is too large, OUT_OF_MEMORY. */
-rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, char** text, size_t* length);
+RUGO_API rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, char** text,
+                                    size_t* length);
 
 #ifdef __cplusplus
 }

@@ -57,7 +57,7 @@ typedef struct rugo_tolerance_def {
 } rugo_tolerance_def;
 
 /** A def with the defaults above and its cookie set; fill in pyramid, finest and count. */
-rugo_tolerance_def rugo_default_tolerance_def(void);
+RUGO_API rugo_tolerance_def rugo_default_tolerance_def(void);
 
 /** λ, own estimates and β of every level of a pyramid (opaque; see rugo_tolerances_level). */
 typedef struct rugo_tolerances rugo_tolerances;
@@ -66,14 +66,14 @@ typedef struct rugo_tolerances rugo_tolerances;
  * with rugo_tolerances_destroy); on error it is NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (cookie, count
  * mismatch, neighbours or extremes out of range, estimator), NOT_FINITE, NEGATIVE_TOLERANCE,
  * BAD_QUANTILE (q <= 0 or not finite), OUT_OF_MEMORY. */
-rugo_status rugo_tolerances_create(const rugo_tolerance_def* def, rugo_tolerances** out);
+RUGO_API rugo_status rugo_tolerances_create(const rugo_tolerance_def* def, rugo_tolerances** out);
 /** Frees t through its allocator; NULL is allowed. Level views into it become invalid. */
-void rugo_tolerances_destroy(rugo_tolerances* t);
+RUGO_API void rugo_tolerances_destroy(rugo_tolerances* t);
 
 /** The finest level J; -1 for NULL. */
-int rugo_tolerances_finest_level(const rugo_tolerances* t);
+RUGO_API int rugo_tolerances_finest_level(const rugo_tolerances* t);
 /** The coarsest level J_min; -1 for NULL. */
-int rugo_tolerances_coarsest_level(const rugo_tolerances* t);
+RUGO_API int rugo_tolerances_coarsest_level(const rugo_tolerances* t);
 
 /** The tolerances of one level: views of count values each, in length units, indexed by segment. */
 typedef struct rugo_tolerance_level {
@@ -86,18 +86,20 @@ typedef struct rugo_tolerance_level {
 
 /** Views of one level into *out (valid until destroy). Errors: NULL_ARGUMENT, BAD_LEVEL (outside the
  * pyramid's levels). */
-rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tolerance_level* out);
+RUGO_API rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tolerance_level* out);
 
 /** λ(t) at the point f_segment(t) of a contour whose segments carry `lambda` (count values), by the
  * corrected cubic interpolation of SPEC 6.3 (λ_i attached to the midpoint of segment i; continuous
  * along the whole contour; equal to λ_j at f_j(1/2)), clamped below at `minimum`. Segment indices
  * wrap; t in [0, 1]. NaN for NULL lambda or count < 1; a NaN λ stays NaN (the clamp does not hide it). */
-rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rugo_real t, rugo_real minimum);
+RUGO_API rugo_real rugo_tolerance_at(const rugo_real* lambda, int count, int segment, rugo_real t,
+                                     rugo_real minimum);
 
 /** A certified upper bound of λ(t) over segment `segment` (t in [0, 1]) for the interpolation of
  * rugo_tolerance_at, never below `minimum`: the largest Bernstein coefficient of the two cubic
  * pieces plus a round-off pad. Within ~1.5% of the true maximum. NaN for NULL lambda or count < 1. */
-rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum);
+RUGO_API rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment,
+                                                   rugo_real minimum);
 
 /** A certified bound of the error of a coarser level of detail against the finest, per coarse segment:
  * with t the common parameter (coarse segment k over t in [0, 1] is refined by finest segments
@@ -113,8 +115,9 @@ rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, in
  * coincide).
  * Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_ARGUMENT (coarse.count < 4, or finest.count not
  * coarse.count times a power of two), NOT_FINITE (a point or λ not finite, or the bound overflows). */
-rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda, rugo_contour finest,
-                                       const rugo_real* finest_lambda, rugo_real* per_segment, rugo_real* max_error);
+RUGO_API rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda,
+                                                rugo_contour finest, const rugo_real* finest_lambda,
+                                                rugo_real* per_segment, rugo_real* max_error);
 
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
@@ -130,19 +133,19 @@ typedef struct rugo_friction_map {
 } rugo_friction_map;
 
 /** α = 1, λ_min = 0.04, base = 0 (the thesis' values). */
-rugo_friction_map rugo_default_friction_map(void);
+RUGO_API rugo_friction_map rugo_default_friction_map(void);
 /** Validates a map. Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (alpha < 0 or base < 0),
  * NEGATIVE_TOLERANCE (lambda_min < 0). */
-rugo_status rugo_friction_map_check(const rugo_friction_map* m);
+RUGO_API rugo_status rugo_friction_map_check(const rugo_friction_map* m);
 /** The friction coefficient μ(λ) of the map at a tolerance λ (length units); NaN for a NULL map or a
  * NaN λ. The map is not validated here (rugo_friction_map_check). */
-rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
+RUGO_API rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
 /** Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max
  * (e.g. "the roughest point of this shape has μ = 0.9"). Checks in this order: NULL_ARGUMENT,
  * NOT_FINITE, NEGATIVE_TOLERANCE, BAD_ARGUMENT (mu_max < 0), EMPTY_RANGE (lambda_min >= lambda_max:
  * equality would divide by zero). */
-rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
-                                    rugo_friction_map* out);
+RUGO_API rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
+                                             rugo_friction_map* out);
 
 /** Mixing of a pair's values (7.2): the thesis takes the max for μ and the min for ε. */
 typedef enum rugo_mix_rule {
@@ -153,7 +156,7 @@ typedef enum rugo_mix_rule {
                                 underflows) */
 } rugo_mix_rule;
 /** The value of a and b mixed by `rule`; NaN for an invalid rule. */
-rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);
+RUGO_API rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);
 
 /* ---- restitution in continuous contact (6.5, 7.3) --------------------------------------------- */
 
@@ -165,13 +168,13 @@ typedef struct rugo_restitution {
 } rugo_restitution;
 
 /** ε = 0.5, ε_max = 0.9 (the thesis' values). */
-rugo_restitution rugo_default_restitution(void);
+RUGO_API rugo_restitution rugo_default_restitution(void);
 /** Validates r. Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (outside [0, 1]), EMPTY_RANGE (epsilon >
  * epsilon_max). */
-rugo_status rugo_restitution_check(const rugo_restitution* r);
+RUGO_API rugo_status rugo_restitution_check(const rugo_restitution* r);
 /** ε_c(δ) for a penetration δ into a band λ (both length units): ε for δ <= 0 or λ <= 0, ε_max for
  * δ >= λ. NaN for a NULL r or a NaN argument. r is not validated here (rugo_restitution_check). */
-rugo_real rugo_restitution_in_band(const rugo_restitution* r, rugo_real delta, rugo_real lambda);
+RUGO_API rugo_real rugo_restitution_in_band(const rugo_restitution* r, rugo_real delta, rugo_real lambda);
 
 #ifdef __cplusplus
 }

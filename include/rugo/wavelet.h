@@ -40,10 +40,10 @@ typedef enum rugo_filter {
 
 /** The filter's name, "cdf4.2", "cdf4.4", "cdf4.6", "cdf4.8" or "cdf4.12" (a static string); NULL for
  * an invalid value. */
-const char* rugo_filter_name(rugo_filter f);
+RUGO_API const char* rugo_filter_name(rugo_filter f);
 /** Parses a name as above into *out. Errors: NULL_ARGUMENT (name or out NULL), BAD_FILTER (unknown
  * name; *out is left unchanged). */
-rugo_status rugo_filter_from_name(const char* name, rugo_filter* out);
+RUGO_API rugo_status rugo_filter_from_name(const char* name, rugo_filter* out);
 
 /** Half-filters (index 0 = centre, symmetric), exact values as doubles, for inspection and tests:
  * a: analysis scaling (lowpass), b: analysis wavelet, p: synthesis scaling, q: synthesis wavelet.
@@ -56,33 +56,34 @@ typedef enum rugo_filter_part {
     RUGO_FILTER_Q  /**< synthesis wavelet filter */
 } rugo_filter_part;
 /** Writes the half-filter `part` of filter f to *taps and *count; see rugo_filter_part. */
-rugo_status rugo_filter_taps(rugo_filter f, rugo_filter_part part, const rugo_real** taps, int* count);
+RUGO_API rugo_status rugo_filter_taps(rugo_filter f, rugo_filter_part part, const rugo_real** taps,
+                                      int* count);
 
 /** One analysis step. fine has 2*half points; coarse and detail receive half points each.
  * half >= 2 (4 fine points at least); buffers must not overlap. */
-rugo_status rugo_wavelet_analyze(rugo_filter f, const rugo_vec2* fine, int half, rugo_vec2* coarse,
-                                 rugo_vec2* detail);
+RUGO_API rugo_status rugo_wavelet_analyze(rugo_filter f, const rugo_vec2* fine, int half, rugo_vec2* coarse,
+                                          rugo_vec2* detail);
 
 /** One synthesis step: coarse and detail (half points each) to fine (2*half points). detail may be
  * NULL, meaning zero details (refinement). Buffers must not overlap. */
-rugo_status rugo_wavelet_synthesize(rugo_filter f, const rugo_vec2* coarse, const rugo_vec2* detail,
-                                    int half, rugo_vec2* fine);
+RUGO_API rugo_status rugo_wavelet_synthesize(rugo_filter f, const rugo_vec2* coarse, const rugo_vec2* detail,
+                                             int half, rugo_vec2* fine);
 
 /** Refinement: synthesis with zero details (equals cubic B-spline subdivision; the curve does not
  * change). coarse has half points, fine receives 2*half (caller-owned, not overlapping). Errors as
  * rugo_wavelet_synthesize. */
-rugo_status rugo_wavelet_refine(const rugo_vec2* coarse, int half, rugo_vec2* fine);
+RUGO_API rugo_status rugo_wavelet_refine(const rugo_vec2* coarse, int half, rugo_vec2* fine);
 
 /** Multi-level analysis in place. data holds n = 2^J points. After the call, for levels = K:
  * data[0 .. n/2^K) are the coarsest points C^{J-K}, followed by the details D^{J-K} (n/2^K points),
  * then D^{J-K+1} (n/2^{K-1}), ..., D^{J-1} (n/2): the standard pyramid layout. n / 2^K >= 4.
  * scratch must hold n points (or be NULL, and then the call allocates through allocator). */
-rugo_status rugo_wavelet_analyze_levels(rugo_filter f, rugo_vec2* data, int n, int levels,
-                                        rugo_vec2* scratch, const rugo_allocator* allocator);
+RUGO_API rugo_status rugo_wavelet_analyze_levels(rugo_filter f, rugo_vec2* data, int n, int levels,
+                                                 rugo_vec2* scratch, const rugo_allocator* allocator);
 /** Inverse of rugo_wavelet_analyze_levels: data in the pyramid layout becomes the n finest points
  * again (round-off aside). Same arguments, scratch and errors. */
-rugo_status rugo_wavelet_synthesize_levels(rugo_filter f, rugo_vec2* data, int n, int levels,
-                                           rugo_vec2* scratch, const rugo_allocator* allocator);
+RUGO_API rugo_status rugo_wavelet_synthesize_levels(rugo_filter f, rugo_vec2* data, int n, int levels,
+                                                    rugo_vec2* scratch, const rugo_allocator* allocator);
 
 #ifdef __cplusplus
 }

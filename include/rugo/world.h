@@ -58,7 +58,7 @@ typedef struct rugo_world_def {
     int cookie;                /**< set by rugo_default_world_def; catches uninitialised defs */
 } rugo_world_def;
 /** A def with the defaults above and its cookie set. */
-rugo_world_def rugo_default_world_def(void);
+RUGO_API rugo_world_def rugo_default_world_def(void);
 
 /** What rugo_world_add_body needs. Start from rugo_default_body_def(). */
 typedef struct rugo_body_def {
@@ -72,7 +72,7 @@ typedef struct rugo_body_def {
     int cookie;                 /**< set by rugo_default_body_def; catches uninitialised defs */
 } rugo_body_def;
 /** A def with the defaults above and its cookie set; fill in shape. */
-rugo_body_def rugo_default_body_def(void);
+RUGO_API rugo_body_def rugo_default_body_def(void);
 
 /** A simulator world (opaque): bodies, broad phase, contact scratch. */
 typedef struct rugo_world rugo_world;
@@ -80,16 +80,16 @@ typedef struct rugo_world rugo_world;
 /** Creates an empty world into *out (owned by the caller; free with rugo_world_destroy). Errors:
  * NULL_ARGUMENT, BAD_ARGUMENT (cookie, time_step <= 0, integrator, max_bisections out of
  * range, ...), NOT_FINITE (also when gravity times time_step overflows), OUT_OF_MEMORY. */
-rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out);
+RUGO_API rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out);
 /** Frees the world and its buffers (not the shapes); NULL is allowed. */
-void rugo_world_destroy(rugo_world* world);
+RUGO_API void rugo_world_destroy(rugo_world* world);
 
 /** Adds a body; *id is its index (0, 1, 2, ... in creation order). Errors: NULL_ARGUMENT,
  * BAD_ARGUMENT (cookie, type, density, a rotation that is not unit), NOT_FINITE (also a density that
  * makes the mass, the inertia or their inverses overflow), OUT_OF_MEMORY. */
-rugo_status rugo_world_add_body(rugo_world* world, const rugo_body_def* def, int* id);
+RUGO_API rugo_status rugo_world_add_body(rugo_world* world, const rugo_body_def* def, int* id);
 /** Number of bodies (0 for NULL). */
-int rugo_world_body_count(const rugo_world* world);
+RUGO_API int rugo_world_body_count(const rugo_world* world);
 
 /** A body's state after the last step (SI units). */
 typedef struct rugo_body_state {
@@ -104,14 +104,14 @@ typedef struct rugo_body_state {
     void* user_data;            /**< as given in the body def */
 } rugo_body_state;
 /** The state of body `id` into *out. Errors: NULL_ARGUMENT, BAD_ARGUMENT (id out of range). */
-rugo_status rugo_world_body(const rugo_world* world, int id, rugo_body_state* out);
+RUGO_API rugo_status rugo_world_body(const rugo_world* world, int id, rugo_body_state* out);
 /** Sets a body's linear (m/s, of the centre of mass) and angular (rad/s) velocity. Errors:
  * NULL_ARGUMENT, BAD_ARGUMENT (id out of range, or a non-zero velocity for a static body),
  * NOT_FINITE. */
-rugo_status rugo_world_set_velocity(rugo_world* world, int id, rugo_vec2 linear, rugo_real angular);
+RUGO_API rugo_status rugo_world_set_velocity(rugo_world* world, int id, rugo_vec2 linear, rugo_real angular);
 /** Moves a body (placement of its shape's local frame; the rotation must be unit within 1e-6).
  * Errors: NULL_ARGUMENT, BAD_ARGUMENT (id out of range, rotation not unit), NOT_FINITE. */
-rugo_status rugo_world_set_transform(rugo_world* world, int id, rugo_transform transform);
+RUGO_API rugo_status rugo_world_set_transform(rugo_world* world, int id, rugo_transform transform);
 
 /** What one step did. */
 typedef struct rugo_step_stats {
@@ -148,76 +148,12 @@ typedef struct rugo_contact_record {
 /** Advances one time step. stats may be NULL. Errors (the world is then left as before the step):
  * NULL_ARGUMENT, OUT_OF_MEMORY (buffers could not grow), NOT_FINITE (a pose, velocity or impulse
  * overflowed, e.g. bodies thrown at speeds near the largest double). */
-rugo_status rugo_world_step(rugo_world* world, rugo_step_stats* stats);
+RUGO_API rugo_status rugo_world_step(rugo_world* world, rugo_step_stats* stats);
 /** The impulses of the last step (owned by the world, valid until the next step); their number goes
  * to *count (count may be NULL). NULL and 0 for a NULL world. */
-const rugo_contact_record* rugo_world_contact_records(const rugo_world* world, int* count);
+RUGO_API const rugo_contact_record* rugo_world_contact_records(const rugo_world* world, int* count);
 /** Total kinetic energy of the dynamic bodies, J (NaN for NULL). */
-rugo_real rugo_world_kinetic_energy(const rugo_world* world);
-
-/* ---- the impulse at one contact (SPEC 10), exposed for tests and other solvers ---------------- */
-/** Two bodies at one contact point, for rugo_collision_impulse (SI units). */
-typedef struct rugo_impulse_input {
-    /** Inverse masses (1/kg) and inverse moments of inertia (1/(kg m^2)); 0 for static bodies. @{ */
-    rugo_real inv_mass_a, inv_inertia_a, inv_mass_b, inv_inertia_b;
-    /** @} */
-    /** Contact point relative to each centre of mass, m. @{ */
-    rugo_vec2 r_a, r_b;
-    /** @} */
-    /** Velocities of the centres of mass, m/s. @{ */
-    rugo_vec2 v_a, v_b;
-    /** @} */
-    /** Angular velocities, rad/s. @{ */
-    rugo_real w_a, w_b;
-    /** @} */
-    rugo_vec2 normal;          /**< unit, from B to A (SPEC 10 convention) */
-    rugo_real friction;        /**< μ >= 0 */
-    rugo_real restitution;     /**< ε in [0, 1] */
-} rugo_impulse_input;
-/** The impulse of one collision. */
-typedef struct rugo_impulse_result {
-    rugo_vec2 impulse;         /**< J on A (B gets -J), N s */
-    /** Its components along the normal and the tangent, N s. @{ */
-    rugo_real impulse_normal, impulse_tangent;
-    /** @} */
-    int branch;                /**< 0 none (separating), 1 sticking, 2 sliding, 3 frictionless */
-    rugo_real energy_change;   /**< kinetic energy after minus before (<= 0 up to round-off), J */
-} rugo_impulse_result;
-/** The collision impulse at one contact (SPEC 10) into *out; never adds kinetic energy. Errors:
- * NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (μ < 0, ε outside [0, 1], normal not unit). */
-rugo_status rugo_collision_impulse(const rugo_impulse_input* in, rugo_impulse_result* out);
-
-/* ---- sweep and prune (SPEC 7), exposed for tests and the benchmarks --------------------------- */
-/** An axis-aligned box. */
-typedef struct rugo_aabb {
-    /** Lower and upper corners (lower <= upper on both axes). @{ */
-    rugo_vec2 lower, upper;
-    /** @} */
-} rugo_aabb;
-/** A pair of overlapping boxes, by index. */
-typedef struct rugo_pair {
-    /** Indices of the two boxes, a < b. @{ */
-    int a, b;
-    /** @} */
-} rugo_pair;
-/** Sweep-and-prune broad phase (opaque). */
-typedef struct rugo_sweep_prune rugo_sweep_prune;
-/** Creates an empty sweep and prune into *out (owned by the caller; free with
- * rugo_sweep_prune_destroy); it allocates through `allocator` (NULL = malloc/free) as it grows.
- * Errors: NULL_ARGUMENT, OUT_OF_MEMORY. */
-rugo_status rugo_sweep_prune_create(const rugo_allocator* allocator, rugo_sweep_prune** out);
-/** Frees it; NULL is allowed. */
-void rugo_sweep_prune_destroy(rugo_sweep_prune* sap);
-/** Boxes of all n objects for this step. The first call (or a change of n) sorts and sweeps (general
- * algorithm); later calls insertion-sort the nearly sorted end points and add/remove pairs at each swap
- * (coherence algorithm), keeping pairs in a hash table. Errors: NULL_ARGUMENT, NOT_FINITE,
- * BAD_ARGUMENT (lower > upper), OUT_OF_MEMORY. */
-rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n);
-/** The overlapping pairs (boxes touching count), sorted by (a, b), owned by sap and valid until the
- * next update; their number goes to *count (count may be NULL). NULL and 0 for NULL. */
-const rugo_pair* rugo_sweep_prune_pairs(const rugo_sweep_prune* sap, int* count);
-/** Swaps done by the last update (0 for the general algorithm or NULL). */
-long rugo_sweep_prune_swaps(const rugo_sweep_prune* sap);
+RUGO_API rugo_real rugo_world_kinetic_energy(const rugo_world* world);
 
 #ifdef __cplusplus
 }

@@ -62,23 +62,6 @@ rugo_allocator rugo_default_allocator(void) {
     return a;
 }
 
-rugo_allocator rugo__allocator_or_default(const rugo_allocator* a) {
-    if (a == NULL || a->alloc == NULL || a->free == NULL) return rugo_default_allocator();
-    return *a;
-}
-
-void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size) {
-    rugo_allocator al = rugo__allocator_or_default(a);
-    if (count == 0 || size == 0) count = size = 1; /* never ask for 0 bytes: malloc(0) may be NULL */
-    if (count > SIZE_MAX / size) return NULL;
-    return al.alloc(count * size, al.ctx);
-}
-
-void rugo__free(const rugo_allocator* a, void* p) {
-    rugo_allocator al = rugo__allocator_or_default(a);
-    if (p != NULL) al.free(p, al.ctx);
-}
-
 int rugo__strtod_c(const char* text, size_t n, double* out) {
     if (n > RUGO__MAX_DECIMAL_CHARS) return 0;
     char buf[RUGO__MAX_DECIMAL_CHARS + 16];

@@ -24,12 +24,28 @@
 extern "C" { /* the Eigen shim includes this file too */
 #endif
 
+/* The allocation helpers are inline because the Eigen shim uses them too: in a shared build
+ * librugo.so exports only the public API, so librugo_fit.so gets its own copies rather than calling
+ * librugo's. */
+
 /* A usable allocator from a possibly NULL or zeroed one. */
-rugo_allocator rugo__allocator_or_default(const rugo_allocator* a);
+static inline rugo_allocator rugo__allocator_or_default(const rugo_allocator* a) {
+    if (a == NULL || a->alloc == NULL || a->free == NULL) return rugo_default_allocator();
+    return *a;
+}
 
 /* Allocate count * size bytes, checking the multiplication for overflow; NULL on failure. */
-void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size);
-void rugo__free(const rugo_allocator* a, void* p);
+static inline void* rugo__alloc_array(const rugo_allocator* a, size_t count, size_t size) {
+    rugo_allocator al = rugo__allocator_or_default(a);
+    if (count == 0 || size == 0) count = size = 1; /* never ask for 0 bytes: malloc(0) may be NULL */
+    if (count > SIZE_MAX / size) return NULL;
+    return al.alloc(count * size, al.ctx);
+}
+
+static inline void rugo__free(const rugo_allocator* a, void* p) {
+    rugo_allocator al = rugo__allocator_or_default(a);
+    if (p != NULL) al.free(p, al.ctx);
+}
 
 /* The longest number text rugo__strtod_c converts (the JSON and SVG readers' limits are within it). */
 #define RUGO__MAX_DECIMAL_CHARS 1024

@@ -1,6 +1,6 @@
 /* The rough curved shape: pyramid + tolerances + MOBBtree + mass properties + surface, built once.
  *
- * Besides what shape.h exposes, a shape keeps for the contact queries (collide.c) an upper bound of
+ * Besides what shape.h exposes, a shape keeps for the contact queries (query/collide_*.c) an upper bound of
  * the tolerance λ(t) over every segment of every level (rugo_tolerance_bound_on_segment), and per level the
  * largest amount by which that bound exceeds the segment's own λ^j_k. The boxes of level j hold the coarse
  * segment thickened by λ^j_k (mobb.h), but λ(t) interpolates between neighbours (SPEC 6.3) and can exceed

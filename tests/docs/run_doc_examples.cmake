@@ -13,7 +13,7 @@
 #
 # Variables (-D): DOCS (documents, separated by |), OUT, CC, CXX, INCLUDE (include/ of the source tree),
 # LIB_RUGO, LIB_BOX2D_BRIDGE and LIB_BOX2D (empty without the bridge), BOX2D_INCLUDE (| separated),
-# RUGO_CLI (the rugo tool; empty without the samples), WARNINGS (| separated), SANITIZE (ON/OFF).
+# RUGO_CLI (the rugo tool; empty without the tools), WARNINGS (| separated), SANITIZE (ON/OFF).
 
 cmake_minimum_required(VERSION 3.16)
 foreach(v DOCS OUT CC INCLUDE LIB_RUGO)

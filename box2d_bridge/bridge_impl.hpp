@@ -266,7 +266,6 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
     static bool sameMass(const b2MassData& a, const b2MassData& b);
     void applyMass(BodyRec* r);
     bool massStale(const BodyRec* r) const;
-    static int autoLevel(const rugo_shape* s, double budget);
     static double bandExcess(const rugo_shape* s, int from);
     static std::vector<double> bandMaxima(const rugo_shape* s);
     static int absLevel(const rugo_shape* s, int rel);

@@ -240,8 +240,10 @@ typedef struct query_side {
     rugo_real slack;         /* growth of the boxes */
 } query_side;
 
-/* s for shape at the query's level (0 finest, < 0 coarser, > 0 absolute); override >= 0: the query's
- * tolerance instead of the shape's. */
+/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked). */
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q);
+/* s for shape at absolute `level` (J_min..J); override >= 0: the query's tolerance instead of the
+ * shape's. */
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override);
 /* λ at (seg, t) of the side's level, or the override. */
 rugo_real rugo__query_side_tolerance(const query_side* s, int seg, rugo_real t, rugo_real override);
@@ -334,7 +336,7 @@ typedef struct contact_out {
 } contact_out;
 
 /* RUGO_OK, or what is wrong with the query or the caller's room for contacts. */
-rugo_status rugo__check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity);
+rugo_status rugo__check_query(const rugo_contact_query* q, const rugo_contact_output* out);
 /* Adds a contact from a pair in A's frame: pa on A (segment sa at ta), pb on B, n unit from A to B.
  * id_b: B's segment, or the primitive's feature, for the id. 0 if out of memory. */
 int rugo__emit_contact(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,

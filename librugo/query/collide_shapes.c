@@ -466,8 +466,8 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     s->ctx = ctx;
     s->q = q;
     s->override = override;
-    rugo__query_side_init(&s->A, a, q->level, override);
-    rugo__query_side_init(&s->B, b, q->level, override);
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
+    rugo__query_side_init(&s->B, b, rugo__query_level(b, q), override);
     shape_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;
@@ -648,46 +648,46 @@ static rugo_status shapes_no_crossing(shape_query* s, rugo_contact_state* state)
 /* The plan (collide_internal.h): checks, frame and levels, candidates, narrow phase, crossings, then
  * the regions or, without crossings, containment or the minima, then finish. The state is
  * INTERSECTING as soon as crossings are found, whatever their contacts. */
-rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
-                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                rugo_query_stats* stats) {
+rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b, rugo_transform xb,
+                                const rugo_contact_query* query, rugo_collide_context* ctx,
+                                rugo_contact_output* out) {
     /* checks */
-    if (count != NULL) *count = 0;
-    if (state != NULL) *state = RUGO_STATE_APART;
-    if (stats != NULL) memset(stats, 0, sizeof *stats);
-    if (ctx == NULL || a == NULL || b == NULL || count == NULL || state == NULL)
-        return RUGO_ERR_NULL_ARGUMENT;
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    out->count = 0;
+    out->state = RUGO_STATE_APART;
+    memset(&out->stats, 0, sizeof out->stats);
+    if (ctx == NULL || a == NULL || b == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_contact_query defq = rugo_default_contact_query();
     const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = rugo__check_query(q, contacts, capacity);
+    rugo_status st = rugo__check_query(q, out);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
 
     /* frame and levels */
     shape_query s;
-    st = shapes_frame_and_levels(&s, ctx, a, xa, b, xb, q, stats);
+    st = shapes_frame_and_levels(&s, ctx, a, xa, b, xb, q, &out->stats);
     if (st != RUGO_OK) return st;
-    s.want = capacity > 0 || stats != NULL;
+    s.want = out->capacity > 0;
     /* traversal: candidate segment pairs */
     st = shapes_candidates(&s);
-    if (st != RUGO_OK) return st;
     /* narrow phase */
-    st = shapes_narrow_phase(&s);
-    if (st != RUGO_OK) return st;
+    if (st == RUGO_OK) st = shapes_narrow_phase(&s);
     /* crossings and regions, with the minima outside them and the overlaps below the resolution;
      * without crossings, containment or the minima */
-    st = shapes_crossings(&s);
-    if (st != RUGO_OK) return st;
-    if (s.m > 0) {
-        *state = RUGO_STATE_INTERSECTING;
+    if (st == RUGO_OK) st = shapes_crossings(&s);
+    rugo_contact_state state = RUGO_STATE_APART;
+    if (st == RUGO_OK && s.m > 0) {
+        state = RUGO_STATE_INTERSECTING;
         st = shapes_regions(&s);
-    } else {
-        st = shapes_no_crossing(&s, state);
+    } else if (st == RUGO_OK) {
+        st = shapes_no_crossing(&s, &state);
     }
-    if (st != RUGO_OK) return st;
+    if (st != RUGO_OK) {
+        memset(&out->stats, 0, sizeof out->stats);
+        return st;
+    }
     /* finish */
-    rugo__finish_contacts(&s.o, contacts, capacity, count, stats);
+    out->state = state;
+    rugo__finish_contacts(&s.o, out->contacts, out->capacity, &out->count, &out->stats);
     return RUGO_OK;
 }
-

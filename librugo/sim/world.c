@@ -22,7 +22,7 @@ rugo_world_def rugo_default_world_def(void) {
     d.gravity = rugo_v2(0.0, -9.81);
     d.time_step = 1.0 / 60.0;
     d.integrator = RUGO_INTEGRATE_SYMPLECTIC_EULER;
-    d.level = 0;
+    d.lod = 0;
     d.max_bisections = 8;
     d.penetration_tolerance = 0.01;
     d.micro_collisions = 1;
@@ -67,7 +67,7 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     w->allocator = a;
     w->g = rugo__v2_length(def->gravity);
     w->query = rugo_default_contact_query();
-    w->query.level = def->level;
+    w->query.lod = def->lod;
     if (rugo_sweep_prune_create(&a, &w->sap) != RUGO_OK || rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
         rugo_world_destroy(w);
         return RUGO_ERR_OUT_OF_MEMORY;

@@ -616,17 +616,16 @@ struct Pose {
 
 rugo_contact_query make_query(int level, double margin) {
     rugo_contact_query q = rugo_default_contact_query();
-    q.level = level;
+    q.lod = level;
     q.margin = margin;
     return q;
 }
 
 rugo_contact_state state_at(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
                             rugo_transform xb) {
-    int n = 0;
-    rugo_contact_state st = RUGO_STATE_APART;
-    rugo_collide_shapes(ctx, a, xa, b, xb, nullptr, nullptr, 0, &n, &st, nullptr);
-    return st;
+    rugo_contact_output out = rugo_contact_output_of(nullptr, 0); /* the state only */
+    rugo_collide_shapes(a, xa, b, xb, nullptr, ctx, &out);
+    return out.state;
 }
 
 /* Distance along dir from A's position at which B first stops crossing A (bisection on the state). */
@@ -648,9 +647,10 @@ void rugo_contacts(rugo_collide_context* ctx, const Body& A, rugo_transform xa, 
                    int level, std::vector<Cnt>& out, rugo_query_stats* qs) {
     static rugo_contact c[kCap];
     const rugo_contact_query q = make_query(level, kWindow);
-    int n = 0;
-    rugo_contact_state st;
-    rugo_collide_shapes(ctx, A.shape, xa, B.shape, xb, &q, c, kCap, &n, &st, qs);
+    rugo_contact_output o = rugo_contact_output_of(c, kCap);
+    rugo_collide_shapes(A.shape, xa, B.shape, xb, &q, ctx, &o);
+    if (qs != nullptr) *qs = o.stats;
+    const int n = o.count;
     out.clear();
     for (int i = 0; i < n; ++i) {
         Cnt k;
@@ -1348,10 +1348,9 @@ SweepRow sweep_point(rugo_collide_context* ctx, const std::string& kind, const s
     xb.p = rugo_v2(from.x + d * dir.x, from.y + d * dir.y);
     const rugo_contact_query q = make_query(0, 2.0 * gap);
     static rugo_contact c[kCap];
-    int cnt = 0;
-    rugo_contact_state st;
-    rugo_query_stats qs;
-    rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, kCap, &cnt, &st, &qs);
+    rugo_contact_output out = rugo_contact_output_of(c, kCap);
+    rugo_collide_shapes(a, xa, b, xb, &q, ctx, &out);
+    const rugo_query_stats qs = out.stats;
     SweepRow r;
     r.kind = kind;
     r.shapes = shapes;
@@ -1363,7 +1362,7 @@ SweepRow sweep_point(rugo_collide_context* ctx, const std::string& kind, const s
     double best = HUGE_VAL; /* best single query */
     for (int rep = 0; rep < reps; ++rep) {
         const double t0 = now_ns();
-        rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, kCap, &cnt, &st, nullptr);
+        rugo_collide_shapes(a, xa, b, xb, &q, ctx, &out);
         best = std::min(best, now_ns() - t0);
     }
     r.time_ns = best;
@@ -1389,11 +1388,10 @@ HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body
     rugo_query_stats qs;
     rugo_contacts(ctx, A, xa, B, xb, 0, got, &qs);
     evaluate(pr, got, h.rugo);
-    int n = 0;
-    rugo_contact_state st;
     const rugo_contact_query q = make_query(0, kWindow);
-    rugo_collide_shapes(ctx, A.shape, xa, B.shape, xb, &q, nullptr, 0, &n, &st, nullptr);
-    h.state = (int)st;
+    rugo_contact_output out = rugo_contact_output_of(nullptr, 0); /* the state only */
+    rugo_collide_shapes(A.shape, xa, B.shape, xb, &q, ctx, &out);
+    h.state = (int)out.state;
     PolyBody pa, pb;
     build_poly(A.pts, m, true, pa);
     build_poly(B.pts, m, true, pb);
@@ -1477,11 +1475,11 @@ int main(int argc, char** argv) {
             static rugo_contact cbuf[kCap];
             std::uint64_t h = SAMPLE_FNV_OFFSET;
             for (size_t i = 0; i < P; ++i) {
-                int n = 0;
-                rugo_contact_state st = RUGO_STATE_APART;
-                rugo_collide_shapes(ctx, bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
-                                    poses[i].xb, &q, cbuf, kCap, &n, &st, nullptr);
-                const int head[2] = {(int)st, n};
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                    poses[i].xb, &q, ctx, &out);
+                const int n = out.count;
+                const int head[2] = {(int)out.state, n};
                 h = sample_fnv1a(h, head, sizeof head);
                 for (int k = 0; k < n; ++k) { /* field by field: padding bytes are not part of the answer */
                     const rugo_contact& c = cbuf[k];
@@ -1581,9 +1579,8 @@ int main(int argc, char** argv) {
                 boxes += qs.box_tests;
                 return;
             }
-            int n = 0;
-            rugo_contact_state st;
-            rugo_collide_shapes(ctx, A.shape, poses[i].xa, B.shape, poses[i].xb, &q, cbuf, kCap, &n, &st, nullptr);
+            rugo_contact_output o = rugo_contact_output_of(cbuf, kCap);
+            rugo_collide_shapes(A.shape, poses[i].xa, B.shape, poses[i].xb, &q, ctx, &o);
         });
         std::printf("# rugo level %d: %.1f box tests, %.1f segment pairs per query\n", L, (double)boxes / (double)P,
                     r.pairs);

@@ -111,7 +111,7 @@ void Bridge::Impl::gatherRough(const ProxyRef* ra, const ProxyRef* rb) {
     cachedQuery(
         QA, QB, -1, xa, xb, margin, level,
         [&](rugo_contact* out, int cap, int* n, rugo_query_stats* qs) {
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = legacyQuery();
             q.lod = level;
             q.margin = margin;
             rugo_contact_output o = rugo_contact_output_of(out, cap);
@@ -180,7 +180,7 @@ void Bridge::Impl::gatherPrimitive(const ProxyRef* r, bool roughIsA, b2Fixture* 
     cachedQuery(
         R, other, child, xr, xo, margin, level,
         [&](rugo_contact* out, int cap, int* n, rugo_query_stats* qs) -> rugo_status {
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = legacyQuery();
             q.lod = level;
             q.margin = margin;
             rugo_primitive p = rugo_make_circle(rugo_v2(0.0, 0.0), 0.0);

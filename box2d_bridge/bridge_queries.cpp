@@ -125,7 +125,7 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
         if (b == nullptr) continue; // destroyed by an earlier callback
         const BodyRec* r = I.rec(b);
         if (r != nullptr) { // decided by the curve
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = legacyQuery();
             q.lod = r->relLevel;
             const rugo_transform x = toRugo(b->GetTransform());
             rugo_primitive box = rugo_make_circle(v[0], 0.0);

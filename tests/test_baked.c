@@ -244,7 +244,7 @@ static void check_round_trip(rugo_shape* s, uint64_t seed) {
         const double d = test_rng_uniform(&r, 0.8, 2.4), a = test_rng_uniform(&r, 0, 6.3);
         rugo_transform xa = rugo_make_transform(-c0.x, -c0.y, 0.0);
         rugo_transform xb = rugo_make_transform(d * cos(a) - c1.x, d * sin(a) - c1.y, test_rng_uniform(&r, 0, 6.3));
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.lod = (trial % 3 == 2) ? -1 : 0;
         rugo_contact ca[16], cb[16];
         int na = 0, nb = 0;

@@ -722,7 +722,7 @@ struct ManifoldChecker : public b2ContactListener {
         rugo_contact k[64];
         int n = 0;
         rugo_contact_state st;
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.margin = 1.0; // a superset of the bridge's (speculative) query; the same minima, the same values
         const b2Body* bA = fa->GetBody();
         const b2Body* bB = fb->GetBody();

@@ -643,7 +643,7 @@ static rugo_transform place_b(const tshape* A, rugo_transform xa, const tshape* 
 
 static rugo_contact_state lib_state(rugo_collide_context* ctx, const tshape* A, rugo_transform xa,
                                     const tshape* B, rugo_transform xb, double override) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     int n;
     rugo_contact_state s;
@@ -681,7 +681,7 @@ static void check_pose(rugo_collide_context* ctx, const tshape* A, rugo_transfor
     enum { CAP = 256 };
     static rugo_contact c[CAP];
     static refres R;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     int n = 0;
     rugo_contact_state state;
@@ -858,7 +858,7 @@ END_TEST
 static int query(rugo_collide_context* ctx, const tshape* A, rugo_transform xa, const tshape* B,
                  rugo_transform xb, double override, int level, rugo_contact* c, int cap,
                  rugo_contact_state* state) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     q.lod = level;
     int n = -1;
@@ -1235,7 +1235,7 @@ START_TEST(test_region_depth_is_a_closest_pair) {
                                {-0x1.f8d85e4b03c2bp-2, -0x1.bd73866c3d051p-1}};
     rugo_collide_context* ctx = NULL;
     rugo_collide_context_create(NULL, &ctx);
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.margin = 0x1.1e27bd9c8656p-6;
     int overlapping = 0;
     for (int k = -5; k <= 5; ++k) {
@@ -1386,7 +1386,7 @@ START_TEST(test_coarse_levels_are_simple_curves) {
         const double low = lowest_height(fine, angle, &at);
         const rugo_transform xt = rugo_make_transform(0.0, 0.5 + 0.01 - low, angle);
         for (int level = 0; level >= -3; --level) {
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = test_exact_query();
             q.lod = level;
             rugo_contact c[8];
             int count = -1;
@@ -1439,7 +1439,7 @@ START_TEST(test_sharp_corner_tilted) {
                     rugo_contact c[16];
                     rugo_contact_state st = RUGO_STATE_APART;
                     int n = -1;
-                    rugo_contact_query q = rugo_default_contact_query();
+                    rugo_contact_query q = test_exact_query();
                     const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
                     const rugo_vec2 raised[4] = {{-5, -1}, {5, -1}, {5, -0.001}, {-5, -0.001}};
                     rugo_status r = RUGO_OK;
@@ -1579,7 +1579,7 @@ START_TEST(test_shallow_overlap_has_contact) {
                     rugo_contact k[16];
                     rugo_contact_state st = RUGO_STATE_APART;
                     int n = -1;
-                    rugo_contact_query q = rugo_default_contact_query();
+                    rugo_contact_query q = test_exact_query();
                     const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
                     rugo_status r;
                     if (kind == 0)
@@ -1659,7 +1659,7 @@ START_TEST(test_coincident_curves) {
         rugo_contact c[64];
         rugo_contact_state st;
         rugo_query_stats qs;
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         int n = 0;
         clock_t t0 = clock();
         ck_assert_int_eq(test_collide_shapes(ctx, A->s, x, A->s, x, &q, c, 64, &n, &st, &qs), RUGO_OK);
@@ -1758,7 +1758,7 @@ START_TEST(test_far_and_scaled) {
             int n1 = query(ctx, A, xa, B, xb, override, 0, c1, 64, &s1);
             int n2;
             const double sc = scales[v];
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = test_exact_query();
             q.tolerance = override >= 0 ? override * sc : -1.0;
             if (v == 0) {
                 rugo_transform ya = xa, yb = xb;
@@ -1994,7 +1994,7 @@ static void prim_reference(const curve* A, const tprim* P, double cutoff, double
 
 static rugo_status prim_query(rugo_collide_context* ctx, const tshape* A, rugo_transform xa, const tprim* P,
                               double override, rugo_contact* c, int cap, int* n, rugo_contact_state* st) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     if (P->nv == 1) return test_collide_circle(ctx, A->s, xa, P->v[0], P->R, &q, c, cap, n, st, NULL);
     if (P->nv == 2)
@@ -2190,7 +2190,7 @@ START_TEST(test_primitive_penetration) {
     rugo_contact c[16];
     int n;
     rugo_contact_state st;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     for (int k = 0; k < 4; ++k) {
         const double depth = 0.05 * (k + 1);
         /* circle */
@@ -2449,7 +2449,7 @@ START_TEST(test_context_reserve) {
         const tshape* B = &g_shapes[(k / N_SHAPES) % N_SHAPES];
         rugo_transform xa, xb;
         random_poses(&r, A, B, 0, -1.0, pose_ctx, &xa, &xb);
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.lod = -(k % 3);
         rugo_contact cs[CONTACTS];
         int n = 0;
@@ -2524,7 +2524,7 @@ START_TEST(test_context_reserve) {
     rugo_contact cs[CONTACTS];
     int n = -1;
     rugo_contact_state state;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     ck_assert_int_eq(test_collide_shapes(ct, g_shapes[0].s, rugo_make_transform(0, 0, 0), g_shapes[0].s,
                                          rugo_make_transform(0.5, 0, 0), &q, cs, CONTACTS, &n, &state, NULL),
                      RUGO_OK);
@@ -2608,7 +2608,7 @@ START_TEST(test_context_and_truncation) {
     int n;
     rugo_contact_state st;
     rugo_query_stats qs;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
     ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
     const long before = cnt.allocs;
@@ -2661,7 +2661,10 @@ START_TEST(test_bad_inputs) {
     rugo_contact c[4];
     int n = 7;
     rugo_contact_state st = RUGO_STATE_CONTACT;
-    rugo_contact_query q = rugo_default_contact_query();
+    const rugo_contact_query defaults = rugo_default_contact_query();
+    ck_assert(defaults.resolution == RUGO_RESOLUTION_AUTO);
+    ck_assert_int_eq(defaults.lod, 0);
+    rugo_contact_query q = test_exact_query();
     ck_assert_int_eq(q.lod, 0);
     ck_assert(q.tolerance < 0);
     ck_assert_int_eq(q.friction_mix, RUGO_MIX_MAX);
@@ -2697,6 +2700,15 @@ START_TEST(test_bad_inputs) {
     ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
     bq.tolerance = INFINITY;
     ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq = q;
+    bq.resolution = NAN;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq.resolution = INFINITY;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq.resolution = -0.5;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    bq.resolution = RUGO_RESOLUTION_AUTO;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_OK);
     bq = q;
     bq.friction_mix = (rugo_mix_rule)9;
     ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
@@ -2826,7 +2838,7 @@ START_TEST(test_surface_values) {
         random_poses(&r, A, B, 1, -1.0, ctx, &xa, &xb);
         rugo_contact c[32];
         rugo_contact_state st;
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.friction_mix = (rugo_mix_rule)(k % 4);
         q.restitution_mix = (rugo_mix_rule)((k / 4) % 4);
         int n;
@@ -2852,7 +2864,7 @@ START_TEST(test_surface_values) {
     rugo_contact c[32];
     rugo_contact_state st;
     int n;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = 0.3;
     ck_assert_int_eq(test_collide_shapes(ctx, A->s, rugo_identity_transform(), B->s,
                                          rugo_make_transform(3.0, 0, 0), &q, c, 32, &n, &st, NULL),
@@ -3120,7 +3132,7 @@ START_TEST(test_query_margin) {
         const double size = fmax(A->size, B->size), margin = 0.05 * size;
         rugo_transform xa, xb;
         random_poses(&r, A, B, 0, -1.0, ctx, &xa, &xb);
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         int n0 = 0, n1 = 0, nm = 0;
         rugo_contact_state s0, s1, sm;
         ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c0, CAP, &n0, &s0, NULL), RUGO_OK);
@@ -3180,7 +3192,7 @@ START_TEST(test_query_margin) {
     ck_assert_int_eq(spurious, 0);
     ck_assert(extra > 0);
     /* Bad margins. */
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     int n;
     rugo_contact_state st;
     q.margin = -1e-3;
@@ -3194,7 +3206,7 @@ START_TEST(test_query_margin) {
     /* Primitives: a circle just beyond the band is reported with the margin only. */
     const tshape* A = &g_shapes[0];
     rugo_transform xa = rugo_identity_transform();
-    q = rugo_default_contact_query();
+    q = test_exact_query();
     q.tolerance = 0.0;
     rugo_vec2 far = rugo_v2(A->radius * 3.0, 0.0);
     rugo_curve_point cp = rugo_contour_closest_point(A->fine, far);
@@ -3428,7 +3440,7 @@ START_TEST(test_work_against_segments) {
                 hi = mid;
         }
         xb.p = rugo_v2((hi + 1e-7) * u.x, (hi + 1e-7) * u.y);
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.margin = 2e-7;
         rugo_contact c[8];
         int cnt = 0;

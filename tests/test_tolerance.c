@@ -936,7 +936,7 @@ END_TEST
  * NAN unless the state is CONTACT (apart curves). */
 static double deepest_band_separation(rugo_collide_context* ctx, const rugo_shape* a, const rugo_shape* b,
                                       rugo_transform xb, int level, double margin) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.lod = level;
     q.margin = margin;
     rugo_contact c[64];
@@ -995,7 +995,7 @@ START_TEST(level_error_bounds_contact_separation) {
         double lo = 0.0, hi = 400.0;
         for (int it = 0; it < 50; ++it) {
             const double mid = 0.5 * (lo + hi);
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = test_exact_query();
             rugo_contact c[8];
             int count = 0;
             rugo_contact_state state;

@@ -90,6 +90,12 @@ void test_budget_free(void* p, void* ctx) {
     free(p);
 }
 
+rugo_contact_query test_exact_query(void) {
+    rugo_contact_query q = rugo_default_contact_query();
+    q.resolution = 0.0;
+    return q;
+}
+
 static rugo_status unpack(rugo_status st, const rugo_contact_output* out, int* count, rugo_contact_state* state,
                           rugo_query_stats* stats) {
     if (count != NULL) *count = out->count;
@@ -102,15 +108,17 @@ rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, 
                                 rugo_transform xb, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
     rugo_contact_output out = rugo_contact_output_of(contacts, capacity);
-    return unpack(rugo_collide_shapes(a, xa, b, xb, q, ctx, &out), &out, count, state, stats);
+    const rugo_contact_query exact = test_exact_query();
+    return unpack(rugo_collide_shapes(a, xa, b, xb, q != NULL ? q : &exact, ctx, &out), &out, count, state, stats);
 }
 
 static rugo_status collide_primitive(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
                                      const rugo_primitive* p, const rugo_contact_query* q, rugo_contact* contacts,
                                      int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats) {
     rugo_contact_output out = rugo_contact_output_of(contacts, capacity);
-    return unpack(rugo_collide_primitive(a, xa, p, rugo_identity_transform(), q, ctx, &out), &out, count, state,
-                  stats);
+    const rugo_contact_query exact = test_exact_query();
+    return unpack(rugo_collide_primitive(a, xa, p, rugo_identity_transform(), q != NULL ? q : &exact, ctx, &out),
+                  &out, count, state, stats);
 }
 
 rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,

@@ -48,7 +48,10 @@ typedef struct test_budget_ctx {
 void* test_budget_alloc(size_t n, void* ctx);
 void test_budget_free(void* p, void* ctx);
 
-/* The contact queries as the suites assert on them: the caller's array and room in, the count, state
+/* rugo_default_contact_query() at resolution 0: the round-off answers the accuracy tests pin. */
+rugo_contact_query test_exact_query(void);
+
+/* The contact queries as the suites assert on them (a NULL query: test_exact_query()): the caller's array and room in, the count, state
  * and statistics out (stats may be NULL), through rugo_contact_output. The primitives as
  * rugo_collide_primitive takes them, in world coordinates. */
 rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,

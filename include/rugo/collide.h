@@ -90,9 +90,37 @@ typedef struct rugo_query_stats {
  * that level and every finer one. */
 #define RUGO_LOD_AUTO (-1000000)
 
+/** Where a contact's points are (rugo_contact_query.contact_rule). */
+typedef enum rugo_contact_rule {
+    /** At a local minimum of the band-adjusted distance d - λ_A(t_A) - λ_B(t_B): the surfaces touch
+     * where their bands reach farthest, so the points and separations a coarser level of detail
+     * reports stay within its certified error of the finest level's (the default). */
+    RUGO_CONTACT_BAND_ADJUSTED = 0,
+    /** At a local minimum of the distance d between the curves, the bands added afterwards (the
+     * thesis' 6.15): the rule of the thesis' simulator (rugo_world_def.contact_rule's default). */
+    RUGO_CONTACT_THESIS = 1
+} rugo_contact_rule;
+
+/** rugo_contact_query.resolution: 1e-4 of the smaller shape's size (the diagonal of its root box). */
+#define RUGO_RESOLUTION_AUTO (-1.0)
+
 /** Options of a contact query. Start from rugo_default_contact_query() (or pass NULL for the
  * defaults). */
 typedef struct rugo_contact_query {
+    /** The resolution δ the query is certified to (length units; docs/contacts.md, "Resolution"): no
+     * contact whose band-adjusted separation is below the threshold (the band plus margin) by more
+     * than δ is missed, and every reported separation is within δ of the true one (round-off where the
+     * point was polished by Newton on the true curves); overlaps shallower than δ may be reported as a
+     * touching. A stretch along which the curves stay parallel to δ (flat on flat, a disc in a matching
+     * bowl) is one contact region whose two ends (and deepest point) are its contacts. The work is
+     * bounded by the number of pieces flat to δ near the contact, about (length / δ)^(1/2). 0: the
+     * round-off answers (every crossing and minimum certified to the last bits, at a cost that grows
+     * without bound for conforming curves). Default RUGO_RESOLUTION_AUTO: 1e-4 of the smaller shape's
+     * size. Errors: NOT_FINITE, BAD_ARGUMENT (negative other than RUGO_RESOLUTION_AUTO). */
+    rugo_real resolution;
+    /** Where contacts are (rugo_contact_rule); default RUGO_CONTACT_BAND_ADJUSTED. Errors: BAD_ARGUMENT
+     * for an unknown rule. */
+    rugo_contact_rule contact_rule;
     /** Level of detail, relative to each shape: 0 = its finest level, -1 = one level coarser, ...
      * (clamped at its coarsest level), or RUGO_LOD_AUTO. Coarse levels use their coarse segments with
      * their accumulated tolerances λ^j. Contacts report the absolute level used (level_a, level_b).
@@ -113,8 +141,8 @@ typedef struct rugo_contact_query {
     int cookie; /**< set by rugo_default_contact_query; catches uninitialised queries */
 } rugo_contact_query;
 
-/** Level of detail 0 (finest), budget 0, the shapes' tolerances, max for μ, min for ε, margin 0,
- * cookie set. */
+/** Resolution RUGO_RESOLUTION_AUTO, level of detail 0 (finest), budget 0, the shapes' tolerances, max
+ * for μ, min for ε, margin 0, cookie set. */
 RUGO_API rugo_contact_query rugo_default_contact_query(void);
 
 /** Where a query writes what it found. The caller sets `contacts` and `capacity` (its room: contacts

@@ -35,8 +35,8 @@
 #define NEWTON_TOL 1e-13
 
 enum {
-    STACK_MAX = 160,   /* depth-first stack: depth <= 2 x MAX_DEPTH + 4 */
-    MAX_DEPTH = 60,    /* halvings of one parameter (2^-60: below any useful δ) */
+    STACK_MAX = 100,   /* depth-first stack: one more frame per halving, of either piece */
+    MAX_DEPTH = 48,    /* halvings of one parameter (2^-48: below any useful δ) */
     BOX_BUDGET = 20000, /* boxes per call, then overflow (the caller falls back to the round-off phase) */
     NEWTON_MAX = 12,
     TMP_ROOTS = 64
@@ -46,9 +46,27 @@ typedef struct box {
     rugo_real s0, s1, t0, t1;
 } box;
 
+/* A sub-piece with what its box tests need, computed once when it is made. The band over the sub-piece
+ * is one cubic (l, Bernstein coefficients in the sub-piece's parameter), except for a whole banded
+ * piece, whose band has its knot inside (knot: halves). */
 typedef struct sub {
     rugo_vec2 p[4];
     rugo_real l[4];
+    int knot;                        /* a whole piece whose band is two cubics (halves) */
+    const rugo_real (*halves)[4];    /* the piece's two halves (when knot) */
+    rugo_real l0, l1;          /* λ at the two ends */
+    rugo_real lmax;            /* the band's largest value over the sub-piece (>= 0) */
+    rugo_real band_dev;        /* |band - linear| bound */
+    rugo_real band_slope;      /* max |dλ/du|, the sub-piece's parameter */
+    int have_flat, have_cone;  /* flat and the cone are computed when a box first needs them */
+    rugo_real flat;            /* |sub-piece - its linear Bezier| + band_dev */
+    rugo_vec2 centre;          /* of the control points */
+    rugo_vec2 normal;          /* unit normal of the chord (0 for a point) */
+    /* tangent cone (cone_ok: the hodograph's directions stay within 90 degrees of the chord) */
+    int cone_ok;
+    rugo_vec2 axis;
+    rugo_real cos_half, sin_half; /* its half-angle */
+    rugo_real sin_band;           /* sin of the angle the band's slope allows: min(1, |λ'| / |f'|) */
 } sub;
 
 typedef struct found {
@@ -115,60 +133,130 @@ static void band_at(const rugo__banded_piece* p, int banded, rugo_real s, rugo_r
     if (!(*v > 0.0)) *v = *d1 = *d2 = 0.0;
 }
 
-/* The restriction of a cubic's coefficients (n scalars per point, stride dims) to [a, b]. */
-static void restrict_scalar(const rugo_real in[4], rugo_real a, rugo_real b, rugo_real out[4]) {
-    rugo_real w[4] = {in[0], in[1], in[2], in[3]}, part[4];
-    if (b != 1.0) {
-        part[0] = w[0];
-        for (int k = 1; k <= 3; ++k) {
-            for (int i = 0; i <= 3 - k; ++i)
-                w[i] = (1.0 - b) * w[i] + b * w[i + 1];
-            part[k] = w[0];
-        }
-        memcpy(w, part, sizeof w);
-    }
-    if (a != 0.0) {
-        const rugo_real u = a / b;
-        part[3] = w[3];
-        for (int k = 1; k <= 3; ++k) {
-            for (int i = 0; i <= 3 - k; ++i)
-                w[i] = (1.0 - u) * w[i] + u * w[i + 1];
-            part[3 - k] = w[3 - k];
-        }
-        memcpy(w, part, sizeof w);
-    }
-    memcpy(out, w, sizeof w);
+/* Max and bound of the deviation from the linear function through its end values, of a cubic band in
+ * Bernstein form over [0, 1] (the linear function's coefficients are its values at i/3). */
+static void band_stats(const rugo_real l[4], rugo_real* lmax, rugo_real* dev) {
+    *lmax = mx(0.0, mx(mx(l[0], l[1]), mx(l[2], l[3])));
+    *dev = mx(fabs(l[1] - (2.0 * l[0] + l[3]) / 3.0), fabs(l[2] - (l[0] + 2.0 * l[3]) / 3.0));
 }
 
-static void restrict_points(const rugo_vec2 in[4], rugo_real a, rugo_real b, rugo_vec2 out[4]) {
-    rugo_real x[4] = {in[0].x, in[1].x, in[2].x, in[3].x}, y[4] = {in[0].y, in[1].y, in[2].y, in[3].y};
-    rugo_real rx[4], ry[4];
-    restrict_scalar(x, a, b, rx);
-    restrict_scalar(y, a, b, ry);
+/* Fills what every box test needs from p, l, knot, halves; the flatness and the tangent cone wait
+ * until a box needs them (sub_flat, sub_cone). */
+static void finish_sub(sub* q) {
+    const rugo_vec2* p = q->p;
+    rugo_real slope = 0.0;
+    if (q->knot) {
+        /* two cubics against the one linear function through λ(0) and λ(1) */
+        q->l0 = q->halves[0][0];
+        q->l1 = q->halves[1][3];
+        rugo_real lmax = 0.0, dev = 0.0;
+        for (int h = 0; h < 2; ++h) {
+            const rugo_real a = q->l0 + 0.5 * (rugo_real)h * (q->l1 - q->l0), b = a + 0.5 * (q->l1 - q->l0);
+            for (int i = 0; i < 4; ++i) {
+                lmax = mx(lmax, q->halves[h][i]);
+                dev = mx(dev, fabs(q->halves[h][i] - (a + (b - a) * (rugo_real)i / 3.0)));
+                if (i < 3) slope = mx(slope, 6.0 * fabs(q->halves[h][i + 1] - q->halves[h][i]));
+            }
+        }
+        q->lmax = lmax;
+        q->band_dev = dev;
+    } else {
+        q->l0 = q->l[0];
+        q->l1 = q->l[3];
+        band_stats(q->l, &q->lmax, &q->band_dev);
+        for (int i = 0; i < 3; ++i)
+            slope = mx(slope, 3.0 * fabs(q->l[i + 1] - q->l[i]));
+    }
+    q->band_slope = slope;
+    q->centre = rugo_v2(0.25 * (p[0].x + p[1].x + p[2].x + p[3].x), 0.25 * (p[0].y + p[1].y + p[2].y + p[3].y));
+    const rugo_vec2 chord = rugo_v2_sub(p[3], p[0]);
+    const rugo_real len = vlen(chord);
+    q->normal = len > 0.0 ? rugo_v2(-chord.y / len, chord.x / len) : rugo_v2(0.0, 0.0);
+    q->have_flat = q->have_cone = 0;
+}
+
+/* |sub-piece - its linear Bezier| + |band - linear|: the chord's error, parameter by parameter. */
+static rugo_real sub_flat(sub* q) {
+    if (!q->have_flat) {
+        const rugo_vec2* p = q->p;
+        const rugo_vec2 m1 = lerp(p[0], p[3], 1.0 / 3.0), m2 = lerp(p[0], p[3], 2.0 / 3.0);
+        q->flat = mx(vlen(rugo_v2_sub(p[1], m1)), vlen(rugo_v2_sub(p[2], m2))) + q->band_dev;
+        q->have_flat = 1;
+    }
+    return q->flat;
+}
+
+/* The cone of f' (the hodograph's control points 3 (p_i+1 - p_i)) about the chord; cone_ok is 0 when
+ * they spread over 90 degrees or more. */
+static void sub_cone(sub* q) {
+    if (q->have_cone) return;
+    q->have_cone = 1;
+    q->cone_ok = 0;
+    const rugo_vec2* p = q->p;
+    const rugo_vec2 chord = rugo_v2_sub(p[3], p[0]);
+    const rugo_real len = vlen(chord);
+    if (!(len > 0.0)) return;
+    const rugo_vec2 axis = rugo_v2_scale(1.0 / len, chord);
+    rugo_real cosmin = 1.0, speed = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+        const rugo_vec2 d = rugo_v2_scale(3.0, rugo_v2_sub(p[i + 1], p[i]));
+        const rugo_real dl = vlen(d), along = rugo_v2_dot(d, axis);
+        if (!(along > 0.0)) return;
+        cosmin = mn(cosmin, along / dl);
+        speed = mn(speed, along);
+    }
+    q->cone_ok = 1;
+    q->axis = axis;
+    q->cos_half = cosmin;
+    q->sin_half = sqrt(mx(0.0, 1.0 - cosmin * cosmin));
+    q->sin_band = mn(1.0, q->band_slope / speed);
+}
+
+/* The whole piece as a sub-piece. */
+static void root_sub(const rugo__banded_piece* p, int banded, sub* q) {
     for (int i = 0; i < 4; ++i)
-        out[i] = rugo_v2(rx[i], ry[i]);
+        q->p[i] = p->p[i];
+    q->knot = banded;
+    q->halves = p->band;
+    for (int i = 0; i < 4; ++i)
+        q->l[i] = 0.0;
+    finish_sub(q);
 }
 
-/* Sub-piece over [a, b] (inside one band half when banded). */
-static void make_sub(const rugo__banded_piece* p, int banded, rugo_real a, rugo_real b, sub* out) {
-    restrict_points(p->p, a, b, out->p);
-    if (!banded) {
-        out->l[0] = out->l[1] = out->l[2] = out->l[3] = 0.0;
-        return;
+/* The two halves of a sub-piece (de Casteljau at 1/2; a whole banded piece's band splits at its knot). */
+static void split_sub(const sub* q, sub* lo, sub* hi) {
+    const rugo_vec2* p = q->p;
+    const rugo_vec2 a = lerp(p[0], p[1], 0.5), b = lerp(p[1], p[2], 0.5), c = lerp(p[2], p[3], 0.5);
+    const rugo_vec2 ab = lerp(a, b, 0.5), bc = lerp(b, c, 0.5), m = lerp(ab, bc, 0.5);
+    lo->p[0] = p[0];
+    lo->p[1] = a;
+    lo->p[2] = ab;
+    lo->p[3] = m;
+    hi->p[0] = m;
+    hi->p[1] = bc;
+    hi->p[2] = c;
+    hi->p[3] = p[3];
+    lo->knot = hi->knot = 0;
+    lo->halves = hi->halves = NULL;
+    if (q->knot) {
+        memcpy(lo->l, q->halves[0], sizeof lo->l);
+        memcpy(hi->l, q->halves[1], sizeof hi->l);
+    } else {
+        const rugo_real* l = q->l;
+        const rugo_real la = 0.5 * (l[0] + l[1]), lb = 0.5 * (l[1] + l[2]), lc = 0.5 * (l[2] + l[3]);
+        const rugo_real lab = 0.5 * (la + lb), lbc = 0.5 * (lb + lc), lm = 0.5 * (lab + lbc);
+        lo->l[0] = l[0];
+        lo->l[1] = la;
+        lo->l[2] = lab;
+        lo->l[3] = lm;
+        hi->l[0] = lm;
+        hi->l[1] = lbc;
+        hi->l[2] = lc;
+        hi->l[3] = l[3];
     }
-    const int h = a >= 0.5;
-    restrict_scalar(p->band[h], 2.0 * a - (rugo_real)h, 2.0 * b - (rugo_real)h, out->l);
+    finish_sub(lo);
+    finish_sub(hi);
 }
-
-/* |sub-piece - its linear Bezier| bound, curve and band (see the top of the file). */
-static rugo_real flatness(const sub* q) {
-    const rugo_vec2 m1 = lerp(q->p[0], q->p[3], 1.0 / 3.0), m2 = lerp(q->p[0], q->p[3], 2.0 / 3.0);
-    const rugo_real c = mx(vlen(rugo_v2_sub(q->p[1], m1)), vlen(rugo_v2_sub(q->p[2], m2)));
-    const rugo_real l1 = (2.0 * q->l[0] + q->l[3]) / 3.0, l2 = (q->l[0] + 2.0 * q->l[3]) / 3.0;
-    return c + mx(fabs(q->l[1] - l1), fabs(q->l[2] - l2));
-}
-
-static rugo_real band_max(const sub* q) { return mx(0.0, mx(mx(q->l[0], q->l[1]), mx(q->l[2], q->l[3]))); }
 
 /* Gap between the projections of the two control polygons on unit direction d (<= 0: they overlap). */
 static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
@@ -183,73 +271,44 @@ static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_ve
     return mx(glo - fhi, flo - ghi);
 }
 
-static rugo_vec2 unit_or(rugo_vec2 v, rugo_vec2 fallback) {
-    const rugo_real l = vlen(v);
-    return l > 0.0 ? rugo_v2_scale(1.0 / l, v) : fallback;
-}
-
 /* A lower bound of the distance between the two sub-pieces (0 when their hulls may meet): the largest
- * projection gap over x, y, the chords' normals and the line through the polygons' centres. */
+ * projection gap over the line through the polygons' centres and the chords' normals. */
 static rugo_real hull_gap(const sub* F, const sub* G) {
-    rugo_vec2 cf = rugo_v2(0.0, 0.0), cg = rugo_v2(0.0, 0.0);
-    for (int i = 0; i < 4; ++i) {
-        cf = rugo_v2_add(cf, F->p[i]);
-        cg = rugo_v2_add(cg, G->p[i]);
-    }
-    const rugo_vec2 dirs[5] = {unit_or(rugo_v2_sub(cg, cf), rugo_v2(1.0, 0.0)), rugo_v2(1.0, 0.0), rugo_v2(0.0, 1.0),
-                               unit_or(rugo_v2_perp(rugo_v2_sub(F->p[3], F->p[0])), rugo_v2(0.0, 1.0)),
-                               unit_or(rugo_v2_perp(rugo_v2_sub(G->p[3], G->p[0])), rugo_v2(0.0, 1.0))};
     rugo_real best = 0.0;
-    for (int k = 0; k < 5; ++k)
-        best = mx(best, projection_gap(dirs[k], F->p, G->p));
+    const rugo_vec2 d = rugo_v2_sub(G->centre, F->centre);
+    const rugo_real l = vlen(d);
+    if (l > 0.0) best = projection_gap(rugo_v2_scale(1.0 / l, d), F->p, G->p);
+    if (F->normal.x != 0.0 || F->normal.y != 0.0) best = mx(best, projection_gap(F->normal, F->p, G->p));
+    if (G->normal.x != 0.0 || G->normal.y != 0.0) best = mx(best, projection_gap(G->normal, F->p, G->p));
     return best;
 }
 
-/* The directions of a sub-piece's tangent (its hodograph's control points, as unoriented lines): an
- * axis, the half-angle about it, and a lower bound of the speed along it (local parameter). 0 when
- * the directions spread over 90 degrees or more (no useful cone). */
-typedef struct cone {
-    rugo_vec2 axis;
-    rugo_real half, speed, band_slope; /* band_slope: max |dλ/du|, local parameter */
-} cone;
-
-static int tangent_cone(const sub* q, cone* c) {
-    rugo_vec2 d[3];
-    for (int i = 0; i < 3; ++i)
-        d[i] = rugo_v2_scale(3.0, rugo_v2_sub(q->p[i + 1], q->p[i]));
-    rugo_vec2 axis = rugo_v2_sub(q->p[3], q->p[0]);
-    rugo_real l = vlen(axis);
-    if (!(l > 0.0)) return 0;
-    axis = rugo_v2_scale(1.0 / l, axis);
-    rugo_real cosmin = 1.0, speed = HUGE_VAL;
-    for (int i = 0; i < 3; ++i) {
-        const rugo_real len = vlen(d[i]);
-        const rugo_real along = rugo_v2_dot(d[i], axis);
-        if (!(along > 0.0)) return 0;
-        cosmin = mn(cosmin, along / len);
-        speed = mn(speed, along);
-    }
-    c->axis = axis;
-    c->half = acos(mn(1.0, cosmin));
-    c->speed = speed;
-    rugo_real slope = 0.0;
-    for (int i = 0; i < 3; ++i)
-        slope = mx(slope, 3.0 * fabs(q->l[i + 1] - q->l[i]));
-    c->band_slope = slope;
-    return 1;
+/* cos and sin of a + b from theirs (angles in [0, pi/2]); 0 when a + b reaches pi/2. */
+static int add_angle(rugo_real* c, rugo_real* s, rugo_real c2, rugo_real s2) {
+    const rugo_real cc = *c * c2 - *s * s2, ss = *s * c2 + *c * s2;
+    *c = cc;
+    *s = ss;
+    return cc > 0.0;
 }
 
 /* 1 when the box provably holds no stationary point of φ (band = 1) or of the distance (band = 0):
  * there f' and g' both lie within asin(|λ'| / |f'|) of the normal to f - g, so their lines are that
- * close to parallel; cones whose lines stay farther apart exclude it. */
-static int cones_exclude(const sub* F, const sub* G, int band) {
-    cone a, b;
-    if (!tangent_cone(F, &a) || !tangent_cone(G, &b)) return 0;
-    const rugo_real c = fabs(rugo_v2_dot(a.axis, b.axis));
-    const rugo_real between = acos(mn(1.0, c)); /* angle between the axes' lines, in [0, pi/2] */
-    rugo_real allow = a.half + b.half + 1e-9;
-    if (band) allow += asin(mn(1.0, a.band_slope / a.speed)) + asin(mn(1.0, b.band_slope / b.speed));
-    return between > allow;
+ * close to parallel; cones whose lines stay farther apart exclude it. No transcendental function: the
+ * allowed angle is summed as rotations (cos, sin), and compared by its cosine with the angle between
+ * the cones' axes (as lines). */
+static int cones_exclude(sub* F, sub* G, int band) {
+    sub_cone(F);
+    sub_cone(G);
+    if (!F->cone_ok || !G->cone_ok) return 0;
+    rugo_real c = F->cos_half, s = F->sin_half;
+    if (!add_angle(&c, &s, G->cos_half, G->sin_half)) return 0;
+    if (band) {
+        const rugo_real sa = F->sin_band, sb = G->sin_band;
+        if (!add_angle(&c, &s, sqrt(mx(0.0, 1.0 - sa * sa)), sa)) return 0;
+        if (!add_angle(&c, &s, sqrt(mx(0.0, 1.0 - sb * sb)), sb)) return 0;
+    }
+    const rugo_real cos_between = fabs(rugo_v2_dot(F->axis, G->axis));
+    return cos_between < c * (1.0 - 1e-12) - 1e-12;
 }
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -457,22 +516,45 @@ static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b
  * neighbouring leaf, unless φ falls by less than δ across this leaf that way (a conforming stretch,
  * flat to the resolution): then it stands as a point of that stretch, polished if Newton without the
  * box converges from it. */
+/* Where the first Newton step from the chords' minimum lands more than a box away, across an edge of
+ * the box that is neither an end of the piece nor the band's knot (where φ may bend), the minimum it
+ * heads for lies in another leaf, which finds it: this one can stop after one evaluation. */
+static int leaves_box(const rctx* c, box b, rugo_real s, rugo_real t) {
+    const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
+    /* at a knot the Hessian is one side's: its step says nothing of the other coordinate either */
+    if (c->banded_f && (b.s0 == 0.5 || b.s1 == 0.5)) return 0;
+    if (c->banded_g && (b.t0 == 0.5 || b.t1 == 0.5)) return 0;
+    if (s < b.s0 - hs && b.s0 > 0.0 && !(c->banded_f && b.s0 == 0.5)) return 1;
+    if (s > b.s1 + hs && b.s1 < 1.0 && !(c->banded_f && b.s1 == 0.5)) return 1;
+    if (t < b.t0 - ht && b.t0 > 0.0 && !(c->banded_g && b.t0 == 0.5)) return 1;
+    if (t > b.t1 + ht && b.t1 < 1.0 && !(c->banded_g && b.t1 == 0.5)) return 1;
+    return 0;
+}
+
 static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
     const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
     phi_eval e;
     if (!eval_phi(c, s, t, &e)) return; /* the curves meet: a crossing or a touching, found as such */
-    for (int it = 0; it < NEWTON_MAX; ++it) {
+    int converged = 0; /* a full Newton step below NEWTON_TOL: a minimum of φ to round-off */
+    for (int it = 0; it < NEWTON_MAX && !converged; ++it) {
         const rugo_real det = e.hss * e.htt - e.hst * e.hst;
         rugo_real dS, dT;
-        if (e.hss > 0.0 && det > 0.0) {
+        const int newton = e.hss > 0.0 && det > 0.0;
+        if (newton) {
             dS = -(e.htt * e.gs - e.hst * e.gt) / det;
             dT = -(e.hss * e.gt - e.hst * e.gs) / det;
         } else {
-            const rugo_real g = sqrt(e.gs * e.gs / (hs * hs) + e.gt * e.gt / (ht * ht));
+            /* a quarter of the box down the gradient, in the box's proportions */
+            const rugo_real gx = e.gs * hs, gy = e.gt * ht, g = sqrt(gx * gx + gy * gy);
             if (!(g > 0.0)) break;
-            dS = -0.25 * e.gs / (g * hs);
-            dT = -0.25 * e.gt / (g * ht);
+            dS = -0.25 * hs * gx / g;
+            dT = -0.25 * ht * gy / g;
         }
+        /* (a valley of φ, its Hessian far from round, can throw the first step far past a minimum that
+         * lies inside: only a well-rounded one decides at once) */
+        const rugo_real tr = e.hss + e.htt;
+        if (it == 0 && newton && det >= 1e-4 * tr * tr && leaves_box(c, b, s + dS, t + dT)) return;
+        converged = newton && fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL;
         int accepted = 0;
         for (int half = 0; half < 6 && !accepted; ++half, dS *= 0.5, dT *= 0.5) {
             const rugo_real S1 = mn(b.s1, mx(b.s0, s + dS)), T1 = mn(b.t1, mx(b.t0, t + dT));
@@ -487,11 +569,11 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
                 accepted = moved;
             }
         }
-        if (!accepted || (fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL)) break;
+        if (!accepted) break;
     }
     const rugo_real es = 1e-9 * hs, et = 1e-9 * ht;
     const int inside = s > b.s0 + es && s < b.s1 - es && t > b.t0 + et && t < b.t1 - et;
-    if (inside && polish_minimum(c, &s, &t, &e.phi)) {
+    if (inside && (converged || polish_minimum(c, &s, &t, &e.phi))) {
         add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 1, 1e-9);
         return;
     }
@@ -562,8 +644,8 @@ static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
         const rugo_vec2 p = rugo_v2_add(P0, rugo_v2_scale(us[k], U));
         vs[k] = clamp01(rugo_v2_dot(rugo_v2_sub(p, Q0), V) / VV);
         const rugo_vec2 q = rugo_v2_add(Q0, rugo_v2_scale(vs[k], V));
-        const rugo_real la = mx(0.0, (1.0 - us[k]) * F->l[0] + us[k] * F->l[3]);
-        const rugo_real lb = mx(0.0, (1.0 - vs[k]) * G->l[0] + vs[k] * G->l[3]);
+        const rugo_real la = mx(0.0, (1.0 - us[k]) * F->l0 + us[k] * F->l1);
+        const rugo_real lb = mx(0.0, (1.0 - vs[k]) * G->l0 + vs[k] * G->l1);
         phis[k] = vlen(rugo_v2_sub(p, q)) - la - lb;
     }
     /* flat to δ over the whole piece's parameter range, not only across this leaf */
@@ -579,7 +661,7 @@ static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
     return 1;
 }
 
-static void leaf(rctx* c, box b, const sub* F, const sub* G) {
+static void leaf(rctx* c, box b, sub* F, sub* G) {
     const rugo_vec2 P0 = F->p[0], U = rugo_v2_sub(F->p[3], F->p[0]);
     const rugo_vec2 Q0 = G->p[0], V = rugo_v2_sub(G->p[3], G->p[0]);
     const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
@@ -624,7 +706,7 @@ static void leaf(rctx* c, box b, const sub* F, const sub* G) {
         if (d1 < gapd) gapd = d1, u = x, v = 0.0;
         d1 = point_chord(G->p[3], P0, U, 0.0, 0.0, &x);
         if (d1 < gapd) gapd = d1, u = x, v = 1.0;
-        if (gapd <= flatness(F) + flatness(G)) {
+        if (gapd <= sub_flat(F) + sub_flat(G)) {
             rugo_real s = b.s0 + u * hs, t = b.t0 + v * ht;
             int ok = polish_crossing(c, &s, &t);
             if (!ok) { /* the closest chord points may lead to a root outside the domain: the centre */
@@ -646,8 +728,8 @@ static void leaf(rctx* c, box b, const sub* F, const sub* G) {
     }
     if ((c->want & RUGO__RESOLVED_MINIMA) && !chords_cross) {
         /* Four edges of the square: the ends of one chord against the other. */
-        const rugo_real a0 = mx(0.0, F->l[0]), da = mx(0.0, F->l[3]) - a0;
-        const rugo_real b0 = mx(0.0, G->l[0]), db = mx(0.0, G->l[3]) - b0;
+        const rugo_real a0 = mx(0.0, F->l0), da = mx(0.0, F->l1) - a0;
+        const rugo_real b0 = mx(0.0, G->l0), db = mx(0.0, G->l1) - b0;
         rugo_real best = HUGE_VAL, bu = 0.0, bv = 0.0, x;
         rugo_real val = point_chord(P0, Q0, V, b0 + a0, db, &x);
         if (val < best) best = val, bu = 0.0, bv = x;
@@ -680,13 +762,11 @@ static void leaf(rctx* c, box b, const sub* F, const sub* G) {
 }
 
 /* The two sub-pieces' tangent lines are never parallel (cones apart with no band allowance). */
-static int transversal(const sub* F, const sub* G) { return cones_exclude(F, G, 0); }
-
 /* The box's one possible crossing (transversal pieces), by Newton from the chords' crossing (or the
  * box's centre): 1 when the box is settled — a root found inside it, or the pieces apart (which the
  * caller's hull test did not prove). Minima need no search there: the tangents are never parallel,
  * and with bands only within the slopes' allowance, which the caller checks (cones_exclude). */
-static int crossing_in_box(rctx* c, box b, const sub* F, const sub* G) {
+static int crossing_in_box(rctx* c, box b, sub* F, sub* G) {
     if ((c->want & RUGO__RESOLVED_MINIMA) && !cones_exclude(F, G, 1)) return 0;
     const rugo_vec2 U = rugo_v2_sub(F->p[3], F->p[0]), V = rugo_v2_sub(G->p[3], G->p[0]);
     const rugo_vec2 w = rugo_v2_sub(G->p[0], F->p[0]);
@@ -713,67 +793,69 @@ static int crossing_in_box(rctx* c, box b, const sub* F, const sub* G) {
 /* ---------------------------------------------------------------------------------------------- */
 /* Search */
 
-static int push(box* st, int* n, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
-    if (*n >= STACK_MAX) return 0;
-    st[*n].s0 = s0;
-    st[*n].s1 = s1;
-    st[*n].t0 = t0;
-    st[*n].t1 = t1;
-    ++*n;
-    return 1;
-}
+/* A box of the search with its two sub-pieces (carried down by halving, not recomputed). */
+typedef struct frame {
+    box b;
+    sub F, G;
+} frame;
 
 static void search(rctx* c) {
-    box st[STACK_MAX];
-    int n = 0, boxes = 0;
-    /* Banded pieces start cut at their band's knot. */
-    const int cf = c->banded_f ? 2 : 1, cg = c->banded_g ? 2 : 1;
-    for (int i = cf - 1; i >= 0; --i)
-        for (int j = cg - 1; j >= 0; --j)
-            push(st, &n, (rugo_real)i / (rugo_real)cf, (rugo_real)(i + 1) / (rugo_real)cf, (rugo_real)j / (rugo_real)cg,
-                 (rugo_real)(j + 1) / (rugo_real)cg);
+    frame st[STACK_MAX];
+    int n = 1, boxes = 0;
+    st[0].b.s0 = st[0].b.t0 = 0.0;
+    st[0].b.s1 = st[0].b.t1 = 1.0;
+    root_sub(c->f, c->banded_f, &st[0].F);
+    root_sub(c->g, c->banded_g, &st[0].G);
     const rugo_real half_delta = 0.5 * c->delta;
     const rugo_real min_width = ldexp(1.0, -MAX_DEPTH);
     while (n > 0) {
-        const box b = st[--n];
+        const box b = st[--n].b;
         if (++boxes > BOX_BUDGET) {
             c->overflow = 1;
             return;
         }
-        sub F, G;
-        make_sub(c->f, c->banded_f, b.s0, b.s1, &F);
-        make_sub(c->g, c->banded_g, b.t0, b.t1, &G);
-        const rugo_real gap = hull_gap(&F, &G);
-        int need = 0;
-        if ((c->want & RUGO__RESOLVED_CROSSINGS) && gap <= 0.0) need = 1;
-        if ((c->want & RUGO__RESOLVED_MINIMA) && gap - band_max(&F) - band_max(&G) <= c->cutoff + c->delta &&
-            !cones_exclude(&F, &G, 1))
+        sub* F = &st[n].F;
+        sub* G = &st[n].G;
+        const rugo_real gap = hull_gap(F, G);
+        const int cross = (c->want & RUGO__RESOLVED_CROSSINGS) && gap <= 0.0;
+        int need = cross;
+        if (!need && (c->want & RUGO__RESOLVED_MINIMA) && gap - F->lmax - G->lmax <= c->cutoff + c->delta &&
+            !cones_exclude(F, G, 1))
             need = 1;
-        if ((c->want & RUGO__RESOLVED_SADDLES) && gap <= c->saddle_cutoff && !cones_exclude(&F, &G, 0)) need = 1;
+        if (!need && (c->want & RUGO__RESOLVED_SADDLES) && gap <= c->saddle_cutoff && !cones_exclude(F, G, 0))
+            need = 1;
         if (!need) continue;
         /* Tangent lines apart over the whole box: at most one crossing there (two would give, by
          * Rolle, tangents of both parallel to the chord between them) and no stationary point. Newton
          * from the chords' crossing then settles the box when it converges inside it. */
-        if (need && gap <= 0.0 && transversal(&F, &G) && crossing_in_box(c, b, &F, &G)) continue;
-        const rugo_real ff = flatness(&F), fg = flatness(&G);
+        if (gap <= 0.0 && cones_exclude(F, G, 0) && crossing_in_box(c, b, F, G)) continue;
         const int tiny_f = b.s1 - b.s0 <= min_width, tiny_g = b.t1 - b.t0 <= min_width;
+        const rugo_real ff = sub_flat(F), fg = sub_flat(G);
         if ((ff <= half_delta || tiny_f) && (fg <= half_delta || tiny_g)) {
-            leaf(c, b, &F, &G);
+            leaf(c, b, F, G);
             continue;
         }
-        const int split_f = !tiny_f && (ff > half_delta) && (ff >= fg || tiny_g || fg <= half_delta);
-        int ok;
-        if (split_f) {
-            const rugo_real m = 0.5 * (b.s0 + b.s1);
-            ok = push(st, &n, m, b.s1, b.t0, b.t1) && push(st, &n, b.s0, m, b.t0, b.t1);
-        } else {
-            const rugo_real m = 0.5 * (b.t0 + b.t1);
-            ok = push(st, &n, b.s0, b.s1, m, b.t1) && push(st, &n, b.s0, b.s1, b.t0, m);
-        }
-        if (!ok) {
+        if (n + 2 > STACK_MAX) {
             c->overflow = 1;
             return;
         }
+        /* The sub-piece farther from flat is halved; the two halves go on the stack, the lower on top. */
+        const int split_f = !tiny_f && ff > half_delta && (ff >= fg || tiny_g || fg <= half_delta);
+        frame lo, hi;
+        lo.b = hi.b = b;
+        if (split_f) {
+            const rugo_real m = 0.5 * (b.s0 + b.s1);
+            lo.b.s1 = hi.b.s0 = m;
+            split_sub(F, &lo.F, &hi.F);
+            lo.G = hi.G = *G;
+        } else {
+            const rugo_real m = 0.5 * (b.t0 + b.t1);
+            lo.b.t1 = hi.b.t0 = m;
+            split_sub(G, &lo.G, &hi.G);
+            lo.F = hi.F = *F;
+        }
+        st[n++] = hi;
+        st[n++] = lo;
     }
 }
 
@@ -833,6 +915,7 @@ static void fill(const rctx* c, const found* r, int kind, rugo__pair_point* p) {
     bez3(c->g->p, r->t, &p->pb, &gd, &gdd);
     p->distance = vlen(rugo_v2_sub(p->pb, p->pa));
     p->kind = kind;
+    p->flat = !r->polished;
 }
 
 static int all_finite(const rugo__banded_piece* p) {

@@ -23,6 +23,8 @@ rugo_world_def rugo_default_world_def(void) {
     d.time_step = 1.0 / 60.0;
     d.integrator = RUGO_INTEGRATE_SYMPLECTIC_EULER;
     d.lod = 0;
+    d.resolution = 0.0;
+    d.contact_rule = RUGO_CONTACT_THESIS;
     d.max_bisections = 8;
     d.penetration_tolerance = 0.01;
     d.micro_collisions = 1;
@@ -58,6 +60,10 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     if ((def->micro_collisions != 0 && def->micro_collisions != 1) || (def->friction != 0 && def->friction != 1))
         return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS) return RUGO_ERR_BAD_ARGUMENT;
+    if (!isfinite(def->resolution)) return RUGO_ERR_NOT_FINITE;
+    if (def->lod > 0 || (def->resolution < 0.0 && def->resolution != RUGO_RESOLUTION_AUTO) ||
+        (unsigned)def->contact_rule > (unsigned)RUGO_CONTACT_THESIS)
+        return RUGO_ERR_BAD_ARGUMENT;
 
     rugo_allocator a = rugo__allocator_or_default(&def->allocator);
     rugo_world* w = (rugo_world*)rugo__alloc_array(&a, 1, sizeof *w);
@@ -68,6 +74,8 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     w->g = rugo__v2_length(def->gravity);
     w->query = rugo_default_contact_query();
     w->query.lod = def->lod;
+    w->query.resolution = def->resolution;
+    w->query.contact_rule = def->contact_rule;
     if (rugo_sweep_prune_create(&a, &w->sap) != RUGO_OK || rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
         rugo_world_destroy(w);
         return RUGO_ERR_OUT_OF_MEMORY;

@@ -617,8 +617,9 @@ struct Pose {
 
 /* The resolution the "rugo L" methods run at (0: round-off; --resolution sets it). */
 double g_resolution = 0.0;
-/* Their contact rule (--thesis-rule: RUGO_CONTACT_THESIS). */
-rugo_contact_rule g_rule = RUGO_CONTACT_BAND_ADJUSTED;
+/* Their contact rule: the thesis' minima of the distance, which the reference computes and the
+ * polygons (which have no band) compare with; --band-adjusted: the library's default rule. */
+rugo_contact_rule g_rule = RUGO_CONTACT_THESIS;
 
 rugo_contact_query make_query(int level, double margin) {
     rugo_contact_query q = rugo_default_contact_query();
@@ -1445,12 +1446,12 @@ int main(int argc, char** argv) {
             contacts_hash = true;
         else if (std::strcmp(argv[i], "--resolution") == 0 && i + 1 < argc)
             g_resolution = std::atof(argv[++i]);
-        else if (std::strcmp(argv[i], "--thesis-rule") == 0)
-            g_rule = RUGO_CONTACT_THESIS;
+        else if (std::strcmp(argv[i], "--band-adjusted") == 0)
+            g_rule = RUGO_CONTACT_BAND_ADJUSTED;
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
-            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick]; [--resolution D] [--thesis-rule] for the rugo methods (default 0, band-adjusted)\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick]; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
             return 2;
         } else
             dir = argv[i];

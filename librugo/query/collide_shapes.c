@@ -595,8 +595,10 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     s->ctx = ctx;
     s->q = q;
     s->override = override;
-    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
-    rugo__query_side_init(&s->B, b, rugo__query_level(b, q), override);
+    const rugo_real delta = rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(a))),
+                                                   rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(b))));
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q, RESOLUTION_LEVEL_SHARE * delta), override);
+    rugo__query_side_init(&s->B, b, rugo__query_level(b, q, RESOLUTION_LEVEL_SHARE * delta), override);
     shape_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;
@@ -609,8 +611,7 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     g->margin = q->margin;
     g->override = override;
     g->thesis_rule = q->contact_rule == RUGO_CONTACT_THESIS;
-    g->delta = rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(s->A.tree)),
-                                      rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
+    g->delta = RESOLUTION_NARROW_SHARE * delta;
     if (!rugo__piece_table_setup(ctx, g)) return RUGO_ERR_OUT_OF_MEMORY;
     contact_out* o = &s->o;
     memset(o, 0, sizeof *o);

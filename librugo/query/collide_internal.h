@@ -241,8 +241,10 @@ typedef struct query_side {
     rugo_real slack;         /* growth of the boxes */
 } query_side;
 
-/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked). */
-int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q);
+/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked),
+ * or a coarser one whose certified error, added to that level's, is at most level_budget (a share of
+ * the query's resolution; 0: none). */
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q, rugo_real level_budget);
 /* s for shape at absolute `level` (J_min..J); override >= 0: the query's tolerance instead of the
  * shape's. */
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override);
@@ -335,6 +337,11 @@ typedef struct contact_out {
     const query_side* B; /* NULL for primitives */
     rugo_real override;
 } contact_out;
+
+/* How a query's resolution δ is shared: each shape may take a coarser level whose error is within
+ * δ/4 of the chosen one's, and the narrow phase runs at δ/2, so every separation stays within δ. */
+#define RESOLUTION_LEVEL_SHARE 0.25
+#define RESOLUTION_NARROW_SHARE 0.5
 
 /* The query's resolution δ for shapes of the given sizes (RUGO_RESOLUTION_AUTO: 1e-4 of the smaller). */
 static inline rugo_real rugo__query_resolution(const rugo_contact_query* q, rugo_real size_a, rugo_real size_b) {

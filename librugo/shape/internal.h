@@ -35,6 +35,10 @@ typedef struct rugo__shape_parts {
     rugo_allocator allocator;
 } rugo__shape_parts;
 
+/* rugo_shape_level_error's bound at a level (J_min..J; computed when the shape was built; +inf where it
+ * failed or the level is out of range). */
+rugo_real rugo__shape_level_error(const rugo_shape* s, int level);
+
 /* A shape from stored parts, without recomputing them (values are decoded once, into the pyramid,
  * the tree and the shape). Checks levels and the surface; the pyramid constructor below checks the
  * outline. Errors: NULL_ARGUMENT, BAD_LEVEL, the surface's, OUT_OF_MEMORY, the outline's. */

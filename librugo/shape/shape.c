@@ -276,6 +276,11 @@ rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* pe
     return rugo_tolerance_level_error(coarse, tc.total, finest, tf.total, per_segment, max_error);
 }
 
+rugo_real rugo__shape_level_error(const rugo_shape* s, int level) {
+    if (s == NULL || level < s->coarsest || level > s->finest) return HUGE_VAL;
+    return s->level_error[level];
+}
+
 int rugo_shape_level_for_error(const rugo_shape* s, rugo_real budget) {
     if (s == NULL) return -1;
     int level = s->finest;

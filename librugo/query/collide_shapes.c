@@ -588,6 +588,12 @@ typedef struct shape_query {
 } shape_query;
 
 /* Frame and levels: both shapes at the query's level, B's pieces in A's frame, the output. */
+/* The query's resolution δ for the two shapes (length units). */
+static rugo_real query_delta(const rugo_shape* a, const rugo_shape* b, const rugo_contact_query* q) {
+    return rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(a))),
+                                  rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(b))));
+}
+
 static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context* ctx, const rugo_shape* a,
                                            rugo_transform xa, const rugo_shape* b, rugo_transform xb,
                                            const rugo_contact_query* q, rugo_query_stats* stats) {
@@ -595,8 +601,7 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     s->ctx = ctx;
     s->q = q;
     s->override = override;
-    const rugo_real delta = rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(a))),
-                                                   rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(b))));
+    const rugo_real delta = query_delta(a, b, q);
     rugo__query_side_init(&s->A, a, rugo__query_level(a, q, RESOLUTION_LEVEL_SHARE * delta), override);
     rugo__query_side_init(&s->B, b, rugo__query_level(b, q, RESOLUTION_LEVEL_SHARE * delta), override);
     shape_pair* g = &s->g;
@@ -798,6 +803,12 @@ rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const ru
     rugo_status st = rugo__check_query(q, out);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    /* the pair's cached answer, if the shapes have hardly moved since (contact_cache.c) */
+    if (out->cache != NULL) {
+        st = rugo__cache_check(out->cache, a, b, ctx);
+        if (st != RUGO_OK) return st;
+        if (rugo__cache_reuse(out->cache, xa, xb, q, query_delta(a, b, q), out)) return RUGO_OK;
+    }
 
     /* frame and levels */
     shape_query s;
@@ -825,5 +836,6 @@ rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const ru
     /* finish */
     out->state = state;
     rugo__finish_contacts(&s.o, out->contacts, out->capacity, &out->count, &out->stats);
+    if (out->cache != NULL) rugo__cache_store(out->cache, a, xa, b, xb, q, ctx, &s.B, s.override, out);
     return RUGO_OK;
 }

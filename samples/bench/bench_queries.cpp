@@ -1448,16 +1448,112 @@ __attribute__((noipa)) double time_rough_poses(rugo_collide_context* ctx, const 
     return time_poses(ctx, bodies, poses, q, buf);
 }
 
+/* Warm queries (rugo_contact_output.cache): each pose's cache filled at the pose, then B moved relative
+ * to A by one 1/60 s step of a speed v (size units per second, in a seeded direction) and a turn rate w;
+ * the queries at the moved poses timed with their caches (warm) and without (cold), alternating, median
+ * of the passes; the warm answers checked against the cold ones (state, separations within delta). */
+int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, const std::vector<Pose>& poses,
+                 bool quick) {
+    const rugo_contact_query q = make_query(0, kWindow);
+    const size_t P = poses.size();
+    std::vector<rugo_contact_cache*> caches(P, nullptr);
+    for (auto& c : caches) rugo_contact_cache_create(nullptr, kCap, &c);
+    static rugo_contact cbuf[kCap], wbuf[kCap];
+    std::printf("# warm queries at level 0, resolution %g (size 1), margin %g; %zu poses\n", g_resolution, kWindow,
+                P);
+    std::printf("%-14s %10s %10s %8s %8s %12s %s\n", "v, w (1/s)", "cold ns", "warm ns", "cold/warm", "reused",
+                "max |ds|", "state differs");
+    const double speeds[][2] = {{1.0, 1.0}, {0.1, 0.1}, {0.01, 0.01}, {0.001, 0.001}, {0.0, 0.0}};
+    for (const auto& vw : speeds) {
+        rugo_rng rng;
+        rugo_rng_seed(&rng, 20261128);
+        std::vector<Pose> moved = poses;
+        for (Pose& p : moved) {
+            const double th = rugo_rng_range(&rng, 0.0, 2.0 * kPi), dt = 1.0 / 60.0;
+            p.xb.p = rugo_v2(p.xb.p.x + vw[0] * dt * std::cos(th), p.xb.p.y + vw[0] * dt * std::sin(th));
+            p.xb.q = rugo_rot_from_angle(std::atan2(p.xb.q.s, p.xb.q.c) + vw[1] * dt);
+        }
+        std::vector<double> cold_t, warm_t;
+        long reused = 0, differs = 0;
+        double max_ds = 0.0;
+        const int reps = quick ? 1 : 7;
+        for (int rep = 0; rep < reps; ++rep) {
+            for (size_t i = 0; i < P; ++i) { /* the caches, at the step's start (not timed) */
+                rugo_contact_cache_clear(caches[i]);
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                out.cache = caches[i];
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                    poses[i].xb, &q, ctx, &out);
+            }
+            double t0 = now_ns();
+            for (size_t i = 0; i < P; ++i) {
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                    moved[i].xb, &q, ctx, &out);
+            }
+            cold_t.push_back(now_ns() - t0);
+            t0 = now_ns();
+            for (size_t i = 0; i < P; ++i) {
+                rugo_contact_output out = rugo_contact_output_of(wbuf, kCap);
+                out.cache = caches[i];
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                    moved[i].xb, &q, ctx, &out);
+            }
+            warm_t.push_back(now_ns() - t0);
+        }
+        /* the answers: warm (the caches now hold the moved poses' searches where they searched, so
+         * refill them at the step's start first) against cold */
+        for (size_t i = 0; i < P; ++i) {
+            rugo_contact_cache_clear(caches[i]);
+            rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+            out.cache = caches[i];
+            rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                poses[i].xb, &q, ctx, &out);
+            rugo_contact_output w = rugo_contact_output_of(wbuf, kCap);
+            w.cache = caches[i];
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                moved[i].xb, &q, ctx, &w);
+            rugo_contact_output c = rugo_contact_output_of(cbuf, kCap);
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                moved[i].xb, &q, ctx, &c);
+            reused += w.stats.reused;
+            differs += w.state != c.state;
+            for (int k = 0; k < c.count; ++k) { /* each cold contact against the warm one nearest its point */
+                double best = HUGE_VAL, bd = HUGE_VAL;
+                for (int j = 0; j < w.count; ++j) {
+                    const double d = std::hypot(cbuf[k].point_a.x - wbuf[j].point_a.x, cbuf[k].point_a.y - wbuf[j].point_a.y);
+                    if (d < bd) {
+                        bd = d;
+                        best = std::fabs(cbuf[k].separation - wbuf[j].separation);
+                    }
+                }
+                if (w.count > 0) max_ds = std::max(max_ds, best);
+            }
+        }
+        std::sort(cold_t.begin(), cold_t.end());
+        std::sort(warm_t.begin(), warm_t.end());
+        const double c = cold_t[cold_t.size() / 2] / (double)P, w = warm_t[warm_t.size() / 2] / (double)P;
+        std::printf("%5.3f, %5.3f   %10.0f %10.0f %8.2fx %7.1f%% %12.2e %ld\n", vw[0], vw[1], c, w, c / w,
+                    100.0 * (double)reused / (double)P, max_ds, differs);
+    }
+    for (auto& c : caches) rugo_contact_cache_destroy(c);
+    rugo_collide_context_destroy(ctx);
+    for (auto& b : bodies) rugo_shape_destroy(b.shape);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, strip = true, contacts_hash = false;
+    bool quick = false, strip = true, contacts_hash = false, warm = false;
     const char* dir = "out/bench_queries";
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0)
             quick = true;
         else if (std::strcmp(argv[i], "--contacts-hash") == 0)
             contacts_hash = true;
+        else if (std::strcmp(argv[i], "--warm") == 0)
+            warm = true;
         else if (std::strcmp(argv[i], "--resolution") == 0 && i + 1 < argc)
             g_resolution = std::atof(argv[++i]);
         else if (std::strcmp(argv[i], "--band-adjusted") == 0)
@@ -1465,7 +1561,7 @@ int main(int argc, char** argv) {
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
-            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick]; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --warm; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
             return 2;
         } else
             dir = argv[i];
@@ -1510,6 +1606,8 @@ int main(int argc, char** argv) {
             poses.push_back(p);
         }
     const size_t P = poses.size();
+
+    if (warm) return warm_queries(ctx, bodies, poses, quick);
 
     if (contacts_hash) {
         for (const Body& b : bodies) { /* what a resolution may coarsen to: each level's certified error */

@@ -243,7 +243,8 @@ RUGO_API rugo_status rugo_make_polygon(const rugo_vec2* points, int count, rugo_
                                        rugo_primitive* out);
 
 /** Contacts between shape A placed by xa and primitive B placed by xb (B smooth: tolerance 0 unless
- * the query overrides it), into *out as rugo_collide_shapes. Contacts carry the shape's own friction
+ * the query overrides it), into *out as rugo_collide_shapes (at round-off whatever query.resolution, which
+ * is checked; out->cache is not used). Contacts carry the shape's own friction
  * and restitution, unmixed (segment_b -1, t_b 0, level_b 0). Errors: those of rugo_collide_shapes, and
  * NULL_ARGUMENT (b), NOT_FINITE (a point or the radius), BAD_ARGUMENT (count outside 1..8, negative
  * radius, 3..8 points not convex and counter-clockwise). */

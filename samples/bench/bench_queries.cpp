@@ -1623,12 +1623,15 @@ int main(int argc, char** argv) {
             const rugo_contact_query q = make_query(L, kWindow);
             static rugo_contact cbuf[kCap];
             std::uint64_t h = SAMPLE_FNV_OFFSET, hs = SAMPLE_FNV_OFFSET; /* all poses; the smooth ones */
+            long work[2][2] = {{0, 0}, {0, 0}}; /* [smooth, rough][box tests, segment pairs] */
             for (size_t i = 0; i < P; ++i) {
                 const bool smooth = !bodies[(size_t)poses[i].a].rough;
                 rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
                 rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
                                     poses[i].xb, &q, ctx, &out);
                 const int n = out.count;
+                work[smooth ? 0 : 1][0] += out.stats.box_tests;
+                work[smooth ? 0 : 1][1] += out.stats.segment_pairs;
                 const int head[2] = {(int)out.state, n};
                 h = sample_fnv1a(h, head, sizeof head);
                 if (smooth) hs = sample_fnv1a(hs, head, sizeof head);
@@ -1659,6 +1662,9 @@ int main(int argc, char** argv) {
             std::printf("contacts_hash level %d: %016llx (%zu poses; smooth ones %016llx; ns per query: %.0f, smooth %.0f, rough %.0f)\n",
                         L, (unsigned long long)h, P, (unsigned long long)hs, (best_s + best_r) / (double)P,
                         best_s / (double)smooth_poses.size(), best_r / (double)rough_poses.size());
+            std::printf("#   per query: box tests %.0f smooth, %.0f rough; segment pairs %.1f smooth, %.1f rough\n",
+                        (double)work[0][0] / (double)smooth_poses.size(), (double)work[1][0] / (double)rough_poses.size(),
+                        (double)work[0][1] / (double)smooth_poses.size(), (double)work[1][1] / (double)rough_poses.size());
         }
         rugo_collide_context_destroy(ctx);
         for (auto& b : bodies) rugo_shape_destroy(b.shape);

@@ -1,8 +1,9 @@
 // The testbed's headless run (app.hpp, RunHeadless): each scene for kFrames frames through the same
 // frame function as the window, with a scripted drag of the highest dynamic body, a spawned rock and
-// the proxy, band and MOBBtree toggles switched on (the boxes off again), then a PNG of the last frame and
-// checks of it: the picture is not blank, and inside the scene's frame it shows the rough curves, the
-// ordinary bodies and the proxy boxes by pixel counts of their colours; the drag lifted the body.
+// the proxy, band and MOBBtree toggles switched on (the boxes off again), the error budget changed, then a
+// PNG of the last frame and checks of it: the picture is not blank, and inside the scene's frame it shows the
+// rough curves, the ordinary bodies and the proxy boxes by pixel counts of their colours; the drag lifted the
+// body.
 #include "app.hpp"
 #include "testbed_ui.hpp"
 
@@ -23,10 +24,11 @@ namespace testbed {
 
 namespace {
 
-constexpr int kFrames = 100;                            // 1.7 s of scene time at 60 Hz
-constexpr int kGrab = 10, kRelease = 50;                // the drag: frames
-constexpr float kLift = 1.2f;                           // how far the mouse moves up during the drag (m)
-constexpr int kSpawn = 60, kToggle = 70, kTreeOff = 85; // the MOBBtree boxes: on at kToggle, off here
+constexpr int kFrames = 100;             // 1.7 s of scene time at 60 Hz
+constexpr int kGrab = 10, kRelease = 50; // the drag: frames
+constexpr float kLift = 1.2f;            // how far the mouse moves up during the drag (m)
+constexpr int kSpawn = 60, kToggle = 70, kTreeOff = 85,
+              kDetail = 80;             // the MOBBtree boxes: on at kToggle, off here
 constexpr int kRenderEvery = 10;        // frames rendered (the others only step and build the user interface)
 constexpr int kMinCurvePixels = 300;    // rough curves (the bridge's yellow)
 constexpr int kMinProxyPixels = 100;    // proxy boxes (the bridge's blue), after the toggle
@@ -87,6 +89,15 @@ b2Body* Highest(Testbed& tb, b2Vec2* grab) {
     return best;
 }
 
+// Bodies the bridge calls rough.
+int CountRough(const Testbed& tb) {
+    const rugo::Bridge* br = tb.Current().w->bridge.get();
+    int n = 0;
+    for (const b2Body* b = tb.Current().w->world->GetBodyList(); b; b = b->GetNext())
+        n += br && br->IsRough(b);
+    return n;
+}
+
 bool HasOrdinaryDynamic(const Testbed& tb) {
     const rugo::Bridge* br = tb.Current().w->bridge.get();
     for (const b2Body* b = tb.Current().w->world->GetBodyList(); b; b = b->GetNext())
@@ -118,7 +129,7 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         b2Body* dragged = nullptr;
         b2Vec2 grab(0.0f, 0.0f), anchorLocal(0.0f, 0.0f);
         float rise = 0.0f;
-        int bodiesBefore = 0, bodiesAfter = 0;
+        int bodiesBefore = 0, bodiesAfter = 0, roughBeforeDetail = 0, roughAfterDetail = -1;
         b2Body* spawned = nullptr;
         std::vector<unsigned char> px;
         int width = 0, height = 0;
@@ -155,6 +166,13 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
                     tb.settings.treeLevel = 3;
                 }
                 if (f == kTreeOff) tb.settings.drawTree = false; // the picture shows proxies and bands
+                if (f == kDetail) { // the error-budget slider: every rough body re-attached at 1 cm
+                    roughBeforeDetail = tb.RoughBodyCount();
+                    tb.settings.detail = Detail::kBudget;
+                    tb.settings.errorBudget = 0.01f;
+                    tb.ApplyDetail();
+                    roughAfterDetail = CountRough(tb);
+                }
             };
             const bool render = f % kRenderEvery == 0 || f == kFrames;
             app.Frame(tb, script, false, f == kFrames ? &px : nullptr, &width, &height, render);
@@ -172,9 +190,11 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         const Counts c = written ? Count(px, width, x0, y0, x1, y1) : Counts();
         std::printf(
             "%s: %.2f s for %d frames; %d x %d px; in the scene's frame %d px: curves %d, proxies %d, "
-            "ordinary %d, background %d, %zu colours; drag rise %.3f m; bodies %d -> %d\n",
+            "ordinary %d, background %d, %zu colours; drag rise %.3f m; bodies %d -> %d; ms/step %.3f "
+            "(bridge %.3f, Box2D %.3f)\n",
             info.name, seconds, kFrames, width, height, c.total, c.curve, c.proxy, c.ordinary, c.background,
-            c.colours, static_cast<double>(rise), bodiesBefore, bodiesAfter);
+            c.colours, static_cast<double>(rise), bodiesBefore, bodiesAfter, tb.GetTiming().stepMs,
+            tb.GetTiming().bridgeMs, tb.GetTiming().box2dMs);
         std::snprintf(name, sizeof name, "%s: PNG written (%s)", info.name, png.c_str());
         sample_expect(name, written);
         std::snprintf(name, sizeof name, "%s: not blank: background share of the scene's frame", info.name);
@@ -199,6 +219,10 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         sample_expect_le(name, -rise, -0.5 * kLift);
         std::snprintf(name, sizeof name, "%s: a rough rock was spawned (one more body)", info.name);
         sample_expect(name, spawned != nullptr && bodiesAfter == bodiesBefore + 1);
+        std::snprintf(name, sizeof name,
+                      "%s: every rough body still rough after the level-of-detail change (%d -> %d)", info.name,
+                      roughBeforeDetail, roughAfterDetail);
+        sample_expect(name, roughAfterDetail == roughBeforeDetail && roughAfterDetail > 0);
     }
     return sample_finish();
 }

@@ -15,12 +15,13 @@ namespace testbed {
 
 struct App {
     GLFWwindow* window = nullptr;
-    // One frame: a new ImGui frame, script (if any) before the user interface, UiFrame (reading the
-    // mouse and keys when readInput), rendering; with pixels, the framebuffer's RGB picture (top row
-    // first, width x height) is read before the buffers are swapped. render false: the frame is built
-    // but not drawn (the headless run draws every 10th frame, to keep the test short).
-    void Frame(Testbed& tb, const std::function<void()>& script, bool readInput,
-               std::vector<unsigned char>* pixels, int* width, int* height, bool render = true);
+    // One frame: GLFW's events and the backends' new frame, then script (if any), which may replace the
+    // mouse and keys ImGui will see (ImGuiIO's MousePos, MouseDown, KeysDown), then ImGui's frame with
+    // UiFrame and rendering. With pixels, the framebuffer's RGB picture (top row first, width x height)
+    // is read before the buffers are swapped. render false: the frame is built but not drawn (the
+    // headless run draws every 10th frame, to keep the test short).
+    void Frame(Testbed& tb, const std::function<void()>& script, std::vector<unsigned char>* pixels,
+               int* width, int* height, bool render = true);
 };
 
 // Every scene (or only the one called `only`) for a fixed number of frames with a scripted drag, spawn

@@ -1,9 +1,10 @@
 // The testbed's headless run (app.hpp, RunHeadless): each scene for kFrames frames through the same
-// frame function as the window, with a scripted drag of the highest dynamic body, a spawned rock and
-// the proxy, band and MOBBtree toggles switched on (the boxes off again), the error budget changed, then a
-// PNG of the last frame and checks of it: the picture is not blank, and inside the scene's frame it shows the
-// rough curves, the ordinary bodies and the proxy boxes by pixel counts of their colours; the drag lifted the
-// body.
+// frame function as the window, with scripted mouse and keys given to ImGui as the user's would be (so
+// the panel's own input code runs): a drag of the highest dynamic body, a right click spawning a rock,
+// the proxy, band and MOBBtree keys (the boxes off again), the error budget changed, pause, one step
+// and a hovered contact. Then a PNG of the last frame and checks: the picture is not blank, and inside
+// the scene's frame it shows the rough curves, the ordinary bodies and the proxy boxes by pixel counts
+// of their colours; the drag lifted the body; the spawn, the level change, pause and step took effect.
 #include "app.hpp"
 #include "testbed_ui.hpp"
 
@@ -11,6 +12,8 @@ extern "C" {
 #include "sample_check.h"
 }
 
+#include <GLFW/glfw3.h>
+#include <imgui.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -27,8 +30,8 @@ namespace {
 constexpr int kFrames = 100;             // 1.7 s of scene time at 60 Hz
 constexpr int kGrab = 10, kRelease = 50; // the drag: frames
 constexpr float kLift = 1.2f;            // how far the mouse moves up during the drag (m)
-constexpr int kSpawn = 60, kToggle = 70, kTreeOff = 85,
-              kDetail = 80;             // the MOBBtree boxes: on at kToggle, off here
+constexpr int kSpawn = 60, kToggle = 70, kDetail = 80, kPause = 90;
+constexpr int kTreeOff = 85;            // the MOBBtree boxes: on at kToggle, off here
 constexpr int kRenderEvery = 10;        // frames rendered (the others only step and build the user interface)
 constexpr int kMinCurvePixels = 300;    // rough curves (the bridge's yellow)
 constexpr int kMinProxyPixels = 100;    // proxy boxes (the bridge's blue), after the toggle
@@ -113,59 +116,72 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         return 1;
     }
     const std::vector<SceneInfo>& list = SceneList();
+    int hoverScenes = 0;
     for (int si = 0; si < static_cast<int>(list.size()); ++si) {
         const SceneInfo& info = list[static_cast<size_t>(si)];
         if (!only.empty() && only != info.name) continue;
         const auto t0 = std::chrono::steady_clock::now();
         char name[160];
+        tb.settings = Settings(); // each scene from the defaults: the keys toggle
         if (!tb.Load(si, 0)) {
             std::snprintf(name, sizeof name, "%s: the scene loads", info.name);
             sample_expect(name, 0);
             continue;
         }
         // One frame first, so that ImGui knows the display size and the camera frames the scene.
-        app.Frame(tb, nullptr, false, nullptr, nullptr, nullptr, true);
+        app.Frame(tb, nullptr, nullptr, nullptr, nullptr, true);
         tb.camera.Fit(tb.Current().viewLo, tb.Current().viewHi);
         b2Body* dragged = nullptr;
         b2Vec2 grab(0.0f, 0.0f), anchorLocal(0.0f, 0.0f);
         float rise = 0.0f;
         int bodiesBefore = 0, bodiesAfter = 0, roughBeforeDetail = 0, roughAfterDetail = -1;
-        b2Body* spawned = nullptr;
+        bool picked = false, released = false, hoverTried = false;
+        long stepsPaused = -1, stepsAfterStep = -1;
         std::vector<unsigned char> px;
         int width = 0, height = 0;
         for (int f = 1; f <= kFrames; ++f) {
+            // The input ImGui sees this frame, as the user's mouse and keys would give it.
             auto script = [&] {
+                ImGuiIO& io = ImGui::GetIO();
+                auto mouse = [&](b2Vec2 world, bool left, bool right) {
+                    const b2Vec2 sp = tb.camera.ToScreen(world);
+                    io.MousePos = ImVec2(sp.x, sp.y);
+                    io.MouseDown[ImGuiMouseButton_Left] = left;
+                    io.MouseDown[ImGuiMouseButton_Right] = right;
+                };
+                for (int key : {GLFW_KEY_X, GLFW_KEY_B, GLFW_KEY_T, GLFW_KEY_P, GLFW_KEY_O})
+                    io.KeysDown[key] = false;
                 if (f == kGrab) {
                     dragged = Highest(tb, &grab);
-                    if (dragged && tb.MouseDown(grab))
+                    if (dragged) {
                         anchorLocal = dragged->GetLocalPoint(grab);
-                    else
-                        dragged = nullptr;
+                        mouse(grab, true, false); // press: the panel's Input picks the body
+                    }
                 }
-                if (f > kGrab && f <= kRelease && dragged) {
+                if (f == kGrab + 1) picked = dragged != nullptr && tb.Dragged() == dragged;
+                if (f > kGrab && f < kRelease && dragged) {
                     const float u = static_cast<float>(f - kGrab) / static_cast<float>(kRelease - kGrab);
-                    tb.MouseMove(grab + b2Vec2(0.0f, kLift * u));
+                    mouse(grab + b2Vec2(0.0f, kLift * u), true, false);
                 }
                 if (f == kRelease && dragged) {
                     rise = dragged->GetWorldPoint(anchorLocal).y - grab.y;
-                    tb.MouseUp();
+                    mouse(grab + b2Vec2(0.0f, kLift), false, false); // release
                 }
-                if (f == kSpawn) {
-                    const Scene& s = tb.Current();
-                    const b2Vec2 p(0.5f * (s.viewLo.x + s.viewHi.x),
-                                   s.viewHi.y - 0.15f * (s.viewHi.y - s.viewLo.y));
+                if (f == kRelease + 1) released = tb.Dragged() == nullptr;
+                if (f == kSpawn) { // a right click
+                    const Scene& sc = tb.Current();
                     bodiesBefore = tb.BodyCount();
-                    spawned = tb.Spawn(p);
-                    bodiesAfter = tb.BodyCount();
+                    mouse(b2Vec2(0.5f * (sc.viewLo.x + sc.viewHi.x),
+                                 sc.viewHi.y - 0.15f * (sc.viewHi.y - sc.viewLo.y)),
+                          false, true);
                 }
-                if (f == kToggle) {
-                    tb.settings.drawProxies = true;
-                    tb.settings.drawBands = true;
+                if (f == kSpawn + 1) bodiesAfter = tb.BodyCount();
+                if (f == kToggle) { // keys X, B, T; the exaggeration slider
+                    io.KeysDown[GLFW_KEY_X] = io.KeysDown[GLFW_KEY_B] = io.KeysDown[GLFW_KEY_T] = true;
                     tb.settings.bandExaggeration = 5.0f;
-                    tb.settings.drawTree = true;
                     tb.settings.treeLevel = 3;
                 }
-                if (f == kTreeOff) tb.settings.drawTree = false; // the picture shows proxies and bands
+                if (f == kTreeOff) io.KeysDown[GLFW_KEY_T] = true; // the picture shows proxies and bands
                 if (f == kDetail) { // the error-budget slider: every rough body re-attached at 1 cm
                     roughBeforeDetail = tb.RoughBodyCount();
                     tb.settings.detail = Detail::kBudget;
@@ -173,9 +189,22 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
                     tb.ApplyDetail();
                     roughAfterDetail = CountRough(tb);
                 }
+                if (f == kPause) io.KeysDown[GLFW_KEY_P] = true;
+                if (f == kPause + 1) stepsPaused = tb.Steps();
+                if (f == kPause + 2) io.KeysDown[GLFW_KEY_O] = true; // one step
+                if (f >= kFrames - 2) { // ImGui shows a new tooltip from its second frame
+                    stepsAfterStep = tb.Steps();
+                    // Hover the first rough contact point (paused: the contacts stay as they are).
+                    for (const ContactView& c : tb.Contacts())
+                        if (c.rough) {
+                            mouse(c.p[0], false, false);
+                            hoverTried = true;
+                            break;
+                        }
+                }
             };
             const bool render = f % kRenderEvery == 0 || f == kFrames;
-            app.Frame(tb, script, false, f == kFrames ? &px : nullptr, &width, &height, render);
+            app.Frame(tb, script, f == kFrames ? &px : nullptr, &width, &height, render);
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const std::string png = dir + "/" + info.name + ".png";
@@ -213,17 +242,32 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
             sample_expect_le(name, -c.ordinary, -kMinOrdinaryPixels);
         }
         std::snprintf(name, sizeof name, "%s: a dynamic body was picked under the mouse", info.name);
-        sample_expect(name, dragged != nullptr);
+        sample_expect(name, picked);
+        std::snprintf(name, sizeof name, "%s: releasing the button ends the drag", info.name);
+        sample_expect(name, released);
         std::snprintf(name, sizeof name, "%s: the drag lifted it: -(rise of the grabbed point) [m] <= -%.2f",
                       info.name, 0.5 * kLift);
         sample_expect_le(name, -rise, -0.5 * kLift);
         std::snprintf(name, sizeof name, "%s: a rough rock was spawned (one more body)", info.name);
-        sample_expect(name, spawned != nullptr && bodiesAfter == bodiesBefore + 1);
+        sample_expect(name, bodiesAfter == bodiesBefore + 1);
+        std::snprintf(name, sizeof name, "%s: P pauses and O steps once (%ld -> %ld steps)", info.name,
+                      stepsPaused, stepsAfterStep);
+        sample_expect(name, stepsPaused > 0 && stepsAfterStep == stepsPaused + 1);
+        if (hoverTried) { // a ball in flight at the last frame has no contact to hover
+            std::snprintf(name, sizeof name, "%s: hovering a rough contact point shows its tooltip",
+                          info.name);
+            sample_expect(name, tb.hovered >= 0);
+            ++hoverScenes;
+        } else {
+            std::printf("%s: no rough contact at the last frame: hover not tried\n", info.name);
+        }
         std::snprintf(name, sizeof name,
-                      "%s: every rough body still rough after the level-of-detail change (%d -> %d)", info.name,
-                      roughBeforeDetail, roughAfterDetail);
+                      "%s: every rough body still rough after the level-of-detail change (%d -> %d)",
+                      info.name, roughBeforeDetail, roughAfterDetail);
         sample_expect(name, roughAfterDetail == roughBeforeDetail && roughAfterDetail > 0);
     }
+    // Most scenes end with a rough contact to hover (all but the two whose body is in flight).
+    if (only.empty()) sample_expect_le("scenes where the hover was tried: -(count) <= -5", -hoverScenes, -5);
     return sample_finish();
 }
 

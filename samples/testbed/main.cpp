@@ -21,15 +21,15 @@
 
 namespace testbed {
 
-void App::Frame(Testbed& tb, const std::function<void()>& script, bool readInput,
-                std::vector<unsigned char>* pixels, int* width, int* height, bool render) {
+void App::Frame(Testbed& tb, const std::function<void()>& script, std::vector<unsigned char>* pixels,
+                int* width, int* height, bool render) {
     glfwPollEvents();
     ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
+    ImGui_ImplGlfw_NewFrame(); // the mouse and keys as GLFW has them
     SetViewport(tb);
-    if (script) script();
-    UiFrame(tb, readInput);
+    if (script) script(); // may replace them (ImGuiIO's MousePos, MouseDown, KeysDown)
+    ImGui::NewFrame();
+    UiFrame(tb);
     ImGui::Render();
     if (!render) return;
     int w = 0, h = 0;
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
             status = 1;
         } else {
             while (!glfwWindowShouldClose(window))
-                app.Frame(tb, nullptr, true, nullptr, nullptr, nullptr);
+                app.Frame(tb, nullptr, nullptr, nullptr, nullptr);
         }
     }
     ImGui_ImplOpenGL3_Shutdown();

@@ -162,8 +162,10 @@ class Testbed {
     int BodyCount() const; // the scene's bodies (not the testbed's mouse-joint anchor)
     int RoughBodyCount() const;
     int LevelOf(const b2Body* b) const { return m_scene->w->bridge->GetLevel(b); }
-    // The scene's hook may set a level cycle: the level shown in the panel.
+    // A line the scene's hook shows in the panel (the level cycle of lod_live).
     std::string status;
+    // The contact whose tooltip the last frame showed (index into Contacts()); -1 if none.
+    int hovered = -1;
 
   private:
     struct RoughRecord {

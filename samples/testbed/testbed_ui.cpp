@@ -67,12 +67,13 @@ void Input(Testbed& tb) {
 }
 
 // The contact under the cursor: what the public API says about it (docs/testbed.md, "Hover").
-void HoverTooltip(const Testbed& tb) {
+void HoverTooltip(Testbed& tb) {
     if (ImGui::GetIO().WantCaptureMouse || !ImGui::IsMousePosValid() || !tb.settings.drawContacts) return;
     int k = 0;
     const int i = tb.NearestContact(MouseWorld(tb), 8.0f / tb.camera.pixelsPerMetre, &k);
     if (i < 0) return;
     const ContactView& c = tb.Contacts()[static_cast<size_t>(i)];
+    tb.hovered = i;
     ImGui::BeginTooltip();
     ImGui::Text("%s contact, point %d of %d", c.rough ? "rough" : "ordinary", k + 1, c.points);
     ImGui::Text("mu %.3f  eps %.3f  (the contact's, as the bridge set them)", static_cast<double>(c.friction),
@@ -209,9 +210,10 @@ void SetViewport(Testbed& tb) {
     tb.camera.height = std::max(1.0f, io.DisplaySize.y);
 }
 
-void UiFrame(Testbed& tb, bool readInput) {
+void UiFrame(Testbed& tb) {
     SetViewport(tb);
-    if (readInput) Input(tb);
+    tb.hovered = -1;
+    Input(tb);
     tb.Frame();
     ImDebugDraw draw(ImGui::GetBackgroundDrawList(), tb.camera);
     tb.Draw(&draw);

@@ -11,8 +11,7 @@ constexpr float kPanelWidth = 340.0f; // pixels, at the window's right edge
 // One frame of the user interface, between ImGui::NewFrame and ImGui::Render: reads the mouse and the
 // keys (when ImGui does not want them), steps the testbed (Testbed::Frame), draws the world into the
 // background draw list and the panel on top. The camera's viewport is set from the display size.
-// readInput false: the mouse and the keys are left alone (the headless run scripts its input).
-void UiFrame(Testbed& tb, bool readInput = true);
+void UiFrame(Testbed& tb);
 // The camera's viewport from ImGui's display size (the window less the panel).
 void SetViewport(Testbed& tb);
 

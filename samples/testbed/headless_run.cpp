@@ -2,9 +2,10 @@
 // frame function as the window, with scripted mouse and keys given to ImGui as the user's would be (so
 // the panel's own input code runs): a drag of the highest dynamic body, a right click spawning a rock,
 // the proxy, band and MOBBtree keys (the boxes off again), the error budget changed, pause, one step
-// and a hovered contact. Then a PNG of the last frame and checks: the picture is not blank, and inside
-// the scene's frame it shows the rough curves, the ordinary bodies and the proxy boxes by pixel counts
-// of their colours; the drag lifted the body; the spawn, the level change, pause and step took effect.
+// and a hovered contact. A PNG before the hover, which is checked, and one with the tooltip. Checks:
+// the picture is not blank, and inside the scene's frame it shows the rough curves, the ordinary bodies
+// and the proxy boxes by pixel counts of their colours; the drag lifted the body; the spawn, the level
+// change, pause and step took effect; the tooltip showed.
 #include "app.hpp"
 #include "testbed_ui.hpp"
 
@@ -32,7 +33,8 @@ constexpr int kGrab = 10, kRelease = 50; // the drag: frames
 constexpr float kLift = 1.2f;            // how far the mouse moves up during the drag (m)
 constexpr int kSpawn = 60, kToggle = 70, kDetail = 80, kPause = 90;
 constexpr int kTreeOff = 85;            // the MOBBtree boxes: on at kToggle, off here
-constexpr int kRenderEvery = 10;        // frames rendered (the others only step and build the user interface)
+constexpr int kPicture = 97;            // the checked picture (paused since kPause, before the hover)
+constexpr int kRenderEvery = 10;        // frames drawn (the others only step and build the interface)
 constexpr int kMinCurvePixels = 300;    // rough curves (the bridge's yellow)
 constexpr int kMinProxyPixels = 100;    // proxy boxes (the bridge's blue), after the toggle
 constexpr int kMinOrdinaryPixels = 100; // ordinary dynamic bodies (Box2D's testbed pink)
@@ -137,7 +139,7 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         int bodiesBefore = 0, bodiesAfter = 0, roughBeforeDetail = 0, roughAfterDetail = -1;
         bool picked = false, released = false, hoverTried = false;
         long stepsPaused = -1, stepsAfterStep = -1;
-        std::vector<unsigned char> px;
+        std::vector<unsigned char> px, pxHover;
         int width = 0, height = 0;
         for (int f = 1; f <= kFrames; ++f) {
             // The input ImGui sees this frame, as the user's mouse and keys would give it.
@@ -194,22 +196,29 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
                 if (f == kPause + 2) io.KeysDown[GLFW_KEY_O] = true; // one step
                 if (f >= kFrames - 2) { // ImGui shows a new tooltip from its second frame
                     stepsAfterStep = tb.Steps();
-                    // Hover the first rough contact point (paused: the contacts stay as they are).
+                    // Hover the leftmost rough contact point (paused: the contacts stay as they are),
+                    // so that the tooltip, right of the mouse, covers little of the scene.
+                    const ContactView* left = nullptr;
                     for (const ContactView& c : tb.Contacts())
-                        if (c.rough) {
-                            mouse(c.p[0], false, false);
-                            hoverTried = true;
-                            break;
-                        }
+                        if (c.rough && (!left || c.p[0].x < left->p[0].x)) left = &c;
+                    if (left) {
+                        mouse(left->p[0], false, false);
+                        hoverTried = true;
+                    }
                 }
             };
-            const bool render = f % kRenderEvery == 0 || f == kFrames;
-            app.Frame(tb, script, f == kFrames ? &px : nullptr, &width, &height, render);
+            // The checked picture before the hover, and the last frame with the tooltip.
+            const bool render = f % kRenderEvery == 0 || f >= kPicture;
+            std::vector<unsigned char>* read = f == kPicture ? &px : f == kFrames ? &pxHover : nullptr;
+            app.Frame(tb, script, read, &width, &height, render);
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const std::string png = dir + "/" + info.name + ".png";
+        const std::string png = dir + "/" + info.name + ".png",
+                          pngHover = dir + "/" + info.name + "_hover.png";
         const bool written =
-            width > 0 && stbi_write_png(png.c_str(), width, height, 3, px.data(), width * 3) != 0;
+            width > 0 && stbi_write_png(png.c_str(), width, height, 3, px.data(), width * 3) != 0 &&
+            (pxHover.empty() ||
+             stbi_write_png(pngHover.c_str(), width, height, 3, pxHover.data(), width * 3) != 0);
         // The scene's frame on the screen, within the world's viewport.
         const b2Vec2 lo = tb.camera.ToScreen(tb.Current().viewLo),
                      hi = tb.camera.ToScreen(tb.Current().viewHi);
@@ -224,7 +233,7 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
             info.name, seconds, kFrames, width, height, c.total, c.curve, c.proxy, c.ordinary, c.background,
             c.colours, static_cast<double>(rise), bodiesBefore, bodiesAfter, tb.GetTiming().stepMs,
             tb.GetTiming().bridgeMs, tb.GetTiming().box2dMs);
-        std::snprintf(name, sizeof name, "%s: PNG written (%s)", info.name, png.c_str());
+        std::snprintf(name, sizeof name, "%s: PNGs written (%s, and _hover)", info.name, png.c_str());
         sample_expect(name, written);
         std::snprintf(name, sizeof name, "%s: not blank: background share of the scene's frame", info.name);
         sample_expect_le(name, c.total > 0 ? static_cast<double>(c.background) / c.total : 1.0, 0.99);

@@ -1302,6 +1302,59 @@ START_TEST(automatic_control_count) {
 }
 END_TEST
 
+/* A circle of radius 1e-300 (and 1e300): every squared distance underflowed (overflowed) and the fit
+ * reported an error of 0. The fit runs on the samples scaled by a power of two, so its errors are
+ * those of the unit circle's fit times the radius, and a power-of-two radius gives exactly the scaled
+ * control points. */
+START_TEST(fit_outline_extreme_radius) {
+    enum { M = 64, N = 16 };
+    rugo_vec2 unit[M], tiny[M];
+    for (int i = 0; i < M; ++i) unit[i] = rugo_v2(cos(2 * PI * i / M), sin(2 * PI * i / M));
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    fd.samples = unit;
+    fd.sample_count = M;
+    fd.control_count = N;
+    rugo_outline_fit ref, f;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &ref), RUGO_OK);
+    ck_assert(ref.max_error > 1e-6 && ref.max_error < 1e-2); /* the cubic's deviation from a circle */
+    const double radii[4] = {1e-300, 1e300, 0x1p-997, 0x1p+997};
+    for (int v = 0; v < 4; ++v) {
+        for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(radii[v], unit[i]);
+        fd.samples = tiny;
+        ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+        ck_assert_int_eq(f.control_count, N);
+        ck_assert_msg(fabs(f.max_error / radii[v] - ref.max_error) <= 1e-9 * ref.max_error,
+                      "radius %g: max_error %g", radii[v], f.max_error);
+        ck_assert(fabs(f.rms_error / radii[v] - ref.rms_error) <= 1e-9 * ref.rms_error);
+        ck_assert(fabs(f.max_error_at_parameter / radii[v] - ref.max_error_at_parameter) <=
+                  1e-9 * ref.max_error_at_parameter);
+        for (int j = 0; j < N; ++j) {
+            if (v >= 2) { /* a power of two: the same bits, scaled */
+                ck_assert(f.control_points[j].x == radii[v] * ref.control_points[j].x);
+                ck_assert(f.control_points[j].y == radii[v] * ref.control_points[j].y);
+            } else {
+                ck_assert(fabs(f.control_points[j].x / radii[v] - ref.control_points[j].x) <= 1e-12);
+                ck_assert(fabs(f.control_points[j].y / radii[v] - ref.control_points[j].y) <= 1e-12);
+            }
+        }
+        rugo_outline_fit_free(&f);
+    }
+    /* The automatic search on the tiny circle finds the count the unit circle's would. */
+    fd.control_count = 0;
+    fd.samples = unit;
+    fd.tolerance = 1e-4;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &ref), RUGO_OK);
+    for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(1e-300, unit[i]);
+    fd.samples = tiny;
+    fd.tolerance = 1e-304;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.control_count, ref.control_count);
+    ck_assert_int_eq(f.tolerance_met, ref.tolerance_met);
+    rugo_outline_fit_free(&f);
+    rugo_outline_fit_free(&ref);
+}
+END_TEST
+
 START_TEST(fit_bad_input) {
     rugo_vec2 pts[64];
     for (int i = 0; i < 64; ++i)
@@ -1442,6 +1495,7 @@ static Suite* import_suite(void) {
     tcase_add_test(tf, circle_fit_error);
     tcase_add_test(tf, automatic_control_count);
     tcase_add_test(tf, fit_bad_input);
+    tcase_add_test(tf, fit_outline_extreme_radius);
     tcase_add_test(tf, points_pipeline_matches_fit_contour);
     suite_add_tcase(s, tf);
 #endif

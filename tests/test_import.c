@@ -696,6 +696,72 @@ static void sample_ok(const rugo_path* p, int subpath, rugo_affine m, int count,
     ck_assert_msg(st == RUGO_OK, "status %d: %s", st, e.message);
 }
 
+/* Speed of the cubic (0,0) (1,1) (0,1) (1,0), which has a cusp at t = 1/2, in long double. */
+static long double cusp_speed(long double t) {
+    const long double u = 1.0L - t;
+    const long double dx = 3.0L * (u * u - 2.0L * u * t + t * t), dy = 3.0L * (u * u - t * t);
+    return sqrtl(dx * dx + dy * dy);
+}
+
+static long double cusp_simpson(long double a, long double fa, long double m, long double fm, long double b,
+                                long double fb, long double whole, long double tol, int depth) {
+    const long double lm = 0.5L * (a + m), rm = 0.5L * (m + b), flm = cusp_speed(lm), frm = cusp_speed(rm);
+    const long double left = (m - a) / 6.0L * (fa + 4.0L * flm + fm), right = (b - m) / 6.0L * (fm + 4.0L * frm + fb);
+    const long double delta = left + right - whole;
+    if (depth >= 60 || fabsl(delta) <= 15.0L * tol) return left + right + delta / 15.0L;
+    return cusp_simpson(a, fa, lm, flm, m, fm, left, 0.5L * tol, depth + 1) +
+           cusp_simpson(m, fm, rm, frm, b, fb, right, 0.5L * tol, depth + 1);
+}
+
+/* Arc length of the cusp cubic from 0 to t, by adaptive Simpson (an independent reference). */
+static long double cusp_length(long double t) {
+    long double total = 0.0L, a = 0.0L;
+    while (a < t) { /* pieces ending at the cusp, so that no piece straddles it */
+        const long double b = a < 0.5L && t > 0.5L ? 0.5L : t, m = 0.5L * (a + b);
+        const long double fa = cusp_speed(a), fm = cusp_speed(m), fb = cusp_speed(b);
+        total += cusp_simpson(a, fa, m, fm, b, fb, (b - a) / 6.0L * (fa + 4.0L * fm + fb), 1e-17L, 0);
+        a = b;
+    }
+    return total;
+}
+
+/* The outline sampler measures and places by the library's certified arc length: on a cubic with a
+ * cusp, the perimeter is within 1e-12 of the reference, and every sample on the cubic sits at j L/(e+1)
+ * of its arc length within 1e-12 L (its parameter recovered from y = 3 t (1 - t), exact near the cusp,
+ * and the side of the cusp from x). */
+START_TEST(sample_cusp_arc_length) {
+    rugo_path p;
+    parse_ok("M 0 0 C 1 1 0 1 1 0 Z", &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 41, &s);
+    const long double L = cusp_length(1.0L);
+    ck_assert_msg(fabsl(s.perimeter - (L + 1.0L)) <= 1e-12L * (L + 1.0L), "perimeter %.17g vs %.17Lg", s.perimeter,
+                  L + 1.0L);
+    double pos[64];
+    int e = 0;
+    for (int i = 0; i < s.count; ++i) {
+        if (!(s.points[i].y > 0.0)) continue; /* the closing line and the cubic's ends */
+        const long double u = (0.75L - (long double)s.points[i].y) / 3.0L; /* (t - 1/2)^2 */
+        const long double t = 0.5L + (s.points[i].x < 0.5 ? -1.0L : 1.0L) * sqrtl(u > 0.0L ? u : 0.0L);
+        ck_assert(e < 64);
+        pos[e++] = (double)cusp_length(t);
+    }
+    ck_assert_int_ge(e, 20);
+    for (int i = 0; i < e; ++i)
+        for (int j = i + 1; j < e; ++j)
+            if (pos[j] < pos[i]) {
+                const double tmp = pos[i];
+                pos[i] = pos[j];
+                pos[j] = tmp;
+            }
+    for (int j = 0; j < e; ++j)
+        ck_assert_msg(fabsl(pos[j] - L * (j + 1) / (e + 1)) <= 1e-12L * L, "sample %d of %d: %.17g vs %.17Lg", j + 1,
+                      e, pos[j], L * (j + 1) / (e + 1));
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
 static double polygon_area(const rugo_vec2* p, int n) {
     double a = 0.0;
     for (int i = 0; i < n; ++i)
@@ -1475,6 +1541,7 @@ static Suite* import_suite(void) {
 
     TCase* ts = tcase_create("sampling");
     tcase_add_test(ts, sample_square_by_hand);
+    tcase_add_test(ts, sample_cusp_arc_length);
     tcase_add_test(ts, sample_circle_of_arcs);
     tcase_add_test(ts, sample_circle_of_cubics);
     tcase_add_test(ts, sample_subpath_choice);

@@ -27,15 +27,17 @@ inline bool WriteAnimation(const Run& run, const std::string& dir, const char* t
     std::fprintf(f, "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>%s</title>\n", title);
     std::fprintf(f, "<style>body{background:#1a1a1f;color:#ddd;font:14px sans-serif;margin:12px}"
                     "canvas{background:#fff;display:block;margin-top:8px}</style></head><body>\n");
-    std::fprintf(f, "<div>%s &mdash; <button id=\"play\">pause</button> <input id=\"t\" type=\"range\" min=\"0\" "
-                    "max=\"1000\" value=\"0\" style=\"width:50%%\"> <span id=\"time\"></span> speed "
-                    "<select id=\"speed\"><option>0.25</option><option>0.5</option><option selected>1</option>"
-                    "<option>2</option></select></div>\n",
-                 title);
+    std::fprintf(
+        f,
+        "<div>%s &mdash; <button id=\"play\">pause</button> <input id=\"t\" type=\"range\" min=\"0\" "
+        "max=\"1000\" value=\"0\" style=\"width:50%%\"> <span id=\"time\"></span> speed "
+        "<select id=\"speed\"><option>0.25</option><option>0.5</option><option selected>1</option>"
+        "<option>2</option></select></div>\n",
+        title);
     std::fprintf(f, "<canvas id=\"c\" width=\"1100\" height=\"900\"></canvas>\n<script>\n");
     // The view box and each body's outline in its own frame.
-    std::fprintf(f, "const view = [%.4f, %.4f, %.4f, %.4f];\nconst bodies = [\n", run.sc->view_lo.x, run.sc->view_lo.y,
-                 run.sc->view_hi.x, run.sc->view_hi.y);
+    std::fprintf(f, "const view = [%.4f, %.4f, %.4f, %.4f];\nconst bodies = [\n", run.sc->view_lo.x,
+                 run.sc->view_lo.y, run.sc->view_hi.x, run.sc->view_hi.y);
     for (std::size_t i = 0; i < run.bodies.size(); ++i) {
         const b2Body* b = run.bodies[i];
         const scene_body& sb = run.sc->bodies[i];
@@ -73,7 +75,8 @@ inline bool WriteAnimation(const Run& run, const std::string& dir, const char* t
             std::fprintf(f, "pts: []},\n");
         }
     }
-    std::fprintf(f, "];\n</script>\n<script type=\"text/csv\" id=\"trajectory\">\n%s</script>\n", text.c_str());
+    std::fprintf(f, "];\n</script>\n<script type=\"text/csv\" id=\"trajectory\">\n%s</script>\n",
+                 text.c_str());
     // The player: frames are the CSV's sampled steps; poses between them are interpolated.
     std::fprintf(f, "%s", R"JS(<script>
 const rows = document.getElementById('trajectory').textContent.trim().split('\n');

@@ -138,6 +138,7 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         float rise = 0.0f;
         int bodiesBefore = 0, bodiesAfter = 0, roughBeforeDetail = 0, roughAfterDetail = -1;
         bool picked = false, released = false, hoverTried = false;
+        int levelsEarly = 0, levelsLate = 0; // sums of the rough bodies' contact levels
         long stepsPaused = -1, stepsAfterStep = -1;
         std::vector<unsigned char> px, pxHover;
         int width = 0, height = 0;
@@ -159,6 +160,12 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
                         anchorLocal = dragged->GetLocalPoint(grab);
                         mouse(grab, true, false); // press: the panel's Input picks the body
                     }
+                }
+                if (f == 30 || f == 75) { // lod_live switches its levels every 60 steps
+                    int sum = 0;
+                    for (const b2Body* b : tb.Current().w->bodies) // the scene's own, not the spawned
+                        if (tb.Current().w->bridge->IsRough(b)) sum += tb.LevelOf(b);
+                    (f == 30 ? levelsEarly : levelsLate) = sum;
                 }
                 if (f == kGrab + 1) picked = dragged != nullptr && tb.Dragged() == dragged;
                 if (f > kGrab && f < kRelease && dragged) {
@@ -262,6 +269,12 @@ int RunHeadless(App& app, Testbed& tb, const std::string& dir, const std::string
         std::snprintf(name, sizeof name, "%s: P pauses and O steps once (%ld -> %ld steps)", info.name,
                       stepsPaused, stepsAfterStep);
         sample_expect(name, stepsPaused > 0 && stepsAfterStep == stepsPaused + 1);
+        if (std::string(info.name) == "lod_live") {
+            std::snprintf(name, sizeof name,
+                          "%s: the levels switched live (sum of levels %d at frame 30, %d at 75)", info.name,
+                          levelsEarly, levelsLate);
+            sample_expect(name, levelsLate < levelsEarly);
+        }
         if (hoverTried) { // a ball in flight at the last frame has no contact to hover
             std::snprintf(name, sizeof name, "%s: hovering a rough contact point shows its tooltip",
                           info.name);

@@ -113,18 +113,18 @@ bool Testbed::Load(int sceneIndex, int variant) {
     const std::vector<SceneInfo>& list = SceneList();
     if (sceneIndex < 0 || sceneIndex >= static_cast<int>(list.size())) return false;
     variant = std::max(0, std::min(variant, list[static_cast<size_t>(sceneIndex)].variants - 1));
+    auto s = std::make_unique<Scene>();
+    s->name = list[static_cast<size_t>(sceneIndex)].name;
+    s->variant = variant;
+    // Built beside the running scene, which stays if the new one cannot be built.
+    if (!list[static_cast<size_t>(sceneIndex)].build(variant, s.get())) return false;
     m_mouse = nullptr;
     m_anchor = nullptr;
     m_rough.clear();
     m_contacts.clear();
-    m_scene.reset();
-    auto s = std::make_unique<Scene>();
-    s->name = list[static_cast<size_t>(sceneIndex)].name;
-    s->variant = variant;
+    m_scene = std::move(s);
     settings.detail = Detail::kScene;
     status.clear();
-    if (!list[static_cast<size_t>(sceneIndex)].build(variant, s.get())) return false;
-    m_scene = std::move(s);
     m_sceneIndex = sceneIndex;
     m_variant = variant;
     m_steps = 0;

@@ -227,15 +227,15 @@ bool BuildRamp(int, Scene* s) {
 
 // ---- levels of detail switched live ---------------------------------------------------------------
 
-// Fig. 7.13's scene at the finest level, switched every 2 s to the next level of 0, -1, -2, -3, -2,
+// Fig. 7.13's scene at the finest level, switched every second to the next level of 0, -1, -2, -3, -2,
 // -1 (every rough body detached and attached again at it, its pose and velocity kept).
 bool BuildLodLive(int, Scene* s) {
     if (!FromTable("fig7_13_levels", 2, s)) return false;
-    s->note = "Fig. 7.13's bodies; the level of detail of every rough body switches every 2 s (0, -1, -2, "
+    s->note = "Fig. 7.13's bodies; the level of detail of every rough body switches every second (0, -1, -2, "
               "-3, -2, -1). Choose 'scene' or 'error budget' under Level of detail to stop the cycle.";
     s->preStep = [](Scene& sc, Testbed& tb) {
         static const int kCycle[] = {0, -1, -2, -3, -2, -1};
-        const long period = 120;
+        const long period = 60;
         if (sc.w->steps == 0) tb.settings.detail = Detail::kLevel;
         if (tb.settings.detail != Detail::kLevel) {
             tb.status = "level cycle stopped";

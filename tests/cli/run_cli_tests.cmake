@@ -737,6 +737,14 @@ expect(render_friction_colours svg MATCHES "stroke=.\\#2c7bb6" AND svg MATCHES "
 run(render_bad_exaggerate 2 render ${OUT}/pebble_t5f.json -o ${OUT}/x.svg --band --exaggerate 0.5)
 expect(render_bad_exaggerate_message err MATCHES "--exaggerate must be a factor from 1")
 
+# --- rugo info: the size, and a warning for an outline no game is measured in
+run(info_size 0 info ${OUT}/pebble_m.json)
+string(JSON size GET "${out}" size)
+expect(info_size_value size MATCHES "^0\\.6" AND NOT err MATCHES "warning")
+file(WRITE ${OUT}/giant.json "{\"control_points\": [[1e30, 0], [0, 1e30], [-1e30, 0], [0, -1e30]]}")
+run(info_giant 0 info ${OUT}/giant.json)
+expect(info_giant_warning err MATCHES "warning" AND err MATCHES "units across" AND err MATCHES "--px-per-metre")
+
 # --- errors that name the field, the value and a way out
 file(WRITE ${OUT}/five.json "{\"control_points\": [[1, 0], [0.3, 0.9], [-0.8, 0.6], [-0.8, -0.6], [0.3, -0.9]]}")
 run(npot_hint 1 decompose ${OUT}/five.json)

@@ -269,11 +269,12 @@ int cmd_info(int argc, char** argv) {
            mp.area, mp.centroid.x, mp.centroid.y, mp.inertia, rugo_contour_perimeter(c), size);
     /* As rugo import's default --max-size: far beyond the 0.1-10 m bodies Box2D is tuned for. */
     if (size > 1e4)
-        fprintf(stderr,
-                "rugo %s: warning: %s: the outline is %.6g units across; if they are metres (Box2D's), that is "
-                "far beyond the 0.1-10 m bodies a physics engine simulates well: rescale it (rugo import "
-                "--px-per-metre)\n",
-                g_command, a.positional[0], size);
+        fprintf(
+            stderr,
+            "rugo %s: warning: %s: the outline is %.6g units across; if they are metres (Box2D's), that is "
+            "far beyond the 0.1-10 m bodies a physics engine simulates well: rescale it (rugo import "
+            "--px-per-metre)\n",
+            g_command, a.positional[0], size);
     rugo_shape_desc_free(&desc);
     return 0;
 }

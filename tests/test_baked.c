@@ -765,6 +765,82 @@ START_TEST(read_file_errors) {
 }
 END_TEST
 
+/* rugo_shape_load_file: one call from a JSON or baked asset to a shape, with errors that name the
+ * field, the value and a way out. */
+static void write_text(const char* path, const char* text) {
+    FILE* f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+START_TEST(load_file_json_and_baked) {
+    char dir[] = "/tmp/rugo_load_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char json[256], baked[256], npot[256], big[256], bad[256];
+    snprintf(json, sizeof json, "%s/rock.json", dir);
+    snprintf(baked, sizeof baked, "%s/rock.rugo", dir);
+    snprintf(npot, sizeof npot, "%s/five.json", dir);
+    snprintf(big, sizeof big, "%s/overflow.json", dir);
+    snprintf(bad, sizeof bad, "%s/syntax.json", dir);
+    write_text(json, "{\"control_points\": [[1, 0], [0.7, 0.7], [0, 1], [-0.7, 0.7], [-1, 0], [-0.7, -0.7], "
+                     "[0, -1], [0.7, -0.7]], \"roughness\": {\"constant\": 0.002}}");
+    rugo_shape* s = NULL;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_shape_load_file(json, NULL, &s, &e), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_finest_level(s), 3);
+    rugo_tolerance_level t;
+    rugo_shape_tolerance_level(s, 3, &t);
+    ck_assert(t.total[0] == 0.002);
+    /* the default friction map (metres): a 2 mm band is not frictionless */
+    const rugo_friction_map fm = rugo_shape_friction_map(s);
+    ck_assert_near(rugo_friction(&fm, 0.002), 0.3 + 0.6 * 1.5 / 5.5, 1e-12);
+    rugo_baked_error be;
+    ck_assert_int_eq(rugo_shape_write_baked_file(s, baked, NULL, NULL, &be), RUGO_OK);
+    rugo_shape* b = NULL;
+    ck_assert_int_eq(rugo_shape_load_file(baked, NULL, &b, &e), RUGO_OK);
+    ck_assert(rugo_shape_mass(b).area == rugo_shape_mass(s).area);
+    rugo_shape_destroy(b);
+    rugo_shape_destroy(s);
+    /* 5 control points: the count, and which counts to refit with */
+    write_text(npot, "{\"control_points\": [[1, 0], [0.3, 0.9], [-0.8, 0.6], [-0.8, -0.6], [0.3, -0.9]]}");
+    s = (rugo_shape*)1;
+    ck_assert_int_eq(rugo_shape_load_file(npot, NULL, &s, &e), RUGO_ERR_NOT_POWER_OF_TWO);
+    ck_assert_ptr_null(s);
+    ck_assert_str_eq(e.path, "control_points");
+    ck_assert_ptr_nonnull(strstr(e.message, "has 5 points"));
+    ck_assert_ptr_nonnull(strstr(e.message, "refit the outline with 4 or 8"));
+    /* coordinates whose area overflows: the field and a way out */
+    write_text(big, "{\"control_points\": [[1e300, 0], [0, 1e300], [-1e300, 0], [0, -1e300]]}");
+    ck_assert_int_eq(rugo_shape_load_file(big, NULL, &s, &e), RUGO_ERR_NOT_FINITE);
+    ck_assert_str_eq(e.path, "control_points");
+    ck_assert_ptr_nonnull(strstr(e.message, "area overflows"));
+    /* a JSON error keeps its position */
+    write_text(bad, "{\"control_points\": [[0, 0],\n [1, 0] [1, 1]]}");
+    ck_assert_int_eq(rugo_shape_load_file(bad, NULL, &s, &e), RUGO_ERR_PARSE);
+    ck_assert_int_eq(e.line, 2);
+    /* a corrupted baked file: the byte and the field */
+    FILE* f = fopen(baked, "r+b");
+    fseek(f, 100, SEEK_SET);
+    fputc(0x55, f);
+    fclose(f);
+    ck_assert_int_ne(rugo_shape_load_file(baked, NULL, &s, &e), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(e.message, "byte "));
+    /* no file; NULLs */
+    char missing[300];
+    snprintf(missing, sizeof missing, "%s/missing.json", dir);
+    ck_assert_int_eq(rugo_shape_load_file(missing, NULL, &s, &e), RUGO_ERR_IO);
+    ck_assert_int_eq(rugo_shape_load_file(NULL, NULL, &s, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_load_file(json, NULL, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    remove(json);
+    remove(baked);
+    remove(npot);
+    remove(big);
+    remove(bad);
+    rmdir(dir);
+}
+END_TEST
+
 int main(void) {
     Suite* s = suite_create("baked");
     TCase* layout = tcase_create("layout");
@@ -788,6 +864,7 @@ int main(void) {
     suite_add_tcase(s, bad);
     TCase* files = tcase_create("files");
     tcase_add_test(files, write_failure_leaves_destination);
+    tcase_add_test(files, load_file_json_and_baked);
     suite_add_tcase(s, files);
     return test_run_suite(s);
 }

@@ -1516,6 +1516,218 @@ END_TEST
 
 #endif /* RUGO_HAVE_FIT */
 
+/* ---- units and placement (rugo_svg_read_viewport, rugo_import_outline) ------------------------ */
+
+START_TEST(viewport_maps_user_units_to_px) {
+    rugo_svg_viewport vp;
+    rugo_parse_error e;
+    /* Inkscape's A4 page: 210 mm wide, a viewBox of 210 user units: 1 unit = 1 mm = 96 / 25.4 px */
+    size_t len = 0;
+    char* text = read_data("rock_inkscape.svg", &len);
+    ck_assert_int_eq(rugo_svg_read_viewport(text, len, &vp, &e), RUGO_OK);
+    rugo_text_free(NULL, text);
+    ck_assert(vp.has_viewbox && vp.has_width && vp.has_height);
+    ck_assert_near(vp.width, 210.0 * 96.0 / 25.4, 1e-9);
+    ck_assert_near(vp.user_to_px.a, 96.0 / 25.4, 1e-12);
+    ck_assert(vp.user_to_px.b == 0.0 && vp.user_to_px.c == 0.0);
+    ck_assert_near(vp.user_to_px.d, 96.0 / 25.4, 1e-12);
+    /* an offset viewBox, letterboxed (meet) into a wider viewport: centred in x */
+    const char* doc =
+        "<?xml version='1.0'?><!-- c --><svg width='400' height='100' viewBox='10 20 100 100'/>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_OK);
+    rugo_vec2 q = rugo_affine_apply(vp.user_to_px, rugo_v2(10.0, 20.0));
+    ck_assert_near(q.x, 150.0, 1e-12);
+    ck_assert_near(q.y, 0.0, 1e-12);
+    /* no viewBox: user units are px; relative sizes are reported as unknown */
+    doc = "<svg width='50%' height='3in'><path d='M0 0'/></svg>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_OK);
+    ck_assert(!vp.has_viewbox && !vp.has_width && vp.has_height && vp.height == 288.0);
+    ck_assert(vp.user_to_px.a == 1.0 && vp.user_to_px.e == 0.0);
+}
+END_TEST
+
+START_TEST(viewport_bad_input) {
+    rugo_svg_viewport vp;
+    rugo_parse_error e;
+    const char* doc = "<svg viewBox='0 0 0 10'/>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_str_eq(e.path, "svg/viewBox");
+    ck_assert_ptr_nonnull(strstr(e.message, "width 0"));
+    doc = "<svg viewBox='0 0 10'/>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_ERR_PARSE);
+    ck_assert_int_eq(e.line, 1);
+    doc = "<svg width='-3mm'/>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_str_eq(e.path, "svg/width");
+    doc = "<html/>";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_ERR_BAD_FIELD);
+    doc = "<!-- unterminated";
+    ck_assert_int_eq(rugo_svg_read_viewport(doc, strlen(doc), &vp, &e), RUGO_ERR_PARSE);
+    ck_assert_int_eq(rugo_svg_read_viewport(NULL, 0, &vp, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert(vp.user_to_px.a == 1.0); /* zeroed with an identity map */
+}
+END_TEST
+
+/* A symmetric bow-tie encloses no area: the import says it crosses itself, where the artist drew it. */
+START_TEST(bow_tie_is_self_intersecting) {
+    const char* doc = "<svg><g transform='translate(100 50)'><path d='M0 0 L20 20 L20 0 L0 20 Z'/></g></svg>";
+    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
+    rugo_outline_samples s;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_svg_import_outline(doc, strlen(doc), NULL, &sd, &s, &e),
+                     RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_ptr_nonnull(strstr(e.message, "self-intersecting"));
+    ck_assert_ptr_nonnull(strstr(e.message, "(110, 60)")); /* the crossing in the drawing's user units */
+    rugo_path p;
+    parse_ok("M0 0 L20 20 L20 0 L0 20 Z", &p);
+    rugo_vec2 w;
+    ck_assert_int_eq(rugo_path_find_crossing(&p, -1, rugo_affine_identity(), &w), 1);
+    ck_assert(w.x == 10.0 && w.y == 10.0);
+    ck_assert_int_eq(rugo_path_find_crossing(&p, 1, rugo_affine_identity(), &w), 0); /* no subpath 1 */
+    rugo_path_free(&p);
+    parse_ok("M0 0 L20 0 L20 20 L0 20 Z", &p); /* a square: no crossing */
+    ck_assert_int_eq(rugo_path_find_crossing(&p, 0, rugo_affine_identity(), &w), 0);
+    rugo_path_free(&p);
+    ck_assert_int_eq(rugo_path_find_crossing(NULL, 0, rugo_affine_identity(), &w), 0);
+}
+END_TEST
+
+#ifdef RUGO_HAVE_FIT
+/* The issue's pebble: 250 px across, a game at 100 px per metre: a 2.5 m shape at the origin, with the
+ * fit error in metres. */
+START_TEST(import_with_units_and_recentring) {
+    static const char svg[] =
+        "<svg><path d='M 300 200 A 125 125 0 0 1 550 200 A 125 125 0 0 1 300 200 Z'/></svg>";
+    rugo_import_def def = rugo_default_import_def();
+    ck_assert(def.scale == 1.0 && def.max_size == RUGO_DEFAULT_IMPORT_MAX_SIZE && !def.recentre);
+    def.text = svg;
+    def.length = strlen(svg);
+    rugo_import_result px, m;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_import_outline(&def, &px, &e), RUGO_OK);
+    def.scale = 0.01;
+    def.recentre = 1;
+    ck_assert_int_eq(rugo_import_outline(&def, &m, &e), RUGO_OK);
+    ck_assert_int_eq(px.fit.control_count, m.fit.control_count);
+    ck_assert(px.from_svg == 1);
+    rugo_contour cm = {m.fit.control_points, m.fit.control_count};
+    rugo_mass_properties mp = rugo_contour_mass_properties(cm);
+    ck_assert_near(mp.area, PI * 1.25 * 1.25, 2e-4);
+    ck_assert(fabs(mp.centroid.x) < 1e-12 && fabs(mp.centroid.y) < 1e-12);
+    /* the offset moved the centre (425, -200) px = (4.25, -2) m to the origin */
+    ck_assert_near(m.offset.x, -4.25, 1e-6);
+    ck_assert_near(m.offset.y, 2.0, 1e-6);
+    /* errors and sizes in output units: the metres run is the pixels run scaled by 1/100 */
+    ck_assert_near(m.size, px.size / 100.0, 1e-12 * px.size);
+    ck_assert_near(m.tolerance, px.tolerance / 100.0, 1e-12 * px.tolerance);
+    ck_assert_near(m.fit.max_error, px.fit.max_error / 100.0, 1e-6 * px.fit.max_error);
+    ck_assert(m.fit.max_error <= m.tolerance && m.fit.tolerance_met);
+    /* the maps: the drawing's top point (425, 75), y down, is the output's top (0, 1.25) */
+    rugo_vec2 top = rugo_affine_apply(m.drawing_to_output, rugo_v2(425.0, 75.0));
+    ck_assert_near(top.x, 0.0, 1e-6);
+    ck_assert_near(top.y, 1.25, 1e-6);
+    rugo_vec2 back = rugo_affine_apply(m.output_to_drawing, top);
+    ck_assert_near(back.x, 425.0, 1e-9);
+    ck_assert_near(back.y, 75.0, 1e-9);
+    rugo_import_result_free(&px);
+    rugo_import_result_free(&m);
+    ck_assert_ptr_null(m.fit.control_points);
+}
+END_TEST
+
+/* --viewbox: the A4 Inkscape rock measured in mm, at 1000 px per metre... via the px of the viewport. */
+START_TEST(import_honours_viewbox) {
+    size_t len = 0;
+    char* text = read_data("rock_inkscape.svg", &len);
+    rugo_import_def def = rugo_default_import_def();
+    def.text = text;
+    def.length = len;
+    def.path_id = "rock";
+    rugo_import_result user, vb;
+    rugo_parse_error e;
+    ck_assert_int_eq(rugo_import_outline(&def, &user, &e), RUGO_OK);
+    def.use_viewbox = 1;
+    ck_assert_int_eq(rugo_import_outline(&def, &vb, &e), RUGO_OK);
+    ck_assert_near(vb.size, user.size * 96.0 / 25.4, 1e-9 * vb.size);
+    /* with --viewbox and a scale of 25.4 / 96 / 1000 the output is in metres: mm / 1000 */
+    rugo_import_result mm;
+    def.scale = 25.4 / 96.0 / 1000.0;
+    ck_assert_int_eq(rugo_import_outline(&def, &mm, &e), RUGO_OK);
+    ck_assert_near(mm.size, user.size / 1000.0, 1e-9 * mm.size);
+    rugo_import_result_free(&user);
+    rugo_import_result_free(&vb);
+    rugo_import_result_free(&mm);
+    rugo_text_free(NULL, text);
+}
+END_TEST
+
+START_TEST(import_errors_name_field_value_and_way_out) {
+    static const char svg[] = "<svg><path d='M 0 0 L 100 0 L 100 100 L 0 100 Z'/></svg>";
+    rugo_import_def def = rugo_default_import_def();
+    def.text = svg;
+    def.length = strlen(svg);
+    rugo_import_result r;
+    rugo_parse_error e;
+    /* a control count that is not a power of two: the message says which counts work */
+    def.control_count = 5;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_NOT_POWER_OF_TWO);
+    ck_assert_str_eq(e.path, "control_count");
+    ck_assert_ptr_nonnull(strstr(e.message, "is 5"));
+    ck_assert_ptr_nonnull(strstr(e.message, "use 4 or 8"));
+    def.control_count = 0;
+    /* a bad scale */
+    def.scale = 0.0;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_str_eq(e.path, "scale");
+    ck_assert_ptr_nonnull(strstr(e.message, "is 0"));
+    def.scale = NAN;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    /* an absurd size: refused with a status, the size and a scale that fixes it */
+    def.scale = 1e28;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_SIZE);
+    ck_assert_str_eq(e.path, "scale");
+    ck_assert_ptr_nonnull(strstr(e.message, "1.41421e+30 units across"));
+    ck_assert_ptr_nonnull(strstr(e.message, "max_size"));
+    def.scale = 1.0;
+    def.max_size = 100.0; /* the 141-unit square exceeds it */
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_SIZE);
+    def.max_size = RUGO_DEFAULT_IMPORT_MAX_SIZE;
+    def.tolerance = -1.0;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_str_eq(e.path, "tolerance");
+    def.tolerance = 0.0;
+    /* a bow-tie: self-intersecting, in the drawing's coordinates */
+    static const char bow[] = "<svg><path d='M0 0 L20 20 L20 0 L0 20 Z'/></svg>";
+    def.text = bow;
+    def.length = strlen(bow);
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_ptr_nonnull(strstr(e.message, "(10, 10)"));
+    /* the same as a point list */
+    static const char pts[] = "0,0\n20,20\n20,0\n0,20\n";
+    def.text = pts;
+    def.length = strlen(pts);
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_ptr_nonnull(strstr(e.message, "(10, 10)"));
+    /* SVG-only options on a point list */
+    def.use_viewbox = 1;
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_str_eq(e.path, "use_viewbox");
+    def.use_viewbox = 0;
+    def.path_id = "rock";
+    ck_assert_int_eq(rugo_import_outline(&def, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_str_eq(e.path, "path_id");
+    /* NULLs and an uninitialised def */
+    ck_assert_int_eq(rugo_import_outline(NULL, &r, &e), RUGO_ERR_NULL_ARGUMENT);
+    rugo_import_def raw;
+    memset(&raw, 0, sizeof raw);
+    raw.text = pts;
+    ck_assert_int_eq(rugo_import_outline(&raw, &r, &e), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_ptr_null(r.fit.control_points);
+    rugo_import_result_free(NULL);
+}
+END_TEST
+#endif
+
 static Suite* import_suite(void) {
     Suite* s = suite_create("import");
     TCase* tp = tcase_create("path_data");
@@ -1552,6 +1764,9 @@ static Suite* import_suite(void) {
     tcase_add_test(ts, bad_points_text);
     tcase_add_test(ts, path_from_points);
     tcase_add_test(ts, path_from_points_all_equal);
+    tcase_add_test(ts, viewport_maps_user_units_to_px);
+    tcase_add_test(ts, viewport_bad_input);
+    tcase_add_test(ts, bow_tie_is_self_intersecting);
     suite_add_tcase(s, ts);
 
 #ifdef RUGO_HAVE_FIT
@@ -1564,6 +1779,9 @@ static Suite* import_suite(void) {
     tcase_add_test(tf, fit_bad_input);
     tcase_add_test(tf, fit_outline_extreme_radius);
     tcase_add_test(tf, points_pipeline_matches_fit_contour);
+    tcase_add_test(tf, import_with_units_and_recentring);
+    tcase_add_test(tf, import_honours_viewbox);
+    tcase_add_test(tf, import_errors_name_field_value_and_way_out);
     suite_add_tcase(s, tf);
 #endif
     return s;

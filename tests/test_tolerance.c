@@ -160,8 +160,11 @@ START_TEST(defaults) {
     ck_assert_ptr_null(d.finest);
     ck_assert(d.cookie != 0);
     rugo_friction_map m = rugo_default_friction_map();
-    ck_assert(m.alpha == 1.0 && m.lambda_min == 0.04);
+    ck_assert(m.base == 0.3 && m.lambda_min == 0.0005);
+    ck_assert_near(m.alpha, 0.6 / 0.0055, 1e-12);
     ck_assert_int_eq(rugo_friction_map_check(&m), RUGO_OK);
+    m = rugo_thesis_friction_map();
+    ck_assert(m.alpha == 1.0 && m.lambda_min == 0.04 && m.base == 0.0);
     rugo_restitution r = rugo_default_restitution();
     ck_assert(r.epsilon == 0.5 && r.epsilon_max == 0.9);
     ck_assert_int_eq(rugo_restitution_check(&r), RUGO_OK);
@@ -1079,7 +1082,7 @@ END_TEST
 /* ---- friction, calibration, mixing, restitution -------------------------------------------- */
 
 START_TEST(friction_map) {
-    rugo_friction_map m = rugo_default_friction_map();
+    rugo_friction_map m = rugo_thesis_friction_map();
     /* (5.6): 0 up to λ_min, then α (λ - λ_min); nondecreasing in λ */
     ck_assert(rugo_friction(&m, 0.0) == 0.0);
     ck_assert(rugo_friction(&m, 0.04) == 0.0);
@@ -1114,7 +1117,7 @@ START_TEST(friction_map) {
     b.base = NAN;
     ck_assert_int_eq(rugo_friction_map_check(&b), RUGO_ERR_NOT_FINITE);
     /* base: a smooth surface's μ, added everywhere; α = 0 makes μ constant (an ordinary material) */
-    b = rugo_default_friction_map();
+    b = rugo_thesis_friction_map();
     b.base = 0.3;
     ck_assert(rugo_friction(&b, 0.0) == 0.3);
     ck_assert_near(rugo_friction(&b, 0.54), 0.8, 1e-15);
@@ -1126,28 +1129,62 @@ END_TEST
 
 START_TEST(friction_calibration) {
     rugo_friction_map m;
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.9, &m), RUGO_OK);
-    ck_assert_near(rugo_friction(&m, 0.65), 0.9, 1e-15); /* hits μ_max at λ_max */
+    /* (λ_min, λ_max, μ_min, μ_max) means what it says: μ_min up to λ_min, μ_max at λ_max */
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.0, 0.9, &m), RUGO_OK);
+    ck_assert_near(rugo_friction(&m, 0.65), 0.9, 1e-15);
     ck_assert(rugo_friction(&m, 0.04) == 0.0);
     ck_assert(m.lambda_min == 0.04);
     ck_assert_int_eq(rugo_friction_map_check(&m), RUGO_OK);
+    ck_assert_int_eq(rugo_friction_calibrate(0.0005, 0.006, 0.3, 0.9, &m), RUGO_OK);
+    ck_assert(rugo_friction(&m, 0.0) == 0.3 && rugo_friction(&m, 0.0005) == 0.3);
+    ck_assert_near(rugo_friction(&m, 0.006), 0.9, 1e-14);
+    ck_assert_near(rugo_friction(&m, 0.00325), 0.6, 1e-14);
     /* a scale in metres: rock roughness 2 mm gives μ = 0.7 */
-    ck_assert_int_eq(rugo_friction_calibrate(0.0, 0.002, 0.7, &m), RUGO_OK);
+    ck_assert_int_eq(rugo_friction_calibrate(0.0, 0.002, 0.0, 0.7, &m), RUGO_OK);
     ck_assert_near(rugo_friction(&m, 0.002), 0.7, 1e-15);
     ck_assert_near(rugo_friction(&m, 0.001), 0.35, 1e-15);
-    /* distinct statuses */
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.9, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_friction_calibrate(NAN, 0.65, 0.9, &m), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, INFINITY, 0.9, &m), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, NAN, &m), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_friction_calibrate(-0.01, 0.65, 0.9, &m), RUGO_ERR_NEGATIVE_TOLERANCE);
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, -0.65, 0.9, &m), RUGO_ERR_NEGATIVE_TOLERANCE);
-    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, -0.9, &m), RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_friction_calibrate(0.65, 0.04, 0.9, &m), RUGO_ERR_EMPTY_RANGE);
-    ck_assert_int_eq(rugo_friction_calibrate(0.3, 0.3, 0.9, &m), RUGO_ERR_EMPTY_RANGE);
+    /* μ_min = μ_max: a constant μ */
+    ck_assert_int_eq(rugo_friction_calibrate(0.0, 0.01, 0.5, 0.5, &m), RUGO_OK);
+    ck_assert(m.alpha == 0.0 && rugo_friction(&m, 0.0) == 0.5 && rugo_friction(&m, 1.0) == 0.5);
+    /* distinct statuses; out untouched on error */
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.0, 0.9, NULL), RUGO_ERR_NULL_ARGUMENT);
+    m.alpha = 7.0;
+    ck_assert_int_eq(rugo_friction_calibrate(NAN, 0.65, 0.0, 0.9, &m), RUGO_ERR_NOT_FINITE);
+    ck_assert(m.alpha == 7.0);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, INFINITY, 0.0, 0.9, &m), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, NAN, 0.9, &m), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.0, NAN, &m), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_friction_calibrate(-0.01, 0.65, 0.0, 0.9, &m), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, -0.65, 0.0, 0.9, &m), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, -0.1, 0.9, &m), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_friction_calibrate(0.04, 0.65, 0.9, 0.3, &m), RUGO_ERR_EMPTY_RANGE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.65, 0.04, 0.0, 0.9, &m), RUGO_ERR_EMPTY_RANGE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.3, 0.3, 0.0, 0.9, &m), RUGO_ERR_EMPTY_RANGE);
+    ck_assert_int_eq(rugo_friction_calibrate(0.0, 1e-320, 0.0, 1e10, &m), RUGO_ERR_NOT_FINITE);
     /* μ_max = 0: a frictionless calibration is legal */
-    ck_assert_int_eq(rugo_friction_calibrate(0.0, 1.0, 0.0, &m), RUGO_OK);
+    ck_assert_int_eq(rugo_friction_calibrate(0.0, 1.0, 0.0, 0.0, &m), RUGO_OK);
     ck_assert(rugo_friction(&m, 0.5) == 0.0);
+}
+END_TEST
+
+/* The default map is stated in metres: a game-sized band has a plausible μ, in [0.3, 0.9] over bands
+ * of 0.5-6 mm, and the 2 mm band of docs/box2d.md's minimal program is not frictionless. */
+START_TEST(friction_default_in_metres) {
+    const rugo_friction_map m = rugo_default_friction_map();
+    ck_assert(rugo_friction(&m, 0.0) == 0.3);
+    ck_assert(rugo_friction(&m, 0.0005) == 0.3);
+    ck_assert_near(rugo_friction(&m, 0.002), 0.3 + 0.6 * 1.5 / 5.5, 1e-14);
+    ck_assert_near(rugo_friction(&m, 0.006), 0.9, 1e-14);
+    for (int k = 0; k <= 55; ++k) {
+        const double lambda = 0.0005 + k * 0.0001;
+        const double mu = rugo_friction(&m, lambda);
+        ck_assert(mu >= 0.3 - 1e-15 && mu <= 0.9 + 1e-14);
+    }
+    rugo_friction_map c;
+    ck_assert_int_eq(rugo_friction_calibrate(RUGO_DEFAULT_FRICTION_LAMBDA_MIN, RUGO_DEFAULT_FRICTION_LAMBDA_MAX,
+                                             RUGO_DEFAULT_MU_MIN, RUGO_DEFAULT_MU_MAX, &c),
+                     RUGO_OK);
+    ck_assert(c.alpha == m.alpha && c.lambda_min == m.lambda_min && c.base == m.base);
 }
 END_TEST
 
@@ -1268,6 +1305,7 @@ int main(void) {
     TCase* tf = tcase_create("friction_restitution");
     tcase_add_test(tf, friction_map);
     tcase_add_test(tf, friction_calibration);
+    tcase_add_test(tf, friction_default_in_metres);
     tcase_add_test(tf, mixing_rules);
     tcase_add_test(tf, restitution_in_band);
     suite_add_tcase(s, tf);

@@ -14,6 +14,7 @@
 #define RUGO_FIT_H
 
 #include "rugo/base.h"
+#include "rugo/import.h"
 #include "rugo/multires.h"
 
 #ifdef __cplusplus
@@ -136,6 +137,75 @@ RUGO_API rugo_status rugo_fit_outline(const rugo_outline_fit_def* def, rugo_outl
 
 /** Frees the control points and zeroes the struct (NULL and a zeroed struct are fine). */
 RUGO_API void rugo_outline_fit_free(rugo_outline_fit* fit);
+
+/* ---- importing at game scale: units, placement, the fit in one call (docs/import.md) ----------- */
+
+/** Default largest size (bounds diagonal, output units) rugo_import_outline accepts: 1e4, i.e. 10 km
+ * when the output is in metres. Far beyond what a physics engine simulates well; it catches a missing
+ * scale (a 1e30-unit drawing, or pixels taken for metres at survey scale). */
+#define RUGO_DEFAULT_IMPORT_MAX_SIZE 1e4
+
+/** What rugo_import_outline imports; fill from rugo_default_import_def(). */
+typedef struct rugo_import_def {
+    const char* text;         /**< an SVG document (first non-blank character '<') or a point list
+                                   (rugo_points_text_parse); borrowed */
+    size_t length;            /**< bytes of text */
+    const char* path_id;      /**< SVG: id of the `<path>`; NULL: the document's only `<path>` */
+    int use_viewbox;          /**< SVG: 1 to map user units to CSS px through the root's viewBox, width and
+                                   height first (rugo_svg_read_viewport); 0 (default): user units as they are */
+    rugo_real scale;          /**< output units per drawing unit (per CSS px with use_viewbox), > 0: e.g.
+                                   1 / 100 for a game at 100 px per metre; default 1 */
+    int recentre;             /**< 1: translate the result so that the centroid of the fitted curve's area is
+                                   at the origin (a b2Body's origin at its centre of mass); default 0 */
+    int sample_count;         /**< samples of the outline; 0 (default): rugo_outline_sample's default for
+                                   SVG, the points themselves for a point list */
+    int control_count;        /**< 2^J >= 4; 0 (default): the smallest that meets `tolerance` */
+    rugo_real tolerance;      /**< control_count 0: the max_error to reach, in OUTPUT units; 0 (default):
+                                   1e-3 of the output outline's bounds diagonal */
+    rugo_real max_size;       /**< largest bounds diagonal of the output accepted, output units (default
+                                   RUGO_DEFAULT_IMPORT_MAX_SIZE); larger: BAD_SIZE */
+    rugo_allocator allocator; /**< for the result and scratch (zeroed: malloc/free) */
+    int cookie;               /**< set by rugo_default_import_def; catches uninitialised defs */
+} rugo_import_def;
+
+/** The defaults described in rugo_import_def. */
+RUGO_API rugo_import_def rugo_default_import_def(void);
+
+/** An imported outline; owns fit.control_points (free with rugo_import_result_free). */
+typedef struct rugo_import_result {
+    rugo_outline_fit fit; /**< the fitted outline in output units (counter-clockwise, recentred when asked);
+                               its max_error and rms_error are in output units */
+    int from_svg;         /**< 1 for an SVG document, 0 for a point list */
+    int sample_count;     /**< samples fitted */
+    rugo_real perimeter;  /**< of the sampled outline, output units */
+    rugo_real tolerance;  /**< the tolerance used (output units), 0 for an explicit control_count */
+    rugo_real size;       /**< bounds diagonal of the samples, output units */
+    rugo_vec2 offset;     /**< translation applied by recentring (minus the centroid before it), output
+                               units; (0, 0) without recentre */
+    rugo_affine drawing_to_output; /**< the drawing's coordinates (SVG: the root's user units, y down;
+                                        a point list: its own frame) to the output, recentring included */
+    rugo_affine output_to_drawing; /**< its inverse: where to look in the drawing for an output point */
+} rugo_import_result;
+
+/** An outline from an SVG `<path>` or a point list, in the units a game wants, in one call:
+ * rugo_svg_import_outline (or rugo_points_text_parse and rugo_outline_sample) with the transform
+ * scale * flip_y * (viewBox map when asked), rugo_fit_outline at control_count or the tolerance (both
+ * in output units, so the reported error is in output units), a check that the fitted curve does not
+ * cross itself, and recentring. A fit that does not reach the tolerance is returned with
+ * fit.tolerance_met 0 (not an error). Deterministic.
+ * Errors (out zeroed; error gets line, column, a field and a message naming the value and a way out;
+ * error may be NULL): NULL_ARGUMENT, BAD_ARGUMENT (def not from rugo_default_import_def; scale or
+ * max_size not finite and > 0; a negative tolerance or sample_count; path_id or use_viewbox for a point
+ * list), NOT_POWER_OF_TWO (control_count not a power of two >= 4: the message says which counts work),
+ * BAD_SIZE (the output larger than max_size: the message gives the size and a scale that fixes it),
+ * SELF_INTERSECTING (the outline, or its fit, crosses itself: the message gives the crossing in the
+ * drawing's coordinates), and those of rugo_svg_read_viewport, rugo_svg_import_outline,
+ * rugo_points_text_parse, rugo_outline_sample and rugo_fit_outline. */
+RUGO_API rugo_status rugo_import_outline(const rugo_import_def* def, rugo_import_result* out,
+                                         rugo_parse_error* error);
+
+/** Frees the result's control points and zeroes it (NULL and a zeroed result are fine). */
+RUGO_API void rugo_import_result_free(rugo_import_result* result);
 
 #ifdef __cplusplus
 }

@@ -274,11 +274,47 @@ RUGO_API void rugo_svg_path_element_free(rugo_svg_path_element* element);
  * identity by default, may scale or move it further). def->path is ignored (may be NULL);
  * def->subpath, def->sample_count and def->allocator are used as in rugo_outline_sample.
  * Errors: NULL_ARGUMENT, BAD_ARGUMENT (def not from rugo_default_outline_sample_def), and those of the
- * three steps; sampling errors point at the d attribute. Free the result with
- * rugo_outline_samples_free. */
+ * three steps; sampling errors point at the d attribute. An outline whose samples enclose no area
+ * because it crosses itself (a bow-tie, a figure eight with equal lobes) is SELF_INTERSECTING, with
+ * the crossing in the drawing's coordinates (the root's user units, y down) in the message. Free the
+ * result with rugo_outline_samples_free. */
 RUGO_API rugo_status rugo_svg_import_outline(const char* text, size_t length, const char* id,
                                              const rugo_outline_sample_def* def, rugo_outline_samples* out,
                                              rugo_parse_error* error);
+
+/** The root `<svg>` element's viewport: what its viewBox, width and height say about the size of a user
+ * unit (docs/import.md, "Units and placement"). */
+typedef struct rugo_svg_viewport {
+    int has_viewbox;        /**< 1 if the root has a viewBox */
+    rugo_real viewbox[4];   /**< min-x, min-y, width, height of the viewBox (user units) */
+    int has_width;          /**< 1 if the root's width is an absolute length (px, in, cm, mm, Q, pt, pc or
+                                 a bare number); 0 when absent or relative (%, em, ...) */
+    int has_height;         /**< as has_width, for height */
+    rugo_real width;        /**< the width in CSS px (96 per inch), when has_width */
+    rugo_real height;       /**< the height in CSS px, when has_height */
+    rugo_affine user_to_px; /**< user units (y down) to CSS px (y down): the viewBox mapped onto the
+                                 width and height as preserveAspectRatio's default (xMidYMid meet) does, a
+                                 missing width or height following the viewBox's aspect ratio; the
+                                 identity without a viewBox (then a user unit is a px) */
+} rugo_svg_viewport;
+
+/** Reads the viewport of an SVG document of `length` bytes: skips the prolog (XML declaration,
+ * comments, processing instructions, DOCTYPE) and reads the root element's viewBox, width and height.
+ * A drawing's user units times user_to_px are CSS px; divide by the px per metre of a game to get
+ * metres. Errors (out zeroed with an identity map; error gets line, column, the attribute, e.g.
+ * "svg/viewBox", and a message): NULL_ARGUMENT, TOO_LARGE, PARSE (unterminated markup, a malformed
+ * number), NOT_FINITE, BAD_FIELD (no root `<svg>`; a viewBox width or height <= 0; a width or height
+ * <= 0). */
+RUGO_API rugo_status rugo_svg_read_viewport(const char* text, size_t length, rugo_svg_viewport* out,
+                                            rugo_parse_error* error);
+
+/** Where a subpath of `path`, mapped by `transform`, crosses itself: a polyline through its segments
+ * (16 points per curved segment) is searched for two edges that cross (O(N^2): meant for the error
+ * path of an import whose samples enclose no area, such as a bow-tie). subpath -1: every subpath.
+ * Returns 1 and the crossing point in the transformed frame in *where, or 0 when none is found (also
+ * for NULL arguments, an index out of range and polylines beyond 16384 points). */
+RUGO_API int rugo_path_find_crossing(const rugo_path* path, int subpath, rugo_affine transform,
+                                     rugo_vec2* where);
 
 /* ---- point lists ------------------------------------------------------------------------------ */
 

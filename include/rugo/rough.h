@@ -37,6 +37,12 @@ typedef enum rugo_tolerance_preset {
     RUGO_PRESET_COUNT       /**< the number of presets (not a preset) */
 } rugo_tolerance_preset;
 
+/** The size (the larger side of the bounds, length units) the presets' values are for: the thesis'
+ * objects measure about a hundred units, so tipo_5's bands of 0.04-0.65 are 0.04%-0.65% of the size.
+ * `rugo roughen --preset` multiplies them by size / RUGO_PRESET_REFERENCE_SIZE unless --absolute: on a
+ * 1 m rock, tipo_5 gives bands of 0.4-6.5 mm, in the range of the default friction map (tolerance.h). */
+#define RUGO_PRESET_REFERENCE_SIZE 100.0
+
 /** The preset's name, "tipo_1", "tipo_2", "tipo_3" or "tipo_5" (a static string); NULL for an invalid
  * value. */
 RUGO_API const char* rugo_preset_name(rugo_tolerance_preset p);

@@ -36,6 +36,7 @@
 #include "rugo/base.h"
 #include "rugo/contour.h"
 #include "rugo/rough.h"
+#include "rugo/shape.h"
 #include "rugo/tolerance.h"
 #include "rugo/wavelet.h"
 
@@ -264,6 +265,20 @@ RUGO_API void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* point
  * OUT_OF_MEMORY. */
 RUGO_API rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator,
                                            char** text, size_t* length);
+/** One call from an asset to a shape: loads a shape file — a JSON shape file (with its roughness, if
+ * any) or a baked file (rugo bake), told apart by content, never by name — and builds the rugo_shape
+ * (for JSON: the roughness resolved on the outline as rugo_roughness_tolerances_on_contour does, then
+ * rugo_shape_create with the file's filter, q, estimator, friction map and restitution). A game loads
+ * baked files (no build at run time); JSON works too. On success *out is a new shape (destroy with
+ * rugo_shape_destroy). error (may be NULL) gets the position and field of a JSON error, the byte
+ * offset (as "byte N", in path) and field of a baked one, or for a shape that cannot be built the
+ * field, the value and a way out (e.g. "control_points has 5 points ... refit with 8").
+ * Errors: NULL_ARGUMENT, IO (cannot open or read), those of rugo_shape_desc_parse,
+ * rugo_shape_read_baked_file, rugo_roughness_tolerances_on_contour and rugo_shape_create. allocator
+ * may be NULL (malloc/free). */
+RUGO_API rugo_status rugo_shape_load_file(const char* path, const rugo_allocator* allocator, rugo_shape** out,
+                                          rugo_parse_error* error);
+
 /** Frees text from rugo_shape_desc_write or rugo_read_file (allocator as given there; NULL is fine). */
 RUGO_API void rugo_text_free(const rugo_allocator* allocator, char* text);
 

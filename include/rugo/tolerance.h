@@ -121,10 +121,14 @@ RUGO_API rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_
 
 /* ---- friction (5.5, 6.4) ------------------------------------------------------------------------ */
 
-/** The friction map of a surface: μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise: the
- * thesis' (5.6) with base = 0. The thesis uses α = 1 (its tolerances lie in [0, 1]) and λ_min = the
- * tolerance of a smooth surface; the defaults are α = 1, λ_min = 0.04 (the smooth segments of the
- * thesis' tipo_5), base = 0. α has units of 1/length: calibrate it to your scale. α = 0 gives a
+/** The friction map of a surface: μ(λ) = base if λ <= λ_min, base + α (λ - λ_min) otherwise (the
+ * thesis' (5.6) has base = 0). λ is a length in the shape's units, so the map is too: α has units of
+ * 1/length. The default is stated in metres, as Box2D's units are: μ = 0.3 for bands up to 0.5 mm,
+ * rising linearly to μ = 0.9 at a 6 mm band (α = 0.6 / 0.0055 m ≈ 109.1 per metre), so game-sized
+ * rough surfaces (bands of a fraction of a millimetre to a few millimetres) get a plausible μ. The
+ * map keeps rising beyond 6 mm (μ ≈ 1.4 at 1 cm): bands that large are rough terrain, not a surface
+ * finish. For shapes in other units calibrate with rugo_friction_calibrate; the thesis' own map (α = 1,
+ * λ_min = 0.04, base = 0, for its dimensionless tolerances) is rugo_thesis_friction_map. α = 0 gives a
  * constant μ = base (an ordinary material). */
 typedef struct rugo_friction_map {
     rugo_real alpha;      /**< slope α of μ over λ (1/length); >= 0 */
@@ -132,20 +136,35 @@ typedef struct rugo_friction_map {
     rugo_real base; /**< μ of a smooth surface (λ <= λ_min); >= 0 */
 } rugo_friction_map;
 
-/** α = 1, λ_min = 0.04, base = 0 (the thesis' values). */
+/** Smallest band of the default map, metres: μ = RUGO_DEFAULT_MU_MIN up to it. */
+#define RUGO_DEFAULT_FRICTION_LAMBDA_MIN 0.0005
+/** Band of the default map at which μ reaches RUGO_DEFAULT_MU_MAX, metres. */
+#define RUGO_DEFAULT_FRICTION_LAMBDA_MAX 0.006
+/** μ of the default map at and below RUGO_DEFAULT_FRICTION_LAMBDA_MIN. */
+#define RUGO_DEFAULT_MU_MIN 0.3
+/** μ of the default map at RUGO_DEFAULT_FRICTION_LAMBDA_MAX. */
+#define RUGO_DEFAULT_MU_MAX 0.9
+
+/** The default map, in metres: rugo_friction_calibrate(0.0005, 0.006, 0.3, 0.9): base 0.3, λ_min
+ * 0.0005 m, α = 0.6 / 0.0055 per metre. */
 RUGO_API rugo_friction_map rugo_default_friction_map(void);
+/** The thesis' map: α = 1, λ_min = 0.04, base = 0 (μ = 0 for every band up to 0.04 units; its presets'
+ * tolerances 0.04-0.65 give μ from 0 to 0.61). For reproducing the thesis. */
+RUGO_API rugo_friction_map rugo_thesis_friction_map(void);
 /** Validates a map. Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (alpha < 0 or base < 0),
  * NEGATIVE_TOLERANCE (lambda_min < 0). */
 RUGO_API rugo_status rugo_friction_map_check(const rugo_friction_map* m);
 /** The friction coefficient μ(λ) of the map at a tolerance λ (length units); NaN for a NULL map or a
  * NaN λ. The map is not validated here (rugo_friction_map_check). */
 RUGO_API rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda);
-/** Calibration: the map with the given λ_min that gives friction mu_max at tolerance lambda_max
- * (e.g. "the roughest point of this shape has μ = 0.9"). Checks in this order: NULL_ARGUMENT,
- * NOT_FINITE, NEGATIVE_TOLERANCE, BAD_ARGUMENT (mu_max < 0), EMPTY_RANGE (lambda_min >= lambda_max:
- * equality would divide by zero). */
-RUGO_API rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
-                                             rugo_friction_map* out);
+/** Calibration: the map with μ = mu_min for bands up to lambda_min and μ = mu_max at lambda_max,
+ * linear between (and beyond): base = mu_min, α = (mu_max - mu_min) / (lambda_max - lambda_min). E.g.
+ * (0.0005, 0.006, 0.3, 0.9) is the default map; mu_min = mu_max gives a constant μ.
+ * Checks in this order (out untouched on error): NULL_ARGUMENT, NOT_FINITE (also an α that
+ * overflows), NEGATIVE_TOLERANCE (a λ < 0), BAD_ARGUMENT (mu_min < 0), EMPTY_RANGE (lambda_min >=
+ * lambda_max: equality would divide by zero; or mu_max < mu_min: μ falling with roughness). */
+RUGO_API rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_min,
+                                             rugo_real mu_max, rugo_friction_map* out);
 
 /** Mixing of a pair's values (7.2): the thesis takes the max for μ and the min for ε. */
 typedef enum rugo_mix_rule {

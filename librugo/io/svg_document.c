@@ -588,6 +588,17 @@ rugo_status rugo_svg_import_outline(const char* text, size_t length, const char*
         } else {
             st = rugo_outline_sample(&sd, out, error);
         }
+        rugo_vec2 where;
+        if (st == RUGO_ERR_ZERO_AREA && rugo_path_find_crossing(&path, def->subpath, el.transform, &where)) {
+            /* Lobes of opposite turning cancel: the real problem is the crossing, shown where the
+             * artist drew it. */
+            st = RUGO_ERR_SELF_INTERSECTING;
+            if (error != NULL)
+                snprintf(error->message, sizeof error->message,
+                         "self-intersecting: crosses itself near (%.6g, %.6g) (drawing's user units, y "
+                         "down); redraw it as one loop that does not cross",
+                         where.x, where.y);
+        }
         if (st != RUGO_OK && error != NULL) {
             /* Sampling errors concern the path as a whole: point at its d attribute. */
             rugo__json_locate(text, length, el.d_offset, &error->line, &error->column);

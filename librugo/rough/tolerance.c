@@ -472,6 +472,15 @@ rugo_status rugo_tolerances_level(const rugo_tolerances* t, int level, rugo_tole
 
 rugo_friction_map rugo_default_friction_map(void) {
     rugo_friction_map m;
+    m.base = RUGO_DEFAULT_MU_MIN;
+    m.lambda_min = RUGO_DEFAULT_FRICTION_LAMBDA_MIN;
+    m.alpha = (RUGO_DEFAULT_MU_MAX - RUGO_DEFAULT_MU_MIN) /
+              (RUGO_DEFAULT_FRICTION_LAMBDA_MAX - RUGO_DEFAULT_FRICTION_LAMBDA_MIN);
+    return m;
+}
+
+rugo_friction_map rugo_thesis_friction_map(void) {
+    rugo_friction_map m;
     m.alpha = 1.0;
     m.lambda_min = 0.04;
     m.base = 0.0;
@@ -492,18 +501,19 @@ rugo_real rugo_friction(const rugo_friction_map* m, rugo_real lambda) {
     return m->base + m->alpha * (lambda - m->lambda_min);
 }
 
-rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_max,
-                                    rugo_friction_map* out) {
+rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, rugo_real mu_min,
+                                    rugo_real mu_max, rugo_friction_map* out) {
     if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!isfinite(lambda_min) || !isfinite(lambda_max) || !isfinite(mu_max)) return RUGO_ERR_NOT_FINITE;
+    if (!isfinite(lambda_min) || !isfinite(lambda_max) || !isfinite(mu_min) || !isfinite(mu_max))
+        return RUGO_ERR_NOT_FINITE;
     if (lambda_min < 0.0 || lambda_max < 0.0) return RUGO_ERR_NEGATIVE_TOLERANCE;
-    if (mu_max < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    if (!(lambda_min < lambda_max)) return RUGO_ERR_EMPTY_RANGE;
-    const rugo_real alpha = mu_max / (lambda_max - lambda_min);
+    if (mu_min < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    if (!(lambda_min < lambda_max) || mu_max < mu_min) return RUGO_ERR_EMPTY_RANGE;
+    const rugo_real alpha = (mu_max - mu_min) / (lambda_max - lambda_min);
     if (!isfinite(alpha)) return RUGO_ERR_NOT_FINITE; /* a range so narrow that α overflows */
     out->alpha = alpha;
     out->lambda_min = lambda_min;
-    out->base = 0.0;
+    out->base = mu_min;
     return RUGO_OK;
 }
 

@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
         sd.points = pts;
         sd.count = N;
         sd.tolerances = lam_a;
-        sd.friction = rugo_default_friction_map();
+        sd.friction = rugo_thesis_friction_map();
         sd.friction.alpha = 1.0 / 0.05; /* μ = (λ - λ_min) / 0.05: the scaled library spans μ ~ 0..0.6 */
         sd.friction.lambda_min = 0.04 * 0.05;
         rugo_shape *sa = NULL, *sb = NULL;

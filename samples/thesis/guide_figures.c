@@ -142,8 +142,7 @@ int main(int argc, char** argv) {
 
     /* The rock and its surface: μ = 0.3 on smooth parts, 0.9 where λ = 0.065. */
     rugo_friction_map map;
-    if (rugo_friction_calibrate(0.004, 0.065, 0.6, &map) != RUGO_OK) return 1;
-    map.base = 0.3;
+    if (rugo_friction_calibrate(0.004, 0.065, 0.3, 0.9, &map) != RUGO_OK) return 1;
     rugo_vec2 rock_pts[N], pebble_pts[NB];
     sample_object(N, rugo_v2(0.0, 0.0), 1.0, rock_pts);
     for (int k = 0; k < NB; ++k) {
@@ -151,7 +150,7 @@ int main(int argc, char** argv) {
         pebble_pts[k] = rugo_v2(0.45 * cos(th) * (1.0 + 0.12 * cos(2.0 * th)), 0.3 * sin(th));
     }
     rugo_shape* rock = build(rock_pts, N, RUGO_PRESET_TIPO_5, map);
-    rugo_shape* pebble = build(pebble_pts, NB, RUGO_PRESET_TIPO_3, rugo_default_friction_map());
+    rugo_shape* pebble = build(pebble_pts, NB, RUGO_PRESET_TIPO_3, rugo_thesis_friction_map());
     if (rock == NULL || pebble == NULL) return 1;
     const int J = rugo_shape_finest_level(rock), J0 = rugo_shape_coarsest_level(rock);
     const rugo_transform id = rugo_identity_transform();

@@ -101,6 +101,14 @@ run(${CC_EXE} -std=c99 ${san_list} "-DRUGO_EXPECTED_VERSION=\"${pc_list_version}
     ${pc_list} ${rpath_list} -o ${RUGO_SCRATCH}/consumer_pc)
 run(${RUGO_SCRATCH}/consumer_pc)
 check_linkage(${RUGO_SCRATCH}/consumer_pc rugo)
+if(RUGO_WITH_EIGEN)
+  # The import and fit shim through rugo-fit.pc (Requires: rugo), linked by the C compiler.
+  pkg_flags(rugo-fit pc_fit_list)
+  run(${CC_EXE} -std=c99 ${san_list} ${RUGO_CONSUMER_SOURCE}/consumer_fit.c ${pc_fit_list} ${rpath_list}
+      -o ${RUGO_SCRATCH}/consumer_fit_pc)
+  run(${RUGO_SCRATCH}/consumer_fit_pc)
+  check_linkage(${RUGO_SCRATCH}/consumer_fit_pc rugo_fit)
+endif()
 if(RUGO_WITH_BOX2D)
   # The bridge through rugo-box2d.pc (Requires: rugo, box2d), linked by the C++ compiler.
   find_program(CXX_EXE NAMES c++ g++ REQUIRED)

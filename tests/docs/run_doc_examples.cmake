@@ -13,7 +13,9 @@
 #
 # Variables (-D): DOCS (documents, separated by |), OUT, CC, CXX, INCLUDE (include/ of the source tree),
 # LIB_RUGO, LIB_BOX2D_BRIDGE and LIB_BOX2D (empty without the bridge), BOX2D_INCLUDE (| separated),
-# RUGO_CLI (the rugo tool; empty without the tools), WARNINGS (| separated), SANITIZE (ON/OFF).
+# RUGO_CLI (the rugo tool; empty without the tools), WARNINGS (| separated), SANITIZE (ON/OFF), DATA
+# (tests/data, given to shell examples as $RUGO_TEST_DATA). Examples run in document order, so a later
+# one may read what an earlier one wrote in its directory (../NAME/).
 
 cmake_minimum_required(VERSION 3.16)
 foreach(v DOCS OUT CC INCLUDE LIB_RUGO)
@@ -94,7 +96,7 @@ foreach(doc ${docs})
       endif()
       get_filename_component(cli_dir "${RUGO_CLI}" DIRECTORY)
       set(cmd ${CMAKE_COMMAND} -E true)
-      set(run_cmd ${CMAKE_COMMAND} -E env "PATH=${cli_dir}:$ENV{PATH}" sh -e ${src})
+      set(run_cmd ${CMAKE_COMMAND} -E env "PATH=${cli_dir}:$ENV{PATH}" "RUGO_TEST_DATA=${DATA}" sh -e ${src})
     elseif(lang STREQUAL "c")
       set(cmd ${CC} -std=c99 ${warnings} ${san} -I${INCLUDE} ${src} -o ${exe} ${LIB_RUGO} -lm ${rpath})
     else()

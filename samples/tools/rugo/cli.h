@@ -45,7 +45,8 @@ const char* opt(const args* a, const char* name, int* present);
 
 int load_shape_any(const char* path, rugo_shape_desc* desc, rugo_shape** baked);
 int load_shape(const char* path, rugo_shape_desc* desc);
-void report_problem(const char* path, rugo_status st, const rugo_contour_problem* pr);
+void report_problem(const char* path, rugo_status st, const rugo_contour_problem* pr,
+                    const rugo_shape_desc* desc);
 void report_parse_error(const char* file, rugo_status st, const rugo_parse_error* err);
 int check_outline(const char* path, const rugo_shape_desc* desc, int flags);
 int build_pyramid(const char* path, const rugo_shape_desc* desc, rugo_filter filter, int coarsest,

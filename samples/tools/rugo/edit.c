@@ -35,7 +35,9 @@ int cmd_decompose(int argc, char** argv) {
     if ((rc = filter_option(&a, &desc, &filter))) goto done;
     int J = log2_exact(desc.count);
     if (J < 2) {
-        fail(a.positional[0], desc.count < 4 ? RUGO_ERR_TOO_FEW_POINTS : RUGO_ERR_NOT_POWER_OF_TWO);
+        rugo_contour_problem none = {-1, -1, -1, {0.0, 0.0}};
+        report_problem(a.positional[0], desc.count < 4 ? RUGO_ERR_TOO_FEW_POINTS : RUGO_ERR_NOT_POWER_OF_TWO,
+                       &none, &desc);
         rc = EXIT_INPUT;
         goto done;
     }
@@ -88,7 +90,7 @@ int cmd_refine(int argc, char** argv) {
     rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
     if (st == RUGO_OK && ((long)desc.count << times) > RUGO_MAX_CONTROL_POINTS) st = RUGO_ERR_TOO_MANY_POINTS;
     if (st != RUGO_OK) {
-        report_problem(a.positional[0], st, &pr);
+        report_problem(a.positional[0], st, &pr, &desc);
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }

@@ -43,136 +43,117 @@ static int write_desc_atomic(const char* path, const rugo_shape_desc* d) {
     return rc;
 }
 
-/* 1 if the text's first non-blank character (after a UTF-8 byte order mark) is '<': an SVG document. */
-static int looks_like_xml(const char* text, size_t len) {
-    size_t i = 0;
-    if (len >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB && (unsigned char)text[2] == 0xBF)
-        i = 3;
-    while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
-        ++i;
-    return i < len && text[i] == '<';
-}
 #endif
 
 int cmd_import(int argc, char** argv) {
 #ifdef RUGO_HAVE_FIT
-    static const char* const vals[] = {"--path-id", "--control-points", "--tolerance", "--samples", "-o", NULL};
+    static const char* const vals[] = {"--path-id",      "--control-points", "--tolerance", "--samples", "-o",
+                                       "--px-per-metre", "--scale",          "--max-size",  NULL};
+    static const char* const flags[] = {"--viewbox", "--recentre", NULL};
     args a;
-    int rc = parse_args(argc, argv, vals, NULL, &a);
+    int rc = parse_args(argc, argv, vals, flags, &a);
     if (rc) return rc;
     if (a.positional_count != 1) return usage_error("expects one SVG or points file%s", "");
+    int viewbox = 0, recentre = 0;
+    opt(&a, "--viewbox", &viewbox);
+    opt(&a, "--recentre", &recentre);
     const char *id = opt(&a, "--path-id", NULL), *nv = opt(&a, "--control-points", NULL),
-               *tv = opt(&a, "--tolerance", NULL), *mv = opt(&a, "--samples", NULL), *out = opt(&a, "-o", NULL);
+               *tv = opt(&a, "--tolerance", NULL), *mv = opt(&a, "--samples", NULL),
+               *out = opt(&a, "-o", NULL), *ppm = opt(&a, "--px-per-metre", NULL),
+               *sv = opt(&a, "--scale", NULL), *xv = opt(&a, "--max-size", NULL);
     if (out == NULL) return usage_error("needs -o OUT.json%s", "");
     int n = 0, m = 0;
-    double tol = 0.0;
+    double tol = 0.0, scale = 1.0, max_size = RUGO_DEFAULT_IMPORT_MAX_SIZE;
     if (nv && (parse_int(nv, 4, RUGO_MAX_CONTROL_POINTS, &n) != 0 || (n & (n - 1)) != 0))
-        return usage_error("--control-points must be a power of two >= 4, got '%s'", nv);
+        return usage_error(
+            "--control-points must be a power of two from 4 to 1048576 (4, 8, 16, ...), got '%s'", nv);
     if (tv && (parse_real(tv, &tol) != 0 || !(tol > 0.0)))
-        return usage_error("--tolerance must be a number > 0, got '%s'", tv);
+        return usage_error("--tolerance must be a number > 0 (output units), got '%s'", tv);
     if (nv && tv) return usage_error("--control-points and --tolerance exclude each other%s", "");
     if (mv && parse_int(mv, 3, RUGO_MAX_CONTROL_POINTS, &m) != 0)
         return usage_error("--samples must be an integer from 3 to 1048576, got '%s'", mv);
+    if (ppm && sv)
+        return usage_error("--px-per-metre and --scale exclude each other (scale = 1 / px-per-metre)%s", "");
+    double v = 0.0;
+    if (ppm && (parse_real(ppm, &v) != 0 || !(v > 0.0)))
+        return usage_error(
+            "--px-per-metre must be a number > 0 (drawing units per metre, e.g. 100), got '%s'", ppm);
+    if (ppm) scale = 1.0 / v;
+    if (sv && (parse_real(sv, &scale) != 0 || !(scale > 0.0)))
+        return usage_error("--scale must be a number > 0 (output units per drawing unit), got '%s'", sv);
+    if (xv && (parse_real(xv, &max_size) != 0 || !(max_size > 0.0)))
+        return usage_error("--max-size must be a number > 0 (output units), got '%s'", xv);
     const char* file = a.positional[0];
     char* text = NULL;
     size_t len = 0;
     rugo_status st = rugo_read_file(file, NULL, &text, &len);
     if (st != RUGO_OK) return fail(file, st);
-    const int svg = looks_like_xml(text, len);
-    if (!svg && id) {
-        rugo_text_free(NULL, text);
-        return usage_error("--path-id applies to SVG input; %s is a points file", file);
-    }
-    rugo_outline_samples s;
-    memset(&s, 0, sizeof s);
+    rugo_import_def def = rugo_default_import_def();
+    def.text = text;
+    def.length = len;
+    def.path_id = id;
+    def.use_viewbox = viewbox;
+    def.scale = scale;
+    def.recentre = recentre;
+    def.control_count = n;
+    def.tolerance = tol;
+    def.max_size = max_size;
+    /* The default sampling, raised to 8 samples per control point for large explicit counts. */
+    def.sample_count = m ? m
+                         : (n > RUGO_DEFAULT_OUTLINE_SAMPLES / 8
+                                ? (n > RUGO_MAX_CONTROL_POINTS / 8 ? RUGO_MAX_CONTROL_POINTS : 8 * n)
+                                : 0);
+    rugo_import_result r;
     rugo_parse_error err;
-    rugo_outline_sample_def sd = rugo_default_outline_sample_def();
-    /* SVG: the default sampling, raised to 8 samples per control point for large explicit counts. */
-    sd.sample_count = m ? m : (n > RUGO_DEFAULT_OUTLINE_SAMPLES / 8 ? (n > RUGO_MAX_CONTROL_POINTS / 8 ? RUGO_MAX_CONTROL_POINTS : 8 * n) : 0);
-    if (svg) {
-        st = rugo_svg_import_outline(text, len, id, &sd, &s, &err);
-        rugo_text_free(NULL, text);
-    } else {
-        /* A point list: its points are the samples, unless --samples resamples the polygon through them. */
-        rugo_vec2* pts = NULL;
-        int count = 0;
-        st = rugo_points_text_parse(text, len, NULL, &pts, &count, &err);
-        rugo_text_free(NULL, text);
-        rugo_path poly;
-        memset(&poly, 0, sizeof poly);
-        if (st == RUGO_OK) {
-            st = rugo_path_from_points(pts, count, NULL, &poly);
-            if (st != RUGO_OK) {
-                memset(&err, 0, sizeof err);
-                snprintf(err.message, sizeof err.message, "%d points do not make an outline", count);
-            }
-        }
-        if (st == RUGO_OK) {
-            sd.path = &poly;
-            sd.sample_count = m ? m : count;
-            st = rugo_outline_sample(&sd, &s, &err);
-        }
-        rugo_path_free(&poly);
-        rugo_points_free(NULL, pts);
-    }
+    st = rugo_import_outline(&def, &r, &err);
+    rugo_text_free(NULL, text);
+    if (st == RUGO_ERR_BAD_ARGUMENT &&
+        (strcmp(err.path, "path_id") == 0 || strcmp(err.path, "use_viewbox") == 0))
+        return usage_error("--path-id and --viewbox apply to SVG input; %s is a points file", file);
     if (st != RUGO_OK) {
         report_parse_error(file, st, &err);
         return EXIT_INPUT;
     }
-    rugo_vec2 lo = s.points[0], hi = s.points[0];
-    for (int i = 1; i < s.count; ++i) {
-        lo.x = fmin(lo.x, s.points[i].x);
-        lo.y = fmin(lo.y, s.points[i].y);
-        hi.x = fmax(hi.x, s.points[i].x);
-        hi.y = fmax(hi.y, s.points[i].y);
-    }
-    if (!nv && !tv) tol = 1e-3 * hypot(hi.x - lo.x, hi.y - lo.y); /* 0.1% of the outline's size */
-    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
-    fd.samples = s.points;
-    fd.sample_count = s.count;
-    fd.control_count = n;
-    fd.tolerance = n ? 0.0 : tol;
-    rugo_outline_fit f;
-    st = rugo_fit_outline(&fd, &f);
-    if (st != RUGO_OK) {
-        rugo_outline_samples_free(&s);
-        return fail("fit", st);
-    }
+    const rugo_outline_fit* f = &r.fit;
     rugo_shape_desc d;
     memset(&d, 0, sizeof d);
-    d.control_points = f.control_points;
-    d.count = f.control_count;
+    d.control_points = f->control_points;
+    d.count = f->control_count;
     d.filter = RUGO_FILTER_DEFAULT;
-    if (!f.tolerance_met) {
-        fprintf(stderr,
-                "rugo %s: %s: max_error %.6g at %d control points (the most tried for %d samples) is above the "
-                "tolerance %.6g; give --control-points, a larger --tolerance or more --samples\n",
-                g_command, file, f.max_error, f.control_count, s.count, tol);
+    rc = 0;
+    if (!f->tolerance_met) {
+        fprintf(
+            stderr,
+            "rugo %s: %s: max_error %.6g at %d control points (the most tried for %d samples) is above the "
+            "tolerance %.6g (output units); give --control-points, a larger --tolerance or more --samples\n",
+            g_command, file, f->max_error, f->control_count, r.sample_count, r.tolerance);
         rc = EXIT_INPUT;
-    } else {
-        rc = check_outline(file, &d, RUGO_CHECK_ALL);
     }
     if (rc == 0) rc = write_desc_atomic(out, &d);
     if (rc == 0) {
-        rugo_contour c = {f.control_points, f.control_count};
+        rugo_contour c = {f->control_points, f->control_count};
         printf("{\"output\": ");
         print_json_string(stdout, out);
-        printf(", \"source\": \"%s\", \"path_id\": ", svg ? "svg" : "points");
-        if (svg && id)
+        printf(", \"source\": \"%s\", \"path_id\": ", r.from_svg ? "svg" : "points");
+        if (r.from_svg && id)
             print_json_string(stdout, id);
         else
             printf("null");
-        printf(", \"samples\": %d, \"perimeter\": %.17g, \"control_points\": %d, \"tolerance\": ", s.count,
-               s.perimeter, f.control_count);
+        printf(", \"scale\": %.17g, \"viewbox\": %s, \"recentred\": %s, \"offset\": [%.17g, %.17g], "
+               "\"size\": %.17g, ",
+               scale, viewbox ? "true" : "false", recentre ? "true" : "false", r.offset.x, r.offset.y,
+               r.size);
+        printf("\"samples\": %d, \"perimeter\": %.17g, \"control_points\": %d, \"tolerance\": ",
+               r.sample_count, r.perimeter, f->control_count);
         if (n)
             printf("null");
         else
-            printf("%.17g", tol);
-        printf(", \"max_error\": %.17g, \"rms_error\": %.17g, \"max_error_at_parameter\": %.17g, \"area\": %.17g}\n",
-               f.max_error, f.rms_error, f.max_error_at_parameter, rugo_contour_signed_area(c));
+            printf("%.17g", r.tolerance);
+        printf(", \"max_error\": %.17g, \"rms_error\": %.17g, \"max_error_at_parameter\": %.17g, \"area\": "
+               "%.17g}\n",
+               f->max_error, f->rms_error, f->max_error_at_parameter, rugo_contour_signed_area(c));
     }
-    rugo_outline_fit_free(&f);
-    rugo_outline_samples_free(&s);
+    rugo_import_result_free(&r);
     return rc;
 #else
     (void)argc;

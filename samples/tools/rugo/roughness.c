@@ -101,14 +101,46 @@ static int load_profile_csv(const char* file, rugo_profile_sample** samples, int
 }
 
 int cmd_roughen(int argc, char** argv) {
-    static const char* const vals[] = {"--method", "--preset", "--seed", "--levels", "--profile", "-o", NULL};
+    static const char* const vals[] = {"--method",  "--preset",   "--seed",     "--levels",
+                                       "--profile", "--constant", "--friction", "--max-band-fraction",
+                                       "-o",        NULL};
+    static const char* const flag_opts[] = {"--absolute", NULL};
     args a;
-    int rc = parse_args(argc, argv, vals, NULL, &a);
+    int rc = parse_args(argc, argv, vals, flag_opts, &a);
     if (rc) return rc;
     if (a.positional_count != 1) return usage_error("expects one shape file%s", "");
     const char *mv = opt(&a, "--method", NULL), *pv = opt(&a, "--preset", NULL),
                *sv = opt(&a, "--seed", NULL), *lv = opt(&a, "--levels", NULL),
-               *fv = opt(&a, "--profile", NULL);
+               *fv = opt(&a, "--profile", NULL), *cv = opt(&a, "--constant", NULL),
+               *muv = opt(&a, "--friction", NULL), *bfv = opt(&a, "--max-band-fraction", NULL);
+    int absolute = 0;
+    opt(&a, "--absolute", &absolute);
+    double constant = 0.0, band_fraction = 0.05;
+    rugo_vec2 mu_range = {0.0, 0.0};
+    if ((pv != NULL) + (fv != NULL) + (cv != NULL) > 1)
+        return usage_error("--constant, --preset and --profile exclude each other%s", "");
+    if (cv && (parse_real(cv, &constant) != 0 || !(constant >= 0.0)))
+        return usage_error("--constant must be a band >= 0 in the shape's length units (e.g. 0.002 for 2 mm "
+                           "in metres), got '%s'",
+                           cv);
+    if (absolute && !pv) return usage_error("--absolute applies to --preset%s", "");
+    if (muv) {
+        char buf[128];
+        const char* colon = strchr(muv, ':');
+        size_t k = colon ? (size_t)(colon - muv) : 0;
+        int ok = colon != NULL && k < sizeof buf;
+        if (ok) {
+            memcpy(buf, muv, k);
+            buf[k] = '\0';
+            ok = parse_real(buf, &mu_range.x) == 0 && parse_real(colon + 1, &mu_range.y) == 0 &&
+                 mu_range.x >= 0.0 && mu_range.y >= mu_range.x;
+        }
+        if (!ok)
+            return usage_error("--friction must be MIN:MAX with 0 <= MIN <= MAX (e.g. 0.3:0.9), got '%s'",
+                               muv);
+    }
+    if (bfv && (parse_real(bfv, &band_fraction) != 0 || !(band_fraction > 0.0)))
+        return usage_error("--max-band-fraction must be a number > 0 (e.g. 0.05), got '%s'", bfv);
     int method = -1; /* -1: the tolerance library only; else a rugo_roughen_method */
     int levels = 2;
     rugo_tolerance_preset preset = RUGO_PRESET_TIPO_1;
@@ -121,7 +153,6 @@ int cmd_roughen(int argc, char** argv) {
         return usage_error("--method must be wavelet, local or library, got '%s'", mv);
     if (pv && rugo_preset_from_name(pv, &preset) != RUGO_OK)
         return usage_error("--preset must be tipo_1, tipo_2, tipo_3 or tipo_5, got '%s'", pv);
-    if (pv && fv) return usage_error("--preset and --profile exclude each other%s", "");
     if (sv && parse_seed(sv, &seed) != 0)
         return usage_error("--seed must be an integer from 0 to 9007199254740992 (2^53), got '%s'", sv);
     if (lv && method < 0) return usage_error("--levels applies to --method wavelet or local%s", "");
@@ -136,7 +167,7 @@ int cmd_roughen(int argc, char** argv) {
     if (st == RUGO_OK && method >= 0 && ((long long)desc.count << levels) > RUGO_MAX_CONTROL_POINTS)
         st = RUGO_ERR_TOO_MANY_POINTS;
     if (st != RUGO_OK) {
-        report_problem(path, st, &pr);
+        report_problem(path, st, &pr, &desc);
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
@@ -158,10 +189,54 @@ int cmd_roughen(int argc, char** argv) {
         r.profile = profile;
         r.profile_count = profile_count;
     }
+    if (cv) {
+        r.kind = RUGO_ROUGHNESS_CONSTANT;
+        r.constant = constant;
+    }
     if (sv) r.seed = seed;
     rugo_real* tol = NULL;
     rugo_vec2* pert = NULL;
     if ((rc = finest_tolerances(path, &r, desc.control_points, n, reversed, &tol))) goto done;
+    /* The shape's size: the larger side of its curve's bounds. */
+    rugo_vec2 lo, hi;
+    rugo_contour_bounds((rugo_contour){desc.control_points, n}, &lo, &hi);
+    const double size = fmax(hi.x - lo.x, hi.y - lo.y);
+    if (pv && !absolute) { /* the thesis' values are per RUGO_PRESET_REFERENCE_SIZE units of size */
+        for (int k = 0; k < n; ++k)
+            tol[k] *= size / RUGO_PRESET_REFERENCE_SIZE;
+    }
+    double band_hi = 0.0;
+    for (int k = 0; k < n; ++k)
+        band_hi = fmax(band_hi, tol[k]);
+    if (band_hi > band_fraction * size)
+        fprintf(stderr,
+                "rugo %s: warning: %s: the largest band, %.6g, is %.3g%% of the shape's size %.6g (more than "
+                "--max-band-fraction %.3g): the surface is terrain rather than a finish; give a smaller "
+                "--constant%s\n",
+                g_command, path, band_hi, 100.0 * band_hi / size, size, band_fraction,
+                pv && absolute ? " or drop --absolute" : "");
+    if (muv) {
+        /* μ MIN at the smallest band, MAX at the largest; one band: MIN at 0, MAX at the band. The
+         * band at a point, λ(t), interpolates the segments' bands by a cubic that can overshoot them
+         * where they jump (SPEC 6.3), so the range is that of λ(t), sampled densely: μ at any point
+         * of the finest level then stays within MIN..MAX. */
+        double l0 = HUGE_VAL, l1 = 0.0;
+        for (int k = 0; k < n; ++k)
+            for (int i = 0; i <= 64; ++i) {
+                const double lam = rugo_tolerance_at(tol, n, k, i / 64.0, 0.0);
+                l0 = fmin(l0, lam);
+                l1 = fmax(l1, lam);
+            }
+        if (!(l0 < l1)) l0 = 0.0;
+        if (!(l1 > 0.0)) l1 = 1.0;
+        rugo_status fst = mu_range.x == mu_range.y
+                              ? rugo_friction_calibrate(0.0, 1.0, mu_range.x, mu_range.x, &r.friction)
+                              : rugo_friction_calibrate(l0, l1, mu_range.x, mu_range.y, &r.friction);
+        if (fst != RUGO_OK) {
+            rc = fail("--friction", fst);
+            goto done;
+        }
+    }
     /* The resolved values are written, not the preset: the file then says exactly what the shape is,
      * in the numbering of the points written (counter-clockwise), whatever later versions of the
      * presets do. */

@@ -2,6 +2,7 @@
  * its outline, pyramid and shape, writing a description, reporting a bad input; and `rugo info`. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,13 +92,43 @@ int load_shape_any(const char* path, rugo_shape_desc* desc, rugo_shape** baked) 
 
 int load_shape(const char* path, rugo_shape_desc* desc) { return load_shape_any(path, desc, NULL); }
 
-void report_problem(const char* path, rugo_status st, const rugo_contour_problem* pr) {
+/* Reports an invalid outline: the status, then the field, the value and a way out where the status
+ * has them. desc (may be NULL) gives the control points for the messages that quote them. */
+void report_problem(const char* path, rugo_status st, const rugo_contour_problem* pr,
+                    const rugo_shape_desc* desc) {
     fprintf(stderr, "rugo %s: %s: %s (status %d)", g_command, path, rugo_status_string(st), (int)st);
-    if (st == RUGO_ERR_SELF_INTERSECTING)
+    if (st == RUGO_ERR_SELF_INTERSECTING) {
         fprintf(stderr, ": segments %d and %d cross near (%.9g, %.9g)", pr->segment_a, pr->segment_b, pr->where.x,
                 pr->where.y);
-    else if (st == RUGO_ERR_NOT_FINITE && pr->index >= 0)
-        fprintf(stderr, ": control point %d", pr->index);
+    } else if (st == RUGO_ERR_NOT_FINITE && pr->index >= 0) {
+        fprintf(stderr, ": control_points[%d]", pr->index);
+        if (desc != NULL && pr->index < desc->count)
+            fprintf(stderr, " is (%.17g, %.17g); give finite coordinates", desc->control_points[pr->index].x,
+                    desc->control_points[pr->index].y);
+    } else if (st == RUGO_ERR_NOT_FINITE && desc != NULL) {
+        double big = 0.0;
+        for (int i = 0; i < desc->count; ++i)
+            big = fmax(big, fmax(fabs(desc->control_points[i].x), fabs(desc->control_points[i].y)));
+        fprintf(stderr,
+                ": control_points: coordinates up to %.6g make the area overflow (they must stay below about "
+                "1e150); scale the outline down, e.g. to metres (rugo import --px-per-metre)",
+                big);
+    } else if (st == RUGO_ERR_NOT_POWER_OF_TWO && desc != NULL) {
+        int lo = 4;
+        while (lo * 2 <= desc->count && lo < RUGO_MAX_CONTROL_POINTS / 2)
+            lo *= 2;
+        fprintf(
+            stderr,
+            ": control_points has %d points; the wavelet levels need a power of two (4, 8, 16, ...): refit "
+            "the outline with 'rugo fit --control-points %d' (or %d), or import it with 'rugo import "
+            "--control-points %d'",
+            desc->count, lo, lo * 2, lo * 2);
+    } else if (st == RUGO_ERR_BAD_SIZE && desc != NULL) {
+        rugo_vec2 lo, hi;
+        rugo_contour_bounds((rugo_contour){desc->control_points, desc->count}, &lo, &hi);
+        fprintf(stderr, ": the outline is %.6g units across; a shape must be from %g to %g: rescale it",
+                hypot(hi.x - lo.x, hi.y - lo.y), RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE);
+    }
     fprintf(stderr, "\n");
 }
 
@@ -107,7 +138,7 @@ int check_outline(const char* path, const rugo_shape_desc* desc, int flags) {
     rugo_contour_problem pr;
     rugo_status st = rugo_contour_check(desc->control_points, desc->count, flags, &pr, NULL);
     if (st == RUGO_OK) return 0;
-    report_problem(path, st, &pr);
+    report_problem(path, st, &pr, desc);
     return EXIT_INPUT;
 }
 
@@ -121,7 +152,7 @@ int build_pyramid(const char* path, const rugo_shape_desc* desc, rugo_filter fil
     rugo_contour_problem pr;
     rugo_status st = rugo_pyramid_create(&def, out, &pr);
     if (st != RUGO_OK) {
-        report_problem(path, st, &pr);
+        report_problem(path, st, &pr, desc);
         return EXIT_INPUT;
     }
     return 0;
@@ -204,7 +235,7 @@ int make_shape(const char* path, const rugo_shape_desc* desc, rugo_shape** out) 
     rugo_status st = rugo_shape_create(&def, out, &pr);
     free(tol);
     if (st != RUGO_OK) {
-        report_problem(path, st, &pr);
+        report_problem(path, st, &pr, desc);
         return EXIT_INPUT;
     }
     return 0;
@@ -230,8 +261,20 @@ int cmd_info(int argc, char** argv) {
         printf("%d", levels);
     else
         printf("null");
-    printf(", \"area\": %.17g, \"centroid\": [%.17g, %.17g], \"inertia\": %.17g, \"perimeter\": %.17g}\n", mp.area,
-           mp.centroid.x, mp.centroid.y, mp.inertia, rugo_contour_perimeter(c));
+    rugo_vec2 lo, hi;
+    rugo_contour_bounds(c, &lo, &hi);
+    const double size = hypot(hi.x - lo.x, hi.y - lo.y);
+    printf(", \"area\": %.17g, \"centroid\": [%.17g, %.17g], \"inertia\": %.17g, \"perimeter\": %.17g, "
+           "\"size\": %.17g}\n",
+           mp.area, mp.centroid.x, mp.centroid.y, mp.inertia, rugo_contour_perimeter(c), size);
+    /* As rugo import's default --max-size: far beyond the 0.1-10 m bodies Box2D is tuned for. */
+    if (size > 1e4)
+        fprintf(
+            stderr,
+            "rugo %s: warning: %s: the outline is %.6g units across; if they are metres (Box2D's), that is "
+            "far beyond the 0.1-10 m bodies a physics engine simulates well: rescale it (rugo import "
+            "--px-per-metre)\n",
+            g_command, a.positional[0], size);
     rugo_shape_desc_free(&desc);
     return 0;
 }

@@ -73,7 +73,7 @@ bool Bridge::RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const {
         if (found && static_cast<float>(frac) >= best.fraction) continue;
         found = true;
         best.body = r->body;
-        best.fixture = r->proxies[static_cast<size_t>(cp.segment >> (r->level - r->proxyLevel))];
+        best.fixture = r->proxies[static_cast<size_t>(Impl::pieceOf(r->data, cp.segment, r->level))];
         best.point = toB2(rugo_transform_point(x, cp.point));
         best.normal = toB2(rugo_rotate(x.q, nrm));
         best.fraction = static_cast<float>(frac);
@@ -124,18 +124,9 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
         b2Body* b = candidates[i];
         if (b == nullptr) continue; // destroyed by an earlier callback
         const BodyRec* r = I.rec(b);
-        if (r != nullptr) { // decided by the curve
-            int n = 0;
-            rugo_contact_state state = RUGO_STATE_APART;
-            rugo_contact_query q = rugo_default_contact_query();
-            q.level = r->relLevel;
-            const rugo_transform x = toRugo(b->GetTransform());
-            rugo_status st = degenerate ? rugo_collide_circle(I.ctx, r->shape, x, v[0], 0.0, &q, nullptr, 0,
-                                                              &n, &state, nullptr)
-                                        : rugo_collide_polygon(I.ctx, r->shape, x, v, 4, 0.0, &q, nullptr, 0,
-                                                               &n, &state, nullptr);
-            if (st != RUGO_OK || state == RUGO_STATE_APART) continue;
-        }
+        if (r != nullptr && !queryOverlapsPolygon(I.query, r->shape, toRugo(b->GetTransform()), r->relLevel,
+                                                  v, degenerate ? 1 : 4))
+            continue; // decided by the curve
         if (!callback(b)) return;
         if (I.world == nullptr) return; // ReleaseWorld inside the callback
         // Creating a body changes the list's head, destroying one the count (and a destroyed body with

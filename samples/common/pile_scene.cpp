@@ -209,7 +209,7 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
     if (var == kAuto || var == kFinest) {
         rugo::BridgeDef bd;
         bd.errorBudget = kBudget;
-        if (args.maxProxyLevel >= 0) bd.maxProxyLevel = args.maxProxyLevel;
+        if (args.maxProxies > 0) bd.maxProxies = args.maxProxies;
         world->bridge = std::make_unique<rugo::Bridge>(world->world.get(), bd);
     }
     // Container: floor and two walls (static boxes, two-sided).

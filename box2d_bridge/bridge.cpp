@@ -190,11 +190,13 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     const rugo_shape* s = def.shape;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     int level;
-    if (def.level == kAutoLevel) {
+    if (def.lod == RUGO_LOD_AUTO) {
         const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
-        level = Impl::autoLevel(s, budget);
+        level = rugo_shape_level_for_error(s, budget);
+    } else if (def.lod > 0) {
+        return RUGO_ERR_BAD_ARGUMENT;
     } else {
-        level = def.level > 0 ? J : std::max(Jmin, J + std::max(def.level, Jmin - J));
+        level = std::max(Jmin, J + std::max(def.lod, Jmin - J));
     }
     // The query engine's room for this shape's queries, now rather than during a step (librugo grows
     // its context to a new high-water mark otherwise). kQueryReserveContacts: see its comment.

@@ -64,21 +64,6 @@ bool Bridge::Impl::massStale(const BodyRec* r) const {
     return !sameMass(now, r->applied);
 }
 
-// The coarsest level whose certified level-of-detail error (rugo_shape_level_error: how far its
-// curve-plus-band can lie from the finest one's, anywhere on the outline) is within the budget at
-// it and at every finer level, so a pair evaluated at the finer of its two levels keeps each body's
-// share of the error within its budget too.
-int Bridge::Impl::autoLevel(const rugo_shape* s, double budget) {
-    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-    int level = J;
-    for (int j = J - 1; j >= Jmin; --j) {
-        double e = 0.0;
-        if (rugo_shape_level_error(s, j, nullptr, &e) != RUGO_OK || !(e <= budget)) break;
-        level = j;
-    }
-    return level;
-}
-
 double Bridge::Impl::roughReach(const BodyRec* r) {
     const b2Vec2 lc = r->body->GetLocalCenter();
     double m = 0.0;

@@ -363,7 +363,6 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
     static bool sameMass(const b2MassData& a, const b2MassData& b);
     void applyMass(BodyRec* r);
     bool massStale(const BodyRec* r) const;
-    static int autoLevel(const rugo_shape* s, double budget);
     static double roughReach(const BodyRec* r);
     static double fixtureReach(const b2Fixture* f, int child);
     static bool moved(const BodyRec* r);

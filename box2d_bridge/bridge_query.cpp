@@ -20,9 +20,11 @@ namespace {
 
 rugo_contact_query makeQuery(const QueryParams& p) {
     rugo_contact_query q = rugo_default_contact_query();
-    q.level = p.level;
+    q.lod = p.level;
     q.margin = p.margin;
-    // p.resolution: today's queries answer to round-off; the resolution-aware query takes the budget.
+    // The round-off answers at minima of the curves' distance (the thesis' rule), for now.
+    q.resolution = 0.0;
+    q.contact_rule = RUGO_CONTACT_THESIS;
     return q;
 }
 
@@ -48,21 +50,20 @@ QContact convert(const rugo_contact& k) {
     return q;
 }
 
-// Runs `call` (librugo contacts into the engine's buffer, at most cap) and converts them. The buffer
-// is sized by queryEngineReserve; a larger cap grows it (a warm-up, as librugo's own context).
+// Runs `call` (librugo contacts into an output over the engine's buffer, at most cap) and converts
+// them. The buffer is sized by queryEngineReserve; a larger cap grows it (a warm-up, as librugo's own
+// context).
 template <class F>
 rugo_status run(QueryEngine* e, F&& call, QContact* out, int cap, int* n, int* found, BridgeStats* qs) {
     if (static_cast<int>(e->buf.size()) < cap) e->buf.resize(static_cast<size_t>(cap));
-    rugo_query_stats s;
-    int count = 0;
-    rugo_contact_state state;
-    const rugo_status st = call(e->buf.data(), cap, &count, &state, &s);
-    *found = st == RUGO_OK ? s.contacts_found : 0;
-    if (st != RUGO_OK) count = 0;
+    rugo_contact_output o = rugo_contact_output_of(e->buf.data(), cap);
+    const rugo_status st = call(&o);
+    *found = st == RUGO_OK ? o.stats.contacts_found : 0;
+    const int count = st == RUGO_OK ? o.count : 0;
     if (qs != nullptr) {
-        qs->boxTests += s.box_tests;
-        qs->segmentPairs += s.segment_pairs;
-        qs->fallbacks += s.fallbacks;
+        qs->boxTests += o.stats.box_tests;
+        qs->segmentPairs += o.stats.segment_pairs;
+        qs->fallbacks += o.stats.fallbacks;
     }
     for (int i = 0; i < count; ++i)
         out[i] = convert(e->buf[static_cast<size_t>(i)]);
@@ -102,53 +103,55 @@ rugo_status queryShapes(QueryEngine* e, const rugo_shape* a, const rugo_transfor
                         int* found, BridgeStats* qs) {
     const rugo_contact_query q = makeQuery(p);
     return run(
-        e,
-        [&](rugo_contact* buf, int c, int* count, rugo_contact_state* state, rugo_query_stats* s) {
-            return rugo_collide_shapes(e->ctx, a, xa, b, xb, &q, buf, c, count, state, s);
-        },
-        out, cap, n, found, qs);
+        e, [&](rugo_contact_output* o) { return rugo_collide_shapes(a, xa, b, xb, &q, e->ctx, o); }, out, cap,
+        n, found, qs);
 }
 
 rugo_status queryPrimitive(QueryEngine* e, const rugo_shape* a, const rugo_transform& xa,
                            const PatchSide& prim, const QueryParams& p, QContact* out, int cap, int* n,
                            int* found, BridgeStats* qs) {
     const rugo_contact_query q = makeQuery(p);
+    // The primitive in world coordinates (PatchSide's), so with the identity transform.
+    rugo_primitive pr = rugo_make_circle(toRv(prim.v[0]), static_cast<double>(prim.radius));
+    switch (prim.type) {
+    case b2Shape::e_circle:
+        break;
+    case b2Shape::e_edge:
+    case b2Shape::e_chain:
+        pr = rugo_make_capsule(toRv(prim.v[0]), toRv(prim.v[1]), static_cast<double>(prim.radius));
+        break;
+    case b2Shape::e_polygon:
+        pr.count = prim.n;
+        for (int i = 0; i < prim.n; ++i)
+            pr.points[i] = toRv(prim.v[i]);
+        break;
+    default:
+        *n = 0;
+        *found = 0;
+        return RUGO_ERR_BAD_ARGUMENT;
+    }
     return run(
         e,
-        [&](rugo_contact* buf, int c, int* count, rugo_contact_state* state,
-            rugo_query_stats* s) -> rugo_status {
-            const double r = static_cast<double>(prim.radius);
-            switch (prim.type) {
-            case b2Shape::e_circle:
-                return rugo_collide_circle(e->ctx, a, xa, toRv(prim.v[0]), r, &q, buf, c, count, state, s);
-            case b2Shape::e_edge:
-            case b2Shape::e_chain:
-                return rugo_collide_segment(e->ctx, a, xa, toRv(prim.v[0]), toRv(prim.v[1]), r, &q, buf, c,
-                                            count, state, s);
-            case b2Shape::e_polygon: {
-                rugo_vec2 v[b2_maxPolygonVertices];
-                for (int i = 0; i < prim.n; ++i)
-                    v[i] = toRv(prim.v[i]);
-                return rugo_collide_polygon(e->ctx, a, xa, v, prim.n, r, &q, buf, c, count, state, s);
-            }
-            default:
-                *count = 0;
-                return RUGO_ERR_BAD_ARGUMENT;
-            }
+        [&](rugo_contact_output* o) {
+            return rugo_collide_primitive(a, xa, &pr, rugo_identity_transform(), &q, e->ctx, o);
         },
         out, cap, n, found, qs);
 }
 
 bool queryOverlapsPolygon(QueryEngine* e, const rugo_shape* s, const rugo_transform& x, int level,
                           const rugo_vec2* v, int count) {
-    rugo_contact_query q = rugo_default_contact_query();
-    q.level = level;
-    int n = 0;
-    rugo_contact_state state = RUGO_STATE_APART;
-    const rugo_status st =
-        count == 1 ? rugo_collide_circle(e->ctx, s, x, v[0], 0.0, &q, nullptr, 0, &n, &state, nullptr)
-                   : rugo_collide_polygon(e->ctx, s, x, v, count, 0.0, &q, nullptr, 0, &n, &state, nullptr);
-    return st == RUGO_OK && state != RUGO_STATE_APART;
+    QueryParams p;
+    p.level = level;
+    const rugo_contact_query q = makeQuery(p);
+    rugo_primitive pr = rugo_make_circle(v[0], 0.0);
+    if (count > 1) {
+        pr.count = count;
+        for (int i = 0; i < count; ++i)
+            pr.points[i] = v[i];
+    }
+    rugo_contact_output o = rugo_contact_output_of(nullptr, 0); // the state only
+    const rugo_status st = rugo_collide_primitive(s, x, &pr, rugo_identity_transform(), &q, e->ctx, &o);
+    return st == RUGO_OK && o.state != RUGO_STATE_APART;
 }
 
 } // namespace detail

@@ -8,6 +8,7 @@
  * Tolerances: velocities to 1e-9 of the case's speed scale and energies to 1e-10 of the case's kinetic
  * energy — a few hundred ulps of the sums involved, far below any physical effect (the thesis' defect
  * the guard removes is a gain of up to 9x). */
+#include "sim/internal.h" /* the impulse at one contact */
 #include "test_util.h"
 
 #include <stdio.h>

@@ -1,6 +1,8 @@
-/* Shape files: the strict JSON reader and writer (librugo/json.c) and the shape description layer
- * (librugo/shape_file.c). Inputs are copied into buffers of exactly their length, so that the
- * sanitizer build catches any read past `length`. */
+/* Shape files: the strict JSON reader and writer (librugo/io/json_read.c, json_write.c) and the shape
+ * description layer (librugo/io/shape_file_read.c, shape_file_write.c, profile_csv.c, read_file.c;
+ * rough/roughness_resample.c).
+ * Inputs are copied into buffers of exactly their length, so that the sanitizer build catches any read
+ * past `length`. */
 #include "io/json.h"
 #include "test_util.h"
 
@@ -44,9 +46,9 @@ static double double_of(uint64_t u) {
 static int str_nul_terminated(const char* s, size_t size) { return memchr(s, '\0', size) != NULL; }
 
 /* Parses s[0, n) from an exact-size copy. */
-static rugo_status json_parse_n(const char* s, size_t n, rugo_json_doc* doc, rugo_json_error* err) {
+static rugo_status json_parse_n(const char* s, size_t n, rugo__json_doc* doc, rugo__json_error* err) {
     char* buf = exact_copy(s, n);
-    rugo_status st = rugo_json_parse(buf, n, NULL, NULL, doc, err);
+    rugo_status st = rugo__json_parse(buf, n, NULL, NULL, doc, err);
     free(buf);
     return st;
 }
@@ -61,8 +63,8 @@ static rugo_status shape_parse_n(const char* s, size_t n, rugo_shape_desc* desc,
 /* Expects a JSON failure with the given status, position (0: not checked) and message fragment. */
 static void expect_json_fail_n(const char* s, size_t n, rugo_status status, int line, int col,
                                const char* fragment) {
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     rugo_status st = json_parse_n(s, n, &doc, &err);
     ck_assert_msg(st == status, "input <%.*s>: status %d (%s), expected %d; message: %s", (int)n, s, (int)st,
                   rugo_status_string(st), (int)status, err.message);
@@ -77,7 +79,7 @@ static void expect_json_fail_n(const char* s, size_t n, rugo_status status, int 
     if (fragment != NULL)
         ck_assert_msg(strstr(err.message, fragment) != NULL, "input <%.*s>: message \"%s\" lacks \"%s\"",
                       (int)n, s, err.message, fragment);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
 }
 
 static void expect_json_fail(const char* s, rugo_status status, int line, int col, const char* fragment) {
@@ -127,63 +129,63 @@ static char* read_data(const char* name, size_t* length) {
 /* JSON reader */
 
 START_TEST(json_valid_values) {
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     const char* text =
         " {\"n\": null, \"t\": true, \"f\": false, \"num\": [0, -0, 12.5e-1, 1E+2, -7],"
         " \"s\": \"a\\\"\\\\\\/\\b\\f\\n\\r\\tz\", \"u\": \"\\u00e9\\u20AC\\ud83d\\ude00\\u0000x\","
         " \"raw\": \"\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80\", \"o\": {}, \"a\": [], \"n\": 1}\r\n\t";
     ck_assert_int_eq(json_parse_n(text, strlen(text), &doc, &err), RUGO_OK);
-    const rugo_json_value* root = doc.root;
-    ck_assert_int_eq(root->type, RUGO_JSON_OBJECT);
+    const rugo__json_value* root = doc.root;
+    ck_assert_int_eq(root->type, RUGO__JSON_OBJECT);
     ck_assert_int_eq((int)root->count, 10);
     /* Members keep their order; duplicates are kept and counted. */
     const char* order[] = {"n", "t", "f", "num", "s", "u", "raw", "o", "a", "n"};
     int i = 0;
-    for (const rugo_json_value* k = root->u.first; k != NULL; k = RUGO_JSON_NEXT_MEMBER(k), ++i) {
-        ck_assert_int_eq(k->type, RUGO_JSON_STRING);
+    for (const rugo__json_value* k = root->u.first; k != NULL; k = RUGO__JSON_NEXT_MEMBER(k), ++i) {
+        ck_assert_int_eq(k->type, RUGO__JSON_STRING);
         ck_assert_str_eq(k->u.string, order[i]);
     }
     ck_assert_int_eq(i, 10);
     int matches = 0;
-    const rugo_json_value* v = rugo_json_object_get(root, "n", &matches);
+    const rugo__json_value* v = rugo__json_object_get(root, "n", &matches);
     ck_assert_int_eq(matches, 2);
-    ck_assert_int_eq(v->type, RUGO_JSON_NULL);
-    ck_assert_int_eq(rugo_json_object_get(root, "t", NULL)->u.boolean, 1);
-    ck_assert_int_eq(rugo_json_object_get(root, "f", NULL)->u.boolean, 0);
-    ck_assert_ptr_null(rugo_json_object_get(root, "missing", &matches));
+    ck_assert_int_eq(v->type, RUGO__JSON_NULL);
+    ck_assert_int_eq(rugo__json_object_get(root, "t", NULL)->u.boolean, 1);
+    ck_assert_int_eq(rugo__json_object_get(root, "f", NULL)->u.boolean, 0);
+    ck_assert_ptr_null(rugo__json_object_get(root, "missing", &matches));
     ck_assert_int_eq(matches, 0);
 
-    v = rugo_json_object_get(root, "num", NULL);
+    v = rugo__json_object_get(root, "num", NULL);
     ck_assert_int_eq((int)v->count, 5);
     const double nums[] = {0.0, -0.0, 1.25, 100.0, -7.0};
     i = 0;
-    for (const rugo_json_value* e = v->u.first; e != NULL; e = e->next, ++i) {
-        ck_assert_int_eq(e->type, RUGO_JSON_NUMBER);
+    for (const rugo__json_value* e = v->u.first; e != NULL; e = e->next, ++i) {
+        ck_assert_int_eq(e->type, RUGO__JSON_NUMBER);
         ck_assert(bits_of(e->u.number) == bits_of(nums[i]));
     }
 
-    v = rugo_json_object_get(root, "s", NULL);
+    v = rugo__json_object_get(root, "s", NULL);
     ck_assert_int_eq((int)v->count, 10);
     ck_assert(memcmp(v->u.string, "a\"\\/\b\f\n\r\tz", 11) == 0);
-    v = rugo_json_object_get(root, "u", NULL);
+    v = rugo__json_object_get(root, "u", NULL);
     /* é (2 bytes), € (3), U+1F600 from a surrogate pair (4), NUL, x */
     ck_assert_int_eq((int)v->count, 11);
     ck_assert(memcmp(v->u.string, "\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80\0x", 12) == 0);
-    const rugo_json_value* raw = rugo_json_object_get(root, "raw", NULL);
+    const rugo__json_value* raw = rugo__json_object_get(root, "raw", NULL);
     ck_assert_int_eq((int)raw->count, 9);
     ck_assert(memcmp(raw->u.string, v->u.string, 9) == 0);
-    ck_assert_int_eq((int)rugo_json_object_get(root, "o", NULL)->count, 0);
-    ck_assert_int_eq(rugo_json_object_get(root, "a", NULL)->type, RUGO_JSON_ARRAY);
+    ck_assert_int_eq((int)rugo__json_object_get(root, "o", NULL)->count, 0);
+    ck_assert_int_eq(rugo__json_object_get(root, "a", NULL)->type, RUGO__JSON_ARRAY);
     /* A key with an embedded NUL never matches a C string. */
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     ck_assert_ptr_null(doc.root);
-    rugo_json_doc_free(&doc); /* twice is harmless */
+    rugo__json_doc_free(&doc); /* twice is harmless */
 
     const char* keynul = "{\"a\\u0000b\": 1}";
     ck_assert_int_eq(json_parse_n(keynul, strlen(keynul), &doc, &err), RUGO_OK);
-    ck_assert_ptr_null(rugo_json_object_get(doc.root, "a", NULL));
-    rugo_json_doc_free(&doc);
+    ck_assert_ptr_null(rugo__json_object_get(doc.root, "a", NULL));
+    rugo__json_doc_free(&doc);
 
     /* Scalars at the top level, a byte order mark, and the edges of the number range. */
     struct {
@@ -207,13 +209,13 @@ START_TEST(json_valid_values) {
     };
     for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
         ck_assert_int_eq(json_parse_n(scalars[k].text, strlen(scalars[k].text), &doc, &err), RUGO_OK);
-        ck_assert_int_eq(doc.root->type, RUGO_JSON_NUMBER);
+        ck_assert_int_eq(doc.root->type, RUGO__JSON_NUMBER);
         ck_assert_msg(bits_of(doc.root->u.number) == bits_of(scalars[k].value), "%s -> %.17g",
                       scalars[k].text, doc.root->u.number);
-        rugo_json_doc_free(&doc);
+        rugo__json_doc_free(&doc);
     }
-    ck_assert_str_eq(rugo_json_type_name(RUGO_JSON_OBJECT), "object");
-    ck_assert_str_eq(rugo_json_type_name(RUGO_JSON_BOOL), "boolean");
+    ck_assert_str_eq(rugo__json_type_name(RUGO__JSON_OBJECT), "object");
+    ck_assert_str_eq(rugo__json_type_name(RUGO__JSON_BOOL), "boolean");
 }
 END_TEST
 
@@ -302,8 +304,8 @@ START_TEST(json_rejects_malformed) {
 END_TEST
 
 START_TEST(json_error_paths) {
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     const char* t1 = "{\"a\": [1, {\"b\": [true, 1e999]}]}";
     ck_assert_int_eq(json_parse_n(t1, strlen(t1), &doc, &err), RUGO_ERR_NOT_FINITE);
     ck_assert_str_eq(err.path, "a[1].b[1]");
@@ -332,11 +334,11 @@ START_TEST(json_error_paths) {
     ck_assert_int_eq((int)strlen(err.path), (int)sizeof err.path - 1);
     ck_assert_str_eq(err.path + strlen(err.path) - 3, "...");
     /* NULL arguments and a text over the size limit */
-    ck_assert_int_eq(rugo_json_parse(NULL, 0, NULL, NULL, &doc, &err), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_json_parse("1", 1, NULL, NULL, NULL, &err), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_json_parse("1", 1, NULL, NULL, &doc, NULL), RUGO_OK);
-    rugo_json_doc_free(&doc);
-    ck_assert_int_eq(rugo_json_parse("1", RUGO_MAX_JSON_BYTES + 1, NULL, NULL, &doc, &err), RUGO_ERR_PARSE);
+    ck_assert_int_eq(rugo__json_parse(NULL, 0, NULL, NULL, &doc, &err), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__json_parse("1", 1, NULL, NULL, NULL, &err), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__json_parse("1", 1, NULL, NULL, &doc, NULL), RUGO_OK);
+    rugo__json_doc_free(&doc);
+    ck_assert_int_eq(rugo__json_parse("1", RUGO_MAX_JSON_BYTES + 1, NULL, NULL, &doc, &err), RUGO_ERR_PARSE);
     ck_assert_int_eq(err.line, 0);
     ck_assert_ptr_nonnull(strstr(err.message, "larger"));
 }
@@ -345,8 +347,8 @@ END_TEST
 START_TEST(json_nesting_and_value_limits) {
     enum { N = 100000 };
     char* buf = (char*)malloc(2 * N);
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     for (int depth = 63; depth <= 65; ++depth) {
         for (int obj = 0; obj < 2; ++obj) {
             size_t n = 0;
@@ -363,10 +365,10 @@ START_TEST(json_nesting_and_value_limits) {
             rugo_status st = json_parse_n(buf, n, &doc, &err);
             if (obj) { /* the innermost object is {"k":} */
                 ck_assert_int_eq(st, RUGO_ERR_PARSE);
-                if (depth <= RUGO_JSON_MAX_DEPTH) ck_assert_ptr_null(strstr(err.message, "nesting"));
-            } else if (depth <= RUGO_JSON_MAX_DEPTH) {
+                if (depth <= RUGO__JSON_MAX_DEPTH) ck_assert_ptr_null(strstr(err.message, "nesting"));
+            } else if (depth <= RUGO__JSON_MAX_DEPTH) {
                 ck_assert_int_eq(st, RUGO_OK);
-                rugo_json_doc_free(&doc);
+                rugo__json_doc_free(&doc);
             } else {
                 ck_assert_int_eq(st, RUGO_ERR_PARSE);
                 ck_assert_ptr_nonnull(strstr(err.message, "nesting deeper than 64"));
@@ -377,45 +379,46 @@ START_TEST(json_nesting_and_value_limits) {
     /* Very deep input fails fast at the limit, without deep recursion. */
     memset(buf, '[', N);
     ck_assert_int_eq(json_parse_n(buf, N, &doc, &err), RUGO_ERR_PARSE);
-    ck_assert_int_eq(err.column, RUGO_JSON_MAX_DEPTH + 1);
-    /* A lower or higher depth limit on request (capped at RUGO_JSON_DEPTH_CAP). */
-    rugo_json_limits lim = {3, 0};
-    ck_assert_int_eq(rugo_json_parse("[[[]]]", 6, NULL, &lim, &doc, &err), RUGO_OK);
-    rugo_json_doc_free(&doc);
-    ck_assert_int_eq(rugo_json_parse("[[[[]]]]", 8, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
+    ck_assert_int_eq(err.column, RUGO__JSON_MAX_DEPTH + 1);
+    /* A lower or higher depth limit on request (capped at RUGO__JSON_DEPTH_CAP). */
+    rugo__json_limits lim = {3, 0};
+    ck_assert_int_eq(rugo__json_parse("[[[]]]", 6, NULL, &lim, &doc, &err), RUGO_OK);
+    rugo__json_doc_free(&doc);
+    ck_assert_int_eq(rugo__json_parse("[[[[]]]]", 8, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
     lim.max_depth = 100000;
-    ck_assert_int_eq(rugo_json_parse(buf, N, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
-    ck_assert_int_eq(err.column, RUGO_JSON_DEPTH_CAP + 1);
-    for (int i = 0; i < RUGO_JSON_DEPTH_CAP; ++i)
-        buf[RUGO_JSON_DEPTH_CAP + i] = ']';
-    ck_assert_int_eq(rugo_json_parse(buf, 2 * RUGO_JSON_DEPTH_CAP, NULL, &lim, &doc, &err), RUGO_OK);
-    rugo_json_doc_free(&doc);
+    ck_assert_int_eq(rugo__json_parse(buf, N, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
+    ck_assert_int_eq(err.column, RUGO__JSON_DEPTH_CAP + 1);
+    for (int i = 0; i < RUGO__JSON_DEPTH_CAP; ++i)
+        buf[RUGO__JSON_DEPTH_CAP + i] = ']';
+    ck_assert_int_eq(rugo__json_parse(buf, 2 * RUGO__JSON_DEPTH_CAP, NULL, &lim, &doc, &err), RUGO_OK);
+    rugo__json_doc_free(&doc);
     /* The value limit: [1,2,...,9] is 10 values (strings and keys count too). */
     lim.max_depth = 0;
     lim.max_values = 10;
-    ck_assert_int_eq(rugo_json_parse("[1,2,3,4,5,6,7,8,9]", 19, NULL, &lim, &doc, &err), RUGO_OK);
+    ck_assert_int_eq(rugo__json_parse("[1,2,3,4,5,6,7,8,9]", 19, NULL, &lim, &doc, &err), RUGO_OK);
     ck_assert_int_eq((int)doc.value_count, 10);
-    rugo_json_doc_free(&doc);
-    ck_assert_int_eq(rugo_json_parse("[1,2,3,4,5,6,7,8,9,0]", 21, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
+    rugo__json_doc_free(&doc);
+    ck_assert_int_eq(rugo__json_parse("[1,2,3,4,5,6,7,8,9,0]", 21, NULL, &lim, &doc, &err), RUGO_ERR_PARSE);
     ck_assert_ptr_nonnull(strstr(err.message, "more than 10 values"));
-    ck_assert_int_eq(rugo_json_parse("{\"a\":1,\"b\":2,\"c\":3,\"d\":4,\"e\":5}", 31, NULL, &lim, &doc, &err),
-                     RUGO_ERR_PARSE);
+    ck_assert_int_eq(
+        rugo__json_parse("{\"a\":1,\"b\":2,\"c\":3,\"d\":4,\"e\":5}", 31, NULL, &lim, &doc, &err),
+        RUGO_ERR_PARSE);
     free(buf);
 }
 END_TEST
 
 START_TEST(json_number_length_limit) {
-    char buf[RUGO_JSON_MAX_NUMBER_CHARS + 8];
-    rugo_json_doc doc;
-    rugo_json_error err;
+    char buf[RUGO__JSON_MAX_NUMBER_CHARS + 8];
+    rugo__json_doc doc;
+    rugo__json_error err;
     /* "0." + 1016 zeros + "1e+999" (exactly the limit in characters) = 1e-1017 * 1e999. */
-    size_t n = RUGO_JSON_MAX_NUMBER_CHARS;
+    size_t n = RUGO__JSON_MAX_NUMBER_CHARS;
     memset(buf, '0', n);
     buf[1] = '.';
     memcpy(buf + n - 6, "1e+999", 6);
     ck_assert_int_eq(json_parse_n(buf, n, &doc, &err), RUGO_OK);
     ck_assert(bits_of(doc.root->u.number) == bits_of(1e-18));
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     /* Correct rounding decided by a digit a thousand places in: 1 + 2^-53 is halfway between 1 and
      * 1 + 2^-52 and rounds to even (1); any nonzero digit after it rounds up. */
     const char* half = "1.00000000000000011102230246251565404236316680908203125";
@@ -423,26 +426,26 @@ START_TEST(json_number_length_limit) {
     memcpy(buf, half, strlen(half));
     ck_assert_int_eq(json_parse_n(buf, n, &doc, &err), RUGO_OK);
     ck_assert(doc.root->u.number == 1.0);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     buf[n - 1] = '1';
     ck_assert_int_eq(json_parse_n(buf, n, &doc, &err), RUGO_OK);
     ck_assert(doc.root->u.number == 1.0 + DBL_EPSILON);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     buf[n] = '0';
     expect_json_fail_n(buf, n + 1, RUGO_ERR_PARSE, 1, 1, "longer than 1024");
 }
 END_TEST
 
 START_TEST(json_not_nul_terminated) {
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     /* Only the first `length` bytes count: a number cut by the length ends there. */
     ck_assert_int_eq(json_parse_n("123456", 3, &doc, &err), RUGO_OK);
     ck_assert(doc.root->u.number == 123.0);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     ck_assert_int_eq(json_parse_n("-1.5e3x", 6, &doc, &err), RUGO_OK);
     ck_assert(doc.root->u.number == -1500.0);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     ck_assert_int_eq(json_parse_n("[1, 23]", 5, &doc, &err), RUGO_ERR_PARSE);
     ck_assert_int_eq(err.column, 6);
     ck_assert_int_eq(json_parse_n("\"abc\"", 4, &doc, &err), RUGO_ERR_PARSE);
@@ -450,7 +453,7 @@ START_TEST(json_not_nul_terminated) {
     ck_assert_int_eq(json_parse_n("true", 3, &doc, &err), RUGO_ERR_PARSE);
     ck_assert_int_eq(json_parse_n("\"\xe2\x82\xac\"", 3, &doc, &err), RUGO_ERR_PARSE);
     ck_assert_int_eq(json_parse_n("{\"a\":1}garbage", 7, &doc, &err), RUGO_OK);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
 }
 END_TEST
 
@@ -461,12 +464,12 @@ START_TEST(json_out_of_memory) {
     for (long budget = 0;; ++budget) {
         test_budget_ctx ctx = {budget, 0};
         rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
-        rugo_json_doc doc;
-        rugo_json_error err;
-        rugo_status st = rugo_json_parse(text, length, &a, NULL, &doc, &err);
+        rugo__json_doc doc;
+        rugo__json_error err;
+        rugo_status st = rugo__json_parse(text, length, &a, NULL, &doc, &err);
         if (st == RUGO_OK) {
             ck_assert_int_gt(ctx.live, 0);
-            rugo_json_doc_free(&doc);
+            rugo__json_doc_free(&doc);
             ck_assert_int_eq(ctx.live, 0);
             break;
         }
@@ -529,16 +532,16 @@ START_TEST(json_locale_decimal_point) {
         setlocale(LC_NUMERIC, "C");
         return;
     }
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     rugo_status st = json_parse_n("[1.5, -0.25e1]", 14, &doc, &err);
     char buf[40];
-    rugo_json_format_number(0.1, buf, sizeof buf);
+    rugo__json_format_number(0.1, buf, sizeof buf);
     setlocale(LC_NUMERIC, "C");
     ck_assert_int_eq(st, RUGO_OK);
     ck_assert(doc.root->u.first->u.number == 1.5);
     ck_assert(doc.root->u.first->next->u.number == -2.5);
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     ck_assert_str_eq(buf, "0.10000000000000001");
 }
 END_TEST
@@ -546,10 +549,10 @@ END_TEST
 /* ------------------------------------------------------------------------------------------------ */
 /* JSON writer */
 
-static char* finish_ok(rugo_json_writer* w) {
+static char* finish_ok(rugo__json_writer* w) {
     char* text = NULL;
     size_t n = 0;
-    rugo_status st = rugo_json_writer_finish(w, &text, &n);
+    rugo_status st = rugo__json_writer_finish(w, &text, &n);
     ck_assert_msg(st == RUGO_OK, "finish: %s", rugo_status_string(st));
     ck_assert_int_eq((int)strlen(text), (int)n);
     return text;
@@ -557,36 +560,36 @@ static char* finish_ok(rugo_json_writer* w) {
 
 START_TEST(json_writer_layout) {
     for (int indent = 0; indent <= 2; indent += 2) {
-        rugo_json_writer w;
-        rugo_json_writer_init(&w, NULL, indent);
-        rugo_json_begin_object(&w, 0);
-        rugo_json_key(&w, "a");
-        rugo_json_begin_array(&w, 0);
-        rugo_json_integer(&w, 1);
-        rugo_json_number(&w, 2.5);
-        rugo_json_begin_array(&w, RUGO_JSON_INLINE);
-        rugo_json_number(&w, -0.0);
-        rugo_json_string(&w, "x\n");
-        rugo_json_end_array(&w);
-        rugo_json_end_array(&w);
-        rugo_json_key(&w, "b");
-        rugo_json_begin_object(&w, 0);
-        rugo_json_end_object(&w);
-        rugo_json_key(&w, "c");
-        rugo_json_begin_array(&w, 0);
-        rugo_json_end_array(&w);
-        rugo_json_key(&w, "d");
-        rugo_json_bool(&w, 1);
-        rugo_json_key(&w, "e");
-        rugo_json_null(&w);
-        rugo_json_key(&w, "f");
-        rugo_json_begin_object(&w, RUGO_JSON_INLINE);
-        rugo_json_key(&w, "g");
-        rugo_json_bool(&w, 0);
-        rugo_json_key(&w, "h");
-        rugo_json_integer(&w, -9000000000LL);
-        rugo_json_end_object(&w);
-        rugo_json_end_object(&w);
+        rugo__json_writer w;
+        rugo__json_writer_init(&w, NULL, indent);
+        rugo__json_begin_object(&w, 0);
+        rugo__json_key(&w, "a");
+        rugo__json_begin_array(&w, 0);
+        rugo__json_integer(&w, 1);
+        rugo__json_number(&w, 2.5);
+        rugo__json_begin_array(&w, RUGO__JSON_INLINE);
+        rugo__json_number(&w, -0.0);
+        rugo__json_string(&w, "x\n");
+        rugo__json_end_array(&w);
+        rugo__json_end_array(&w);
+        rugo__json_key(&w, "b");
+        rugo__json_begin_object(&w, 0);
+        rugo__json_end_object(&w);
+        rugo__json_key(&w, "c");
+        rugo__json_begin_array(&w, 0);
+        rugo__json_end_array(&w);
+        rugo__json_key(&w, "d");
+        rugo__json_bool(&w, 1);
+        rugo__json_key(&w, "e");
+        rugo__json_null(&w);
+        rugo__json_key(&w, "f");
+        rugo__json_begin_object(&w, RUGO__JSON_INLINE);
+        rugo__json_key(&w, "g");
+        rugo__json_bool(&w, 0);
+        rugo__json_key(&w, "h");
+        rugo__json_integer(&w, -9000000000LL);
+        rugo__json_end_object(&w);
+        rugo__json_end_object(&w);
         char* text = finish_ok(&w);
         if (indent == 0)
             ck_assert_str_eq(
@@ -598,18 +601,18 @@ START_TEST(json_writer_layout) {
                 "{\n  \"a\": [\n    1,\n    2.5,\n    [-0, \"x\\n\"]\n  ],\n  \"b\": {},\n  \"c\": [],\n"
                 "  \"d\": true,\n  \"e\": null,\n  \"f\": {\"g\": false, \"h\": -9000000000}\n}");
         /* What it writes reads back. */
-        rugo_json_doc doc;
-        rugo_json_error err;
+        rugo__json_doc doc;
+        rugo__json_error err;
         ck_assert_int_eq(json_parse_n(text, strlen(text), &doc, &err), RUGO_OK);
         ck_assert(
-            bits_of(rugo_json_object_get(doc.root, "a", NULL)->u.first->next->next->u.first->u.number) ==
+            bits_of(rugo__json_object_get(doc.root, "a", NULL)->u.first->next->next->u.first->u.number) ==
             bits_of(-0.0));
-        rugo_json_doc_free(&doc);
+        rugo__json_doc_free(&doc);
         rugo_text_free(NULL, text);
     }
     /* An empty text is an empty string, not NULL. */
-    rugo_json_writer w;
-    rugo_json_writer_init(&w, NULL, 0);
+    rugo__json_writer w;
+    rugo__json_writer_init(&w, NULL, 0);
     char* text = finish_ok(&w);
     ck_assert_str_eq(text, "");
     rugo_text_free(NULL, text);
@@ -622,23 +625,23 @@ START_TEST(json_writer_strings_round_trip) {
         all[i] = (char)i; /* every ASCII byte, NUL and controls included */
     memcpy(all + 128, "\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80", 9);
     size_t n = 137;
-    rugo_json_writer w;
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_begin_array(&w, 0);
-    rugo_json_string_n(&w, all, n);
-    rugo_json_string(&w, "\"\\/");
-    rugo_json_end_array(&w);
+    rugo__json_writer w;
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_begin_array(&w, 0);
+    rugo__json_string_n(&w, all, n);
+    rugo__json_string(&w, "\"\\/");
+    rugo__json_end_array(&w);
     char* text = finish_ok(&w);
     ck_assert_ptr_nonnull(strstr(text, "\"\\u0000\\u0001"));
     ck_assert_ptr_nonnull(strstr(text, "\\b\\t\\n\\u000b\\f\\r"));
     ck_assert_ptr_nonnull(strstr(text, "\"\\\"\\\\/\""));
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     ck_assert_int_eq(json_parse_n(text, strlen(text), &doc, &err), RUGO_OK);
     ck_assert_int_eq((int)doc.root->u.first->count, (int)n);
     ck_assert(memcmp(doc.root->u.first->u.string, all, n) == 0);
     ck_assert_str_eq(doc.root->u.first->next->u.string, "\"\\/");
-    rugo_json_doc_free(&doc);
+    rugo__json_doc_free(&doc);
     rugo_text_free(NULL, text);
 }
 END_TEST
@@ -646,65 +649,65 @@ END_TEST
 START_TEST(json_writer_errors) {
     char* text = (char*)1;
     size_t n = 99;
-    rugo_json_writer w;
+    rugo__json_writer w;
     /* Non-finite numbers are refused, and the error sticks. */
     const double bad[] = {NAN, INFINITY, -INFINITY};
     for (int i = 0; i < 3; ++i) {
-        rugo_json_writer_init(&w, NULL, 2);
-        rugo_json_begin_array(&w, 0);
-        rugo_json_number(&w, 1.0);
-        rugo_json_number(&w, bad[i]);
-        rugo_json_number(&w, 2.0);
-        rugo_json_end_array(&w);
-        ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_NOT_FINITE);
+        rugo__json_writer_init(&w, NULL, 2);
+        rugo__json_begin_array(&w, 0);
+        rugo__json_number(&w, 1.0);
+        rugo__json_number(&w, bad[i]);
+        rugo__json_number(&w, 2.0);
+        rugo__json_end_array(&w);
+        ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_NOT_FINITE);
         ck_assert_ptr_null(text);
         ck_assert_int_eq((int)n, 0);
     }
     /* Misuse */
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_begin_object(&w, 0);
-    rugo_json_number(&w, 1.0); /* no key */
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_begin_object(&w, 0);
-    rugo_json_end_array(&w);
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_begin_array(&w, 0);
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_key(&w, "top");
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_begin_object(&w, 0);
-    rugo_json_key(&w, "k");
-    rugo_json_end_object(&w); /* key without a value */
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    for (int i = 0; i <= RUGO_JSON_WRITER_MAX_DEPTH; ++i)
-        rugo_json_begin_array(&w, 0);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_begin_object(&w, 0);
+    rugo__json_number(&w, 1.0); /* no key */
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_begin_object(&w, 0);
+    rugo__json_end_array(&w);
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_begin_array(&w, 0);
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_key(&w, "top");
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_begin_object(&w, 0);
+    rugo__json_key(&w, "k");
+    rugo__json_end_object(&w); /* key without a value */
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_BAD_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    for (int i = 0; i <= RUGO__JSON_WRITER_MAX_DEPTH; ++i)
+        rugo__json_begin_array(&w, 0);
     ck_assert_int_eq(w.status, RUGO_ERR_BAD_ARGUMENT);
-    rugo_json_writer_discard(&w);
-    rugo_json_writer_init(&w, NULL, 0);
-    rugo_json_string(&w, NULL);
-    ck_assert_int_eq(rugo_json_writer_finish(&w, &text, &n), RUGO_ERR_NULL_ARGUMENT);
-    rugo_json_writer_init(&w, NULL, 0);
-    ck_assert_int_eq(rugo_json_writer_finish(&w, NULL, &n), RUGO_ERR_NULL_ARGUMENT);
+    rugo__json_writer_discard(&w);
+    rugo__json_writer_init(&w, NULL, 0);
+    rugo__json_string(&w, NULL);
+    ck_assert_int_eq(rugo__json_writer_finish(&w, &text, &n), RUGO_ERR_NULL_ARGUMENT);
+    rugo__json_writer_init(&w, NULL, 0);
+    ck_assert_int_eq(rugo__json_writer_finish(&w, NULL, &n), RUGO_ERR_NULL_ARGUMENT);
 
     char buf[40];
-    ck_assert_int_eq(rugo_json_format_number(0.1, buf, sizeof buf), 19);
+    ck_assert_int_eq(rugo__json_format_number(0.1, buf, sizeof buf), 19);
     ck_assert_str_eq(buf, "0.10000000000000001");
-    rugo_json_format_number(-0.0, buf, sizeof buf);
+    rugo__json_format_number(-0.0, buf, sizeof buf);
     ck_assert_str_eq(buf, "-0");
-    rugo_json_format_number(1e300, buf, sizeof buf);
+    rugo__json_format_number(1e300, buf, sizeof buf);
     ck_assert_str_eq(buf, "1.0000000000000001e+300");
-    rugo_json_format_number(-2.2250738585072014e-308, buf, sizeof buf);
+    rugo__json_format_number(-2.2250738585072014e-308, buf, sizeof buf);
     ck_assert_str_eq(buf, "-2.2250738585072014e-308");
-    rugo_json_format_number(NAN, buf, sizeof buf);
+    rugo__json_format_number(NAN, buf, sizeof buf);
     ck_assert_str_eq(buf, "nan");
-    rugo_json_format_number(-INFINITY, buf, sizeof buf);
+    rugo__json_format_number(-INFINITY, buf, sizeof buf);
     ck_assert_str_eq(buf, "-inf");
-    rugo_json_format_number(123.0, buf, 3); /* cut, still terminated */
+    rugo__json_format_number(123.0, buf, 3); /* cut, still terminated */
     ck_assert_str_eq(buf, "12");
 }
 END_TEST
@@ -749,16 +752,16 @@ static double random_double(test_rng* r) {
 
 START_TEST(json_number_round_trip) {
     test_rng r = test_rng_seed(0x5eed);
-    rugo_json_doc doc;
-    rugo_json_error err;
+    rugo__json_doc doc;
+    rugo__json_error err;
     for (int i = 0; i < 20000; ++i) {
         double x = random_double(&r);
         char buf[40];
-        int n = rugo_json_format_number(x, buf, sizeof buf);
+        int n = rugo__json_format_number(x, buf, sizeof buf);
         ck_assert_int_le(n, 24);
         ck_assert_int_eq(json_parse_n(buf, (size_t)n, &doc, &err), RUGO_OK);
         ck_assert_msg(bits_of(doc.root->u.number) == bits_of(x), "%s -> %.17g", buf, doc.root->u.number);
-        rugo_json_doc_free(&doc);
+        rugo__json_doc_free(&doc);
     }
 }
 END_TEST
@@ -2378,8 +2381,8 @@ START_TEST(fuzz_token_soup) {
             memcpy(work + n, t, len);
             n += len;
         }
-        rugo_json_doc doc;
-        rugo_json_error err;
+        rugo__json_doc doc;
+        rugo__json_error err;
         rugo_status st = json_parse_n(work, n, &doc, &err);
         ck_assert(st == RUGO_OK || st == RUGO_ERR_PARSE || st == RUGO_ERR_NOT_FINITE); /* "1e5" "1" -> 1e51 */
         if (st == RUGO_OK) {
@@ -2389,7 +2392,7 @@ START_TEST(fuzz_token_soup) {
             ck_assert(err.message[0] != '\0');
             ck_assert(err.offset <= n);
         }
-        rugo_json_doc_free(&doc);
+        rugo__json_doc_free(&doc);
     }
     ck_assert_int_gt(ok, 100);
 }

@@ -1,6 +1,7 @@
 /* Sweep and prune suite (SPEC 7): the pairs agree exactly with brute force on every update of random
  * moving scenes (no tolerance: the overlap test is exact comparisons, touching counts), the
  * coherence algorithm is really used (swaps reported), and bad input gets a status. */
+#include "sim/internal.h" /* sweep and prune, the simulator's broad phase */
 #include "test_util.h"
 
 #include <stdlib.h>

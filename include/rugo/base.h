@@ -1,5 +1,6 @@
 /** @file rugo/base.h
- * librugo — base types: reals, 2-D vectors, status codes, allocator hooks, version.
+ * librugo — base types: reals, 2-D vectors, transforms, axis-aligned boxes, status codes, allocator hooks,
+ * version.
  *
  * Every public function that takes outside input returns a rugo_status and never aborts, prints or
  * exits. Memory goes through a rugo_allocator carried by the def of each object that allocates; a NULL
@@ -19,7 +20,8 @@
  * pictures, the API by example); docs/box2d.md covers the Box2D bridge.
  *
  * One header per concept (rugo/rugo.h includes the C ones):
- * - rugo/base.h: reals, vectors, transforms, status codes, allocator hooks, version macros
+ * - rugo/base.h: reals, vectors, transforms, axis-aligned boxes, status codes, allocator hooks, version
+ *   macros
  * - rugo/contour.h: closed cubic B-spline contours: evaluation, arc length, mass, queries, validation
  * - rugo/wavelet.h: CDF(4, m~) wavelet filters, analysis and synthesis
  * - rugo/multires.h: the multiresolution pyramid, direct manipulation and deformation
@@ -214,6 +216,13 @@ static inline rugo_vec2 rugo_transform_point(rugo_transform t, rugo_vec2 v) { re
 static inline rugo_vec2 rugo_inv_transform_point(rugo_transform t, rugo_vec2 v) {
     return rugo_inv_rotate(t.q, rugo_v2_sub(v, t.p));
 }
+
+/** An axis-aligned box, in the caller's length units. */
+typedef struct rugo_aabb {
+    /** Lower and upper corners (lower <= upper on both axes). @{ */
+    rugo_vec2 lower, upper;
+    /** @} */
+} rugo_aabb;
 
 #ifdef __cplusplus
 }

@@ -51,8 +51,6 @@
 /// The Box2D 2.4 bridge of librugo (target rugo::box2d).
 namespace rugo {
 
-/// A level value meaning "choose automatically".
-constexpr int kAutoLevel = -1000000;
 
 /// Settings of a Bridge, given to its constructor.
 struct BridgeDef {
@@ -85,10 +83,11 @@ struct BridgeDef {
 struct RoughBodyDef {
     const rugo_shape* shape = nullptr; ///< shared, not copied; must outlive the attachment
     double density = 1.0;              ///< kg/m^2 (> 0 for a dynamic body)
-    /// Level of detail of this body's contacts: 0 = finest, -1 = one level coarser, ... (clamped to the
-    /// shape's coarsest level; a positive value means the finest); kAutoLevel = from errorBudget. A body
-    /// pair uses the finer of its two levels.
-    int level = kAutoLevel;
+    /// Level of detail of this body's contacts, as rugo_contact_query::lod counts it: 0 = finest, -1 =
+    /// one level coarser, ... (clamped to the shape's coarsest level); RUGO_LOD_AUTO = from errorBudget
+    /// (rugo_shape_level_for_error). A positive value is BAD_ARGUMENT. A body pair uses the finer of its
+    /// two levels.
+    int lod = RUGO_LOD_AUTO;
     double errorBudget = -1.0; ///< metres; < 0 or NaN = BridgeDef::errorBudget
     /// Most proxy fixtures of this body (1 .. 8); 0 = BridgeDef::maxProxies.
     int maxProxies = 0;

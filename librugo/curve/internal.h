@@ -1,10 +1,14 @@
-/* Private helpers of the curve layer (contour.c, multires.c) for the layers above it. Not installed.
+/* Private helpers of the curve layer (contour.c, contour_check.c, multires.c, path_segment.c,
+ * outline_sample.c) for its own files and the layers above it. Not installed.
  * May include: core. */
 #ifndef RUGO_CURVE_INTERNAL_H
 #define RUGO_CURVE_INTERNAL_H
 
 #include "rugo/contour.h"
+#include "rugo/import.h" /* paths and affine maps: the outline sampler is geometry */
 #include "rugo/multires.h"
+
+#include <math.h>
 
 /* Containment helper (contour.c, used by the shape's tree walk, shape/point_query.c): the signed count of the changes of
  * segment j of c between "below" (y < p.y) and "up" (y >= p.y) that happen right of p (x > p.x),
@@ -13,6 +17,11 @@
  * of its evaluation (relative to its control points' distance from p) above, below or left of p
  * counts 0. */
 int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p);
+
+/* The Bezier points of segment j relative to o (rugo_contour_bezier of the control points minus o),
+ * for the self-intersection test (contour_check.c): far from the origin, differences keep their
+ * digits. */
+void rugo__contour_bezier_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 out[4]);
 
 /* rugo_contour_closest_point restricted to the segments segs[0 .. count) (increasing; NULL: all
  * count = c.count segments), computed by the same passes in the same order (contour.c). Given every
@@ -31,5 +40,22 @@ rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarse
                                       const unsigned char* points, const unsigned char* world,
                                       const unsigned char* local, const rugo_allocator* allocator,
                                       rugo_pyramid** out);
+
+/* ---- paths (path_segment.c) and the outline sampler (outline_sample.c), also for io's SVG readers --- */
+
+/* "RSmp": marks a def that came from rugo_default_outline_sample_def (the sampler and
+ * rugo_svg_import_outline refuse others). */
+#define RUGO__OUTLINE_SAMPLE_DEF_COOKIE 0x52536d70
+
+static inline int rugo__affine_finite(const rugo_affine* m) {
+    return isfinite(m->a) && isfinite(m->b) && isfinite(m->c) && isfinite(m->d) && isfinite(m->e) &&
+           isfinite(m->f);
+}
+
+/* A segment's end point (p[1] of lines and arcs, p[2] of quadratics, p[3] of cubics). */
+rugo_vec2 rugo__path_segment_end(const rugo_path_segment* s);
+/* rugo_path_segment_point and rugo_path_segment_derivative for a segment known not to be NULL. */
+rugo_vec2 rugo__path_segment_point(const rugo_path_segment* s, double t);
+rugo_vec2 rugo__path_segment_derivative(const rugo_path_segment* s, double t);
 
 #endif

@@ -1,4 +1,12 @@
-/* Narrow phase between two cubic Bezier pieces (narrow.h; SPEC 8; DESIGN "Contact semantics").
+/* The narrow phase between two cubic Bezier pieces (narrow.h; SPEC 8; DESIGN "Contact semantics"): its
+ * driver. It sets up the local frame, sends degenerate pairs to their own paths (a point-like piece to
+ * the point query, straight parallel pieces to the end pairs of their overlap), runs the two searches
+ * on the general case, merges what they found and writes the result; rugo__narrow_line is the same
+ * with the second piece a straight segment. The parts, each in its own file: the bounds that prune a
+ * box (narrow_bounds.c), the root lists and box stack (narrow_roots.c), the search for crossings
+ * (narrow_crossings.c) and for stationary pairs (narrow_stationary.c), the kinds of stationary pairs
+ * (narrow_classify.c), and a piece against a point (narrow_point.c); narrow_internal.h holds what they
+ * share.
  *
  * Frame. Everything runs in a local frame: the centroid of the 8 control points is subtracted (exact,
  * by Sterbenz, for pieces far from the origin) and the result scaled by a power of two so that every
@@ -12,52 +20,6 @@
  * both parameters are leaves, at most BOX_BUDGET boxes per search (then overflow), at most
  * NEWTON_MAX steps per Newton run, and a Newton run stops when it leaves its box's neighbourhood.
  *
- * Crossings, F = f(s) - g(t) = 0 (6.12). A box is dropped when
- *   - the projections of the two control polygons on x, y, both chord normals and the line between
- *     their centroids are disjoint (Bernstein coefficients of u·F of one strict sign), or
- *   - Krawczyk's interval-Newton operator (Y = J(centre)^-1, J = [f' -g'] bounded by the hodographs'
- *     control points) maps the box outside itself: no root.
- * Uniqueness: cross(f'_i, g'_j) of one strict sign over all hodograph control points (two meetings
- * P != Q would give, by Rolle on cross(f - P, Q - P) and on cross(g - P, Q - P), tangents of both
- * parallel to Q - P). Then Newton from the centre; its root is accepted if its uncertainty ball
- * (round-off residual / lower bound of |det J| over the box) lies in the box: a root certainly exists
- * there, and a numerical zero next to a touching (whose ball reaches the touching) is not taken for
- * a crossing. kind = the certified sign of cross(f', g'). Boxes of side <= 2^-20 whose tangents are
- * not separated try the touching hypothesis: Newton on the (C, H) form below (well conditioned at a
- * touching) and, at distance <= TAU_TOUCH, a touching root that resolves everything within
- * R_FALLBACK. Leaves: Newton from the centre, best iterate, kept if |F| <= TAU_TOUCH. Uncertified
- * roots get their kind from the side of g(t -+ delta) relative to f (left of f' = inside = +1).
- *
- * Stationary pairs, H1 = (f-g)·f' = 0, H2 = (f-g)·g' = 0 (6.14), with f != g. A box is dropped when
- *   - the polygons' projections are farther apart than the cutoff;
- *   - C = cross(f', g') keeps one strict sign (at a stationary pair with f != g both tangents are
- *     normal to f - g, hence parallel; this removes transversal crossings and nearly parallel pieces);
- *   - the Bernstein coefficients of H1 (degree 5 x 3), H2 (3 x 5) or of either row of adj(J) (H1, H2)
- *     (J at the centre; degree 5 x 5; the rows remove the first-order dependence along a valley of
- *     nearly equidistant curves) keep one strict sign;
- *   - Krawczyk's operator excludes the box (system below).
- * The system solved: (C, H2) where g' != 0 on the box, else (C, H1) where f' != 0, else (H1, H2). Same
- * roots away from crossings (f' parallel to g' and (f-g)·g' = 0 give (f-g)·f' = 0), but the Jacobian
- * of (H1, H2) has determinant ~ d dk at a near-touching (distance d, curvature difference dk) while
- * that of (C, H) has ~ dk: it stays well conditioned down to touching curves. For (H1, H2):
- *   J = [[ |f'|^2 + (f-g)·f'', -g'·f' ], [ g'·f', -|g'|^2 + (f-g)·g'' ]]  (= dH/d(s,t); J u = -H).
- * Uniqueness: the interval Jacobian with rows at independent points of the box is non-singular (two
- * roots would make both gradients normal to the segment joining them, mean value theorem). Then
- * Newton and the same existence ball. Boxes of side <= 2^-18 that are still not certified (nearly
- * degenerate pairs, e.g. almost touching curves) accept a Newton root inside the box and resolve
- * everything within R_MERGE of it; leaves keep a Newton root whose residual is near round-off.
- * Classification by the Hessian of D = |f-g|^2/2 ([[J11, J12], [J12, -J22]]): eigenvalues beyond
- * round-off decide min / saddle / max; a semi-definite direction is probed along its eigenvector with
- * the smallest step that changes D beyond round-off (rising both ways, or flat: minimum side;
- * falling both ways: maximum side; else saddle). A pair at distance <= TAU_TOUCH is a minimum.
- * Sharp corners: a piece that stops at an end of its domain (zero speed there, as at three coincident
- * control points) gives a multiple root that is located only roughly, or none when rounding leaves the
- * speed a few ulps off zero; such roots are moved onto the end, and the end's point query against the
- * other piece adds the pairs the search missed (add_zero_speed_ends; the point query adds the end
- * itself). There the pair is classified by probing along each piece on its own, only into the domain
- * (its cubic continued past the end is not the curve), and a minimum is RUGO__END_MINIMUM, for the
- * caller to confirm with the neighbouring segment's piece. A point-like piece (four coincident points:
- * its polynomial is round-off) cannot classify its point and reports RUGO__END_MINIMUM too.
  * Transversal crossings are not reported as stationary pairs; a touching (kind 0) crossing is always
  * also a minimum, and a minimum at distance <= TAU_TOUCH always also a touching crossing.
  *
@@ -70,1248 +32,38 @@
  * without a uniqueness certificate: leaves, touchings, small-box acceptances, budget exhaustion.
  * Non-finite input gives an empty result; a NaN or negative cutoff gives crossings only.
  *
- * Speed (issue 7: most pairs a contact query hands over are near each other but hold nothing). The
- * whole square is tested once for both searches (hulls apart: no crossing; then the tangent cones: no
+ * Speed: most pairs a contact query hands over are near each other but hold nothing. The whole
+ * square is tested once for both searches (hulls apart: no crossing; then the tangent cones: no
  * stationary pair), and a pair decided there costs a frame and those two tests. The hull test stops
  * at the first separating direction, and near the cutoff it first checks whether two control points
  * are closer than the cutoff (then no direction can separate). The Bernstein tests of the stationary
  * search first look at their corner coefficients, which decide most failures. A box whose Newton run
  * ends at a certified root outside it is dropped when the Jacobian is regular on a box spanning both
- * (crossings: the tangent cones stay apart), because then that root is the only one there: without
- * this a minimum just across a segment joint made the search subdivide toward the joint. Each
- * shortcut decides a box as before or drops a box that provably holds no root, so the results do not
- * change (bit for bit on all segment pairs of bench_queries; fewer Newton steps are counted). Work is
- * not repeated: a search keeps the sub-pieces of the last box's parameter ranges (piece_memo: the
- * next box usually keeps one of them), Newton starts from the values the box tests already computed at
- * the centre and hands back those at its root, cone_sign skips the lengths when the cross products
- * are not even of one sign, and stat_prune runs its rarely pruning hull test last (the tests are pure:
- * their order does not change the answer). Same bits as before (issue 7). */
-#include "query/narrow.h"
+ * (crossings: the tangent cones stay apart), because then that root is the only one there; otherwise
+ * a minimum just across a segment joint would make the search subdivide toward the joint. Each
+ * shortcut decides a box as the full tests would, or drops a box that provably holds no root, so the
+ * results are the same bits with or without it (on all segment pairs of bench_queries; only the
+ * number of Newton steps differs). Work is not repeated: a search keeps the sub-pieces of the last
+ * box's parameter ranges (piece_memo: the next box usually keeps one of them), Newton starts from the
+ * values the box tests already computed at the centre and hands back those at its root,
+ * rugo__cone_sign skips the lengths when the cross products are not even of one sign, and the
+ * stationary search runs its rarely pruning hull test last (the tests are pure: their order does not
+ * change the answer). */
+#include "query/narrow_internal.h"
 
-#include "core/internal.h"
 #include "curve/poly.h"
 
-#include <float.h>
-#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
-#define EPS DBL_EPSILON
-
-enum {
-    STACK_MAX = 128,   /* depth-first stack; depth <= 2 * 26 + 1 */
-    BOX_BUDGET = 6000, /* boxes per search */
-    NEWTON_MAX = 40,
-    TMP_CROSS = 32, /* working root lists (larger than the output arrays, to detect overflow) */
-    TMP_STAT = 64,
-    KIND_PROBE = 99 /* crossing kind still to be decided by probing */
-};
-
-#define H_MIN (1.0 / 67108864.0)  /* 2^-26: smallest box side in parameter */
-#define D_MIN (8.0 * EPS)         /* sub-pieces smaller than this cannot be told apart */
-#define TAU_F (32.0 * EPS)        /* round-off allowance on coordinates (local frame) */
-#define TAU_TOUCH (512.0 * EPS)   /* distance counted as zero: touching */
-#define SLACK 1e-12               /* a Newton root this far outside its box still counts as inside */
-#define DOM_SLACK 1e-10           /* roots this far outside [0,1] are clamped in */
-#define R_ROOT 1e-9               /* minimal parameter distance between distinct roots */
-#define R_FALLBACK 1e-6           /* merge radius around crossings found in leaves */
-#define H_ACC (1.0 / 262144.0)    /* 2^-18: uncertified stationary boxes this small accept a Newton root */
-#define R_MERGE 1e-5              /* ... and everything within this parameter distance of it */
-#define H_TOUCH (1.0 / 1048576.0) /* 2^-20: crossing boxes this small try the touching hypothesis */
-#define POINT_TOL 1e-13           /* a piece within this extent is a point */
-#define END_ZONE 1e-4             /* a root this close to a zero-speed end is at that end (near_end) */
-
-typedef struct box {
-    rugo_real s0, s1, t0, t1;
-} box;
-
-typedef struct root {
-    rugo_real s, t;
-    rugo_real radius; /* dedupe radius in parameter */
-    int kind;
-    int fallback;
-} root;
-
-typedef struct ctx {
-    rugo_vec2 f[4], g[4];     /* local frame */
-    rugo_vec2 df[3], dg[3];   /* hodographs (derivative in the global parameter) */
-    rugo_vec2 ddf[2], ddg[2]; /* second derivatives */
-    rugo_vec2 origin;
-    rugo_real scale;  /* caller point = origin + scale * local point */
-    rugo_real cutoff; /* local frame; negative: no stationary pairs */
-    int newton, fallback, overflow;
-    int ncross, nstat;
-    /* Tests of the whole square [0,1]^2, shared by the two searches (both start there). */
-    int root_apart; /* the hulls of f and g are more than TAU_F apart: no crossing */
-    int root_cone_done, root_cone;
-    rugo_real root_rho;
-    rugo_real root_cross[9]; /* cross(df[i], dg[j]) at 3 i + j (solve) */
-    root cross[TMP_CROSS]; /* (the lists last: they are not cleared) */
-    root stat[TMP_STAT];
-} ctx;
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Small helpers */
-
-/* max / min without the NaN handling of fmax / fmin (which are library calls): inputs are finite. */
-static rugo_real mx(rugo_real a, rugo_real b) { return a > b ? a : b; }
-static rugo_real mn(rugo_real a, rugo_real b) { return a < b ? a : b; }
-
-static rugo_vec2 lerp(rugo_vec2 a, rugo_vec2 b, rugo_real u) {
-    return rugo_v2((1.0 - u) * a.x + u * b.x, (1.0 - u) * a.y + u * b.y);
-}
-
-static rugo_real vmax(rugo_vec2 v) { return mx(fabs(v.x), fabs(v.y)); }
-
-/* Local frame: magnitudes are O(1), so the plain formula cannot overflow (hypot is much slower). */
-static rugo_real vlen(rugo_vec2 v) { return sqrt(v.x * v.x + v.y * v.y); }
-
-static int sgn(rugo_real v) { return (v > 0.0) - (v < 0.0); }
-
-/* de Casteljau evaluation, degree n <= 3. */
-static rugo_vec2 bez(const rugo_vec2* p, int n, rugo_real u) {
-    rugo_vec2 w[4];
-    for (int i = 0; i <= n; ++i)
-        w[i] = p[i];
-    for (int k = 1; k <= n; ++k)
-        for (int i = 0; i <= n - k; ++i)
-            w[i] = lerp(w[i], w[i + 1], u);
-    return w[0];
-}
-
-/* Bezier points of p (degree n <= 3) on any interval [a, b] with 0 < b, a < b: within [0, 1] the
- * restriction of the piece (the sub-boxes of a search), outside it the polynomial extrapolated (de
- * Casteljau with parameters beyond 1 or below 0: the boxes around a root found just outside a box,
- * exclusion below). */
-static void sub_bezier(const rugo_vec2* p, int n, rugo_real a, rugo_real b, rugo_vec2* out) {
-    rugo_vec2 w[4], part[4];
-    for (int i = 0; i <= n; ++i)
-        w[i] = p[i];
-    if (b != 1.0) {
-        part[0] = w[0];
-        for (int k = 1; k <= n; ++k) {
-            for (int i = 0; i <= n - k; ++i)
-                w[i] = lerp(w[i], w[i + 1], b);
-            part[k] = w[0];
-        }
-        for (int i = 0; i <= n; ++i)
-            w[i] = part[i];
-    }
-    if (a != 0.0) {
-        rugo_real u = a / b;
-        part[n] = w[n];
-        for (int k = 1; k <= n; ++k) {
-            for (int i = 0; i <= n - k; ++i)
-                w[i] = lerp(w[i], w[i + 1], u);
-            part[n - k] = w[n - k];
-        }
-        for (int i = 0; i <= n; ++i)
-            w[i] = part[i];
-    }
-    for (int i = 0; i <= n; ++i)
-        out[i] = w[i];
-}
-
-/* Largest distance (max-norm) between control points: a size of the sub-piece. */
-static rugo_real poly_diam(const rugo_vec2* p, int n) {
-    rugo_real lox = p[0].x, hix = p[0].x, loy = p[0].y, hiy = p[0].y;
-    for (int i = 1; i <= n; ++i) {
-        lox = mn(lox, p[i].x);
-        hix = mx(hix, p[i].x);
-        loy = mn(loy, p[i].y);
-        hiy = mx(hiy, p[i].y);
-    }
-    return mx(hix - lox, hiy - loy);
-}
-
-/* Unit normal of the chord of a control polygon (or of its middle leg for a closed loop), or 0. */
-static rugo_vec2 chord_normal(const rugo_vec2* p) {
-    rugo_vec2 d = rugo_v2_sub(p[3], p[0]);
-    rugo_real l = vlen(d);
-    if (!(l > 0.25 * poly_diam(p, 3)) || !(l > 0.0)) {
-        d = rugo_v2_sub(p[2], p[1]);
-        l = vlen(d);
-        if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
-    }
-    return rugo_v2(-d.y / l, d.x / l);
-}
-
-/* The gap between the projections of F and G (4 points each) on direction d. */
-static rugo_real projection_gap(rugo_vec2 d, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
-    rugo_real flo = INFINITY, fhi = -INFINITY, glo = INFINITY, ghi = -INFINITY;
-    for (int i = 0; i < 4; ++i) {
-        rugo_real a = rugo_v2_dot(d, F[i]), b = rugo_v2_dot(d, G[i]);
-        flo = mn(flo, a);
-        fhi = mx(fhi, a);
-        glo = mn(glo, b);
-        ghi = mx(ghi, b);
-    }
-    return mx(flo - ghi, glo - fhi);
-}
-
-/* Whether a lower bound of the distance between the convex hulls of F and G exceeds thr: the largest
- * gap between their projections on x, y, the two chord normals and the line between the polygons'
- * centres. The directions are tried in that order and the first gap above thr decides (the max of the
- * gaps exceeds thr iff one of them does), so the square roots of the later ones are often saved. */
-static int hull_gap_above(const rugo_vec2 F[4], const rugo_vec2 G[4], rugo_real thr) {
-    if (thr > 64.0 * EPS) {
-        /* No projection gap exceeds the distance of any point of F from any point of G. With the
-         * coordinates in [-1, 1] (the local frame), a computed gap is within ~8 eps of the true one
-         * for its (unit up to 4 eps) direction; so two control points closer than thr by a margin
-         * decide "not above" without the five projections (the usual case near a contact, where
-         * this test rarely prunes). */
-        const rugo_real lim = thr - 64.0 * EPS;
-        rugo_real d2 = INFINITY;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) {
-                const rugo_vec2 d = rugo_v2_sub(F[i], G[j]);
-                d2 = mn(d2, rugo_v2_dot(d, d));
-            }
-        if (d2 <= lim * lim * (1.0 - 64.0 * EPS)) return 0;
-    }
-    if (projection_gap(rugo_v2(1.0, 0.0), F, G) > thr) return 1;
-    if (projection_gap(rugo_v2(0.0, 1.0), F, G) > thr) return 1;
-    rugo_vec2 nf = chord_normal(F);
-    if ((nf.x != 0.0 || nf.y != 0.0) && projection_gap(nf, F, G) > thr) return 1;
-    rugo_vec2 ng = chord_normal(G);
-    if ((ng.x != 0.0 || ng.y != 0.0) && projection_gap(ng, F, G) > thr) return 1;
-    rugo_vec2 cf =
-        rugo_v2(0.25 * (F[0].x + F[1].x + F[2].x + F[3].x), 0.25 * (F[0].y + F[1].y + F[2].y + F[3].y));
-    rugo_vec2 cg =
-        rugo_v2(0.25 * (G[0].x + G[1].x + G[2].x + G[3].x), 0.25 * (G[0].y + G[1].y + G[2].y + G[3].y));
-    rugo_vec2 dc = rugo_v2_sub(cf, cg);
-    rugo_real lc = vlen(dc);
-    return lc > 0.0 && projection_gap(rugo_v2(dc.x / lc, dc.y / lc), F, G) > thr;
-}
-
-/* Whether four values are all above tau or all below -tau (as one_sign would find them). */
-static int corners_one_sign(rugo_real a, rugo_real b, rugo_real c, rugo_real d, rugo_real tau) {
-    return (a > tau && b > tau && c > tau && d > tau) || (a < -tau && b < -tau && c < -tau && d < -tau);
-}
-
-/* +1 / -1 if every value is above tau / below -tau, else 0. */
-static int one_sign(const rugo_real* v, int n, rugo_real tau) {
-    if (v[0] > tau) {
-        for (int i = 1; i < n; ++i)
-            if (!(v[i] > tau)) return 0;
-        return 1;
-    }
-    if (v[0] < -tau) {
-        for (int i = 1; i < n; ++i)
-            if (!(v[i] < -tau)) return 0;
-        return -1;
-    }
-    return 0;
-}
-
-/* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
- * (0 if not one-signed). */
-static int cone_sign_of(const rugo_real c[9], const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
-    rugo_real mf = 0.0, mg = 0.0, cmin = INFINITY;
-    int pos = 0, neg = 0;
-    for (int i = 0; i < 9; ++i) {
-        pos += c[i] > 0.0;
-        neg += c[i] < 0.0;
-    }
-    /* Not all of one strict sign: one_sign below gives 0 for any tau >= 0, without the lengths. */
-    if (pos != 9 && neg != 9) {
-        if (radius) *radius = INFINITY;
-        return 0;
-    }
-    for (int i = 0; i < 3; ++i) {
-        /* squared lengths: sqrt is monotone and correctly rounded, so the max of the roots is the
-         * root of the max, bit for bit */
-        mf = mx(mf, rugo_v2_dot(dF[i], dF[i]));
-        mg = mx(mg, rugo_v2_dot(dG[i], dG[i]));
-        for (int j = 0; j < 3; ++j)
-            cmin = mn(cmin, fabs(c[3 * i + j]));
-    }
-    mf = sqrt(mf);
-    mg = sqrt(mg);
-    int sign = one_sign(c, 9, 16.0 * EPS * mf * mg);
-    /* Over the box |det J| = |cross(f', g')| >= cmin and |J| <= mf + mg, so a point with |F| <= 16 eps
-     * (computed residual plus evaluation error) has a root within 2 * 16 eps (mf + mg) / cmin. */
-    if (radius) *radius = sign ? 32.0 * EPS * (mf + mg) / cmin : INFINITY;
-    return sign;
-}
-
-static int cone_sign(const rugo_vec2 dF[3], const rugo_vec2 dG[3], rugo_real* radius) {
-    rugo_real c[9];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            c[3 * i + j] = rugo_v2_cross(dF[i], dG[j]);
-    return cone_sign_of(c, dF, dG, radius);
-}
-
-/* The whole parameter square, where both searches start. */
-static int is_root(box b) { return b.s0 == 0.0 && b.s1 == 1.0 && b.t0 == 0.0 && b.t1 == 1.0; }
-
-/* cone_sign of the whole pieces, computed once for both searches (the sub-hodographs of the whole
- * square are the hodographs themselves). */
-static int root_cone(ctx* c) {
-    if (!c->root_cone_done) {
-        c->root_cone = cone_sign_of(c->root_cross, c->df, c->dg, &c->root_rho);
-        c->root_cone_done = 1;
-    }
-    return c->root_cone;
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Interval arithmetic (round-off is covered by explicit margins) */
-
-typedef struct ival {
-    rugo_real lo, hi;
-} ival;
-
-static ival iv(rugo_real lo, rugo_real hi) {
-    ival r;
-    r.lo = lo;
-    r.hi = hi;
-    return r;
-}
-static ival iv_add(ival a, ival b) { return iv(a.lo + b.lo, a.hi + b.hi); }
-static ival iv_neg(ival a) { return iv(-a.hi, -a.lo); }
-static ival iv_mul(ival a, ival b) {
-    rugo_real p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
-    return iv(mn(mn(p0, p1), mn(p2, p3)), mx(mx(p0, p1), mx(p2, p3)));
-}
-static ival iv_sq(ival a) {
-    rugo_real l = a.lo * a.lo, h = a.hi * a.hi;
-    if (a.lo <= 0.0 && a.hi >= 0.0) return iv(0.0, mx(l, h));
-    return iv(mn(l, h), mx(l, h));
-}
-static rugo_real iv_mag(ival a) { return mx(fabs(a.lo), fabs(a.hi)); }
-
-static ival iv_scale(rugo_real k, ival a) {
-    return k >= 0.0 ? iv(k * a.lo, k * a.hi) : iv(k * a.hi, k * a.lo);
-}
-
-/* Krawczyk's exclusion test (interval Newton). Every root in the box lies in
- *   K = m - Y v(m) + (I - Y J(box)) (box - m),
- * m the centre, v(m) the system there (round-off n), Y the inverse of the point Jacobian jc at m,
- * J(box) the interval Jacobian with rows (a b) and (c d). Returns 1 if K misses the box. */
-static int krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4],
-                             ival a, ival b, ival c, ival d) {
-    rugo_real det = jc[0] * jc[3] - jc[1] * jc[2];
-    if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
-    rugo_real y11 = jc[3] / det, y12 = -jc[1] / det, y21 = -jc[2] / det, y22 = jc[0] / det;
-    if (!isfinite(y11) || !isfinite(y12) || !isfinite(y21) || !isfinite(y22)) return 0;
-    ival m11 = iv_add(iv(1.0, 1.0), iv_neg(iv_add(iv_scale(y11, a), iv_scale(y12, c))));
-    ival m12 = iv_neg(iv_add(iv_scale(y11, b), iv_scale(y12, d)));
-    ival m21 = iv_neg(iv_add(iv_scale(y21, a), iv_scale(y22, c)));
-    ival m22 = iv_add(iv(1.0, 1.0), iv_neg(iv_add(iv_scale(y21, b), iv_scale(y22, d))));
-    rugo_real rs = 0.5 * (bx.s1 - bx.s0), rt = 0.5 * (bx.t1 - bx.t0);
-    rugo_real ms = bx.s0 + rs, mt = bx.t0 + rt;
-    rugo_real ps = y11 * v[0] + y12 * v[1], pt = y21 * v[0] + y22 * v[1];
-    rugo_real jm = mx(mx(iv_mag(a), iv_mag(b)), mx(iv_mag(c), iv_mag(d)));
-    rugo_real ys = fabs(y11) + fabs(y12), yt = fabs(y21) + fabs(y22);
-    /* widths, with the round-off of v, of the products and of the centre */
-    rugo_real ws = iv_mag(m11) * rs + iv_mag(m12) * rt + fabs(y11) * n[0] + fabs(y12) * n[1] +
-                   16.0 * EPS * (fabs(y11 * v[0]) + fabs(y12 * v[1]) + ys * jm * (rs + rt) + 1.0);
-    rugo_real wt = iv_mag(m21) * rs + iv_mag(m22) * rt + fabs(y21) * n[0] + fabs(y22) * n[1] +
-                   16.0 * EPS * (fabs(y21 * v[0]) + fabs(y22 * v[1]) + yt * jm * (rs + rt) + 1.0);
-    rugo_real ks = ms - ps, kt = mt - pt;
-    if (!isfinite(ks) || !isfinite(kt) || !isfinite(ws) || !isfinite(wt)) return 0;
-    return ks - ws > bx.s1 || ks + ws < bx.s0 || kt - wt > bx.t1 || kt + wt < bx.t0;
-}
-
-/* Componentwise ranges of a control polygon (n + 1 points). */
-static void iv_range(const rugo_vec2* p, int n, ival* x, ival* y) {
-    *x = iv(p[0].x, p[0].x);
-    *y = iv(p[0].y, p[0].y);
-    for (int i = 1; i <= n; ++i) {
-        x->lo = mn(x->lo, p[i].x);
-        x->hi = mx(x->hi, p[i].x);
-        y->lo = mn(y->lo, p[i].y);
-        y->hi = mx(y->hi, p[i].y);
-    }
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Root lists */
-
-/* Adds a root unless one within the larger of the two radii exists (a Newton root replaces a leaf
- * root). Returns 0 when the list is full (overflow). */
-static int add_root(root* list, int* n, int cap, rugo_real s, rugo_real t, rugo_real radius, int kind,
-                    int fb) {
-    for (int i = 0; i < *n; ++i) {
-        rugo_real r = mx(radius, list[i].radius);
-        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) {
-            if (list[i].fallback && !fb) {
-                list[i].s = s;
-                list[i].t = t;
-                list[i].radius = mx(radius, list[i].radius);
-                list[i].kind = kind;
-                list[i].fallback = 0;
-            }
-            return 1;
-        }
-    }
-    if (*n >= cap) return 0;
-    list[*n].s = s;
-    list[*n].t = t;
-    list[*n].radius = radius;
-    list[*n].kind = kind;
-    list[*n].fallback = fb;
-    ++*n;
-    return 1;
-}
-
-static int near_root(const root* list, int n, rugo_real s, rugo_real t, rugo_real r) {
-    for (int i = 0; i < n; ++i)
-        if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) return 1;
-    return 0;
-}
-
-/* Whether the box lies within the merge radius of a root accepted without a certificate. */
-static int covered(const root* list, int n, box b) {
-    for (int i = 0; i < n; ++i) {
-        if (!list[i].fallback) continue;
-        rugo_real r = list[i].radius;
-        if (fabs(b.s0 - list[i].s) <= r && fabs(b.s1 - list[i].s) <= r && fabs(b.t0 - list[i].t) <= r &&
-            fabs(b.t1 - list[i].t) <= r)
-            return 1;
-    }
-    return 0;
-}
-
-/* Dedupe radius from a condition estimate (uncertainty of a root ~ eps * condition). */
-static rugo_real root_radius(rugo_real cond) {
-    rugo_real r = 64.0 * EPS * cond;
-    if (!(r > R_ROOT)) r = R_ROOT;
-    if (r > R_FALLBACK) r = R_FALLBACK;
-    return r;
-}
-
-/* Whether (s,t) lies in the box widened by SLACK (DOM_SLACK at the edges of the domain). */
-static int in_box(box b, rugo_real s, rugo_real t) {
-    rugo_real sl = b.s0 == 0.0 ? DOM_SLACK : SLACK, sh = b.s1 == 1.0 ? DOM_SLACK : SLACK;
-    rugo_real tl = b.t0 == 0.0 ? DOM_SLACK : SLACK, th = b.t1 == 1.0 ? DOM_SLACK : SLACK;
-    return s >= b.s0 - sl && s <= b.s1 + sh && t >= b.t0 - tl && t <= b.t1 + th;
-}
-
-/* Whether the ball (max-norm) of radius rho around (s,t) lies in the box widened as in_box. */
-static int in_box_ball(box b, rugo_real s, rugo_real t, rugo_real rho) {
-    return in_box(b, s - rho, t - rho) && in_box(b, s + rho, t + rho);
-}
-
-static int in_domain(rugo_real s, rugo_real t) {
-    return s >= -DOM_SLACK && s <= 1.0 + DOM_SLACK && t >= -DOM_SLACK && t <= 1.0 + DOM_SLACK;
-}
-
-static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
-
-/* For a root (s, t) found outside box b (widened as in_box): the box E spanning b and the square of
- * half-width *r0 about the root, r0 half the root's max-norm distance to the widened box. 0 if the
- * root is not clearly outside. */
-static int exclusion_box(box b, rugo_real s, rugo_real t, box* e, rugo_real* r0) {
-    rugo_real sl = b.s0 == 0.0 ? DOM_SLACK : SLACK, sh = b.s1 == 1.0 ? DOM_SLACK : SLACK;
-    rugo_real tl = b.t0 == 0.0 ? DOM_SLACK : SLACK, th = b.t1 == 1.0 ? DOM_SLACK : SLACK;
-    rugo_real d = mx(mx((b.s0 - sl) - s, s - (b.s1 + sh)), mx((b.t0 - tl) - t, t - (b.t1 + th)));
-    if (!(d > 0.0) || !isfinite(d)) return 0;
-    *r0 = 0.5 * d;
-    e->s0 = mn(b.s0, s - *r0);
-    e->s1 = mx(b.s1, s + *r0);
-    e->t0 = mn(b.t0, t - *r0);
-    e->t1 = mx(b.t1, t + *r0);
-    return e->s1 > 0.0 && e->t1 > 0.0; /* (always: b lies in [0,1]^2 and has positive width) */
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Newton iterations */
-
-/* Whether (s,t) left the box lim widened by its own size on every side (lim may be NULL), or
- * [-0.5, 1.5]^2: then Newton gives up. */
-static int wandered(const box* lim, rugo_real s, rugo_real t) {
-    if (!(s >= -0.5 && s <= 1.5 && t >= -0.5 && t <= 1.5)) return 1;
-    if (!lim) return 0;
-    rugo_real ws = lim->s1 - lim->s0, wt = lim->t1 - lim->t0;
-    return s < lim->s0 - ws || s > lim->s1 + ws || t < lim->t0 - wt || t > lim->t1 + wt;
-}
-
-/* Newton on F = f(s) - g(t) (6.12). Returns 1 if it converged (residual at round-off or a step at
- * round-off); (s, t) is then the root. Otherwise (s, t) is the iterate with the smallest |F| and *res
- * its residual (max-norm, local frame). */
-static int newton_cross(ctx* c, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res, const rugo_vec2* start) {
-    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY, rr = INFINITY;
-    int conv = 0, tiny = 0;
-    for (int it = 0;; ++it) {
-        /* start (may be NULL): F, f', g' already evaluated at the starting point, as below */
-        rugo_vec2 r = it == 0 && start ? start[0] : rugo_v2_sub(bez(c->f, 3, x), bez(c->g, 3, y));
-        rr = vmax(r);
-        if (!(rr == rr)) break;
-        if (rr < bres) {
-            bres = rr;
-            bx = x;
-            by = y;
-        }
-        if (rr <= 4.0 * EPS || tiny) {
-            conv = 1;
-            break;
-        }
-        if (it >= NEWTON_MAX) break;
-        rugo_vec2 a = it == 0 && start ? start[1] : bez(c->df, 2, x);
-        rugo_vec2 b = rugo_v2_scale(-1.0, it == 0 && start ? start[2] : bez(c->dg, 2, y));
-        rugo_real det = rugo_v2_cross(a, b);
-        if (!(fabs(det) > 0.0)) break;
-        rugo_vec2 m = rugo_v2_scale(-1.0, r);
-        rugo_real ds = rugo_v2_cross(m, b) / det, dt = rugo_v2_cross(a, m) / det;
-        if (!isfinite(ds) || !isfinite(dt)) break;
-        x += ds;
-        y += dt;
-        ++c->newton;
-        tiny = mx(fabs(ds), fabs(dt)) <= 4.0 * EPS;
-        if (wandered(lim, x, y)) break;
-    }
-    if (conv) {
-        /* (converged right after evaluating F at (x, y)) */
-        *s = x;
-        *t = y;
-        *res = rr;
-    } else {
-        *s = bx;
-        *t = by;
-        *res = bres;
-    }
-    return conv;
-}
-
-/* The stationary system in one of three equivalent forms (away from crossings):
- *   STAT_HH: (H1, H2)  (6.14);
- *   STAT_CH2: (C, H2) with C = cross(f', g'), valid where g' != 0: f' parallel to g' and (f-g)·g' = 0
- *            give (f-g)·f' = 0 too;
- *   STAT_CH1: (C, H1), where f' != 0.
- * At a near-touching (distance d, curvature difference dk) the Jacobian of (H1, H2) has determinant
- * ~ d dk, that of (C, H) ~ dk: the second forms stay well conditioned down to touching curves, and
- * they do not have the transversal crossings as roots. */
-enum { STAT_HH = 0, STAT_CH2 = 1, STAT_CH1 = 2 };
-
-/* Values at a parameter pair for the stationary system. */
-typedef struct pair_eval {
-    rugo_vec2 r, fp, gp, fpp, gpp; /* r = f - g */
-    rugo_real h1, h2, n1, n2;      /* H and its round-off level */
-    rugo_real j11, j12, j21, j22;  /* dH/d(s,t) */
-    rugo_real cc, nc, cs, ct;      /* C, its round-off level, dC/ds, dC/dt */
-} pair_eval;
-
-static pair_eval eval_pair(const ctx* c, rugo_real s, rugo_real t) {
-    pair_eval e;
-    e.r = rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t));
-    e.fp = bez(c->df, 2, s);
-    e.gp = bez(c->dg, 2, t);
-    e.fpp = bez(c->ddf, 1, s);
-    e.gpp = bez(c->ddg, 1, t);
-    e.h1 = rugo_v2_dot(e.r, e.fp);
-    e.h2 = rugo_v2_dot(e.r, e.gp);
-    rugo_real lr = vlen(e.r), lf = vlen(e.fp), lg = vlen(e.gp);
-    e.n1 = 16.0 * EPS * lf * (1.0 + lr);
-    e.n2 = 16.0 * EPS * lg * (1.0 + lr);
-    rugo_real fg = rugo_v2_dot(e.fp, e.gp);
-    e.j11 = rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.r, e.fpp);
-    e.j12 = -fg;
-    e.j21 = fg;
-    e.j22 = -rugo_v2_dot(e.gp, e.gp) + rugo_v2_dot(e.r, e.gpp);
-    e.cc = rugo_v2_cross(e.fp, e.gp);
-    e.nc = 16.0 * EPS * lf * lg;
-    e.cs = rugo_v2_cross(e.fpp, e.gp);
-    e.ct = rugo_v2_cross(e.fp, e.gpp);
-    return e;
-}
-
-/* The system of the given form at e: values a, b, their round-off levels na, nb, Jacobian rows. */
-static void stat_system(const pair_eval* e, int mode, rugo_real v[2], rugo_real n[2], rugo_real j[4]) {
-    if (mode == STAT_HH) {
-        v[0] = e->h1, v[1] = e->h2, n[0] = e->n1, n[1] = e->n2;
-        j[0] = e->j11, j[1] = e->j12, j[2] = e->j21, j[3] = e->j22;
-    } else {
-        v[0] = e->cc, n[0] = e->nc, j[0] = e->cs, j[1] = e->ct;
-        if (mode == STAT_CH2) {
-            v[1] = e->h2, n[1] = e->n2, j[2] = e->j21, j[3] = e->j22;
-        } else {
-            v[1] = e->h1, n[1] = e->n1, j[2] = e->j11, j[3] = e->j12;
-        }
-    }
-}
-
-/* Newton on the stationary system in the given form, J u = -H. Same contract as newton_cross; *res
- * is the residual in units of its round-off level (0 when converged). */
-static int newton_stat(ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res,
-                       const pair_eval* start, pair_eval* last) {
-    rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
-    int conv = 0, tiny = 0;
-    for (int it = 0;; ++it) {
-        /* start (may be NULL): eval_pair at the starting point; last (may be NULL): gets the values at
-         * the root when converged (the loop stops right after evaluating there) */
-        pair_eval e = it == 0 && start ? *start : eval_pair(c, x, y);
-        if (last) *last = e;
-        rugo_real v[2], n[2], j[4];
-        stat_system(&e, mode, v, n, j);
-        rugo_real rr = mx(fabs(v[0]) / mx(n[0], DBL_MIN), fabs(v[1]) / mx(n[1], DBL_MIN));
-        if (!(rr == rr)) break;
-        if (rr < bres) {
-            bres = rr;
-            bx = x;
-            by = y;
-        }
-        if (rr <= 1.0 || tiny) {
-            conv = 1;
-            break;
-        }
-        if (it >= NEWTON_MAX) break;
-        rugo_real det = j[0] * j[3] - j[1] * j[2];
-        if (!(fabs(det) > 0.0)) break;
-        rugo_real ds = -(v[0] * j[3] - v[1] * j[1]) / det;
-        rugo_real dt = -(j[0] * v[1] - j[2] * v[0]) / det;
-        if (!isfinite(ds) || !isfinite(dt)) break;
-        x += ds;
-        y += dt;
-        ++c->newton;
-        tiny = mx(fabs(ds), fabs(dt)) <= 4.0 * EPS;
-        if (wandered(lim, x, y)) break;
-    }
-    if (conv) {
-        *s = x;
-        *t = y;
-    } else {
-        *s = bx;
-        *t = by;
-    }
-    *res = conv ? 0.0 : bres;
-    return conv;
-}
-
-/* 1 if the hull of a hodograph's control points (3) keeps away from the origin. */
-static int hodograph_nonzero(const rugo_vec2 d[3]) {
-    rugo_real m = mx(mx(vlen(d[0]), vlen(d[1])), vlen(d[2]));
-    rugo_vec2 dirs[4] = {d[0], d[1], d[2], rugo_v2_add(d[0], d[2])};
-    for (int k = 0; k < 4; ++k) {
-        rugo_real l = vlen(dirs[k]);
-        if (!(l > 0.0)) continue;
-        /* min_i (x_i / l) = (min_i x_i) / l for l > 0, as rounded division is monotone: one division
-         * instead of three, the same value (up to the sign of an underflowed zero, which the test
-         * below cannot see) */
-        rugo_real lo = INFINITY;
-        for (int i = 0; i < 3; ++i)
-            lo = mn(lo, rugo_v2_dot(dirs[k], d[i]));
-        lo = lo / l;
-        if (lo > 1e-9 * m) return 1;
-    }
-    return 0;
-}
-
-/* The sub-pieces of one piece on the parameter range [a, b] of the last box (a depth-first search
- * splits one parameter at a time, so the next box often keeps the other's range): sub_bezier of the
- * piece (P), its hodograph (dP) and, once asked for, its second derivative (ddP). */
-typedef struct piece_memo {
-    rugo_real a, b;
-    int have_dd;
-    rugo_vec2 P[4], dP[3], ddP[2];
-} piece_memo;
-
-static void memo_init(piece_memo* m) {
-    m->a = m->b = -1.0; /* no box has this range */
-    m->have_dd = 0;
-}
-
-static void memo_range(piece_memo* m, const rugo_vec2 p[4], const rugo_vec2 dp[3], rugo_real a, rugo_real b) {
-    if (a == m->a && b == m->b) return;
-    sub_bezier(p, 3, a, b, m->P);
-    sub_bezier(dp, 2, a, b, m->dP);
-    m->a = a;
-    m->b = b;
-    m->have_dd = 0;
-}
-
-static void memo_dd(piece_memo* m, const rugo_vec2 ddp[2]) {
-    if (m->have_dd) return;
-    sub_bezier(ddp, 1, m->a, m->b, m->ddP);
-    m->have_dd = 1;
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Crossings */
-
-static int push_box(box* st, int* ns, rugo_real s0, rugo_real s1, rugo_real t0, rugo_real t1) {
-    if (*ns >= STACK_MAX) return 0;
-    st[*ns].s0 = s0;
-    st[*ns].s1 = s1;
-    st[*ns].t0 = t0;
-    st[*ns].t1 = t1;
-    ++*ns;
-    return 1;
-}
-
-/* Splits b into two halves on the stack (first half on top). Returns 0 if nothing can be split. */
-static int split_box(box* st, int* ns, box b, rugo_real diam_f, rugo_real diam_g) {
-    int can_s = b.s1 - b.s0 > H_MIN && diam_f > D_MIN;
-    int can_t = b.t1 - b.t0 > H_MIN && diam_g > D_MIN;
-    if (!can_s && !can_t) return 0;
-    if (can_s && (!can_t || diam_f >= diam_g)) {
-        rugo_real m = 0.5 * (b.s0 + b.s1);
-        push_box(st, ns, m, b.s1, b.t0, b.t1);
-        push_box(st, ns, b.s0, m, b.t0, b.t1);
-    } else {
-        rugo_real m = 0.5 * (b.t0 + b.t1);
-        push_box(st, ns, b.s0, b.s1, m, b.t1);
-        push_box(st, ns, b.s0, b.s1, b.t0, m);
-    }
-    return 1;
-}
-
-/* Newton found a crossing (s, t) outside box b (residual res). If the tangents are not parallel
- * anywhere on a box E spanning b and a ball about the root, E holds at most one crossing (see the
- * top of the file), the certain one in the ball, which lies outside b: b holds none. */
-static int cross_excluded(const ctx* c, box b, rugo_real s, rugo_real t, rugo_real res) {
-    box e;
-    rugo_real r0, unit;
-    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
-    rugo_vec2 dF[3], dG[3];
-    sub_bezier(c->df, 2, e.s0, e.s1, dF);
-    sub_bezier(c->dg, 2, e.t0, e.t1, dG);
-    if (cone_sign(dF, dG, &unit) == 0) return 0;
-    /* cone_sign's radius holds for a residual of 16 eps; it scales with the residual */
-    const rugo_real rho = unit * (res + 16.0 * EPS) / (16.0 * EPS);
-    return rho < r0;
-}
-
-static void search_crossings(ctx* c) {
-    box st[STACK_MAX];
-    int ns = 0, boxes = 0;
-    piece_memo mf, mg;
-    memo_init(&mf);
-    memo_init(&mg);
-    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
-    while (ns > 0) {
-        box b = st[--ns];
-        if (covered(c->cross, c->ncross, b)) continue;
-        if (++boxes > BOX_BUDGET) {
-            c->overflow = 1;
-            ++c->fallback;
-            return;
-        }
-        memo_range(&mf, c->f, c->df, b.s0, b.s1);
-        memo_range(&mg, c->g, c->dg, b.t0, b.t1);
-        const rugo_vec2 *F = mf.P, *G = mg.P;
-        const int whole = is_root(b);
-        if (whole ? c->root_apart : hull_gap_above(F, G, TAU_F)) continue;
-        rugo_real diam_f = poly_diam(F, 3), diam_g = poly_diam(G, 3);
-        rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
-        const rugo_vec2 *dF = mf.dP, *dG = mg.dP;
-        rugo_vec2 centre[3]; /* F, f', g' at the centre (sc, tc) */
-        {
-            /* interval Newton: J = [f' -g'] over the box */
-            ival fpx, fpy, gpx, gpy;
-            iv_range(dF, 2, &fpx, &fpy);
-            iv_range(dG, 2, &gpx, &gpy);
-            centre[0] = rugo_v2_sub(bez(c->f, 3, sc), bez(c->g, 3, tc));
-            centre[1] = bez(c->df, 2, sc);
-            centre[2] = bez(c->dg, 2, tc);
-            const rugo_vec2 r = centre[0], fp = centre[1], gp = centre[2];
-            rugo_real v[2] = {r.x, r.y}, n[2] = {8.0 * EPS, 8.0 * EPS};
-            rugo_real jc[4] = {fp.x, -gp.x, fp.y, -gp.y};
-            if (krawczyk_excludes(b, v, n, jc, fpx, iv_neg(gpx), fpy, iv_neg(gpy))) continue;
-        }
-        rugo_real rho;
-        int sign;
-        if (whole) {
-            sign = root_cone(c);
-            rho = c->root_rho;
-        } else {
-            sign = cone_sign(dF, dG, &rho);
-        }
-        if (sign != 0) {
-            rugo_real s = sc, t = tc, res;
-            /* The root must be certain to exist in the box: its uncertainty ball inside the box (a
-             * numerical zero next to a touching has a ball as large as its distance to it). */
-            const int conv = newton_cross(c, &b, &s, &t, &res, centre);
-            if (conv && in_box_ball(b, s, t, rho)) {
-                rugo_vec2 fp = bez(c->df, 2, s), gp = bez(c->dg, 2, t);
-                rugo_real cond = (rugo_v2_dot(fp, fp) + rugo_v2_dot(gp, gp)) / fabs(rugo_v2_cross(fp, gp));
-                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, root_radius(cond), sign, 0)) {
-                    c->overflow = 1;
-                    return;
-                }
-                continue;
-            }
-            if (conv && cross_excluded(c, b, s, t, res)) continue;
-        }
-        if (sign == 0 && mx(b.s1 - b.s0, b.t1 - b.t0) <= H_TOUCH) {
-            /* Small, tangents not separated: maybe a touching. Its point is a well-conditioned root of
-             * (C, H) (stationary forms), which Newton finds; at distance ~0 it is recorded (kind by
-             * probing) and everything within R_FALLBACK of it is resolved. */
-            int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
-            rugo_real s = sc, t = tc, res;
-            if (newton_stat(c, mode, &b, &s, &t, &res, NULL, NULL) && in_domain(s, t) &&
-                vmax(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t))) <= TAU_TOUCH) {
-                ++c->fallback;
-                if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
-                    c->overflow = 1;
-                    return;
-                }
-                if (covered(c->cross, c->ncross, b)) continue;
-            }
-        }
-        if (split_box(st, &ns, b, diam_f, diam_g)) continue;
-        /* A leaf: the root (if any) is tangential or degenerate. */
-        ++c->fallback;
-        if (near_root(c->cross, c->ncross, sc, tc, R_FALLBACK)) continue;
-        rugo_real s = sc, t = tc, res;
-        newton_cross(c, &b, &s, &t, &res, centre);
-        if (res <= TAU_TOUCH && in_domain(s, t)) {
-            if (!add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, KIND_PROBE, 1)) {
-                c->overflow = 1;
-                return;
-            }
-        }
-    }
-}
-
-/* Unit tangent of f at s, or 0 for a point. Where f' is below 1e-9 of the hodograph (next to a
- * zero-speed end, as at three coincident control points) the direction of the chord over
- * [s - h, s + h] within the domain: f'' there points backwards on the side before the zero
- * (f' ~ (1 - s)^2 a, f'' ~ -2 (1 - s) a), which made crossings next to a sharp corner "touching";
- * the chord, the integral of f', does not turn. */
-static rugo_vec2 tangent_f(const ctx* c, rugo_real s) {
-    rugo_vec2 d = bez(c->df, 2, s);
-    rugo_real scale = vmax(c->df[0]) + vmax(c->df[1]) + vmax(c->df[2]);
-    rugo_real l = vlen(d);
-    if (!(l > 1e-9 * scale)) {
-        const rugo_real h = 1.0 / 1024.0;
-        d = rugo_v2_sub(bez(c->f, 3, mn(s + h, 1.0)), bez(c->f, 3, mx(s - h, 0.0)));
-        l = vlen(d);
-    }
-    if (!(l > 0.0)) return rugo_v2(0.0, 0.0);
-    return rugo_v2(d.x / l, d.y / l);
-}
-
-/* Signed distance of p from f near parameter s (positive: left of f', the inside of a CCW curve),
- * from a local projection of p on f. */
-static rugo_real side_of(ctx* c, rugo_real s, rugo_vec2 p) {
-    rugo_real x = s;
-    for (int it = 0; it < 16; ++it) {
-        rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, x), p), fp = bez(c->df, 2, x), fpp = bez(c->ddf, 1, x);
-        rugo_real num = rugo_v2_dot(r, fp), den = rugo_v2_dot(fp, fp) + rugo_v2_dot(r, fpp);
-        if (!(den > 0.0)) den = rugo_v2_dot(fp, fp);
-        if (!(den > 0.0)) break;
-        rugo_real step = -num / den;
-        if (step > 0.05) step = 0.05;
-        if (step < -0.05) step = -0.05;
-        x += step;
-        ++c->newton;
-        if (fabs(step) <= 4.0 * EPS) break;
-    }
-    return rugo_v2_cross(tangent_f(c, x), rugo_v2_sub(p, bez(c->f, 3, x)));
-}
-
-/* Kind of a (near-)tangential crossing: on which side of f does g lie just before and after t. */
-static int probe_crossing_kind(ctx* c, rugo_real s, rugo_real t) {
-    static const rugo_real delta[5] = {1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
-    for (int k = 0; k < 5; ++k) {
-        rugo_real before = side_of(c, s, bez(c->g, 3, t - delta[k]));
-        rugo_real after = side_of(c, s, bez(c->g, 3, t + delta[k]));
-        if (fabs(before) > 64.0 * EPS && fabs(after) > 64.0 * EPS) {
-            if (before < 0.0 && after > 0.0) return 1;
-            if (before > 0.0 && after < 0.0) return -1;
-            return 0;
-        }
-    }
-    return 0;
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Stationary pairs */
-
-/* Interval bounds over the box of the Jacobian of the stationary system (form `mode`), rows (a b)
- * and (c d). */
-static void stat_jacobian(int mode, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
-                          const rugo_vec2 dG[3], const rugo_vec2 ddF[2], const rugo_vec2 ddG[2], ival J[4]) {
-    ival fx, fy, gx, gy, fpx, fpy, gpx, gpy, fppx, fppy, gppx, gppy;
-    iv_range(F, 3, &fx, &fy);
-    iv_range(G, 3, &gx, &gy);
-    iv_range(dF, 2, &fpx, &fpy);
-    iv_range(dG, 2, &gpx, &gpy);
-    iv_range(ddF, 1, &fppx, &fppy);
-    iv_range(ddG, 1, &gppx, &gppy);
-    ival rx = iv_add(fx, iv_neg(gx)), ry = iv_add(fy, iv_neg(gy));
-    ival h1s = iv_add(iv_add(iv_sq(fpx), iv_sq(fpy)), iv_add(iv_mul(rx, fppx), iv_mul(ry, fppy)));
-    ival fg = iv_add(iv_mul(fpx, gpx), iv_mul(fpy, gpy));
-    ival h1t = iv_neg(fg), h2s = fg;
-    ival h2t = iv_add(iv_neg(iv_add(iv_sq(gpx), iv_sq(gpy))), iv_add(iv_mul(rx, gppx), iv_mul(ry, gppy)));
-    if (mode == STAT_HH) {
-        J[0] = h1s, J[1] = h1t, J[2] = h2s, J[3] = h2t;
-    } else {
-        J[0] = iv_add(iv_mul(fppx, gpy), iv_neg(iv_mul(fppy, gpx))); /* dC/ds = cross(f'', g') */
-        J[1] = iv_add(iv_mul(fpx, gppy), iv_neg(iv_mul(fpy, gppx))); /* dC/dt = cross(f', g'') */
-        if (mode == STAT_CH2)
-            J[2] = h2s, J[3] = h2t;
-        else
-            J[2] = h1s, J[3] = h1t;
-    }
-}
-
-/* 1 if the interval Jacobian is non-singular between any two points of the box (rows taken at
- * independent points), so the box holds at most one root: two roots would give, by the mean value
- * theorem on the segment between them, gradients of both equations normal to it. Also a lower bound
- * of |det| and an upper bound of the entries, for the existence radius. */
-static int jacobian_regular(const ival J[4], rugo_real* detmin, rugo_real* jmax) {
-    ival det = iv_add(iv_mul(J[0], J[3]), iv_neg(iv_mul(J[1], J[2])));
-    rugo_real margin = 64.0 * EPS * (iv_mag(J[0]) * iv_mag(J[3]) + iv_mag(J[1]) * iv_mag(J[2]));
-    *detmin = mn(fabs(det.lo), fabs(det.hi));
-    *jmax = mx(mx(iv_mag(J[0]), iv_mag(J[1])), mx(iv_mag(J[2]), iv_mag(J[3])));
-    return det.lo > margin || det.hi < -margin;
-}
-
-/* W[i][k] = C(3,i) C(2,k) / C(5,i+k): the product of degree-3 and degree-2 Bernstein polynomials. */
-static const rugo_real W32[4][3] = {{1.0, 0.4, 0.1}, {0.6, 0.6, 0.3}, {0.3, 0.6, 0.6}, {0.1, 0.4, 1.0}};
-
-/* The last test of stat_prune: 1 if the hulls keep more than the cutoff apart (never for the whole
- * square, whose hull test solve has already made). */
-static int hull_left(const ctx* c, int whole, const rugo_vec2 F[4], const rugo_vec2 G[4]) {
-    return !whole && hull_gap_above(F, G, c->cutoff + TAU_F);
-}
-
-/* 1 if the box provably holds no stationary pair (with f != g) within the cutoff. When it returns 0,
- * *ec holds the values at the box's centre (the Jacobian of (H1, H2) there preconditions the last
- * tests; the caller needs them too). */
-static int stat_prune(ctx* c, box bx, const rugo_vec2 F[4], const rugo_vec2 G[4], const rugo_vec2 dF[3],
-                      const rugo_vec2 dG[3], pair_eval* ec) {
-    /* The box is pruned if any test below proves it empty; they are pure, so their order does not
-     * change the answer. The cone test prunes most sub-boxes and is cheap: first. The hull test
-     * (cutoff) rarely prunes: it runs last, only for a box that the others leave (hull_left). (The
-     * hull test of the whole square is known to fail when the search runs: see solve.) */
-    const int whole = is_root(bx);
-    if (whole ? root_cone(c) != 0 : cone_sign(dF, dG, NULL) != 0) return 1;
-    rugo_vec2 D[4][4];
-    rugo_real md = 0.0, mf = 0.0, mg = 0.0;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-            D[i][j] = rugo_v2_sub(F[i], G[j]);
-            md = mx(md, vmax(D[i][j]));
-        }
-    for (int k = 0; k < 3; ++k) {
-        mf = mx(mf, vmax(dF[k]));
-        mg = mx(mg, vmax(dG[k]));
-    }
-    rugo_real tau1 = 32.0 * EPS * mf * (1.0 + md);
-    rugo_real tau2 = 32.0 * EPS * mg * (1.0 + md);
-    {
-        /* The four tests below need all their coefficients of one strict sign; the corner
-         * coefficients (the values at the box's corners, one product each, computed here with the same
-         * operations as below) decide most failures. When every test already fails at its corners the
-         * box is not pruned, without the ~200 products of the full coefficient arrays. */
-        const rugo_real a0 = rugo_v2_dot(D[0][0], dF[0]), a1 = rugo_v2_dot(D[0][3], dF[0]);
-        const rugo_real a2 = rugo_v2_dot(D[3][0], dF[2]), a3 = rugo_v2_dot(D[3][3], dF[2]);
-        const rugo_real b0 = rugo_v2_dot(D[0][0], dG[0]), b1 = rugo_v2_dot(D[0][3], dG[2]);
-        const rugo_real b2 = rugo_v2_dot(D[3][0], dG[0]), b3 = rugo_v2_dot(D[3][3], dG[2]);
-        if (!corners_one_sign(a0, a1, a2, a3, tau1) && !corners_one_sign(b0, b1, b2, b3, tau2)) {
-            *ec = eval_pair(c, 0.5 * (bx.s0 + bx.s1), 0.5 * (bx.t0 + bx.t1));
-            int maybe = 0;
-            for (int r = 0; r < 2 && !maybe; ++r) {
-                const rugo_real a = r == 0 ? ec->j22 : -ec->j21, b = r == 0 ? -ec->j12 : ec->j11;
-                /* e1 and e2 at the corners (m, n) = (0,0), (0,5), (5,0), (5,5) are the corners of H1
-                 * and H2 (degree elevation keeps end coefficients) */
-                maybe = corners_one_sign(a * a0 + b * b0, a * a1 + b * b1, a * a2 + b * b2, a * a3 + b * b3,
-                                         2.0 * (fabs(a) * tau1 + fabs(b) * tau2));
-            }
-            if (!maybe) return hull_left(c, whole, F, G);
-        }
-    }
-    /* Bernstein products: coefficient m = i + k collects W32[i][k] x_i y_k, summed in increasing i
-     * (the loops below run i outside k, so each sum is accumulated in that order). */
-    rugo_real h1[24], h2[24];
-    /* H1: index m (s, degree 5) * 4 + j (t, degree 3). */
-    for (int q = 0; q < 24; ++q)
-        h1[q] = 0.0;
-    for (int i = 0; i < 4; ++i)
-        for (int k = 0; k < 3; ++k) {
-            const rugo_real w = W32[i][k];
-            rugo_real* row = h1 + 4 * (i + k);
-            for (int j = 0; j < 4; ++j)
-                row[j] += w * rugo_v2_dot(D[i][j], dF[k]);
-        }
-    if (one_sign(h1, 24, tau1) != 0) return 1;
-    /* H2: index i (s, degree 3) * 6 + n (t, degree 5). */
-    for (int q = 0; q < 24; ++q)
-        h2[q] = 0.0;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 3; ++k)
-                h2[6 * i + j + k] += W32[j][k] * rugo_v2_dot(D[i][j], dG[k]);
-    if (one_sign(h2, 24, tau2) != 0) return 1;
-    /* Preconditioned: the rows of adj(J) (H1, H2), J the Jacobian at the centre, in the common degree
-     * (5, 5). Each is H1 or H2 with its first-order dependence on one parameter removed, so it keeps
-     * one sign on boxes that are far from a root only along a valley of nearly parallel curves, where
-     * H1 and H2 alone vanish all along. (Degree elevation by 2 is the product with 1 = sum B^2_k.) */
-    rugo_real e1[36], e2[36];
-    for (int q = 0; q < 36; ++q)
-        e1[q] = e2[q] = 0.0;
-    for (int m = 0; m < 6; ++m)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 3; ++k)
-                e1[6 * m + j + k] += W32[j][k] * h1[4 * m + j];
-    for (int i = 0; i < 4; ++i)
-        for (int k = 0; k < 3; ++k) {
-            const rugo_real w = W32[i][k];
-            rugo_real* row = e2 + 6 * (i + k);
-            for (int n = 0; n < 6; ++n)
-                row[n] += w * h2[6 * i + n];
-        }
-    /* (the centre's values are needed from here on only) */
-    *ec = eval_pair(c, 0.5 * (bx.s0 + bx.s1), 0.5 * (bx.t0 + bx.t1));
-    const rugo_real jc[4] = {ec->j11, ec->j12, ec->j21, ec->j22};
-    rugo_real p[36];
-    for (int r = 0; r < 2; ++r) {
-        rugo_real a = r == 0 ? jc[3] : -jc[2], b = r == 0 ? -jc[1] : jc[0];
-        for (int k = 0; k < 36; ++k)
-            p[k] = a * e1[k] + b * e2[k];
-        if (one_sign(p, 36, 2.0 * (fabs(a) * tau1 + fabs(b) * tau2)) != 0) return 1;
-    }
-    return hull_left(c, whole, F, G);
-}
-
-/* Dedupe radius of a stationary root from the values e there. */
-static rugo_real stat_radius_of(const pair_eval* e) {
-    rugo_real det = fabs(e->j11 * e->j22 - e->j12 * e->j21);
-    rugo_real fro = e->j11 * e->j11 + e->j12 * e->j12 + e->j21 * e->j21 + e->j22 * e->j22;
-    return root_radius(det > 0.0 ? fro / det : INFINITY);
-}
-
-/* Newton found a root (s, t) of the stationary system (form mode) outside box b. If
- * the interval Jacobian is regular on a box E spanning b and a ball about the root, E holds at most
- * one root of that system, the certain one in the ball (existence as in search_stationary), which
- * lies outside b: b holds no stationary pair. (Every stationary pair in b is a root of the form, which
- * was chosen for b; what the form does outside b only matters through the uniqueness on E.) Without
- * this, a root just beyond a box edge (typically a minimum in the neighbouring segment) makes the
- * search subdivide toward that edge down to the root's distance. */
-static int stat_excluded(const ctx* c, int mode, box b, rugo_real s, rugo_real t, const pair_eval* ev) {
-    box e;
-    rugo_real r0;
-    if (!exclusion_box(b, s, t, &e, &r0)) return 0;
-    rugo_vec2 F[4], G[4], dF[3], dG[3], ddF[2], ddG[2];
-    sub_bezier(c->f, 3, e.s0, e.s1, F);
-    sub_bezier(c->g, 3, e.t0, e.t1, G);
-    sub_bezier(c->df, 2, e.s0, e.s1, dF);
-    sub_bezier(c->dg, 2, e.t0, e.t1, dG);
-    sub_bezier(c->ddf, 1, e.s0, e.s1, ddF);
-    sub_bezier(c->ddg, 1, e.t0, e.t1, ddG);
-    ival J[4];
-    stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
-    rugo_real detmin, jmax;
-    if (!jacobian_regular(J, &detmin, &jmax)) return 0;
-    rugo_real w[2], n[2], j[4];
-    stat_system(ev, mode, w, n, j);
-    /* distance to the root <= |system|_2 / sigma_min, sigma_min >= detmin / (2 jmax) */
-    const rugo_real rho = 4.0 * (mx(fabs(w[0]), fabs(w[1])) + mx(n[0], n[1])) * jmax / detmin;
-    return rho < r0;
-}
-
-static void search_stationary(ctx* c) {
-    box st[STACK_MAX];
-    int ns = 0, boxes = 0;
-    piece_memo mf, mg;
-    memo_init(&mf);
-    memo_init(&mg);
-    push_box(st, &ns, 0.0, 1.0, 0.0, 1.0);
-    while (ns > 0) {
-        box b = st[--ns];
-        if (covered(c->stat, c->nstat, b)) continue;
-        if (++boxes > BOX_BUDGET) {
-            c->overflow = 1;
-            ++c->fallback;
-            return;
-        }
-        memo_range(&mf, c->f, c->df, b.s0, b.s1);
-        memo_range(&mg, c->g, c->dg, b.t0, b.t1);
-        const rugo_vec2 *F = mf.P, *G = mg.P, *dF = mf.dP, *dG = mg.dP;
-        rugo_real sc = 0.5 * (b.s0 + b.s1), tc = 0.5 * (b.t0 + b.t1);
-        pair_eval ec;
-        if (stat_prune(c, b, F, G, dF, dG, &ec)) continue;
-        memo_dd(&mf, c->ddf);
-        memo_dd(&mg, c->ddg);
-        const rugo_vec2 *ddF = mf.ddP, *ddG = mg.ddP;
-        int mode = hodograph_nonzero(dG) ? STAT_CH2 : (hodograph_nonzero(dF) ? STAT_CH1 : STAT_HH);
-        ival J[4];
-        stat_jacobian(mode, F, G, dF, dG, ddF, ddG, J);
-        {
-            rugo_real v[2], n[2], jc[4];
-            stat_system(&ec, mode, v, n, jc);
-            if (krawczyk_excludes(b, v, n, jc, J[0], J[1], J[2], J[3])) continue;
-        }
-        rugo_real detmin, jmax;
-        if (jacobian_regular(J, &detmin, &jmax)) {
-            rugo_real s = sc, t = tc, res;
-            pair_eval e; /* eval_pair(c, s, t) at the root */
-            if (newton_stat(c, mode, &b, &s, &t, &res, &ec, &e)) {
-                /* existence: |system| <= 2 n at the root and sigma_min(J) >= detmin / (2 jmax) */
-                rugo_real v[2], n[2], j[4];
-                stat_system(&e, mode, v, n, j);
-                rugo_real rho = 4.0 * mx(n[0], n[1]) * jmax / detmin;
-                /* (a root on a box edge, e.g. by symmetry, with a ball larger than SLACK: accept when
-                 * the ball is small against the box) */
-                if (in_box_ball(b, s, t, rho) ||
-                    (in_box(b, s, t) && rho <= 0.125 * mn(b.s1 - b.s0, b.t1 - b.t0))) {
-                    if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, stat_radius_of(&e), 0, 0)) {
-                        c->overflow = 1;
-                        return;
-                    }
-                    continue;
-                }
-                if (stat_excluded(c, mode, b, s, t, &e)) continue;
-            }
-        } else if (mx(b.s1 - b.s0, b.t1 - b.t0) <= H_ACC) {
-            /* Small but still not certified: a (nearly) degenerate stationary pair, e.g. curves almost
-             * touching, where the Hessian is nearly singular along a long valley. Accept the Newton
-             * root if it lies in the box, and consider everything within R_MERGE resolved. */
-            rugo_real s = sc, t = tc, res;
-            if (newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL) && in_box(b, s, t)) {
-                ++c->fallback;
-                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
-                    c->overflow = 1;
-                    return;
-                }
-                continue;
-            }
-        }
-        if (split_box(st, &ns, b, poly_diam(F, 3), poly_diam(G, 3))) continue;
-        /* A leaf. */
-        ++c->fallback;
-        rugo_real s = sc, t = tc, res;
-        newton_stat(c, mode, &b, &s, &t, &res, &ec, NULL);
-        if (res <= 1024.0 && in_domain(s, t)) {
-            if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
-                c->overflow = 1;
-                return;
-            }
-        }
-    }
-}
-
-static rugo_real half_dist2(const ctx* c, rugo_real s, rugo_real t) {
-    rugo_vec2 r = rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t));
-    return 0.5 * rugo_v2_dot(r, r);
-}
-
-/* Whether a root parameter is at an end of the domain, where a piece that stops there (zero speed)
- * gives the systems a multiple root, located only to ~1e-5 in parameter (the position to ~1e-15 of the
- * piece, its offset from the end growing with the third power of the parameter's). Such roots are
- * moved onto the end (snap_to_zero_speed_end) and classified from the piece's side. */
-static int near_end(rugo_real u) { return u <= END_ZONE || u >= 1.0 - END_ZONE; }
-
-/* Whether (s, t) lies in the parameter square, up to a hair. Beyond it the pieces' polynomials are
- * extrapolated past their segments' ends, and that is not the curve: at a zero-speed corner (three
- * coincident control points) the extrapolated cubic runs on along the same side, while the curve turns
- * into the next segment. */
-static int in_unit(rugo_real u) { return u >= -1e-12 && u <= 1.0 + 1e-12; }
-static int in_square(rugo_real s, rugo_real t) { return in_unit(s) && in_unit(t); }
-
-/* +1 if D rises both ways along v (or stays flat), -1 if it falls both ways, 0 otherwise; from the
- * smallest step that changes D beyond its round-off. Where one way leaves the parameter square, the way
- * that stays inside decides alone (+1 rising, -1 falling) and *one_sided is set: the other side belongs
- * to the neighbouring segment. */
-static int probe_direction(const ctx* c, rugo_real s, rugo_real t, rugo_vec2 v, int* one_sided) {
-    static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
-    rugo_real d0 = half_dist2(c, s, t);
-    /* D = |r|^2/2 with |r| good to a few ulps of the O(1) coordinates */
-    rugo_real noise = 16.0 * EPS * (sqrt(2.0 * d0) + EPS);
-    for (int k = 0; k < 6; ++k) {
-        const rugo_real sp = s + delta[k] * v.x, tp = t + delta[k] * v.y;
-        const rugo_real sm = s - delta[k] * v.x, tm = t - delta[k] * v.y;
-        const int inp = in_square(sp, tp), inm = in_square(sm, tm);
-        if (inp != inm) {
-            const rugo_real d1 = inp ? half_dist2(c, sp, tp) - d0 : half_dist2(c, sm, tm) - d0;
-            if (fabs(d1) > noise) {
-                *one_sided = 1;
-                return d1 > 0.0 ? 1 : -1;
-            }
-            continue;
-        }
-        /* both ways inside (or both outside, at a corner of the square: extrapolated, as before) */
-        rugo_real dp = half_dist2(c, sp, tp) - d0;
-        rugo_real dm = half_dist2(c, sm, tm) - d0;
-        if (fabs(dp) > noise && fabs(dm) > noise) {
-            if (dp > 0.0 && dm > 0.0) return 1;
-            if (dp < 0.0 && dm < 0.0) return -1;
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/* Whether a speed |d| is round-off against a derivative size m of its piece. */
-static int zero_speed(rugo_vec2 d, rugo_real m) { return rugo_v2_dot(d, d) <= 1e3 * EPS * m * m; }
-
-/* zero_speed against the size of the piece's hodograph control points h[3]. */
-static int speed_vanishes(rugo_vec2 d, const rugo_vec2 h[3]) {
-    return zero_speed(d, mx(vmax(h[0]), mx(vmax(h[1]), vmax(h[2]))));
-}
-
-/* Moves a stationary pair near an end where its piece stops onto that end (near_end). */
-static void snap_to_zero_speed_end(const ctx* c, rugo_real* s, rugo_real* t) {
-    if (near_end(*s) && speed_vanishes(bez(c->df, 2, *s), c->df)) *s = *s < 0.5 ? 0.0 : 1.0;
-    if (near_end(*t) && speed_vanishes(bez(c->dg, 2, *t), c->dg)) *t = *t < 0.5 ? 0.0 : 1.0;
-}
-
-/* Whether (s, t) is at an end of a piece's domain where that piece's speed vanishes: a corner made by
- * coincident control points, which the piece reaches only from one side. */
-static int at_zero_speed_end(const ctx* c, const pair_eval* e, rugo_real s, rugo_real t) {
-    return (near_end(s) && speed_vanishes(e->fp, c->df)) || (near_end(t) && speed_vanishes(e->gp, c->dg));
-}
-
-/* Minimum / saddle / maximum from the Hessian of D = |f-g|^2/2, whose entries are
- * D_ss = J11, D_st = J12 = -f'·g', D_tt = -J22. A minimum decided from one side only (a probe that
- * could not look past the end of the domain, or any minimum at a zero-speed end, where the piece's
- * polynomial does not continue as the curve does) is RUGO__END_MINIMUM: the caller confirms it with
- * the neighbouring segment's classification of the same point. */
-static int classify_stat(const ctx* c, rugo_real s, rugo_real t, rugo_real dist) {
-    if (dist <= TAU_TOUCH) return RUGO__MINIMUM;
-    pair_eval e = eval_pair(c, s, t);
-    rugo_real a = e.j11, b = e.j12, d = -e.j22;
-    rugo_real scale =
-        rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.gp, e.gp) + vlen(e.r) * (vlen(e.fpp) + vlen(e.gpp));
-    rugo_real m = 0.5 * (a + d), q = hypot(0.5 * (a - d), b);
-    /* the entries are good to a few ulps of scale; so are the eigenvalues */
-    rugo_real l1 = m - q, l2 = m + q, tol = 1e3 * EPS * scale;
-    if (at_zero_speed_end(c, &e, s, t)) {
-        /* Where a piece stops, its derivatives are round-off (both pieces' at two corners facing each
-         * other), and so is the Hessian. Look along each piece on its own instead, only into the domain
-         * where it stops (reparametrised by the arc from the corner, the distance is first-order in it
-         * there, so rising along each piece is a minimum of the quadrant or half-plane). */
-        int one_sided = 1;
-        const int us = probe_direction(c, s, t, rugo_v2(1.0, 0.0), &one_sided);
-        const int ut = probe_direction(c, s, t, rugo_v2(0.0, 1.0), &one_sided);
-        if (us > 0 && ut > 0) return RUGO__END_MINIMUM;
-        if (us < 0 && ut < 0) return RUGO__MAXIMUM;
-        return RUGO__SADDLE;
-    }
-    if (l1 > tol) return RUGO__MINIMUM;
-    if (l2 < -tol) return RUGO__MAXIMUM;
-    if (l1 < -tol && l2 > tol) return RUGO__SADDLE;
-    /* Semi-definite: decide the flat direction(s) by probing. Eigenvector of l1: (b, l1 - a) or
-     * (l1 - d, b), whichever is longer. */
-    rugo_vec2 v1 = rugo_v2(b, l1 - a), v1b = rugo_v2(l1 - d, b);
-    if (vlen(v1b) > vlen(v1)) v1 = v1b;
-    rugo_real lv = vlen(v1);
-    v1 = lv > 0.0 ? rugo_v2(v1.x / lv, v1.y / lv) : rugo_v2(1.0, 0.0);
-    rugo_vec2 v2 = rugo_v2_perp(v1);
-    int one_sided = 0;
-    int u1 = fabs(l1) <= tol ? probe_direction(c, s, t, v1, &one_sided) : sgn(l1);
-    int u2 = fabs(l2) <= tol ? probe_direction(c, s, t, v2, &one_sided) : sgn(l2);
-    if (u1 > 0 && u2 > 0) return one_sided ? RUGO__END_MINIMUM : RUGO__MINIMUM;
-    if (u1 < 0 && u2 < 0) return RUGO__MAXIMUM;
-    return RUGO__SADDLE;
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Output */
-
-static void fill_point(const ctx* c, rugo_real s, rugo_real t, int kind, rugo__pair_point* p) {
-    rugo_vec2 a = bez(c->f, 3, s), b = bez(c->g, 3, t);
+static void fill_point(const narrow_ctx* c, rugo_real s, rugo_real t, int kind, rugo__pair_point* p) {
+    rugo_vec2 a = rugo__bezier_eval(c->f, 3, s), b = rugo__bezier_eval(c->g, 3, t);
     memset(p, 0, sizeof *p); /* padding too: results compare bytewise (the arrays are not cleared) */
     p->s = s;
     p->t = t;
     p->pa = rugo_v2_add(c->origin, rugo_v2_scale(c->scale, a));
     p->pb = rugo_v2_add(c->origin, rugo_v2_scale(c->scale, b));
-    p->distance = c->scale * vlen(rugo_v2_sub(a, b));
+    p->distance = c->scale * rugo__v2_norm(rugo_v2_sub(a, b));
     p->kind = kind;
 }
 
@@ -1327,7 +79,7 @@ static void sort_roots(root* p, int n) {
     }
 }
 
-static void emit_crossing(const ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t, int kind) {
+static void emit_crossing(const narrow_ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t, int kind) {
     if (out->crossing_count >= RUGO__NARROW_MAX_CROSSINGS) {
         out->overflow = 1;
         return;
@@ -1335,7 +87,8 @@ static void emit_crossing(const ctx* c, rugo__narrow_result* out, rugo_real s, r
     fill_point(c, s, t, kind, &out->crossings[out->crossing_count++]);
 }
 
-static void emit_stationary(const ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t, int kind) {
+static void emit_stationary(const narrow_ctx* c, rugo__narrow_result* out, rugo_real s, rugo_real t,
+                            int kind) {
     if (out->stationary_count >= RUGO__NARROW_MAX_STATIONARY) {
         out->overflow = 1;
         return;
@@ -1343,137 +96,8 @@ static void emit_stationary(const ctx* c, rugo__narrow_result* out, rugo_real s,
     fill_point(c, s, t, kind, &out->stationary[out->stationary_count++]);
 }
 
-/* ---------------------------------------------------------------------------------------------- */
-/* Largest max-norm offset of a control point from the first: within POINT_TOL a piece is a point. */
-static rugo_real piece_extent(const rugo_vec2 p[4]) {
-    rugo_real e = 0.0;
-    for (int i = 1; i < 4; ++i)
-        e = mx(e, vmax(rugo_v2_sub(p[i], p[0])));
-    return e;
-}
-
-/* The point query in a local frame: a[] are the Bezier points of f - c (already scaled). Writes
- * parameters, local distances and kinds; returns the count (<= 6). */
-static int point_core(const rugo_vec2 a[4], rugo_real cutoff, rugo_real* s_out, rugo_real* d_out,
-                      int* k_out) {
-    /* f(s) - c = A0 + A1 s + A2 s^2 + A3 s^3 */
-    rugo_vec2 A0 = a[0];
-    rugo_vec2 A1 = rugo_v2_scale(3.0, rugo_v2_sub(a[1], a[0]));
-    rugo_vec2 A2 = rugo_v2_scale(3.0, rugo_v2_add(rugo_v2_sub(a[2], rugo_v2_scale(2.0, a[1])), a[0]));
-    rugo_vec2 A3 =
-        rugo_v2_sub(rugo_v2_add(rugo_v2_sub(a[3], rugo_v2_scale(3.0, a[2])), rugo_v2_scale(3.0, a[1])), a[0]);
-    rugo_real p[6];
-    p[0] = rugo_v2_dot(A0, A1);
-    p[1] = 2.0 * rugo_v2_dot(A0, A2) + rugo_v2_dot(A1, A1);
-    p[2] = 3.0 * rugo_v2_dot(A0, A3) + 3.0 * rugo_v2_dot(A1, A2);
-    p[3] = 4.0 * rugo_v2_dot(A1, A3) + 2.0 * rugo_v2_dot(A2, A2);
-    p[4] = 5.0 * rugo_v2_dot(A2, A3);
-    p[5] = 3.0 * rugo_v2_dot(A3, A3);
-    rugo_real sa = vlen(A0) + vlen(A1) + vlen(A2) + vlen(A3);
-    rugo_real sd = vlen(A1) + 2.0 * vlen(A2) + 3.0 * vlen(A3);
-    rugo_real roots[RUGO__POLY_MAX_ROOTS];
-    int n = rugo__poly_roots(p, 5, 0.0, 1.0, 16.0 * EPS * sa * sd, roots);
-    int count = 0;
-    /* A point-like piece (a segment of four or more coincident control points, to round-off of the
-     * caller's coordinates, or a piece a billion times smaller than its distance to c): one stationary
-     * point, s = 0, whose kind the piece cannot see (its polynomial is round-off): a minimum unless the
-     * neighbouring segments, which reach the point at their ends, say otherwise (RUGO__END_MINIMUM), or
-     * a touching. */
-    const rugo_real extent = piece_extent(a);
-    if (n == RUGO__POLY_ALL || extent <= POINT_TOL || extent <= 1e-9 * vmax(a[0])) {
-        rugo_real d = vlen(A0);
-        if (d <= cutoff) {
-            s_out[0] = 0.0;
-            d_out[0] = d;
-            k_out[0] = d <= TAU_TOUCH ? RUGO__MINIMUM : RUGO__END_MINIMUM;
-            count = 1;
-        }
-        return count;
-    }
-    /* An end where the piece stops (zero speed: a corner) is stationary whatever the rest of the
-     * polynomial does, but it is a multiple root there, which need not change sign: make sure it is a
-     * candidate. */
-    {
-        const rugo_vec2 fp1 = rugo_v2_add(A1, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0, A3)));
-        const int zero0 = zero_speed(A1, sd), zero1 = zero_speed(fp1, sd);
-        /* roots near such an end are that end (near_end); then one each */
-        int m = 0;
-        for (int i = 0; i < n; ++i) {
-            rugo_real u = roots[i];
-            if (zero0 && u <= END_ZONE) u = 0.0;
-            if (zero1 && u >= 1.0 - END_ZONE) u = 1.0;
-            if (m == 0 || u != roots[m - 1]) roots[m++] = u;
-        }
-        n = m;
-        if (zero0 && (n == 0 || roots[0] != 0.0) && n < RUGO__POLY_MAX_ROOTS) {
-            for (int i = n; i > 0; --i)
-                roots[i] = roots[i - 1];
-            roots[0] = 0.0;
-            ++n;
-        }
-        if (zero1 && (n == 0 || roots[n - 1] != 1.0) && n < RUGO__POLY_MAX_ROOTS) roots[n++] = 1.0;
-    }
-    for (int i = 0; i < n && count < 6; ++i) {
-        rugo_real s = roots[i];
-        rugo_vec2 r = bez(a, 3, s);
-        rugo_real d = vlen(r);
-        if (!(d <= cutoff)) continue;
-        rugo_vec2 fp = rugo_v2_add(
-            A1, rugo_v2_scale(s, rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(3.0 * s, A3))));
-        rugo_vec2 fpp = rugo_v2_add(rugo_v2_scale(2.0, A2), rugo_v2_scale(6.0 * s, A3));
-        rugo_real second = rugo_v2_dot(fp, fp) + rugo_v2_dot(r, fpp);
-        rugo_real scale = rugo_v2_dot(fp, fp) + d * vlen(fpp);
-        int kind;
-        /* At an end where the piece stops (zero speed: a corner of coincident control points) a minimum
-         * is one-sided (classify_stat), and f' and f'' are round-off there (of the coordinates, which
-         * can be much larger than the piece): the probe decides, looking along the piece only. */
-        const int end = near_end(s) && zero_speed(fp, sd);
-        if (d <= TAU_TOUCH) {
-            kind = RUGO__MINIMUM;
-        } else if (!end && second > 1e3 * EPS * scale) {
-            kind = RUGO__MINIMUM;
-        } else if (!end && second < -1e3 * EPS * scale) {
-            kind = RUGO__MAXIMUM;
-        } else {
-            /* Degenerate: compare the distance a little to both sides (smallest telling step); where one
-             * side leaves [0, 1], the side inside decides alone (probe_direction). */
-            static const rugo_real delta[6] = {1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2};
-            kind = end ? RUGO__END_MINIMUM : RUGO__MINIMUM;
-            rugo_real d0 = rugo_v2_dot(r, r);
-            for (int k = 0; k < 6; ++k) {
-                const rugo_real sp = s + delta[k], sm = s - delta[k];
-                rugo_vec2 rp = bez(a, 3, sp), rm = bez(a, 3, sm);
-                rugo_real up = rugo_v2_dot(rp, rp) - d0, um = rugo_v2_dot(rm, rm) - d0;
-                rugo_real noise = 32.0 * EPS * sa * (d + EPS * sa);
-                const int inp = in_unit(sp), inm = in_unit(sm);
-                if (inp != inm) {
-                    const rugo_real u1 = inp ? up : um;
-                    if (fabs(u1) > noise) {
-                        kind = u1 > 0.0 ? RUGO__END_MINIMUM : RUGO__SADDLE;
-                        break;
-                    }
-                    continue;
-                }
-                if (fabs(up) > noise && fabs(um) > noise) {
-                    kind = up > 0.0 && um > 0.0 ? (end ? RUGO__END_MINIMUM : RUGO__MINIMUM)
-                                                : (up < 0.0 && um < 0.0 ? RUGO__MAXIMUM : RUGO__SADDLE);
-                    break;
-                }
-            }
-        }
-        s_out[count] = s;
-        d_out[count] = d;
-        k_out[count] = kind;
-        ++count;
-    }
-    return count;
-}
-
-/* ---------------------------------------------------------------------------------------------- */
-/* Degenerate pieces */
-
 /* One piece (index `which`: 0 = f, 1 = g) is a point: the point query against the other. */
-static void point_piece_path(ctx* c, int which, rugo__narrow_result* out) {
+static void point_piece_path(narrow_ctx* c, int which, rugo__narrow_result* out) {
     const rugo_vec2* curve = which == 0 ? c->g : c->f;
     rugo_vec2 pt = which == 0 ? c->f[0] : c->g[0];
     rugo_vec2 a[4];
@@ -1482,12 +106,12 @@ static void point_piece_path(ctx* c, int which, rugo__narrow_result* out) {
     rugo_real ps[6], pd[6];
     int pk[6];
     rugo_real cutoff = c->cutoff >= TAU_TOUCH ? c->cutoff : TAU_TOUCH;
-    int n = point_core(a, cutoff, ps, pd, pk);
+    int n = rugo__point_stationary(a, cutoff, ps, pd, pk);
     for (int i = 0; i < n; ++i) {
         rugo_real s = which == 0 ? 0.0 : ps[i], t = which == 0 ? ps[i] : 0.0;
         if (pd[i] <= TAU_TOUCH) emit_crossing(c, out, s, t, 0);
         /* The point piece's own curve continues in the neighbouring segments: a minimum along the other
-         * piece is one-sided as far as this call can see (point_core's point-like case). */
+         * piece is one-sided as far as this call can see (rugo__point_stationary's point-like case). */
         const int kind = pk[i] == RUGO__MINIMUM && pd[i] > TAU_TOUCH ? RUGO__END_MINIMUM : pk[i];
         if (c->cutoff >= 0.0 && pd[i] <= c->cutoff) emit_stationary(c, out, s, t, kind);
     }
@@ -1516,26 +140,26 @@ static void cubic_range(const rugo_real b[4], rugo_real* lo, rugo_real* hi) {
     d[2] = 3.0 * (b[3] - 3.0 * b[2] + 3.0 * b[1] - b[0]);
     rugo_real roots[RUGO__POLY_MAX_ROOTS];
     int n = rugo__poly_roots(d, 2, 0.0, 1.0, 0.0, roots);
-    *lo = mn(b[0], b[3]);
-    *hi = mx(b[0], b[3]);
+    *lo = rugo__min(b[0], b[3]);
+    *hi = rugo__max(b[0], b[3]);
     for (int i = 0; i < n; ++i) {
         rugo_real u = roots[i], v = 1.0 - u;
         rugo_real val = v * v * v * b[0] + 3.0 * v * v * u * b[1] + 3.0 * v * u * u * b[2] + u * u * u * b[3];
-        *lo = mn(*lo, val);
-        *hi = mx(*hi, val);
+        *lo = rugo__min(*lo, val);
+        *hi = rugo__max(*hi, val);
     }
 }
 
 /* Straight parallel pieces: the pairs at both ends of the overlap of their ranges along the common
  * line (a continuum of stationary pairs in between; infinitely many crossings if they coincide). */
-static void parallel_path(ctx* c, rugo__narrow_result* out) {
-    const rugo_vec2* p = piece_extent(c->f) >= piece_extent(c->g) ? c->f : c->g;
+static void parallel_path(narrow_ctx* c, rugo__narrow_result* out) {
+    const rugo_vec2* p = rugo__piece_extent(c->f) >= rugo__piece_extent(c->g) ? c->f : c->g;
     rugo_vec2 u = rugo_v2(1.0, 0.0);
     rugo_real best = -1.0;
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
             rugo_vec2 d = rugo_v2_sub(p[j], p[i]);
-            rugo_real l = vlen(d);
+            rugo_real l = rugo__v2_norm(d);
             if (l > best) {
                 best = l;
                 u = rugo_v2(d.x / l, d.y / l);
@@ -1549,7 +173,7 @@ static void parallel_path(ctx* c, rugo__narrow_result* out) {
     rugo_real alo, ahi, blo, bhi;
     cubic_range(a, &alo, &ahi);
     cubic_range(b, &blo, &bhi);
-    rugo_real lo = mx(alo, blo), hi = mn(ahi, bhi);
+    rugo_real lo = rugo__max(alo, blo), hi = rugo__min(ahi, bhi);
     if (lo > hi + TAU_F) return; /* side by side without overlap: no stationary pair, no crossing */
     if (hi < lo) lo = hi = 0.5 * (lo + hi);
     rugo_real ends[2] = {lo, hi};
@@ -1558,7 +182,8 @@ static void parallel_path(ctx* c, rugo__narrow_result* out) {
     for (int k = 0; k < nend; ++k) {
         ss[k] = solve_cubic_value(a, ends[k]);
         ts[k] = solve_cubic_value(b, ends[k]);
-        dmax = mx(dmax, vlen(rugo_v2_sub(bez(c->f, 3, ss[k]), bez(c->g, 3, ts[k]))));
+        const rugo_vec2 d = rugo_v2_sub(rugo__bezier_eval(c->f, 3, ss[k]), rugo__bezier_eval(c->g, 3, ts[k]));
+        dmax = rugo__max(dmax, rugo__v2_norm(d));
     }
     if (dmax <= TAU_TOUCH) {
         if (nend == 2) out->overflow = 1; /* coincident: infinitely many crossings */
@@ -1570,33 +195,30 @@ static void parallel_path(ctx* c, rugo__narrow_result* out) {
             emit_stationary(c, out, ss[k], ts[k], RUGO__MINIMUM);
 }
 
-/* ---------------------------------------------------------------------------------------------- */
-/* Driver */
-
 /* An end where a piece stops (zero speed: a sharp corner, three coincident control points) is
  * stationary in that piece's parameter whatever the other piece does, so its stationary pairs are the
  * end against the other piece's stationary points to it (the point query). The search can miss them:
  * the root is multiple and need not change sign, or, when rounding leaves the end's speed a few ulps
  * off zero, there is no exact root at all. They are added here unless the search has one there; the
- * classification then looks along the pieces (classify_stat). */
-static void add_zero_speed_ends(ctx* c) {
+ * classification then looks along the pieces (rugo__classify_stationary). */
+static void add_zero_speed_ends(narrow_ctx* c) {
     for (int which = 0; which < 2; ++which) {
         const rugo_vec2* p = which == 0 ? c->f : c->g;
         const rugo_vec2* h = which == 0 ? c->df : c->dg;
         const rugo_vec2* other = which == 0 ? c->g : c->f;
         for (int end = 0; end < 2; ++end) {
-            if (!speed_vanishes(h[end ? 2 : 0], h)) continue;
+            if (!rugo__speed_vanishes(h[end ? 2 : 0], h)) continue;
             rugo_vec2 a[4];
             for (int i = 0; i < 4; ++i)
                 a[i] = rugo_v2_sub(other[i], p[end ? 3 : 0]);
             rugo_real us[6], ds[6];
             int ks[6];
-            const int n = point_core(a, c->cutoff, us, ds, ks);
+            const int n = rugo__point_stationary(a, c->cutoff, us, ds, ks);
             for (int i = 0; i < n; ++i) {
                 const rugo_real s = which == 0 ? (rugo_real)end : us[i],
                                 t = which == 0 ? us[i] : (rugo_real)end;
-                if (near_root(c->stat, c->nstat, s, t, END_ZONE)) continue;
-                if (!add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
+                if (rugo__near_root(c->stat, c->nstat, s, t, END_ZONE)) continue;
+                if (!rugo__add_root(c->stat, &c->nstat, TMP_STAT, s, t, R_MERGE, 0, 1)) {
                     c->overflow = 1;
                     return;
                 }
@@ -1606,33 +228,34 @@ static void add_zero_speed_ends(ctx* c) {
 }
 
 /* The general case on a prepared context. */
-static void solve(ctx* c, rugo__narrow_result* out) {
+static void solve(narrow_ctx* c, rugo__narrow_result* out) {
     rugo_real mf = 0.0, mg = 0.0, cmax = 0.0;
     for (int i = 0; i < 3; ++i) {
-        mf = mx(mf, vmax(c->df[i]));
-        mg = mx(mg, vmax(c->dg[i]));
+        mf = rugo__max(mf, rugo__v2_max_abs(c->df[i]));
+        mg = rugo__max(mg, rugo__v2_max_abs(c->dg[i]));
         for (int j = 0; j < 3; ++j) {
             c->root_cross[3 * i + j] = rugo_v2_cross(c->df[i], c->dg[j]);
-            cmax = mx(cmax, fabs(c->root_cross[3 * i + j]));
+            cmax = rugo__max(cmax, fabs(c->root_cross[3 * i + j]));
         }
     }
     {
         /* Both pieces points at this distance (two segments of four or more coincident control points,
          * whose Bezier points differ by round-off of the caller's coordinates, which can be far larger
-         * than this frame): one pair, which neither piece can classify (point_core's point-like case). */
-        const rugo_real ef = piece_extent(c->f), eg = piece_extent(c->g);
-        const rugo_real gap = vmax(rugo_v2_sub(c->f[0], c->g[0]));
+         * than this frame): one pair, which neither piece can classify (rugo__point_stationary's
+         * point-like case). */
+        const rugo_real ef = rugo__piece_extent(c->f), eg = rugo__piece_extent(c->g);
+        const rugo_real gap = rugo__v2_max_abs(rugo_v2_sub(c->f[0], c->g[0]));
         if (ef <= 1e-9 * gap && eg <= 1e-9 * gap) {
-            const rugo_real d = vlen(rugo_v2_sub(c->f[0], c->g[0]));
+            const rugo_real d = rugo__v2_norm(rugo_v2_sub(c->f[0], c->g[0]));
             if (c->cutoff >= 0.0 && d <= c->cutoff) emit_stationary(c, out, 0.0, 0.0, RUGO__END_MINIMUM);
             return;
         }
     }
-    if (piece_extent(c->g) <= POINT_TOL) {
+    if (rugo__piece_extent(c->g) <= POINT_TOL) {
         point_piece_path(c, 1, out);
         return;
     }
-    if (piece_extent(c->f) <= POINT_TOL) {
+    if (rugo__piece_extent(c->f) <= POINT_TOL) {
         point_piece_path(c, 0, out);
         return;
     }
@@ -1645,24 +268,24 @@ static void solve(ctx* c, rugo__narrow_result* out) {
      * stationary pairs: gap > cutoff + TAU_F, then the tangent cones). When it decides everything,
      * the searches are skipped; when a search runs, the hull test of the stationary search on the
      * whole square is known to fail (gap <= TAU_F, or it was tested below), so stat_prune skips it. */
-    c->root_apart = hull_gap_above(c->f, c->g, TAU_F);
+    c->root_apart = rugo__hull_gap_above(c->f, c->g, TAU_F);
     if (c->root_apart) {
         if (!(c->cutoff >= 0.0)) return;         /* no stationary search */
-        if (root_cone(c) != 0) return;           /* tangents nowhere parallel */
-        if (hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
+        if (rugo__whole_square_cone(c) != 0) return;           /* tangents nowhere parallel */
+        if (rugo__hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
     }
 
-    search_crossings(c);
+    rugo__search_crossings(c);
     /* Classify the leaf roots by probing; certified roots carry the sign of their cone. */
     for (int i = 0; i < c->ncross; ++i)
         if (c->cross[i].kind == KIND_PROBE)
-            c->cross[i].kind = probe_crossing_kind(c, c->cross[i].s, c->cross[i].t);
+            c->cross[i].kind = rugo__probe_crossing_kind(c, c->cross[i].s, c->cross[i].t);
 
     /* Crossings beyond count mean (nearly) coincident curves: every pair on the common stretch is a
      * touching, so the stationary search would only fill up with them; the touching crossings below
      * stand for them. */
     if (c->cutoff >= 0.0 && !c->overflow) {
-        search_stationary(c);
+        rugo__search_stationary(c);
         add_zero_speed_ends(c);
     }
 
@@ -1671,12 +294,12 @@ static void solve(ctx* c, rugo__narrow_result* out) {
         if (c->cross[i].kind != 0) continue;
         int found = 0;
         for (int k = 0; k < c->nstat && !found; ++k) {
-            rugo_real r = mx(R_FALLBACK, c->stat[k].radius);
+            rugo_real r = rugo__max(R_FALLBACK, c->stat[k].radius);
             found = fabs(c->stat[k].s - c->cross[i].s) <= r && fabs(c->stat[k].t - c->cross[i].t) <= r;
             if (found) {
                 /* keep the better-resolved point of the two: the one with the smaller distance */
-                rugo_real dc = half_dist2(c, c->cross[i].s, c->cross[i].t);
-                rugo_real ds = half_dist2(c, c->stat[k].s, c->stat[k].t);
+                rugo_real dc = rugo__half_dist2(c, c->cross[i].s, c->cross[i].t);
+                rugo_real ds = rugo__half_dist2(c, c->stat[k].s, c->stat[k].t);
                 if (dc < ds) {
                     c->stat[k].s = c->cross[i].s;
                     c->stat[k].t = c->cross[i].t;
@@ -1701,29 +324,30 @@ static void solve(ctx* c, rugo__narrow_result* out) {
      * touching crossings. */
     int ncross_found = c->ncross;
     for (int k = 0; k < c->nstat; ++k) {
-        rugo_real s = clamp01(c->stat[k].s), t = clamp01(c->stat[k].t);
-        snap_to_zero_speed_end(c, &s, &t);
+        rugo_real s = rugo__clamp01(c->stat[k].s), t = rugo__clamp01(c->stat[k].t);
+        rugo__snap_to_zero_speed_end(c, &s, &t);
         c->stat[k].s = s;
         c->stat[k].t = t;
-        rugo_real dist = vlen(rugo_v2_sub(bez(c->f, 3, s), bez(c->g, 3, t)));
+        rugo_real dist =
+            rugo__v2_norm(rugo_v2_sub(rugo__bezier_eval(c->f, 3, s), rugo__bezier_eval(c->g, 3, t)));
         c->stat[k].kind = -1; /* dropped */
         if (!(dist <= c->cutoff)) continue;
         if (dist <= TAU_TOUCH) {
             int match = -1;
             for (int i = 0; i < ncross_found && match < 0; ++i) {
-                rugo_real r = mx(R_FALLBACK, c->cross[i].radius);
+                rugo_real r = rugo__max(R_FALLBACK, c->cross[i].radius);
                 if (fabs(c->cross[i].s - s) <= r && fabs(c->cross[i].t - t) <= r) match = i;
             }
             if (match >= 0 && c->cross[match].kind != 0) continue;
-            if (match < 0 && !add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, 0, 1))
+            if (match < 0 && !rugo__add_root(c->cross, &c->ncross, TMP_CROSS, s, t, R_FALLBACK, 0, 1))
                 c->overflow = 1;
         }
-        c->stat[k].kind = classify_stat(c, s, t, dist);
+        c->stat[k].kind = rugo__classify_stationary(c, s, t, dist);
     }
 
     sort_roots(c->cross, c->ncross);
     for (int i = 0; i < c->ncross; ++i)
-        emit_crossing(c, out, clamp01(c->cross[i].s), clamp01(c->cross[i].t), c->cross[i].kind);
+        emit_crossing(c, out, rugo__clamp01(c->cross[i].s), rugo__clamp01(c->cross[i].t), c->cross[i].kind);
     sort_roots(c->stat, c->nstat);
     for (int k = 0; k < c->nstat; ++k)
         if (c->stat[k].kind >= 0) emit_stationary(c, out, c->stat[k].s, c->stat[k].t, c->stat[k].kind);
@@ -1777,7 +401,7 @@ static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_
     }
     for (int i = 0; i < 8; ++i)
         if (!rugo__v2_finite(pts[i])) return;
-    ctx c; /* the root lists (~4 kB) are filled before they are counted: not cleared */
+    narrow_ctx c; /* the root lists (~4 kB) are filled before they are counted: not cleared */
     c.newton = c.fallback = c.overflow = 0;
     c.ncross = c.nstat = 0;
     c.root_apart = 0;
@@ -1791,7 +415,7 @@ static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_
     c.origin = rugo_v2(ox, oy);
     rugo_real ext = 0.0;
     for (int i = 0; i < 8; ++i)
-        ext = mx(ext, vmax(rugo_v2_sub(pts[i], c.origin)));
+        ext = rugo__max(ext, rugo__v2_max_abs(rugo_v2_sub(pts[i], c.origin)));
     if (!isfinite(ext)) return;
     if (ext == 0.0) {
         /* Both pieces are the same single point. */
@@ -1811,8 +435,8 @@ static void run(const rugo_vec2 f[4], const rugo_vec2 g[4], int g_is_line, rugo_
         rugo_vec2 a = rugo_v2_scale(inv, rugo_v2_sub(q0, c.origin)),
                   b = rugo_v2_scale(inv, rugo_v2_sub(q1, c.origin));
         c.g[0] = a;
-        c.g[1] = lerp(a, b, 1.0 / 3.0);
-        c.g[2] = lerp(a, b, 2.0 / 3.0);
+        c.g[1] = rugo__lerp(a, b, 1.0 / 3.0);
+        c.g[2] = rugo__lerp(a, b, 2.0 / 3.0);
         c.g[3] = b;
     } else {
         for (int i = 0; i < 4; ++i)
@@ -1853,39 +477,4 @@ void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_re
         return;
     }
     run(f, NULL, 1, q0, q1, cutoff, out);
-}
-
-int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo__pair_point out[6]) {
-    RUGO_ASSERT(f && out);
-    if (!f || !out) return 0;
-    if (!rugo__v2_finite(c) || !(cutoff >= 0.0)) return 0;
-    for (int i = 0; i < 4; ++i)
-        if (!rugo__v2_finite(f[i])) return 0;
-    /* Local frame: relative to c, scaled by a power of two. */
-    rugo_real ext = 0.0;
-    for (int i = 0; i < 4; ++i)
-        ext = mx(ext, vmax(rugo_v2_sub(f[i], c)));
-    if (!isfinite(ext)) return 0;
-    rugo_real scale = 1.0, inv = 1.0;
-    if (ext > 0.0) {
-        int e;
-        frexp(ext, &e);
-        scale = ldexp(1.0, e);
-        inv = ldexp(1.0, -e);
-    }
-    rugo_vec2 a[4];
-    for (int i = 0; i < 4; ++i)
-        a[i] = rugo_v2_scale(inv, rugo_v2_sub(f[i], c));
-    rugo_real ps[6], pd[6];
-    int pk[6];
-    int n = point_core(a, cutoff * inv, ps, pd, pk);
-    for (int i = 0; i < n; ++i) {
-        out[i].s = ps[i];
-        out[i].t = 0.0;
-        out[i].pa = rugo_v2_add(c, rugo_v2_scale(scale, bez(a, 3, ps[i])));
-        out[i].pb = c;
-        out[i].distance = scale * pd[i];
-        out[i].kind = pk[i];
-    }
-    return n;
 }

@@ -9,7 +9,7 @@
  * isolated root with Newton (J u = -H, thesis 6.11-6.14). So no crossing and no stationary pair
  * within the cutoff is missed.
  *
- * Conventions (see narrow.c for the pruning tests and limits):
+ * Conventions (narrow.c describes the searches, their pruning tests and limits):
  *  - `fallback` counts every decision made without a uniqueness proof: size-limit leaves (2^-26 in
  *    parameter), touchings, small-box acceptances, and the box limit (6000) being hit; `overflow`
  *    is also set when the box limit is hit.
@@ -43,7 +43,7 @@ typedef enum rugo__stationary_kind {
     /* a minimum on this piece's side of an end of its domain, where the piece cannot see past the end:
      * at a zero-speed joint (a corner of coincident control points) its polynomial does not continue
      * as the curve does. A minimum of the curve only if the neighbouring segment's piece agrees (or
-     * holds the point inside); callers decide (collide.c, dedupe) */
+     * holds the point inside); callers decide (collide_hits.c, rugo__dedupe_hits) */
     RUGO__END_MINIMUM = 3
 } rugo__stationary_kind;
 
@@ -54,6 +54,8 @@ typedef struct rugo__pair_point {
     int kind;           /* rugo__stationary_kind for stationary pairs; for crossings: +1 if g crosses f
                            from f's outside (right of f' for a CCW f: the outward side) to its inside
                            as t increases, -1 the other way, 0 a touching (tangential, no crossing) */
+    int flat;           /* a minimum on a stretch where the band-adjusted distance is flat to the
+                           resolution (narrow_resolved.h): located to the resolution, not polished */
 } rugo__pair_point;
 
 typedef struct rugo__narrow_result {
@@ -83,7 +85,7 @@ int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo
 void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff, rugo__narrow_result* out);
 
 /* rugo__level_contains (shape/internal.h) with the level as rugo_contact_query.level (0 finest, < 0
- * coarser, > 0 absolute; collide.c). */
+ * coarser, > 0 absolute; collide_levels.c). */
 int rugo__shape_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
 
 #endif

@@ -1,16 +1,11 @@
-/* Baked shapes: the binary file format of a built rugo_shape (docs/baked.md), its validating loader
- * and the atomic file writer.
+/* Baked shapes: the binary format of a built rugo_shape (docs/baked.md) and its validating loader;
+ * baked_file.c writes and reads it as files.
  *
  * Byte order and floating point are fixed by the format, not the host: every integer is written
  * little-endian byte by byte, every double as the little-endian bytes of its IEEE-754 binary64 bit
  * pattern. The loader checks sizes against the header before reading anything else, the checksum
  * before parsing fields, and every field before it is used; nothing read from the file indexes
  * memory until the payload length has been proven equal to the length its levels imply. */
-#if defined(__unix__) || defined(__APPLE__)
-#define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen, fsync, fchmod: -std=c99 hides them */
-#define RUGO_BAKED_POSIX 1
-#endif
-
 #include "rugo/baked.h"
 
 #include "core/internal.h"
@@ -20,14 +15,7 @@
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h> /* mkstemp */
 #include <string.h>
-
-#ifdef RUGO_BAKED_POSIX
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#endif
 
 /* The format stores binary64 bit patterns; a host with another double cannot read or write them. */
 typedef char rugo__baked_needs_ieee_double[(DBL_MANT_DIG == 53 && DBL_MAX_EXP == 1024 && sizeof(double) == 8) ? 1 : -1];
@@ -53,7 +41,7 @@ static const unsigned char MAGIC[RUGO_BAKED_MAGIC_SIZE] = {'R', 'U', 'G', 'O', '
 
 /* ---- error detail --------------------------------------------------------------------------------- */
 
-static void set_detail(rugo_baked_error* d, size_t offset, const char* field, const char* fmt, ...) {
+void rugo__baked_detail(rugo_baked_error* d, size_t offset, const char* field, const char* fmt, ...) {
     if (d == NULL) return;
     d->offset = offset;
     d->field[0] = '\0';
@@ -67,7 +55,7 @@ static void set_detail(rugo_baked_error* d, size_t offset, const char* field, co
     va_end(ap);
 }
 
-static void clear_detail(rugo_baked_error* d) {
+void rugo__baked_clear_detail(rugo_baked_error* d) {
     if (d == NULL) return;
     d->offset = 0;
     d->field[0] = '\0';
@@ -318,7 +306,7 @@ static void fail(reader* r, size_t offset, const char* field, const char* messag
     if (failed(r)) return;
     r->st = RUGO_ERR_BAD_FORMAT;
     if (r->detail != NULL) {
-        set_detail(r->detail, offset, field, "%s (%.17g) at byte %lu", message, value, (unsigned long)offset);
+        rugo__baked_detail(r->detail, offset, field, "%s (%.17g) at byte %lu", message, value, (unsigned long)offset);
     }
 }
 
@@ -470,51 +458,51 @@ static void check_arrays(reader* r, const layout* L) {
 static rugo_status check_header(const unsigned char* f, size_t size, size_t* payload, rugo_baked_error* d) {
     if (size < RUGO_BAKED_MAGIC_SIZE || memcmp(f, MAGIC, RUGO_BAKED_MAGIC_SIZE) != 0) {
         if (size < RUGO_BAKED_MAGIC_SIZE && memcmp(f, MAGIC, size) == 0) {
-            set_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
+            rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
             return RUGO_ERR_TRUNCATED;
         }
-        set_detail(d, 0, "magic", "not a baked shape file (the first 8 bytes are not \"RUGOBAKE\")");
+        rugo__baked_detail(d, 0, "magic", "not a baked shape file (the first 8 bytes are not \"RUGOBAKE\")");
         return RUGO_ERR_BAD_FORMAT;
     }
     if (size < HEADER_SIZE) {
-        set_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
+        rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
         return RUGO_ERR_TRUNCATED;
     }
     const uint32_t version = get_u32(f + H_VERSION);
     if (version != RUGO_BAKED_VERSION) {
-        set_detail(d, H_VERSION, "version", "format version %lu; this library reads version %d",
+        rugo__baked_detail(d, H_VERSION, "version", "format version %lu; this library reads version %d",
                    (unsigned long)version, RUGO_BAKED_VERSION);
         return RUGO_ERR_BAD_VERSION;
     }
     const uint32_t hsize = get_u32(f + H_HEADER_SIZE);
     if (hsize != HEADER_SIZE) {
-        set_detail(d, H_HEADER_SIZE, "header_size", "%lu, must be %d", (unsigned long)hsize, HEADER_SIZE);
+        rugo__baked_detail(d, H_HEADER_SIZE, "header_size", "%lu, must be %d", (unsigned long)hsize, HEADER_SIZE);
         return RUGO_ERR_BAD_FORMAT;
     }
     for (size_t i = H_RESERVED; i < HEADER_SIZE; ++i)
         if (f[i] != 0) {
-            set_detail(d, i, "reserved", "byte %lu of the header is %u, must be 0", (unsigned long)i, (unsigned)f[i]);
+            rugo__baked_detail(d, i, "reserved", "byte %lu of the header is %u, must be 0", (unsigned long)i, (unsigned)f[i]);
             return RUGO_ERR_BAD_FORMAT;
         }
     const uint64_t psize = get_u64(f + H_PAYLOAD_SIZE);
     if (psize > (uint64_t)(RUGO_MAX_BAKED_BYTES - HEADER_SIZE)) {
-        set_detail(d, H_PAYLOAD_SIZE, "payload_size", "%.0f bytes, beyond the limit of %lu", (double)psize,
+        rugo__baked_detail(d, H_PAYLOAD_SIZE, "payload_size", "%.0f bytes, beyond the limit of %lu", (double)psize,
                    (unsigned long)RUGO_MAX_BAKED_BYTES);
         return RUGO_ERR_TOO_LARGE;
     }
     if (psize > (uint64_t)(size - HEADER_SIZE)) {
-        set_detail(d, size, "payload_size", "the header gives %lu payload bytes, the file has %lu",
+        rugo__baked_detail(d, size, "payload_size", "the header gives %lu payload bytes, the file has %lu",
                    (unsigned long)psize, (unsigned long)(size - HEADER_SIZE));
         return RUGO_ERR_TRUNCATED;
     }
     if (psize < (uint64_t)(size - HEADER_SIZE)) {
-        set_detail(d, HEADER_SIZE + (size_t)psize, "payload_size", "%lu bytes after the payload",
+        rugo__baked_detail(d, HEADER_SIZE + (size_t)psize, "payload_size", "%lu bytes after the payload",
                    (unsigned long)(size - HEADER_SIZE - (size_t)psize));
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint64_t stored = get_u64(f + H_CHECKSUM), actual = file_checksum(f, size);
     if (stored != actual) {
-        set_detail(d, H_CHECKSUM, "checksum",
+        rugo__baked_detail(d, H_CHECKSUM, "checksum",
                    "stored 0x%08lx%08lx, computed 0x%08lx%08lx: the file is corrupted", (unsigned long)(stored >> 32),
                    (unsigned long)(stored & 0xFFFFFFFFu), (unsigned long)(actual >> 32),
                    (unsigned long)(actual & 0xFFFFFFFFu));
@@ -526,10 +514,10 @@ static rugo_status check_header(const unsigned char* f, size_t size, size_t* pay
 
 rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_allocator* allocator,
                                   rugo_shape** out, rugo_baked_error* detail) {
-    clear_detail(detail);
+    rugo__baked_clear_detail(detail);
     if (out != NULL) *out = NULL;
     if (buffer == NULL || out == NULL) {
-        set_detail(detail, 0, NULL, "NULL buffer or output");
+        rugo__baked_detail(detail, 0, NULL, "NULL buffer or output");
         return RUGO_ERR_NULL_ARGUMENT;
     }
     const unsigned char* f = (const unsigned char*)buffer;
@@ -543,33 +531,33 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     r.st = RUGO_OK;
     /* Offsets in messages are file offsets: the reader works in payload offsets, so shift on output. */
     if (psize < FIXED_SIZE) {
-        set_detail(detail, size, "payload", "%lu bytes, the fixed part alone has %d", (unsigned long)psize, FIXED_SIZE);
+        rugo__baked_detail(detail, size, "payload", "%lu bytes, the fixed part alone has %d", (unsigned long)psize, FIXED_SIZE);
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint32_t J = get_u32(r.file + 0), Jmin = get_u32(r.file + 4);
     if (J > 20 || Jmin > 20 || !levels_ok((int)J, (int)Jmin)) {
-        set_detail(detail, HEADER_SIZE, "levels",
+        rugo__baked_detail(detail, HEADER_SIZE, "levels",
                    "finest %lu, coarsest %lu: need 2 <= coarsest <= finest <= 20 (2^20 = RUGO_MAX_CONTROL_POINTS)",
                    (unsigned long)J, (unsigned long)Jmin);
         return RUGO_ERR_BAD_FORMAT;
     }
     const layout L = make_layout((int)J, (int)Jmin);
     if (psize != L.end) {
-        set_detail(detail, H_PAYLOAD_SIZE, "payload_size", "%lu bytes, levels %lu..%lu need %lu",
+        rugo__baked_detail(detail, H_PAYLOAD_SIZE, "payload_size", "%lu bytes, levels %lu..%lu need %lu",
                    (unsigned long)psize, (unsigned long)Jmin, (unsigned long)J, (unsigned long)L.end);
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint32_t filter = get_u32(r.file + 8), method = get_u32(r.file + 12), flags = get_u32(r.file + 16);
     if (filter >= (uint32_t)RUGO_FILTER_COUNT || rugo_filter_name((rugo_filter)filter) == NULL) {
-        set_detail(detail, HEADER_SIZE + 8, "filter", "unknown filter %lu", (unsigned long)filter);
+        rugo__baked_detail(detail, HEADER_SIZE + 8, "filter", "unknown filter %lu", (unsigned long)filter);
         return RUGO_ERR_BAD_FORMAT;
     }
     if (method != (uint32_t)RUGO_BOXES_MULTIRES && method != (uint32_t)RUGO_BOXES_OF_BOXES) {
-        set_detail(detail, HEADER_SIZE + 12, "box_method", "unknown box method %lu", (unsigned long)method);
+        rugo__baked_detail(detail, HEADER_SIZE + 12, "box_method", "unknown box method %lu", (unsigned long)method);
         return RUGO_ERR_BAD_FORMAT;
     }
     if ((flags & ~(FLAG_ROUGH | FLAG_REVERSED)) != 0 || get_u32(r.file + 20) != 0) {
-        set_detail(detail, HEADER_SIZE + 16, "flags", "unknown flag bits 0x%lx", (unsigned long)flags);
+        rugo__baked_detail(detail, HEADER_SIZE + 16, "flags", "unknown flag bits 0x%lx", (unsigned long)flags);
         return RUGO_ERR_BAD_FORMAT;
     }
 
@@ -630,190 +618,18 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     parts.nodes = r.file + L.nodes;
     st = rugo__shape_create_from_parts(&parts, out);
     if (st == RUGO_ERR_OUT_OF_MEMORY) {
-        set_detail(detail, 0, NULL, "out of memory building the shape");
+        rugo__baked_detail(detail, 0, NULL, "out of memory building the shape");
         return st;
     }
     if (st != RUGO_OK) {
         if (st == RUGO_ERR_BAD_SIZE)
-            set_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
+            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
                        "the finest level's size is outside [%g, %g]", RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE);
         else
-            set_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
+            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
                        "the finest level is not a valid counter-clockwise outline (%s)",
                        st == RUGO_ERR_BAD_ARGUMENT ? "clockwise" : rugo_status_string(st));
         return RUGO_ERR_BAD_FORMAT;
     }
     return RUGO_OK;
-}
-
-/* ---- files ------------------------------------------------------------------------------------------ */
-
-/* Writes all of data through the hook (if any) and stdio; 0 on success. */
-static int write_all(FILE* fp, const unsigned char* data, size_t size, const rugo_baked_write_hook* hook) {
-    const size_t chunk = (size_t)1 << 16;
-    while (size > 0) {
-        size_t n = size < chunk ? size : chunk;
-        size_t ok = n;
-        if (hook != NULL && hook->write != NULL) {
-            ok = hook->write(data, n, hook->ctx);
-            if (ok > n) ok = n;
-        }
-        if (ok > 0 && fwrite(data, 1, ok, fp) != ok) return -1;
-        if (ok < n) return -1;
-        data += n;
-        size -= n;
-    }
-    return 0;
-}
-
-rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path, const rugo_allocator* allocator,
-                                        const rugo_baked_write_hook* hook, rugo_baked_error* detail) {
-    clear_detail(detail);
-    if (shape == NULL || path == NULL) {
-        set_detail(detail, 0, NULL, "NULL shape or path");
-        return RUGO_ERR_NULL_ARGUMENT;
-    }
-    const rugo_allocator al = rugo__allocator_or_default(allocator);
-    size_t size = 0;
-    rugo_status st = rugo_shape_bake_size(shape, &size);
-    if (st != RUGO_OK) {
-        set_detail(detail, 0, NULL, "the shape needs %lu bytes, beyond the limit", (unsigned long)size);
-        return st;
-    }
-    unsigned char* bytes = (unsigned char*)rugo__alloc_array(&al, size, 1);
-    const size_t plen = strlen(path);
-    char* tmp = (char*)rugo__alloc_array(&al, plen + 16, 1);
-    if (bytes == NULL || tmp == NULL) {
-        rugo__free(&al, bytes);
-        rugo__free(&al, tmp);
-        set_detail(detail, 0, NULL, "cannot allocate %lu bytes", (unsigned long)size);
-        return RUGO_ERR_OUT_OF_MEMORY;
-    }
-    size_t written = 0;
-    st = rugo_shape_bake(shape, bytes, size, &written);
-    RUGO_ASSERT(st == RUGO_OK && written == size);
-    memcpy(tmp, path, plen);
-    const char* step = NULL;
-    FILE* fp = NULL;
-    int have_tmp = 0;
-#ifdef RUGO_BAKED_POSIX
-    /* A unique name next to the destination, so that rename() stays on one file system. */
-    memcpy(tmp + plen, ".tmp-XXXXXX", 12);
-    const int fd = mkstemp(tmp);
-    if (fd < 0) {
-        step = "cannot create a temporary file in the destination directory";
-    } else {
-        have_tmp = 1;
-        (void)fchmod(fd, 0644); /* mkstemp makes 0600; a baked asset is meant to be shared */
-        fp = fdopen(fd, "wb");
-        if (fp == NULL) {
-            close(fd);
-            step = "cannot open the temporary file";
-        }
-    }
-#else
-    memcpy(tmp + plen, ".tmp", 5);
-    fp = fopen(tmp, "wb");
-    if (fp == NULL)
-        step = "cannot create a temporary file in the destination directory";
-    else
-        have_tmp = 1;
-#endif
-    if (step == NULL && write_all(fp, bytes, size, hook) != 0) step = "write failed (disk full?)";
-    if (step == NULL && fflush(fp) != 0) step = "flush failed";
-#ifdef RUGO_BAKED_POSIX
-    if (step == NULL && fsync(fileno(fp)) != 0) step = "fsync failed";
-#endif
-    if (fp != NULL && fclose(fp) != 0 && step == NULL) step = "close failed";
-    if (step == NULL && rename(tmp, path) != 0) {
-#ifndef RUGO_BAKED_POSIX
-        /* Windows' rename does not replace: remove first (not atomic there). */
-        if (remove(path) != 0 || rename(tmp, path) != 0)
-#endif
-            step = "cannot rename the temporary file over the destination";
-    }
-    if (step != NULL) {
-        if (have_tmp) (void)remove(tmp); /* the destination was never touched */
-        set_detail(detail, 0, path, "%s", step);
-        rugo__free(&al, bytes);
-        rugo__free(&al, tmp);
-        return RUGO_ERR_IO;
-    }
-#ifdef RUGO_BAKED_POSIX
-    {
-        /* Make the rename itself durable: fsync the directory (best effort; not all systems allow it). */
-        size_t cut = plen;
-        while (cut > 0 && path[cut - 1] != '/') --cut;
-        if (cut == 0) {
-            tmp[0] = '.';
-            tmp[1] = '\0';
-        } else {
-            memcpy(tmp, path, cut);
-            tmp[cut] = '\0';
-        }
-        const int dfd = open(tmp, O_RDONLY);
-        if (dfd >= 0) {
-            (void)fsync(dfd);
-            close(dfd);
-        }
-    }
-#endif
-    rugo__free(&al, bytes);
-    rugo__free(&al, tmp);
-    return RUGO_OK;
-}
-
-rugo_status rugo_shape_read_baked_file(const char* path, const rugo_allocator* allocator, rugo_shape** out,
-                                       rugo_baked_error* detail) {
-    clear_detail(detail);
-    if (out != NULL) *out = NULL;
-    if (path == NULL || out == NULL) {
-        set_detail(detail, 0, NULL, "NULL path or output");
-        return RUGO_ERR_NULL_ARGUMENT;
-    }
-    const rugo_allocator al = rugo__allocator_or_default(allocator);
-    FILE* fp = fopen(path, "rb");
-    if (fp == NULL) {
-        set_detail(detail, 0, path, "cannot open");
-        return RUGO_ERR_IO;
-    }
-    /* Grow a buffer chunk by chunk (works for pipes too), never beyond the limit plus one byte: that
-     * byte tells a file at the limit from a larger one. */
-    const size_t most = RUGO_MAX_BAKED_BYTES + 1;
-    size_t cap = 0, len = 0;
-    unsigned char* buf = NULL;
-    rugo_status st = RUGO_OK;
-    for (;;) {
-        if (len == cap) {
-            if (cap == most) {
-                set_detail(detail, cap, path, "larger than the limit of %lu bytes", (unsigned long)RUGO_MAX_BAKED_BYTES);
-                st = RUGO_ERR_TOO_LARGE;
-                break;
-            }
-            const size_t ncap = cap == 0 ? (size_t)1 << 16 : (2 * cap < most ? 2 * cap : most);
-            unsigned char* nb = (unsigned char*)rugo__alloc_array(&al, ncap, 1);
-            if (nb == NULL) {
-                set_detail(detail, 0, path, "cannot allocate %lu bytes", (unsigned long)ncap);
-                st = RUGO_ERR_OUT_OF_MEMORY;
-                break;
-            }
-            if (len > 0) memcpy(nb, buf, len);
-            rugo__free(&al, buf);
-            buf = nb;
-            cap = ncap;
-        }
-        const size_t got = fread(buf + len, 1, cap - len, fp);
-        len += got;
-        if (got == 0) {
-            if (ferror(fp)) {
-                set_detail(detail, len, path, "read error");
-                st = RUGO_ERR_IO;
-            }
-            break;
-        }
-    }
-    fclose(fp);
-    if (st == RUGO_OK) st = rugo_shape_load_baked(buf, len, &al, out, detail);
-    rugo__free(&al, buf);
-    return st;
 }

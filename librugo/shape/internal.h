@@ -1,7 +1,9 @@
-/* Private accessors of shape.c for collide.c. Not installed, not public API. */
+/* Private helpers of the shape layer (shape.c, mobb.c, baked.c, baked_file.c, point_query.c) for its own
+ * files and the layers above it. Not installed, not public API. */
 #ifndef RUGO_SHAPE_INTERNAL_H
 #define RUGO_SHAPE_INTERNAL_H
 
+#include "rugo/baked.h" /* rugo_baked_error */
 #include "rugo/shape.h"
 
 /* Per segment of `level`: a certified upper bound of λ(t) over the segment. */
@@ -53,5 +55,16 @@ rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method
  * (point_query.c): only segments under boxes that the ray from p towards +x may meet are evaluated.
  * *visited (may be NULL) gets their number. */
 int rugo__level_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
+
+/* ---- error detail of the baked format (baked.c), also for its files (baked_file.c) ---------------- */
+
+/* Fills *d (when not NULL): the byte offset, the field (NULL: none) and the message. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+void
+rugo__baked_detail(rugo_baked_error* d, size_t offset, const char* field, const char* fmt, ...);
+/* Empties *d (when not NULL). */
+void rugo__baked_clear_detail(rugo_baked_error* d);
 
 #endif

@@ -25,7 +25,14 @@
  * Upper boxes enclose their two children's boxes, so the tree is nested: a parent contains everything
  * its children contain (descendant leaves with their band, and the children's own coarse segments).
  * That containment, not Theorem 4.2 (heuristic with these filters, SPEC 5.3), is what makes the boxes
- * conservative. */
+ * conservative.
+ *
+ * One concept, one file, though over 800 lines: the box primitives, the blocks of segment boxes and the
+ * tree are the stages of one build, tied by static inline helpers (min_of/max_of, the covariance axes,
+ * box_from_extents, the enclosure steps) that every stage calls and that must inline into the build's
+ * hot loops, compiled with this file's -fno-math-errno so that they vectorise. The public box functions
+ * (overlap, containment, corners, enclosure) are a few lines on the same helpers; moving them, or a
+ * stage, elsewhere would only put those helpers in a header and spread the flag. */
 #include "rugo/mobb.h"
 
 #include "core/internal.h"

@@ -12,7 +12,7 @@
  * The energy change of an impulse is J·(v + v')/2 (exact for rigid bodies), so it is checked without
  * touching the bodies. */
 #include "core/internal.h"
-#include "rugo/world.h"
+#include "sim/internal.h"
 
 /* Relative slack of the acceptance tests: an impulse whose energy gain is below this fraction of the
  * relative kinetic energy ½ vᵀK⁻¹v is round-off, not a defect of the branch. */

@@ -12,8 +12,10 @@
  * pair whose order did not change on either axis keeps its state, so the table ends up exact.
  * Pairs live in a hash table of h buckets, bucket (s + t) mod h, chained through a pool with a free
  * list; nothing allocates unless the pool or n grows. */
+#include "sim/internal.h"
+
+#include "core/array.h"
 #include "core/internal.h"
-#include "rugo/world.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -31,20 +33,25 @@ typedef struct pair_entry {
 
 struct rugo_sweep_prune {
     rugo_allocator allocator;
-    int n;        /* boxes of the last successful update */
-    int valid;    /* 0: the next update runs the general algorithm */
-    int capacity; /* boxes the arrays hold */
-    endpoint* axis[2];
-    int* active;
-    int* active_pos;
+    int n;     /* boxes of the last successful update */
+    int valid; /* 0: the next update runs the general algorithm */
+    rugo__array axis[2];    /* endpoint: 2 n per axis */
+    rugo__array active;     /* int: the active list of the sweep, n */
+    rugo__array active_pos; /* int: each box's place in it, n */
     int h;
-    int* buckets;
-    pair_entry* pool;
-    int pool_capacity, pool_used, free_head, live;
-    rugo_pair* out;
-    int out_capacity, out_count;
+    rugo__array buckets; /* int: h = 2 n + 1 */
+    rugo__array pool;    /* pair_entry */
+    int pool_used, free_head, live;
+    rugo__array out; /* rugo_pair */
+    int out_count;
     long swaps;
 };
+
+/* The pair pool's first capacity (it then doubles), and its largest size (pool indices are ints). */
+#define POOL_FIRST 128
+#define POOL_MAX (1 << 30)
+/* The pair list's first capacity (it then doubles). */
+#define OUT_FIRST 16
 
 static int endpoint_less(const endpoint* x, const endpoint* y) {
     if (x->value != y->value) return x->value < y->value;
@@ -89,18 +96,16 @@ rugo_status rugo_sweep_prune_create(const rugo_allocator* allocator, rugo_sweep_
 void rugo_sweep_prune_destroy(rugo_sweep_prune* sap) {
     if (sap == NULL) return;
     rugo_allocator a = sap->allocator;
-    rugo__free(&a, sap->axis[0]);
-    rugo__free(&a, sap->axis[1]);
-    rugo__free(&a, sap->active);
-    rugo__free(&a, sap->active_pos);
-    rugo__free(&a, sap->buckets);
-    rugo__free(&a, sap->pool);
-    rugo__free(&a, sap->out);
+    rugo__array* all[] = {&sap->axis[0], &sap->axis[1], &sap->active, &sap->active_pos,
+                          &sap->buckets, &sap->pool,    &sap->out};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
+        rugo__array_free(all[i], &a);
     rugo__free(&a, sap);
 }
 
 static void table_clear(rugo_sweep_prune* sap) {
-    for (int i = 0; i < sap->h; ++i) sap->buckets[i] = -1;
+    int* buckets = (int*)sap->buckets.data;
+    for (int i = 0; i < sap->h; ++i) buckets[i] = -1;
     sap->pool_used = 0;
     sap->free_head = -1;
     sap->live = 0;
@@ -113,78 +118,60 @@ static int bucket_of(const rugo_sweep_prune* sap, int a, int b) {
 /* Adds (a, b), a < b, if absent. 0 on out of memory. */
 static int table_add(rugo_sweep_prune* sap, int a, int b) {
     int bk = bucket_of(sap, a, b);
-    for (int e = sap->buckets[bk]; e >= 0; e = sap->pool[e].next)
-        if (sap->pool[e].a == a && sap->pool[e].b == b) return 1;
+    int* buckets = (int*)sap->buckets.data;
+    pair_entry* pool = (pair_entry*)sap->pool.data;
+    for (int e = buckets[bk]; e >= 0; e = pool[e].next)
+        if (pool[e].a == a && pool[e].b == b) return 1;
     int slot;
     if (sap->free_head >= 0) {
         slot = sap->free_head;
-        sap->free_head = sap->pool[slot].next;
+        sap->free_head = pool[slot].next;
     } else {
-        if (sap->pool_used == sap->pool_capacity) {
-            int cap = sap->pool_capacity < 64 ? 64 : sap->pool_capacity;
-            if (cap > (1 << 29)) return 0;
-            cap *= 2;
-            pair_entry* p = (pair_entry*)rugo__alloc_array(&sap->allocator, (size_t)cap, sizeof *p);
-            if (p == NULL) return 0;
-            if (sap->pool_used > 0) memcpy(p, sap->pool, (size_t)sap->pool_used * sizeof *p);
-            rugo__free(&sap->allocator, sap->pool);
-            sap->pool = p;
-            sap->pool_capacity = cap;
-        }
+        if (sap->pool_used >= POOL_MAX ||
+            rugo__array_reserve(&sap->pool, &sap->allocator, (size_t)sap->pool_used + 1, sizeof(pair_entry),
+                                POOL_FIRST) != RUGO_OK)
+            return 0;
+        pool = (pair_entry*)sap->pool.data;
         slot = sap->pool_used++;
     }
-    sap->pool[slot].a = a;
-    sap->pool[slot].b = b;
-    sap->pool[slot].next = sap->buckets[bk];
-    sap->buckets[bk] = slot;
+    pool[slot].a = a;
+    pool[slot].b = b;
+    pool[slot].next = buckets[bk];
+    buckets[bk] = slot;
     sap->live++;
     return 1;
 }
 
 static void table_remove(rugo_sweep_prune* sap, int a, int b) {
     int bk = bucket_of(sap, a, b);
-    int* link = &sap->buckets[bk];
+    pair_entry* pool = (pair_entry*)sap->pool.data;
+    int* link = (int*)sap->buckets.data + bk;
     while (*link >= 0) {
         int e = *link;
-        if (sap->pool[e].a == a && sap->pool[e].b == b) {
-            *link = sap->pool[e].next;
-            sap->pool[e].next = sap->free_head;
+        if (pool[e].a == a && pool[e].b == b) {
+            *link = pool[e].next;
+            pool[e].next = sap->free_head;
             sap->free_head = e;
             sap->live--;
             return;
         }
-        link = &sap->pool[e].next;
+        link = &pool[e].next;
     }
 }
 
-static rugo_status reserve(rugo_sweep_prune* sap, int n) {
-    if (n < 1) n = 1; /* the bucket array must exist even for no boxes */
-    if (n <= sap->capacity) return RUGO_OK;
-    rugo_allocator* a = &sap->allocator;
-    endpoint* x = (endpoint*)rugo__alloc_array(a, (size_t)n * 2, sizeof *x);
-    endpoint* y = (endpoint*)rugo__alloc_array(a, (size_t)n * 2, sizeof *y);
-    int* act = (int*)rugo__alloc_array(a, (size_t)n, sizeof *act);
-    int* pos = (int*)rugo__alloc_array(a, (size_t)n, sizeof *pos);
-    int* bk = (int*)rugo__alloc_array(a, (size_t)n * 2 + 1, sizeof *bk);
-    if (x == NULL || y == NULL || act == NULL || pos == NULL || bk == NULL) {
-        rugo__free(a, x);
-        rugo__free(a, y);
-        rugo__free(a, act);
-        rugo__free(a, pos);
-        rugo__free(a, bk);
+/* Room for n boxes: their end points on both axes, the sweep's active list and the hash table's
+ * 2 n + 1 buckets (the bucket array must exist even for no boxes). Sized to n the first time; the
+ * contents are rebuilt by the general algorithm whenever n changes. */
+static rugo_status reserve_boxes(rugo_sweep_prune* sap, int n) {
+    if (n < 1) n = 1;
+    const size_t m = (size_t)n;
+    const rugo_allocator* a = &sap->allocator;
+    if (rugo__array_reserve(&sap->axis[0], a, 2 * m, sizeof(endpoint), 2 * m) != RUGO_OK ||
+        rugo__array_reserve(&sap->axis[1], a, 2 * m, sizeof(endpoint), 2 * m) != RUGO_OK ||
+        rugo__array_reserve(&sap->active, a, m, sizeof(int), m) != RUGO_OK ||
+        rugo__array_reserve(&sap->active_pos, a, m, sizeof(int), m) != RUGO_OK ||
+        rugo__array_reserve(&sap->buckets, a, 2 * m + 1, sizeof(int), 2 * m + 1) != RUGO_OK)
         return RUGO_ERR_OUT_OF_MEMORY;
-    }
-    rugo__free(a, sap->axis[0]);
-    rugo__free(a, sap->axis[1]);
-    rugo__free(a, sap->active);
-    rugo__free(a, sap->active_pos);
-    rugo__free(a, sap->buckets);
-    sap->axis[0] = x;
-    sap->axis[1] = y;
-    sap->active = act;
-    sap->active_pos = pos;
-    sap->buckets = bk;
-    sap->capacity = n;
     return RUGO_OK;
 }
 
@@ -192,7 +179,7 @@ static rugo_status general(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n)
     sap->h = 2 * n + 1;
     table_clear(sap);
     for (int ax = 0; ax < 2; ++ax) {
-        endpoint* e = sap->axis[ax];
+        endpoint* e = (endpoint*)sap->axis[ax].data;
         for (int i = 0; i < n; ++i) {
             e[2 * i].value = ax == 0 ? boxes[i].lower.x : boxes[i].lower.y;
             e[2 * i].id = i;
@@ -204,21 +191,23 @@ static rugo_status general(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n)
         if (n > 0) qsort(e, (size_t)n * 2, sizeof *e, endpoint_cmp);
     }
     int active = 0;
-    const endpoint* e = sap->axis[0];
+    int* act = (int*)sap->active.data;
+    int* act_pos = (int*)sap->active_pos.data;
+    const endpoint* e = (const endpoint*)sap->axis[0].data;
     for (int k = 0; k < 2 * n; ++k) {
         int i = e[k].id;
         if (e[k].end) {
-            int p = sap->active_pos[i];
-            sap->active[p] = sap->active[--active];
-            sap->active_pos[sap->active[p]] = p;
+            int p = act_pos[i];
+            act[p] = act[--active];
+            act_pos[act[p]] = p;
         } else {
             for (int m = 0; m < active; ++m) {
-                int j = sap->active[m];
+                int j = act[m];
                 if (overlap_axis(&boxes[i], &boxes[j], 1) && !table_add(sap, i < j ? i : j, i < j ? j : i))
                     return RUGO_ERR_OUT_OF_MEMORY;
             }
-            sap->active_pos[i] = active;
-            sap->active[active++] = i;
+            act_pos[i] = active;
+            act[active++] = i;
         }
     }
     sap->swaps = 0;
@@ -228,7 +217,7 @@ static rugo_status general(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n)
 static rugo_status coherent(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n) {
     long swaps = 0;
     for (int ax = 0; ax < 2; ++ax) {
-        endpoint* e = sap->axis[ax];
+        endpoint* e = (endpoint*)sap->axis[ax].data;
         for (int k = 0; k < 2 * n; ++k) {
             const rugo_aabb* b = &boxes[e[k].id];
             e[k].value = ax == 0 ? (e[k].end ? b->upper.x : b->lower.x) : (e[k].end ? b->upper.y : b->lower.y);
@@ -272,7 +261,7 @@ rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxe
     for (int i = 0; i < n; ++i)
         if (boxes[i].lower.x > boxes[i].upper.x || boxes[i].lower.y > boxes[i].upper.y) return RUGO_ERR_BAD_ARGUMENT;
 
-    rugo_status st = reserve(sap, n);
+    rugo_status st = reserve_boxes(sap, n);
     if (st != RUGO_OK) return st;
     if (!sap->valid || n != sap->n) {
         sap->valid = 0;
@@ -285,26 +274,23 @@ rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxe
         sap->valid = 0;
         return st;
     }
-    if (sap->live > sap->out_capacity) {
-        int cap = sap->live + sap->live / 2 + 16;
-        rugo_pair* p = (rugo_pair*)rugo__alloc_array(&sap->allocator, (size_t)cap, sizeof *p);
-        if (p == NULL) {
-            sap->valid = 0;
-            return RUGO_ERR_OUT_OF_MEMORY;
-        }
-        rugo__free(&sap->allocator, sap->out);
-        sap->out = p;
-        sap->out_capacity = cap;
+    if (rugo__array_reserve(&sap->out, &sap->allocator, (size_t)sap->live, sizeof(rugo_pair), OUT_FIRST) !=
+        RUGO_OK) {
+        sap->valid = 0;
+        return RUGO_ERR_OUT_OF_MEMORY;
     }
+    rugo_pair* out = (rugo_pair*)sap->out.data;
+    const int* buckets = (const int*)sap->buckets.data;
+    const pair_entry* pool = (const pair_entry*)sap->pool.data;
     int c = 0;
     for (int bk = 0; bk < sap->h; ++bk)
-        for (int e = sap->buckets[bk]; e >= 0; e = sap->pool[e].next) {
-            sap->out[c].a = sap->pool[e].a;
-            sap->out[c].b = sap->pool[e].b;
+        for (int e = buckets[bk]; e >= 0; e = pool[e].next) {
+            out[c].a = pool[e].a;
+            out[c].b = pool[e].b;
             ++c;
         }
     RUGO_ASSERT(c == sap->live);
-    if (c > 1) qsort(sap->out, (size_t)c, sizeof *sap->out, pair_cmp);
+    if (c > 1) qsort(out, (size_t)c, sizeof *out, pair_cmp);
     sap->out_count = c;
     sap->n = n;
     sap->valid = 1;
@@ -314,7 +300,7 @@ rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxe
 const rugo_pair* rugo_sweep_prune_pairs(const rugo_sweep_prune* sap, int* count) {
     if (count != NULL) *count = sap != NULL ? sap->out_count : 0;
     if (sap == NULL) return NULL;
-    return sap->out;
+    return (const rugo_pair*)sap->out.data;
 }
 
 long rugo_sweep_prune_swaps(const rugo_sweep_prune* sap) { return sap != NULL ? sap->swaps : 0; }

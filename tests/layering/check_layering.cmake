@@ -7,14 +7,16 @@ cmake_minimum_required(VERSION 3.16)
 
 # Which layers' private headers each layer may include: its own and those it builds on, in data-flow
 # order (authoring in io and fit reads text and fits outlines on top of core; geometry goes core ->
-# curve -> rough -> shape -> query -> sim).
+# curve -> rough -> shape -> query -> sim). io also reads rough's private header: the shape-file and
+# CSV readers report a bad roughness range or profile sample with the very checks the resampling in
+# rough applies (rough/internal.h), so that what the readers accept is what the resampling accepts.
 set(allowed_core  core)
 set(allowed_curve core curve)
 set(allowed_rough core curve rough)
 set(allowed_shape core curve rough shape)
 set(allowed_query core curve rough shape query)
 set(allowed_sim   core curve rough shape query sim)
-set(allowed_io    core curve io)
+set(allowed_io    core curve rough io)
 set(allowed_fit   core curve fit)
 set(layers core curve rough shape query sim io fit)
 

@@ -1,4 +1,6 @@
-/* A small strict JSON reader (a tree in an arena) and writer. See json.h for the rules it keeps. */
+/* The strict JSON reader (io/json.h): a read-only tree of values in an arena, for hostile input, and
+ * the message helpers every reader of io shares (line and column of an offset, printable quotations).
+ * See json.h for the rules it keeps. */
 #include "io/json.h"
 
 #include "core/internal.h"
@@ -14,18 +16,18 @@ typedef char rugo__json_offsets_fit_32_bits[(RUGO_MAX_JSON_BYTES <= (size_t)0xFF
 /* ------------------------------------------------------------------------------------------------ */
 /* Arena: values and strings of one document, freed at once. */
 
-typedef struct rugo_json_block {
-    struct rugo_json_block* next;
+typedef struct rugo__json_block {
+    struct rugo__json_block* next;
     size_t size, used;
-} rugo_json_block;
+} rugo__json_block;
 
 #define ARENA_ALIGN 16
-#define ARENA_HEADER ((sizeof(rugo_json_block) + ARENA_ALIGN - 1) / ARENA_ALIGN * ARENA_ALIGN)
+#define ARENA_HEADER ((sizeof(rugo__json_block) + ARENA_ALIGN - 1) / ARENA_ALIGN * ARENA_ALIGN)
 #define ARENA_FIRST_BLOCK ((size_t)4096)
 #define ARENA_MAX_BLOCK ((size_t)1 << 20)
 
 typedef struct arena {
-    rugo_json_block* blocks;
+    rugo__json_block* blocks;
     size_t next_size;
     rugo_allocator allocator;
 } arena;
@@ -33,13 +35,13 @@ typedef struct arena {
 static void* arena_alloc(arena* a, size_t size) {
     if (size > SIZE_MAX - 2 * ARENA_ALIGN - ARENA_HEADER) return NULL;
     size = (size + ARENA_ALIGN - 1) / ARENA_ALIGN * ARENA_ALIGN;
-    rugo_json_block* b = a->blocks;
+    rugo__json_block* b = a->blocks;
     if (b == NULL || b->size - b->used < size) {
         /* Blocks double up to 1 MiB so that small documents stay small and large ones take few
          * blocks; an oversized request gets a block of its own. */
         size_t block = a->next_size < size ? size : a->next_size;
         if (a->next_size < ARENA_MAX_BLOCK) a->next_size *= 2;
-        b = (rugo_json_block*)a->allocator.alloc(ARENA_HEADER + block, a->allocator.ctx);
+        b = (rugo__json_block*)a->allocator.alloc(ARENA_HEADER + block, a->allocator.ctx);
         if (b == NULL) return NULL;
         b->size = block;
         b->used = 0;
@@ -51,9 +53,9 @@ static void* arena_alloc(arena* a, size_t size) {
     return p;
 }
 
-static void arena_release(rugo_json_block* blocks, const rugo_allocator* allocator) {
+static void arena_release(rugo__json_block* blocks, const rugo_allocator* allocator) {
     while (blocks != NULL) {
-        rugo_json_block* next = blocks->next;
+        rugo__json_block* next = blocks->next;
         allocator->free(blocks, allocator->ctx);
         blocks = next;
     }
@@ -69,7 +71,7 @@ static void copy_truncated(char* out, size_t size, const char* s) {
     out[n] = '\0';
 }
 
-void rugo_json_quote_for_message(const char* s, size_t n, char* out, size_t size) {
+void rugo__json_quote_for_message(const char* s, size_t n, char* out, size_t size) {
     static const char hex[] = "0123456789abcdef";
     size_t j = 0;
     if (out == NULL || size == 0) return;
@@ -98,25 +100,25 @@ void rugo_json_quote_for_message(const char* s, size_t n, char* out, size_t size
     out[j] = '\0';
 }
 
-const char* rugo_json_type_name(rugo_json_type type) {
+const char* rugo__json_type_name(rugo__json_type type) {
     switch (type) {
-    case RUGO_JSON_NULL:
+    case RUGO__JSON_NULL:
         return "null";
-    case RUGO_JSON_BOOL:
+    case RUGO__JSON_BOOL:
         return "boolean";
-    case RUGO_JSON_NUMBER:
+    case RUGO__JSON_NUMBER:
         return "number";
-    case RUGO_JSON_STRING:
+    case RUGO__JSON_STRING:
         return "string";
-    case RUGO_JSON_ARRAY:
+    case RUGO__JSON_ARRAY:
         return "array";
-    case RUGO_JSON_OBJECT:
+    case RUGO__JSON_OBJECT:
         return "object";
     }
     return "value";
 }
 
-void rugo_json_locate(const char* text, size_t length, size_t offset, int* line, int* column) {
+void rugo__json_locate(const char* text, size_t length, size_t offset, int* line, int* column) {
     size_t ln = 1, line_start = 0;
     if (offset > length) offset = length;
     if (text != NULL) {
@@ -154,7 +156,7 @@ typedef struct parser {
     size_t error_offset;
     char message[160];
     char path[96];
-    frame frames[RUGO_JSON_DEPTH_CAP];
+    frame frames[RUGO__JSON_DEPTH_CAP];
 } parser;
 
 static void path_append(char* out, size_t size, size_t* len, const char* s, size_t n) {
@@ -226,12 +228,12 @@ static void skip_ws(parser* P) {
 
 static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
 
-static rugo_json_value* new_value(parser* P, rugo_json_type type, const unsigned char* at) {
+static rugo__json_value* new_value(parser* P, rugo__json_type type, const unsigned char* at) {
     if (++P->values > P->max_values)
-        return (rugo_json_value*)fail(P, at, RUGO_ERR_PARSE, "more than %lu values in the text",
+        return (rugo__json_value*)fail(P, at, RUGO_ERR_PARSE, "more than %lu values in the text",
                                       (unsigned long)P->max_values);
-    rugo_json_value* v = (rugo_json_value*)arena_alloc(&P->arena, sizeof *v);
-    if (v == NULL) return (rugo_json_value*)fail(P, at, RUGO_ERR_OUT_OF_MEMORY, "out of memory");
+    rugo__json_value* v = (rugo__json_value*)arena_alloc(&P->arena, sizeof *v);
+    if (v == NULL) return (rugo__json_value*)fail(P, at, RUGO_ERR_OUT_OF_MEMORY, "out of memory");
     v->next = NULL;
     v->type = type;
     v->offset = (uint32_t)(at - P->begin);
@@ -240,7 +242,7 @@ static rugo_json_value* new_value(parser* P, rugo_json_type type, const unsigned
     return v;
 }
 
-static rugo_json_value* parse_value(parser* P);
+static rugo__json_value* parse_value(parser* P);
 
 /* Length of the valid UTF-8 sequence at s (before stop), or 0. Refuses overlong forms, encoded UTF-16
  * surrogates and code points above U+10FFFF (RFC 3629). */
@@ -310,7 +312,7 @@ static size_t utf8_encode(unsigned long cp, unsigned char* out) {
     return 4;
 }
 
-static rugo_json_value* parse_string(parser* P) {
+static rugo__json_value* parse_string(parser* P) {
     const unsigned char* open = P->p; /* at '"' */
     const unsigned char* stop = open + 1;
     /* First find the closing quote, so that the decoded string can be allocated once: escapes never
@@ -319,11 +321,11 @@ static rugo_json_value* parse_string(parser* P) {
         if (*stop == '\\' && stop + 1 < P->end) ++stop;
         ++stop;
     }
-    if (stop >= P->end) return (rugo_json_value*)fail(P, open, RUGO_ERR_PARSE, "unterminated string");
-    rugo_json_value* v = new_value(P, RUGO_JSON_STRING, open);
+    if (stop >= P->end) return (rugo__json_value*)fail(P, open, RUGO_ERR_PARSE, "unterminated string");
+    rugo__json_value* v = new_value(P, RUGO__JSON_STRING, open);
     if (v == NULL) return NULL;
     unsigned char* out = (unsigned char*)arena_alloc(&P->arena, (size_t)(stop - open));
-    if (out == NULL) return (rugo_json_value*)fail(P, open, RUGO_ERR_OUT_OF_MEMORY, "out of memory");
+    if (out == NULL) return (rugo__json_value*)fail(P, open, RUGO_ERR_OUT_OF_MEMORY, "out of memory");
     size_t n = 0;
     const unsigned char* s = open + 1;
     while (s < stop) {
@@ -358,14 +360,14 @@ static rugo_json_value* parse_string(parser* P) {
                 break;
             case 'u': {
                 long cp = (stop - s >= 6) ? hex4(s + 2) : -1;
-                if (cp < 0) return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "\\u needs four hex digits");
+                if (cp < 0) return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "\\u needs four hex digits");
                 if (cp >= 0xDC00 && cp <= 0xDFFF)
-                    return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "lone UTF-16 low surrogate \\u%04lX",
+                    return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "lone UTF-16 low surrogate \\u%04lX",
                                                   (unsigned long)cp);
                 if (cp >= 0xD800 && cp <= 0xDBFF) {
                     long lo = (stop - s >= 12 && s[6] == '\\' && s[7] == 'u') ? hex4(s + 8) : -1;
                     if (lo < 0xDC00 || lo > 0xDFFF)
-                        return (rugo_json_value*)fail(
+                        return (rugo__json_value*)fail(
                             P, s, RUGO_ERR_PARSE, "UTF-16 high surrogate \\u%04lX without a low surrogate",
                             (unsigned long)cp);
                     cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
@@ -377,20 +379,20 @@ static rugo_json_value* parse_string(parser* P) {
             }
             default: {
                 char buf[16];
-                return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid escape '\\' followed by %s",
+                return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid escape '\\' followed by %s",
                                               describe(P, s + 1, buf, sizeof buf));
             }
             }
             s += 2;
         } else if (c < 0x20) {
-            return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE,
                                           "control character 0x%02x in a string (escape it, e.g. \\n)", c);
         } else if (c < 0x80) {
             out[n++] = (unsigned char)c;
             ++s;
         } else {
             size_t k = utf8_sequence(s, stop);
-            if (k == 0) return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid UTF-8 in a string");
+            if (k == 0) return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid UTF-8 in a string");
             memcpy(out + n, s, k);
             n += k;
             s += k;
@@ -403,20 +405,20 @@ static rugo_json_value* parse_string(parser* P) {
     return v;
 }
 
-static rugo_json_value* parse_number(parser* P) {
+static rugo__json_value* parse_number(parser* P) {
     const unsigned char* s = P->p;
     const unsigned char* q = s;
     const unsigned char* end = P->end;
     if (*q == '-') ++q;
     if (q == end || !is_digit(*q)) {
         char buf[16];
-        return (rugo_json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit after '-', found %s",
+        return (rugo__json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit after '-', found %s",
                                       describe(P, q, buf, sizeof buf));
     }
     if (*q == '0') {
         ++q;
         if (q < end && is_digit(*q))
-            return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "leading zeros are not allowed in numbers");
+            return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "leading zeros are not allowed in numbers");
     } else {
         while (q < end && is_digit(*q))
             ++q;
@@ -424,7 +426,7 @@ static rugo_json_value* parse_number(parser* P) {
     if (q < end && *q == '.') {
         ++q;
         if (q == end || !is_digit(*q))
-            return (rugo_json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit after the decimal point");
+            return (rugo__json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit after the decimal point");
         while (q < end && is_digit(*q))
             ++q;
     }
@@ -432,40 +434,40 @@ static rugo_json_value* parse_number(parser* P) {
         ++q;
         if (q < end && (*q == '+' || *q == '-')) ++q;
         if (q == end || !is_digit(*q))
-            return (rugo_json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit in the exponent");
+            return (rugo__json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit in the exponent");
         while (q < end && is_digit(*q))
             ++q;
     }
     size_t len = (size_t)(q - s);
-    if (len > RUGO_JSON_MAX_NUMBER_CHARS)
-        return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "number longer than %d characters",
-                                      RUGO_JSON_MAX_NUMBER_CHARS);
-    char buf[RUGO_JSON_MAX_NUMBER_CHARS + 1];
+    if (len > RUGO__JSON_MAX_NUMBER_CHARS)
+        return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "number longer than %d characters",
+                                      RUGO__JSON_MAX_NUMBER_CHARS);
+    char buf[RUGO__JSON_MAX_NUMBER_CHARS + 1];
     memcpy(buf, s, len);
     buf[len] = '\0';
     double x = 0.0;
     if (!rugo__strtod_c(buf, len, &x))
-        return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "cannot convert the number");
+        return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "cannot convert the number");
     if (!isfinite(x)) {
         char quoted[40];
-        rugo_json_quote_for_message(buf, len, quoted, sizeof quoted);
-        return (rugo_json_value*)fail(P, s, RUGO_ERR_NOT_FINITE,
+        rugo__json_quote_for_message(buf, len, quoted, sizeof quoted);
+        return (rugo__json_value*)fail(P, s, RUGO_ERR_NOT_FINITE,
                                       "number %s is out of range (overflows to %s)", quoted,
                                       x < 0 ? "-infinity" : "infinity");
     }
-    rugo_json_value* v = new_value(P, RUGO_JSON_NUMBER, s);
+    rugo__json_value* v = new_value(P, RUGO__JSON_NUMBER, s);
     if (v == NULL) return NULL;
     v->u.number = x;
     P->p = q;
     return v;
 }
 
-static rugo_json_value* parse_literal(parser* P, const char* word, rugo_json_type type, int boolean) {
+static rugo__json_value* parse_literal(parser* P, const char* word, rugo__json_type type, int boolean) {
     size_t n = strlen(word);
     const unsigned char* s = P->p;
     if ((size_t)(P->end - s) < n || memcmp(s, word, n) != 0)
-        return (rugo_json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid literal (expected '%s')", word);
-    rugo_json_value* v = new_value(P, type, s);
+        return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid literal (expected '%s')", word);
+    rugo__json_value* v = new_value(P, type, s);
     if (v == NULL) return NULL;
     v->u.boolean = boolean;
     P->p = s + n;
@@ -484,9 +486,9 @@ static frame* push_frame(parser* P, int is_object, const unsigned char* at) {
     return f;
 }
 
-static rugo_json_value* parse_array(parser* P) {
+static rugo__json_value* parse_array(parser* P) {
     const unsigned char* open = P->p;
-    rugo_json_value* v = new_value(P, RUGO_JSON_ARRAY, open);
+    rugo__json_value* v = new_value(P, RUGO__JSON_ARRAY, open);
     if (v == NULL) return NULL;
     frame* f = push_frame(P, 0, open);
     if (f == NULL) return NULL;
@@ -497,11 +499,11 @@ static rugo_json_value* parse_array(parser* P) {
         --P->depth;
         return v;
     }
-    rugo_json_value* tail = NULL;
+    rugo__json_value* tail = NULL;
     for (;;) {
         /* The path names the element while it is read, and the array itself between elements. */
         f->in_element = 1;
-        rugo_json_value* e = parse_value(P);
+        rugo__json_value* e = parse_value(P);
         if (e == NULL) return NULL;
         f->in_element = 0;
         if (tail == NULL)
@@ -517,7 +519,7 @@ static rugo_json_value* parse_array(parser* P) {
             f->in_element = 1;
             skip_ws(P);
             if (P->p < P->end && *P->p == ']')
-                return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "trailing comma before ']'");
+                return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "trailing comma before ']'");
             continue;
         }
         if (P->p < P->end && *P->p == ']') {
@@ -525,10 +527,10 @@ static rugo_json_value* parse_array(parser* P) {
             break;
         }
         if (P->p >= P->end)
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                           "unexpected end of input in an array (missing ']')");
         char buf[16];
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                       "expected ',' or ']' after an array element, found %s",
                                       describe(P, P->p, buf, sizeof buf));
     }
@@ -536,9 +538,9 @@ static rugo_json_value* parse_array(parser* P) {
     return v;
 }
 
-static rugo_json_value* parse_object(parser* P) {
+static rugo__json_value* parse_object(parser* P) {
     const unsigned char* open = P->p;
-    rugo_json_value* v = new_value(P, RUGO_JSON_OBJECT, open);
+    rugo__json_value* v = new_value(P, RUGO__JSON_OBJECT, open);
     if (v == NULL) return NULL;
     frame* f = push_frame(P, 1, open);
     if (f == NULL) return NULL;
@@ -549,28 +551,28 @@ static rugo_json_value* parse_object(parser* P) {
         --P->depth;
         return v;
     }
-    rugo_json_value* tail = NULL;
+    rugo__json_value* tail = NULL;
     char buf[16];
     for (;;) {
         f->key = NULL;
         if (P->p >= P->end)
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                           "unexpected end of input in an object (missing '}')");
         if (*P->p != '"')
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                           "expected a member name in double quotes, found %s",
                                           describe(P, P->p, buf, sizeof buf));
-        rugo_json_value* key = parse_string(P);
+        rugo__json_value* key = parse_string(P);
         if (key == NULL) return NULL;
         f->key = key->u.string;
         f->key_length = key->count;
         skip_ws(P);
         if (P->p >= P->end || *P->p != ':')
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                           "expected ':' after the member name, found %s",
                                           describe(P, P->p, buf, sizeof buf));
         ++P->p;
-        rugo_json_value* val = parse_value(P);
+        rugo__json_value* val = parse_value(P);
         if (val == NULL) return NULL;
         if (tail == NULL)
             v->u.first = key;
@@ -585,7 +587,7 @@ static rugo_json_value* parse_object(parser* P) {
             ++P->p;
             skip_ws(P);
             if (P->p < P->end && *P->p == '}')
-                return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "trailing comma before '}'");
+                return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "trailing comma before '}'");
             continue;
         }
         if (P->p < P->end && *P->p == '}') {
@@ -593,9 +595,9 @@ static rugo_json_value* parse_object(parser* P) {
             break;
         }
         if (P->p >= P->end)
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                           "unexpected end of input in an object (missing '}')");
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE,
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
                                       "expected ',' or '}' after an object member, found %s",
                                       describe(P, P->p, buf, sizeof buf));
     }
@@ -603,10 +605,10 @@ static rugo_json_value* parse_object(parser* P) {
     return v;
 }
 
-static rugo_json_value* parse_value(parser* P) {
+static rugo__json_value* parse_value(parser* P) {
     skip_ws(P);
     if (P->p >= P->end)
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "unexpected end of input (expected a value)");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "unexpected end of input (expected a value)");
     char buf[16];
     switch (*P->p) {
     case '{':
@@ -616,35 +618,35 @@ static rugo_json_value* parse_value(parser* P) {
     case '"':
         return parse_string(P);
     case 't':
-        return parse_literal(P, "true", RUGO_JSON_BOOL, 1);
+        return parse_literal(P, "true", RUGO__JSON_BOOL, 1);
     case 'f':
-        return parse_literal(P, "false", RUGO_JSON_BOOL, 0);
+        return parse_literal(P, "false", RUGO__JSON_BOOL, 0);
     case 'n':
-        return parse_literal(P, "null", RUGO_JSON_NULL, 0);
+        return parse_literal(P, "null", RUGO__JSON_NULL, 0);
     case '-':
         if (P->end - P->p > 1 && (P->p[1] == 'I' || P->p[1] == 'N'))
-            return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "NaN and Infinity are not JSON numbers");
+            return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "NaN and Infinity are not JSON numbers");
         return parse_number(P);
     case 'N':
     case 'I':
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "NaN and Infinity are not JSON numbers");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "NaN and Infinity are not JSON numbers");
     case '+':
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "a number may not start with '+'");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "a number may not start with '+'");
     case '.':
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "a number must start with a digit");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "a number must start with a digit");
     case '\'':
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "strings must use double quotes");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "strings must use double quotes");
     case '/':
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "comments are not allowed in JSON");
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "comments are not allowed in JSON");
     default:
         if (is_digit(*P->p)) return parse_number(P);
-        return (rugo_json_value*)fail(P, P->p, RUGO_ERR_PARSE, "unexpected %s (expected a value)",
+        return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "unexpected %s (expected a value)",
                                       describe(P, P->p, buf, sizeof buf));
     }
 }
 
-rugo_status rugo_json_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                            const rugo_json_limits* limits, rugo_json_doc* doc, rugo_json_error* error) {
+rugo_status rugo__json_parse(const char* text, size_t length, const rugo_allocator* allocator,
+                            const rugo__json_limits* limits, rugo__json_doc* doc, rugo__json_error* error) {
     if (error != NULL) memset(error, 0, sizeof *error);
     if (doc == NULL || text == NULL) {
         if (doc != NULL) memset(doc, 0, sizeof *doc);
@@ -674,10 +676,10 @@ rugo_status rugo_json_parse(const char* text, size_t length, const rugo_allocato
     P->arena.next_size = ARENA_FIRST_BLOCK;
     P->arena.allocator = doc->allocator;
     P->values = 0;
-    P->max_values = (limits != NULL && limits->max_values > 0) ? limits->max_values : RUGO_JSON_MAX_VALUES;
+    P->max_values = (limits != NULL && limits->max_values > 0) ? limits->max_values : RUGO__JSON_MAX_VALUES;
     P->depth = 0;
-    P->max_depth = (limits != NULL && limits->max_depth > 0) ? limits->max_depth : RUGO_JSON_MAX_DEPTH;
-    if (P->max_depth > RUGO_JSON_DEPTH_CAP) P->max_depth = RUGO_JSON_DEPTH_CAP;
+    P->max_depth = (limits != NULL && limits->max_depth > 0) ? limits->max_depth : RUGO__JSON_MAX_DEPTH;
+    if (P->max_depth > RUGO__JSON_DEPTH_CAP) P->max_depth = RUGO__JSON_DEPTH_CAP;
     P->status = RUGO_OK;
     P->error_offset = 0;
     P->message[0] = '\0';
@@ -686,7 +688,7 @@ rugo_status rugo_json_parse(const char* text, size_t length, const rugo_allocato
     /* RFC 8259 §8.1: a parser may ignore a byte order mark. Editors on some systems add one. */
     if (length >= 3 && P->p[0] == 0xEF && P->p[1] == 0xBB && P->p[2] == 0xBF) P->p += 3;
     skip_ws(P);
-    rugo_json_value* root = NULL;
+    rugo__json_value* root = NULL;
     if (P->p >= P->end) {
         fail(P, P->p, RUGO_ERR_PARSE, "empty input (no JSON value)");
     } else {
@@ -710,7 +712,7 @@ rugo_status rugo_json_parse(const char* text, size_t length, const rugo_allocato
         arena_release(P->arena.blocks, &doc->allocator);
         if (error != NULL) {
             error->offset = P->error_offset;
-            rugo_json_locate(text, length, P->error_offset, &error->line, &error->column);
+            rugo__json_locate(text, length, P->error_offset, &error->line, &error->column);
             copy_truncated(error->path, sizeof error->path, P->path);
             copy_truncated(error->message, sizeof error->message, P->message);
         }
@@ -719,7 +721,7 @@ rugo_status rugo_json_parse(const char* text, size_t length, const rugo_allocato
     return status;
 }
 
-void rugo_json_doc_free(rugo_json_doc* doc) {
+void rugo__json_doc_free(rugo__json_doc* doc) {
     if (doc == NULL) return;
     if (doc->blocks != NULL) arena_release(doc->blocks, &doc->allocator);
     doc->blocks = NULL;
@@ -727,321 +729,18 @@ void rugo_json_doc_free(rugo_json_doc* doc) {
     doc->value_count = 0;
 }
 
-const rugo_json_value* rugo_json_object_get(const rugo_json_value* object, const char* key, int* matches) {
-    const rugo_json_value* found = NULL;
+const rugo__json_value* rugo__json_object_get(const rugo__json_value* object, const char* key, int* matches) {
+    const rugo__json_value* found = NULL;
     int n = 0;
-    if (object != NULL && key != NULL && object->type == RUGO_JSON_OBJECT) {
+    if (object != NULL && key != NULL && object->type == RUGO__JSON_OBJECT) {
         size_t len = strlen(key);
-        for (const rugo_json_value* k = object->u.first; k != NULL; k = RUGO_JSON_NEXT_MEMBER(k)) {
+        for (const rugo__json_value* k = object->u.first; k != NULL; k = RUGO__JSON_NEXT_MEMBER(k)) {
             if (k->count == len && memcmp(k->u.string, key, len) == 0) {
-                if (found == NULL) found = RUGO_JSON_MEMBER_VALUE(k);
+                if (found == NULL) found = RUGO__JSON_MEMBER_VALUE(k);
                 ++n;
             }
         }
     }
     if (matches != NULL) *matches = n;
     return found;
-}
-
-/* ------------------------------------------------------------------------------------------------ */
-/* Writer */
-
-void rugo_json_writer_init(rugo_json_writer* w, const rugo_allocator* allocator, int indent) {
-    if (w == NULL) return;
-    memset(w, 0, sizeof *w);
-    w->allocator = rugo__allocator_or_default(allocator);
-    w->status = RUGO_OK;
-    w->indent = indent < 0 ? 0 : (indent > 16 ? 16 : indent);
-}
-
-static void w_set_error(rugo_json_writer* w, rugo_status s) {
-    if (w->status == RUGO_OK) w->status = s;
-}
-
-/* Room for n more bytes plus the NUL that always follows the text. */
-static int w_reserve(rugo_json_writer* w, size_t n) {
-    if (w->status != RUGO_OK) return 0;
-    if (n > SIZE_MAX - 1 - w->length) {
-        w_set_error(w, RUGO_ERR_OUT_OF_MEMORY);
-        return 0;
-    }
-    size_t need = w->length + n + 1;
-    if (need <= w->capacity) return 1;
-    size_t cap = w->capacity > 0 ? w->capacity : 256;
-    while (cap < need)
-        cap = (cap > SIZE_MAX / 2) ? need : cap * 2;
-    char* p = (char*)w->allocator.alloc(cap, w->allocator.ctx);
-    if (p == NULL) {
-        w_set_error(w, RUGO_ERR_OUT_OF_MEMORY);
-        return 0;
-    }
-    if (w->data != NULL) {
-        memcpy(p, w->data, w->length + 1);
-        w->allocator.free(w->data, w->allocator.ctx);
-    } else {
-        p[0] = '\0';
-    }
-    w->data = p;
-    w->capacity = cap;
-    return 1;
-}
-
-static void w_put(rugo_json_writer* w, const char* s, size_t n) {
-    if (!w_reserve(w, n)) return;
-    memcpy(w->data + w->length, s, n);
-    w->length += n;
-    w->data[w->length] = '\0';
-}
-
-static void w_newline(rugo_json_writer* w, int level) {
-    size_t n = (size_t)w->indent * (size_t)level;
-    if (!w_reserve(w, n + 1)) return;
-    w->data[w->length++] = '\n';
-    memset(w->data + w->length, ' ', n);
-    w->length += n;
-    w->data[w->length] = '\0';
-}
-
-/* Comma and line break before an element of the innermost container. */
-static void w_separator(rugo_json_writer* w) {
-    int d = w->depth - 1;
-    if (w->count[d] > 0) w_put(w, ",", 1);
-    if (!w->is_inline[d] && w->indent > 0)
-        w_newline(w, d + 1);
-    else if (w->count[d] > 0)
-        w_put(w, " ", 1);
-    ++w->count[d];
-}
-
-static int w_value_prefix(rugo_json_writer* w) {
-    if (w == NULL || w->status != RUGO_OK) return 0;
-    if (w->depth == 0) return 1;
-    if (w->is_object[w->depth - 1]) {
-        if (!w->after_key) {
-            w_set_error(w, RUGO_ERR_BAD_ARGUMENT);
-            return 0;
-        }
-        w->after_key = 0;
-        return 1;
-    }
-    w_separator(w);
-    return w->status == RUGO_OK;
-}
-
-static void w_begin(rugo_json_writer* w, int is_object, int flags) {
-    if (!w_value_prefix(w)) return;
-    if (w->depth >= RUGO_JSON_WRITER_MAX_DEPTH) {
-        w_set_error(w, RUGO_ERR_BAD_ARGUMENT);
-        return;
-    }
-    int inline_ =
-        (flags & RUGO_JSON_INLINE) != 0 || w->indent == 0 || (w->depth > 0 && w->is_inline[w->depth - 1]);
-    w_put(w, is_object ? "{" : "[", 1);
-    w->is_object[w->depth] = (unsigned char)is_object;
-    w->is_inline[w->depth] = (unsigned char)inline_;
-    w->count[w->depth] = 0;
-    ++w->depth;
-}
-
-static void w_end(rugo_json_writer* w, int is_object) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (w->depth == 0 || w->is_object[w->depth - 1] != is_object || w->after_key) {
-        w_set_error(w, RUGO_ERR_BAD_ARGUMENT);
-        return;
-    }
-    int d = w->depth - 1;
-    if (w->count[d] > 0 && !w->is_inline[d] && w->indent > 0) w_newline(w, d);
-    w_put(w, is_object ? "}" : "]", 1);
-    --w->depth;
-}
-
-void rugo_json_begin_object(rugo_json_writer* w, int flags) { w_begin(w, 1, flags); }
-void rugo_json_end_object(rugo_json_writer* w) { w_end(w, 1); }
-void rugo_json_begin_array(rugo_json_writer* w, int flags) { w_begin(w, 0, flags); }
-void rugo_json_end_array(rugo_json_writer* w) { w_end(w, 0); }
-
-static void w_quoted(rugo_json_writer* w, const char* s, size_t n) {
-    static const char hex[] = "0123456789abcdef";
-    w_put(w, "\"", 1);
-    size_t run = 0; /* start of a stretch of bytes copied as they are */
-    for (size_t i = 0; i < n; ++i) {
-        unsigned char c = (unsigned char)s[i];
-        const char* esc = NULL;
-        char u[7];
-        switch (c) {
-        case '"':
-            esc = "\\\"";
-            break;
-        case '\\':
-            esc = "\\\\";
-            break;
-        case '\b':
-            esc = "\\b";
-            break;
-        case '\f':
-            esc = "\\f";
-            break;
-        case '\n':
-            esc = "\\n";
-            break;
-        case '\r':
-            esc = "\\r";
-            break;
-        case '\t':
-            esc = "\\t";
-            break;
-        default:
-            if (c < 0x20) {
-                memcpy(u, "\\u00", 4);
-                u[4] = hex[c >> 4];
-                u[5] = hex[c & 15];
-                u[6] = '\0';
-                esc = u;
-            }
-        }
-        if (esc != NULL) {
-            w_put(w, s + run, i - run);
-            w_put(w, esc, strlen(esc));
-            run = i + 1;
-        }
-    }
-    w_put(w, s + run, n - run);
-    w_put(w, "\"", 1);
-}
-
-void rugo_json_key(rugo_json_writer* w, const char* key) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (key == NULL) {
-        w_set_error(w, RUGO_ERR_NULL_ARGUMENT);
-        return;
-    }
-    if (w->depth == 0 || !w->is_object[w->depth - 1] || w->after_key) {
-        w_set_error(w, RUGO_ERR_BAD_ARGUMENT);
-        return;
-    }
-    w_separator(w);
-    w_quoted(w, key, strlen(key));
-    w_put(w, ": ", 2);
-    w->after_key = 1;
-}
-
-int rugo_json_format_number(double x, char* buf, size_t size) {
-    char tmp[64];
-    int n;
-    if (buf == NULL || size == 0) return 0;
-    if (isnan(x))
-        n = snprintf(tmp, sizeof tmp, "nan");
-    else if (isinf(x))
-        n = snprintf(tmp, sizeof tmp, x < 0 ? "-inf" : "inf");
-    else
-        n = snprintf(tmp, sizeof tmp, "%.17g", x);
-    if (n < 0) n = 0;
-    if ((size_t)n >= sizeof tmp) n = (int)sizeof tmp - 1;
-    /* printf writes the locale's decimal point, which may be ',' or several bytes: whatever is not a
-     * digit, sign or exponent mark is that point, and becomes '.'. */
-    size_t j = 0;
-    int in_point = 0;
-    for (int i = 0; i < n && j + 1 < size; ++i) {
-        char c = tmp[i];
-        int plain = (c >= '0' && c <= '9') || c == '-' || c == '+' || c == 'e' || c == 'E' || !isfinite(x);
-        if (plain) {
-            buf[j++] = c;
-            in_point = 0;
-        } else if (!in_point) {
-            buf[j++] = '.';
-            in_point = 1;
-        }
-    }
-    buf[j] = '\0';
-    return (int)j;
-}
-
-void rugo_json_number(rugo_json_writer* w, double x) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (!isfinite(x)) {
-        w_set_error(w, RUGO_ERR_NOT_FINITE);
-        return;
-    }
-    if (!w_value_prefix(w)) return;
-    char buf[40];
-    int n = rugo_json_format_number(x, buf, sizeof buf);
-    w_put(w, buf, (size_t)n);
-}
-
-void rugo_json_integer(rugo_json_writer* w, long long x) {
-    if (!w_value_prefix(w)) return;
-    char buf[32];
-    int n = snprintf(buf, sizeof buf, "%lld", x);
-    if (n > 0) w_put(w, buf, (size_t)n);
-}
-
-void rugo_json_string_n(rugo_json_writer* w, const char* s, size_t n) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (s == NULL && n > 0) {
-        w_set_error(w, RUGO_ERR_NULL_ARGUMENT);
-        return;
-    }
-    if (!w_value_prefix(w)) return;
-    w_quoted(w, s != NULL ? s : "", n);
-}
-
-void rugo_json_string(rugo_json_writer* w, const char* s) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (s == NULL) {
-        w_set_error(w, RUGO_ERR_NULL_ARGUMENT);
-        return;
-    }
-    rugo_json_string_n(w, s, strlen(s));
-}
-
-void rugo_json_bool(rugo_json_writer* w, int b) {
-    if (!w_value_prefix(w)) return;
-    if (b)
-        w_put(w, "true", 4);
-    else
-        w_put(w, "false", 5);
-}
-
-void rugo_json_null(rugo_json_writer* w) {
-    if (!w_value_prefix(w)) return;
-    w_put(w, "null", 4);
-}
-
-void rugo_json_raw(rugo_json_writer* w, const char* s, size_t n) {
-    if (w == NULL || w->status != RUGO_OK) return;
-    if (s == NULL && n > 0) {
-        w_set_error(w, RUGO_ERR_NULL_ARGUMENT);
-        return;
-    }
-    if (n > 0) w_put(w, s, n);
-}
-
-void rugo_json_writer_discard(rugo_json_writer* w) {
-    if (w == NULL) return;
-    if (w->data != NULL) w->allocator.free(w->data, w->allocator.ctx);
-    w->data = NULL;
-    w->length = w->capacity = 0;
-    w->depth = 0;
-    w->after_key = 0;
-}
-
-rugo_status rugo_json_writer_finish(rugo_json_writer* w, char** text, size_t* length) {
-    if (text != NULL) *text = NULL;
-    if (length != NULL) *length = 0;
-    if (w == NULL || text == NULL) {
-        rugo_json_writer_discard(w);
-        return RUGO_ERR_NULL_ARGUMENT;
-    }
-    if (w->status == RUGO_OK && (w->depth != 0 || w->after_key)) w->status = RUGO_ERR_BAD_ARGUMENT;
-    if (w->status == RUGO_OK && w->data == NULL) w_reserve(w, 0); /* an empty text is still a string */
-    rugo_status s = w->status;
-    if (s != RUGO_OK) {
-        rugo_json_writer_discard(w);
-        return s;
-    }
-    *text = w->data;
-    if (length != NULL) *length = w->length;
-    w->data = NULL;
-    w->length = w->capacity = 0;
-    return RUGO_OK;
 }

@@ -190,8 +190,8 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     const rugo_shape* s = def.shape;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     int level;
+    const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
     if (def.lod == RUGO_LOD_AUTO) {
-        const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
         level = rugo_shape_level_for_error(s, budget);
     } else if (def.lod > 0) {
         return RUGO_ERR_BAD_ARGUMENT;
@@ -227,6 +227,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     r->density = def.density;
     r->serial = I.nextSerial++;
     r->level = level;
+    r->budget = budget;
     r->relLevel = level - J;
     rugo_obb_corners(rugo_mobb_tree_root(tree), r->rootCorners);
     r->proxies.reserve(data->pieces.size());

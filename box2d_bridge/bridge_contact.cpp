@@ -44,6 +44,9 @@ b2Contact* createContact(b2Fixture* fA, int32 iA, b2Fixture* fB, int32 iB, b2Blo
         const ProxyRef* ra = impl->lookup(fA);
         const ProxyRef* rb = impl->lookup(fB);
         if (ra != nullptr || rb != nullptr) {
+            // Box2D's block allocator serves blocks up to 640 bytes (b2_maxBlockSize); beyond, each would be
+            // a malloc.
+            static_assert(sizeof(RoughContact) <= 640, "RoughContact outgrew Box2D's blocks");
             void* mem = allocator->Allocate(sizeof(RoughContact));
             return new (mem) RoughContact(fA, iA, fB, iB, impl, ra, rb);
         }

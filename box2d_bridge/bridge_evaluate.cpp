@@ -87,6 +87,21 @@ PatchSide primitiveSide(const b2Fixture* f, int child, const b2Transform& x) {
     return s;
 }
 
+// A bound on how far any point of either body has moved in the other's frame between poses (a0, b0)
+// and (a1, b1): the smaller of the two ways of looking at it, each the motion of the other body's frame
+// origin plus its turn times its reach (reach about the local centre lc, plus |lc|).
+double relativeMotion(const b2Transform& a0, const b2Transform& b0, const b2Transform& a1,
+                      const b2Transform& b1, double reachA, b2Vec2 lcA, double reachB, b2Vec2 lcB) {
+    auto oneWay = [](const b2Transform& x0, const b2Transform& y0, const b2Transform& x1,
+                     const b2Transform& y1, double reachY, b2Vec2 lcY) {
+        const b2Transform r0 = b2MulT(x0, y0), r1 = b2MulT(x1, y1); // y in x's frame
+        const double dp = static_cast<double>((r1.p - r0.p).Length());
+        const double dq = std::fabs(static_cast<double>(b2MulT(r0.q, r1.q).GetAngle()));
+        return dp + dq * (reachY + static_cast<double>(lcY.Length()));
+    };
+    return std::min(oneWay(a0, b0, a1, b1, reachB, lcB), oneWay(b0, a0, b1, a1, reachA, lcA));
+}
+
 } // namespace
 
 // The patches of a rough body pair (query order: attach order) at poses xa, xb, cached per poses.
@@ -99,8 +114,8 @@ bool Bridge::Impl::roughPatches(BodyRec* QA, BodyRec* QB, const b2Transform& xa,
         [&]() {
             QueryParams qp;
             qp.level = level;
-            qp.margin = margin;
-            qp.resolution = def.errorBudget;
+            qp.margin = margin + warmDistance();
+            qp.resolution = resolutionFor(QA, QB);
             int n = 0, found = 0;
             const rugo_transform ta = toRugo(xa), tb = toRugo(xb);
             rugo_status st = queryShapes(query, QA->shape, ta, QB->shape, tb, qp, scratch.data(),
@@ -227,8 +242,8 @@ bool Bridge::Impl::primitivePatches(BodyRec* R, b2Fixture* other, int child, con
             if (os.on && !os.roundEnds && b2Dot(os.n1, centroid - os.v1) < 0.0f) return true;
             QueryParams qp;
             qp.level = level;
-            qp.margin = margin;
-            qp.resolution = def.errorBudget;
+            qp.margin = margin + warmDistance();
+            qp.resolution = resolutionFor(R, nullptr);
             int n = 0, found = 0;
             const rugo_transform tr = toRugo(xr);
             rugo_status st = queryPrimitive(query, R->shape, tr, B, qp, scratch.data(),
@@ -327,48 +342,23 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
         lastImpulse += m->points[i].normalImpulse;
     m->pointCount = 0;
 
-    // The proxies alone decide a pair that cannot touch within the step (no query), unless the pair's
-    // query has run at these poses already: it may have given this contact a patch (giveUnowned).
-    bool cached = false;
-    if (RA && RB) {
-        const bool swap = RB->serial < RA->serial;
-        cached = cacheHas(swap ? RB : RA, swap ? RA : RB, -1, swap ? xfB : xfA, swap ? xfA : xfB, margin,
-                          std::max(RA->relLevel, RB->relLevel));
-    } else {
-        const BodyRec* R = RA ? RA : RB;
-        cached = cacheHas(R, RA ? fB : fA, RA ? rc->GetChildIndexB() : rc->GetChildIndexA(), RA ? xfA : xfB,
-                          RA ? xfB : xfA, margin, R->relLevel);
-    }
-    if (!cached) {
-        b2DistanceInput in;
-        in.proxyA.Set(fA->GetShape(), rc->GetChildIndexA());
-        in.proxyB.Set(fB->GetShape(), rc->GetChildIndexB());
-        in.transformA = xfA;
-        in.transformB = xfB;
-        in.useRadii = false;
-        b2SimplexCache cache;
-        cache.count = 0;
-        b2DistanceOutput out;
-        b2Distance(&out, &cache, &in);
-        const double gap = static_cast<double>(out.distance) - static_cast<double>(fA->GetShape()->m_radius) -
-                           static_cast<double>(fB->GetShape()->m_radius);
-        // A body with several proxies: another proxy contact of the pair may touch and owe this one a
-        // patch of its query (giveUnowned); so the pair's query runs once the bodies' reaches meet.
-        const bool several = (RA && RA->proxies.size() > 1) || (RB && RB->proxies.size() > 1);
-        const double reach =
-            static_cast<double>((bA->GetWorldCenter() - bB->GetWorldCenter()).Length()) - reachA - reachB;
-        if (gap > margin && (!several || reach > margin)) {
-            ++stats.proxyRejections;
-            ++stats.emptyEvaluations;
-            return;
-        }
-    }
-
-    // This proxy pair's patch, in the query's orientation (rough-rough: attach order; rough-primitive:
-    // the rough body first).
-    uint32_t start = 0, count = 0;
+    // Which side of this contact is the query's A (rough-rough: attach order; rough-primitive: the
+    // rough body), and this proxy pair's pieces in the query's orientation.
     int ownA = -1, ownB = -1;
     bool flip = false;
+    if (RA && RB) {
+        const bool swap = RB->serial < RA->serial;
+        ownA = swap ? rc->pieceB : rc->pieceA;
+        ownB = swap ? rc->pieceA : rc->pieceB;
+        flip = swap;
+    } else {
+        ownA = RA ? rc->pieceA : rc->pieceB;
+        ownB = -1;
+        flip = RA == nullptr;
+    }
+    const b2Transform& xqa = flip ? xfB : xfA; // the query's A and B poses
+    const b2Transform& xqb = flip ? xfA : xfB;
+
     // The patches at poses (xa, xb) of fixture A's and B's bodies.
     auto patchesAt = [&](const b2Transform& xa, const b2Transform& xb, const RoughContact* owner,
                          uint32_t* st, uint32_t* ct) {
@@ -383,25 +373,99 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
             primitivePatches(R, other, child, RA ? xa : xb, RA ? xb : xa, margin, owner, st, ct);
         }
     };
-    if (RA && RB) {
-        const bool swap = RB->serial < RA->serial;
-        ownA = swap ? rc->pieceB : rc->pieceA;
-        ownB = swap ? rc->pieceA : rc->pieceB;
-        flip = swap;
-    } else {
-        ownA = RA ? rc->pieceA : rc->pieceB;
-        ownB = -1;
-        flip = RA == nullptr;
-    }
-    patchesAt(xfA, xfB, rc, &start, &count);
+    // A warm contact answers from its last query (BridgeDef::reuseDistance).
+    Patch carried;
     const Patch* patch = nullptr;
-    for (uint32_t i = 0; i < count; ++i) {
-        const Patch& p = patches[start + i];
-        if (p.ownerA == ownA && p.ownerB == ownB) {
-            patch = &p;
-            break;
+    bool answered = false;
+    if (warmDistance() > 0.0 && inStep && !toi && !fast && rc->warm &&
+        stepSerial - rc->warmStep < kWarmMaxAge) {
+        const double moved = relativeMotion(rc->warmA, rc->warmB, xfA, xfB, reachA, bA->GetLocalCenter(),
+                                            reachB, bB->GetLocalCenter());
+        // A contact with points carries them only over a tenth of the distance: they are material points,
+        // and a body rolling or sliding on the other moves its contact along its surface.
+        const double limit = rc->warmHasPatch ? kWarmPatchShare * warmDistance() : warmDistance();
+        if (moved + std::max(0.0, margin - rc->warmMargin) <= limit) {
+            ++stats.reusedEvaluations;
+            answered = true;
+            if (rc->warmHasPatch) {
+                carried = rc->warmPatch;
+                carried.n = rugo_rotate(toRugo(xqa).q, rc->warmNormal);
+                const rugo_transform ta = toRugo(xqa), tb = toRugo(xqb);
+                for (int k = 0; k < carried.count; ++k) {
+                    PatchPoint& q = carried.p[k];
+                    q.pa = rugo_transform_point(ta, q.la);
+                    q.pb = rugo_transform_point(tb, q.lb);
+                    q.s = rugo_v2_dot(rugo_v2_sub(q.pb, q.pa), carried.n) - q.band;
+                }
+                patch = &carried;
+            }
         }
     }
+    if (!answered) {
+        // The proxies alone decide a pair that cannot touch within the step (no query), unless the pair's
+        // query has run at these poses already: it may have given this contact a patch (giveUnowned).
+        bool cached = false;
+        if (RA && RB) {
+            const bool swap = RB->serial < RA->serial;
+            cached = cacheHas(swap ? RB : RA, swap ? RA : RB, -1, swap ? xfB : xfA, swap ? xfA : xfB, margin,
+                              std::max(RA->relLevel, RB->relLevel));
+        } else {
+            const BodyRec* R = RA ? RA : RB;
+            cached = cacheHas(R, RA ? fB : fA, RA ? rc->GetChildIndexB() : rc->GetChildIndexA(),
+                              RA ? xfA : xfB, RA ? xfB : xfA, margin, R->relLevel);
+        }
+        if (!cached) {
+            b2DistanceInput in;
+            in.proxyA.Set(fA->GetShape(), rc->GetChildIndexA());
+            in.proxyB.Set(fB->GetShape(), rc->GetChildIndexB());
+            in.transformA = xfA;
+            in.transformB = xfB;
+            in.useRadii = false;
+            b2SimplexCache cache;
+            cache.count = 0;
+            b2DistanceOutput out;
+            b2Distance(&out, &cache, &in);
+            const double gap = static_cast<double>(out.distance) -
+                               static_cast<double>(fA->GetShape()->m_radius) -
+                               static_cast<double>(fB->GetShape()->m_radius);
+            // A body with several proxies: another proxy contact of the pair may touch and owe this one a
+            // patch of its query (giveUnowned); so the pair's query runs once the bodies' reaches meet.
+            const bool several = (RA && RA->proxies.size() > 1) || (RB && RB->proxies.size() > 1);
+            const double reach =
+                static_cast<double>((bA->GetWorldCenter() - bB->GetWorldCenter()).Length()) - reachA - reachB;
+            if (gap > margin && (!several || reach > margin)) {
+                ++stats.proxyRejections;
+                ++stats.emptyEvaluations;
+                return;
+            }
+        }
+
+        // This proxy pair's patch, in the query's orientation (rough-rough: attach order; rough-primitive:
+        // the rough body first).
+        uint32_t start = 0, count = 0;
+        patchesAt(xfA, xfB, rc, &start, &count);
+        for (uint32_t i = 0; i < count; ++i) {
+            const Patch& p = patches[start + i];
+            if (p.ownerA == ownA && p.ownerB == ownB) {
+                patch = &p;
+                break;
+            }
+        }
+        // What this query answered, for the next steps (outside the continuous phase, whose poses are
+        // sub-step poses).
+        if (!toi) {
+            rc->warm = true;
+            rc->warmStep = stepSerial;
+            rc->warmA = xfA;
+            rc->warmB = xfB;
+            rc->warmMargin = margin;
+            rc->warmHasPatch = patch != nullptr;
+            if (patch != nullptr) {
+                rc->warmPatch = *patch;
+                rc->warmNormal = rugo_inv_rotate(toRugo(xqa).q, patch->n);
+            }
+        }
+    } // !answered
     if (patch == nullptr) {
         ++stats.emptyEvaluations;
         return;
@@ -437,8 +501,6 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
                 if (p.p[k].s < p.p[d].s) d = k;
             const PatchPoint& P = p.p[d];
             if (!(P.s < -static_cast<double>(b2_linearSlop))) break;
-            const b2Transform& xqa = flip ? xfB : xfA;
-            const b2Transform& xqb = flip ? xfA : xfB;
             PatchPoint now = P;
             now.pa = toRv(b2Mul(xqa, toB2(P.la)));
             now.pb = toRv(b2Mul(xqb, toB2(P.lb)));

@@ -79,9 +79,10 @@ struct BodyRec {
     const rugo_shape* shape = nullptr;
     ShapeData* data = nullptr;
     double density = 1.0;
-    int serial = 0;   // attach order: queries run in this order (determinism)
-    int level = 0;    // absolute contact level
-    int relLevel = 0; // relative contact level
+    int serial = 0;      // attach order: queries run in this order (determinism)
+    int level = 0;       // absolute contact level
+    int relLevel = 0;    // relative contact level
+    double budget = 0.0; // its error budget (m; RoughBodyDef's or the bridge's; < 0 or NaN: none)
     std::vector<b2Fixture*> proxies;
     rugo_vec2 rootCorners[4]; // local frame, for the speed bound
     b2MassData applied;       // what GetMassData returned right after the bridge set the mass
@@ -112,6 +113,9 @@ struct QContact {
 };
 
 // One end of a contact patch, query orientation.
+// The Box2D ids of a patch's points: its lower end along the tangent (or its one point), its upper end.
+constexpr uint32_t kPatchEndKey = 1;
+
 struct PatchPoint {
     rugo_vec2 pa, pb; // on A's curve and on B's (curve or primitive surface)
     rugo_vec2 la, lb; // the same in A's and B's body frames (material points)
@@ -165,6 +169,10 @@ constexpr double kMaxSpeculativeRestitution = 1000.0;
 // A pair turning by more than this (radians) in a step is fast: Box2D's continuous phase re-solves it
 // even at the poses its step solve had (bridge_evaluate.cpp).
 constexpr double kFastTurn = 0.3;
+// A contact answers from its last query (BridgeDef::reuseDistance) for at most this many steps.
+constexpr uint64_t kWarmMaxAge = 16;
+// ... and one with points only while the bodies moved by at most this share of the distance.
+constexpr double kWarmPatchShare = 0.1;
 // Depth (in linear slops) given to a point of a time of impact whose curves are still apart: Box2D's
 // position solve of the continuous phase stops at 1.5 slops, so it moves the bodies back by half a
 // slop, out of the target of its next time-of-impact search.
@@ -388,6 +396,17 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
                           const b2Transform& xo, double margin, const RoughContact* current, uint32_t* start,
                           uint32_t* count);
     void evaluate(RoughContact* c, b2Manifold* m, const b2Transform& xfA, const b2Transform& xfB);
+    // The resolution of a query between a and b (b nullptr: an ordinary fixture): queryResolution times
+    // the smaller budget; 0 (round-off) without one.
+    double resolutionFor(const BodyRec* a, const BodyRec* b) const {
+        const double f = def.queryResolution;
+        double budget = a->budget;
+        if (b != nullptr && !(b->budget >= budget)) budget = b->budget;
+        return f > 0.0 && std::isfinite(f) && budget > 0.0 && std::isfinite(budget) ? f * budget : 0.0;
+    }
+    double warmDistance() const {
+        return def.reuseDistance > 0.0 && std::isfinite(def.reuseDistance) ? def.reuseDistance : 0.0;
+    }
     void rollingResistance(RoughContact* rc, float impulse, double arm);
     void giveUnowned(uint32_t first, const BodyRec* qa, const void* other, int child,
                      const RoughContact* current);
@@ -432,6 +451,14 @@ class RUGO_BRIDGE_HIDDEN RoughContact : public b2Contact {
     uint64_t lastStep = 0;
     float lastPose[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     bool repeated = false; // the last evaluation repeated the one before at the same poses (disabled)
+    // The last query's answer for this contact (BridgeDef::reuseDistance): the step, the two body poses
+    // and the margin it ran at, and its patch (query orientation, material points) if it had one.
+    bool warm = false, warmHasPatch = false;
+    uint64_t warmStep = 0;
+    b2Transform warmA, warmB;
+    double warmMargin = 0.0;
+    Patch warmPatch;
+    rugo_vec2 warmNormal; // the patch normal in the query's A side's frame
 
     // Installs the bridge's create and destroy functions in Box2D's registry (once per process).
     static void install();

@@ -410,6 +410,13 @@ int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& 
             p.p[k].la = rugo_inv_transform_point(A.x, p.p[k].pa);
             p.p[k].lb = rugo_inv_transform_point(B.x, p.p[k].pb);
         }
+        // The points' ids name the patch's ends, not where a point came from (a librugo contact, a
+        // face's end, a band-deepest point): which of those is the extreme changes from step to step as
+        // a face tilts by a hair, and Box2D warm-starts a point only from the old point of its id. A
+        // stack then keeps its impulses, as Box2D's own face clipping does.
+        if (p.count == 2 && cands[pick[0]].u > cands[pick[1]].u) std::swap(p.p[0], p.p[1]);
+        for (int k = 0; k < p.count; ++k)
+            p.p[k].key = kPatchEndKey + static_cast<uint32_t>(k);
         // Owner: the deepest point's pieces, or another point's if that proxy pair already has a patch.
         p.ownerA = -2;
         for (int pass = 0; pass < 2 && p.ownerA == -2; ++pass)

@@ -22,8 +22,9 @@ rugo_contact_query makeQuery(const QueryParams& p) {
     rugo_contact_query q = rugo_default_contact_query();
     q.lod = p.level;
     q.margin = p.margin;
-    // The round-off answers at minima of the curves' distance (the thesis' rule), for now.
-    q.resolution = 0.0;
+    // At minima of the curves' distance (the thesis' rule); round-off answers unless the bridge gives a
+    // resolution (BridgeDef::queryResolution).
+    q.resolution = p.resolution > 0.0 ? p.resolution : 0.0;
     q.contact_rule = RUGO_CONTACT_THESIS;
     return q;
 }

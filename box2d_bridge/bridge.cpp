@@ -1,8 +1,8 @@
 // The Box2D 2.4 bridge (include/rugo/box2d.hpp; docs/box2d.md). The bridge only translates: Box2D's
-// broad phase and proxy boxes pick candidate pairs, librugo decides the contacts, and PreSolve writes
-// them into Box2D's manifold (DESIGN.md, "The Box2D 2.4 bridge", for the Box2D facts relied on).
-// This file: the public API, the chaining of the user's listener and filter, and the body records;
-// bridge_impl.hpp lists the files of the rest.
+// broad phase pairs the proxy polygons, the bridge's b2Contact asks librugo for the contacts and writes
+// them into Box2D's manifold (DESIGN.md, "The Box2D 2.4 bridge" and "Decisions of the second round",
+// for the Box2D facts relied on). This file: the public API, the chaining of the user's listener and
+// filter, and the body records; bridge_impl.hpp lists the files of the rest.
 #include "bridge_impl.hpp"
 
 #include <algorithm>
@@ -16,15 +16,15 @@ namespace rugo {
 Bridge::Impl::Impl() {
     table.resize(256);
     scratch.resize(64);
-    for (std::vector<BPoint>* v : {&cand, &joints, &apart, &regions})
-        v->reserve(64);
-    lastContacts.reserve(4096); // its cap (write)
+    patchScratch.reserve(64);
+    lastContacts.reserve(4096);
 }
 
 Bridge::Impl::~Impl() {
+    unregisterBridge(this);
     for (auto& kv : bodies)
         delete kv.second;
-    rugo_collide_context_destroy(ctx);
+    queryEngineDestroy(query);
 }
 
 // ---- chaining ----------------------------------------------------------------------------
@@ -39,6 +39,17 @@ void Bridge::Impl::EndContact(b2Contact* c) {
     if (world != nullptr && !world->IsLocked()) removingProxies = true; // see removingProxies
     chain(kEnd, c, [&] { prevListener->EndContact(c); });
     removingProxies = was;
+}
+
+void Bridge::Impl::PreSolve(b2Contact* c, const b2Manifold* old) {
+    if (rechained(kPre, c)) return;
+    if (const RoughContact* rc = dynamic_cast<const RoughContact*>(c)) {
+        // Box2D's continuous phase re-evaluating a manifold at the poses it was solved at: the bridge
+        // disabled it (bridge_evaluate.cpp) and the user's PreSolve has seen it in this step.
+        if (rc->repeated) return;
+        ++stats.preSolves;
+    }
+    chain(kPre, c, [&] { prevListener->PreSolve(c, old); });
 }
 
 void Bridge::Impl::PostSolve(b2Contact* c, const b2ContactImpulse* imp) {
@@ -67,8 +78,14 @@ void Bridge::Impl::forget(BodyRec* r) {
     for (b2Fixture* f : r->proxies)
         proxies.erase(f);
     bodies.erase(r->body);
+    releaseShapeData(r->data);
     delete r;
     ++gen; // the cache may key on this record's address
+}
+
+void Bridge::Impl::releaseShapeData(ShapeData* d) {
+    if (d == nullptr || --d->users > 0) return;
+    shapes.erase(std::make_tuple(d->shape, d->level, d->maxPieces));
 }
 
 void Bridge::Impl::rechain() {
@@ -118,8 +135,9 @@ Bridge::Bridge(b2World* world, const BridgeDef& def) : m_impl(new Impl) {
             I.def.pointFrictionMix = BridgeDef().pointFrictionMix;
     }
     I.userDestruction = def.destructionListener;
-    if (rugo_collide_context_create(nullptr, &I.ctx) != RUGO_OK) I.ctx = nullptr;
+    I.query = queryEngineCreate();
     if (world) {
+        registerBridge(world, m_impl.get());
         const b2ContactManager& cm = world->GetContactManager();
         I.prevListener = cm.m_contactListener;
         I.prevFilter = cm.m_contactFilter;
@@ -142,6 +160,7 @@ Bridge::~Bridge() {
         if (cm.m_contactFilter == m_impl.get()) I.world->SetContactFilter(I.prevFilter);
         I.world->SetDestructionListener(I.userDestruction);
     }
+    unregisterBridge(m_impl.get());
 }
 
 rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
@@ -163,66 +182,72 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
               rm.inertiaOrigin <= hi))
             return RUGO_ERR_BAD_ARGUMENT;
     }
-    if (I.ctx == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
+    if (I.query == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
+    if (def.maxProxies < 0 || def.maxProxies > b2_maxPolygonVertices) return RUGO_ERR_BAD_ARGUMENT;
+    const int cap = def.maxProxies > 0
+                        ? def.maxProxies
+                        : (I.def.maxProxies >= 1 && I.def.maxProxies <= 8 ? I.def.maxProxies : 8);
     const rugo_shape* s = def.shape;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     int level;
+    const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
     if (def.lod == RUGO_LOD_AUTO) {
-        const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
         level = rugo_shape_level_for_error(s, budget);
     } else if (def.lod > 0) {
         return RUGO_ERR_BAD_ARGUMENT;
     } else {
         level = std::max(Jmin, J + std::max(def.lod, Jmin - J));
     }
-    int proxyLevel;
-    if (def.proxyLevel == RUGO_LOD_AUTO) {
-        proxyLevel = std::max(Jmin, std::min(level, I.def.maxProxyLevel));
-    } else {
-        if (def.proxyLevel < Jmin || def.proxyLevel > J || def.proxyLevel > level)
-            return RUGO_ERR_BAD_ARGUMENT;
-        proxyLevel = def.proxyLevel;
-    }
-    // The query context's room for this shape's queries, now rather than during a step (librugo grows
-    // the context to a new high-water mark otherwise). kQueryReserveContacts: see its comment.
-    const rugo_status reserved = rugo_collide_context_reserve(I.ctx, s, kQueryReserveContacts);
+    // The query engine's room for this shape's queries, now rather than during a step (librugo grows
+    // its context to a new high-water mark otherwise). kQueryReserveContacts: see its comment.
+    const rugo_status reserved = queryEngineReserve(I.query, s, kQueryReserveContacts);
     if (reserved != RUGO_OK) return reserved;
+    // The shape's pieces and faces at this level, shared with other bodies of the same shape.
+    ShapeData* data = nullptr;
+    {
+        const auto key = std::make_tuple(s, level, cap);
+        auto it = I.shapes.find(key);
+        if (it == I.shapes.end()) {
+            std::unique_ptr<ShapeData> d(new (std::nothrow) ShapeData);
+            if (!d || !buildShapeData(s, level, cap, d.get())) return RUGO_ERR_OUT_OF_MEMORY;
+            it = I.shapes.emplace(key, std::move(d)).first;
+        }
+        data = it->second.get();
+    }
     const rugo_mobb_tree* tree = rugo_shape_tree(s);
     BodyRec* r = new (std::nothrow) BodyRec;
-    if (r == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
+    if (r == nullptr) {
+        if (data->users == 0) I.shapes.erase(std::make_tuple(s, level, cap));
+        return RUGO_ERR_OUT_OF_MEMORY;
+    }
+    ++data->users;
     r->body = body;
     r->shape = s;
+    r->data = data;
     r->density = def.density;
     r->serial = I.nextSerial++;
     r->level = level;
+    r->budget = budget;
     r->relLevel = level - J;
-    r->proxyLevel = proxyLevel;
-    r->bandMax = Impl::bandMaxima(s);
     rugo_obb_corners(rugo_mobb_tree_root(tree), r->rootCorners);
-    const double excess = Impl::bandExcess(s, proxyLevel);
-    const int nk = 1 << proxyLevel;
-    r->proxies.reserve(static_cast<size_t>(nk));
-    for (int k = 0; k < nk; ++k) {
-        const rugo_obb* b = rugo_mobb_tree_node(tree, proxyLevel, k);
-        b2PolygonShape box;
-        // Rounding to float must not shrink the box: pad by a relative 1e-6 (Box2D's skin adds 1 cm more).
-        const double pad =
-            excess + 1e-6 * (std::fabs(b->center.x) + std::fabs(b->center.y) + b->half[0] + b->half[1]);
-        const float hx = std::max(static_cast<float>(b->half[0] + pad), b2_linearSlop);
-        const float hy = std::max(static_cast<float>(b->half[1] + pad), b2_linearSlop);
-        box.SetAsBox(hx, hy, toB2(b->center), static_cast<float>(std::atan2(b->axis[0].y, b->axis[0].x)));
+    r->proxies.reserve(data->pieces.size());
+    for (size_t k = 0; k < data->pieces.size(); ++k) {
+        const Piece& pc = data->pieces[k];
+        b2PolygonShape poly;
+        poly.Set(pc.v, pc.n);
+        poly.m_radius = pc.radius; // the skin that, around the core, encloses the curve and its band
         b2FixtureDef fd;
-        fd.shape = &box;
+        fd.shape = &poly;
         fd.density = 0.0f;
         fd.filter = def.filter;
         fd.isSensor = def.isSensor;
         fd.userData = def.userData;
         b2Fixture* f = body->CreateFixture(&fd);
         r->proxies.push_back(f);
-        I.proxies[f] = ProxyRef{r, k};
+        I.proxies[f] = ProxyRef{r, static_cast<int>(k)};
     }
     I.bodies[body] = r;
-    I.reserveFor(I.bodies.size(), 1 << (level - proxyLevel), 1 << (J - proxyLevel));
+    I.reserveFor(I.bodies.size());
     I.applyMass(r);
     return RUGO_OK;
 }
@@ -238,6 +263,7 @@ rugo_status Bridge::Detach(b2Body* body) {
     for (b2Fixture* f : fx)
         I.proxies.erase(f);
     I.bodies.erase(body);
+    I.releaseShapeData(r->data);
     delete r;
     ++I.gen;
     // Box2D calls EndContact from DestroyFixture while it walks the body's contact list: a listener
@@ -259,13 +285,13 @@ int Bridge::GetLevel(const b2Body* body) const {
     const BodyRec* r = m_impl->rec(body);
     return r ? r->level : -1;
 }
-int Bridge::GetProxyLevel(const b2Body* body) const {
+int Bridge::GetProxyCount(const b2Body* body) const {
     const BodyRec* r = m_impl->rec(body);
-    return r ? r->proxyLevel : -1;
+    return r ? static_cast<int>(r->proxies.size()) : 0;
 }
-bool Bridge::IsProxy(const b2Fixture* fixture, int* node) const {
+bool Bridge::IsProxy(const b2Fixture* fixture, int* piece) const {
     const ProxyRef* p = m_impl->lookup(fixture);
-    if (p && node) *node = p->node;
+    if (p && piece) *piece = p->piece;
     return p != nullptr;
 }
 
@@ -280,10 +306,9 @@ void Bridge::Step(float timeStep, int32 velocityIterations, int32 positionIterat
         }
     if (timeStep > 0.0f) I.dt = timeStep;
     ++I.gen; // new poses: the cache of the last step is of no use
+    ++I.stepSerial;
     I.used = 0;
-    I.pool.clear();
-    I.jointPool.clear();
-    I.jointChunks.clear();
+    I.patches.clear();
     I.lastContacts.clear();
     I.afterSolve = false;
     for (auto& kv : I.bodies)
@@ -348,7 +373,9 @@ void Bridge::ReleaseWorld() {
         delete kv.second;
     I.bodies.clear();
     I.proxies.clear();
+    I.shapes.clear();
     ++I.gen;
+    unregisterBridge(m_impl.get());
 }
 
 } // namespace rugo

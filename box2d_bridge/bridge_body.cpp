@@ -1,5 +1,5 @@
-// Per-body facts of the bridge: the exact mass Box2D is given, the automatic level of detail, the
-// bands the proxies and joints must cover, and the reach and speed bounds of the speculative margin.
+// Per-body facts of the bridge: the exact mass Box2D is given, the automatic level of detail, and the
+// reach of the speculative margin.
 #include "bridge_impl.hpp"
 
 #include <algorithm>
@@ -64,40 +64,6 @@ bool Bridge::Impl::massStale(const BodyRec* r) const {
     return !sameMass(now, r->applied);
 }
 
-// Largest excess of λ(t) over the segment value λ^j_k at levels from..J: queries at those levels
-// grow boxes by it, so the proxies must too.
-double Bridge::Impl::bandExcess(const rugo_shape* s, int from) {
-    double e = 0.0;
-    for (int j = from; j <= rugo_shape_finest_level(s); ++j) {
-        rugo_tolerance_level tl;
-        if (rugo_shape_tolerance_level(s, j, &tl) != RUGO_OK) continue;
-        for (int k = 0; k < tl.count; ++k)
-            e = std::max(e, rugo_tolerance_bound_on_segment(tl.total, tl.count, k, 0.0) - tl.total[k]);
-    }
-    return e;
-}
-
-// Certified largest λ(t) over each level's curve, levels J_min..J (index level - J_min).
-std::vector<double> Bridge::Impl::bandMaxima(const rugo_shape* s) {
-    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-    std::vector<double> m(static_cast<size_t>(J - Jmin + 1), 0.0);
-    for (int j = Jmin; j <= J; ++j) {
-        rugo_tolerance_level tl;
-        if (rugo_shape_tolerance_level(s, j, &tl) != RUGO_OK) continue;
-        for (int k = 0; k < tl.count; ++k)
-            m[static_cast<size_t>(j - Jmin)] =
-                std::max(m[static_cast<size_t>(j - Jmin)],
-                         rugo_tolerance_bound_on_segment(tl.total, tl.count, k, 0.0));
-    }
-    return m;
-}
-
-// The absolute level of a relative one (0 finest, < 0 coarser), clamped to the shape's levels.
-int Bridge::Impl::absLevel(const rugo_shape* s, int rel) {
-    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-    return std::max(Jmin, std::min(J, J + rel));
-}
-
 double Bridge::Impl::roughReach(const BodyRec* r) {
     const b2Vec2 lc = r->body->GetLocalCenter();
     double m = 0.0;
@@ -138,18 +104,6 @@ double Bridge::Impl::fixtureReach(const b2Fixture* f, int child) {
         break;
     }
     return m + static_cast<double>(s->m_radius);
-}
-
-double Bridge::Impl::speedBound(const b2Body* a, double ra, const b2Body* b, double rb) {
-    const b2Vec2 dv = a->GetLinearVelocity() - b->GetLinearVelocity();
-    return static_cast<double>(dv.Length()) + std::fabs(static_cast<double>(a->GetAngularVelocity())) * ra +
-           std::fabs(static_cast<double>(b->GetAngularVelocity())) * rb;
-}
-
-// Normal approach speed of B's point toward A's point along n (A -> B).
-double Bridge::Impl::approach(const b2Body* a, b2Vec2 pa, const b2Body* b, b2Vec2 pb, b2Vec2 n) {
-    const b2Vec2 va = a->GetLinearVelocityFromWorldPoint(pa), vb = b->GetLinearVelocityFromWorldPoint(pb);
-    return -static_cast<double>(b2Dot(vb - va, n));
 }
 
 bool Bridge::Impl::moved(const BodyRec* r) {

@@ -1,4 +1,4 @@
-// The bridge's debug drawing (Bridge::Draw): curves, bands, proxy boxes, last step's contacts.
+// The bridge's debug drawing (Bridge::Draw): curves, bands, proxies, last step's manifold points.
 #include "bridge_impl.hpp"
 
 #include <vector>
@@ -54,9 +54,14 @@ void Bridge::Draw(b2Draw* draw, unsigned flags) const {
             }
         if (flags & kDrawProxies)
             for (const b2Fixture* f : r->proxies) {
+                // The region Box2D's polygon covers: its core pushed out by its skin (the polygon
+                // through the offset edges' meeting points, which holds the rounded corners too).
                 const b2PolygonShape* p = static_cast<const b2PolygonShape*>(f->GetShape());
-                for (int i = 0; i < p->m_count; ++i)
-                    polys.push_back(b2Mul(body->GetTransform(), p->m_vertices[i]));
+                for (int i = 0; i < p->m_count; ++i) {
+                    const b2Vec2 n0 = p->m_normals[(i + p->m_count - 1) % p->m_count], n1 = p->m_normals[i];
+                    const float k = p->m_radius / (1.0f + b2Dot(n0, n1));
+                    polys.push_back(b2Mul(body->GetTransform(), p->m_vertices[i] + k * (n0 + n1)));
+                }
                 polyCounts.push_back(p->m_count);
             }
         for (const Seg& sg : segs)

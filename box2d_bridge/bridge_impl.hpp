@@ -1,57 +1,155 @@
-// Internal to the Box2D 2.4 bridge (not installed): the records it keeps per body, proxy and query,
-// and Bridge::Impl, the listener/filter that does the work. Its methods live in one file per concern:
-//   bridge.cpp            the public API, listener chaining, body records
-//   bridge_body.cpp       per-body facts: exact mass, levels of detail, bands, reach and speed
-//   bridge_cache.cpp      the per-step query cache (one librugo query per body pair and poses)
-//   bridge_presolve.cpp   PreSolve: librugo's contacts into Box2D's manifold (points, friction, CCD)
-//   bridge_joints.cpp     joint points: Box2D-like second points on flat contacts
-//   bridge_one_sided.cpp  one-sided edges (chains, b2EdgeShape) as Box2D 2.4.1 collides them
-//   bridge_queries.cpp    ray cast, point test and AABB query on the curves
-//   bridge_draw.cpp       debug drawing
-#ifndef RUGO_BRIDGE_IMPL_HPP
-#define RUGO_BRIDGE_IMPL_HPP
+// Internal header of the Box2D 2.4 bridge (not installed). Records of the bridge and Bridge::Impl, one
+// concern per source file:
+//   bridge.cpp           the public API, chaining of the user's listener, filter and destruction
+//                        listener, body records
+//   bridge_body.cpp      exact mass, levels of detail, reach
+//   bridge_shape.cpp     what the bridge derives once per shape and level: convex pieces (the proxies)
+//                        and straight faces, shared by the bodies using them
+//   bridge_contact.cpp   the bridge's b2Contact (RoughContact) in Box2D's contact registry, and the
+//                        process-global list of live bridges by world
+//   bridge_query.cpp     every call into librugo's contact query API
+//   bridge_patch.cpp     a query's contacts into contact patches (one normal, at most two end points)
+//   bridge_evaluate.cpp  RoughContact::Evaluate: a patch into Box2D's manifold, friction, restitution,
+//                        speculative points
+//   bridge_cache.cpp     the per-step cache of patches (one query per body pair and poses)
+//   bridge_one_sided.cpp one-sided edges as Box2D 2.4.1 collides them
+//   bridge_queries.cpp   ray cast / point / AABB queries on the curves
+//   bridge_draw.cpp      debug drawing
+#ifndef RUGO_BOX2D_BRIDGE_IMPL_HPP
+#define RUGO_BOX2D_BRIDGE_IMPL_HPP
 
 #include "rugo/box2d.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 namespace rugo {
+
 namespace detail {
+
+class RoughContact;
+
+// ---- per shape and level (bridge_shape.cpp) ---------------------------------------------------------
+
+// One proxy: a convex polygon (local coordinates, counter-clockwise, 3..8 vertices) whose core pushed
+// out by `radius` encloses the curve and band of the outline's segments [first, first + count) at the
+// contact level and every finer level.
+struct Piece {
+    int first = 0, count = 0;
+    b2Vec2 v[b2_maxPolygonVertices];
+    int n = 0;
+    float radius = 0.0f;
+};
+
+// A straight stretch of one level's curve: segments [first, first + count) (cyclic) whose Bezier
+// points lie within a small tolerance of one line. joints[i] is the curve point at segment first + i,
+// t = 0 (i = count: the stretch's end), in the shape's frame.
+struct Face {
+    int first = 0, count = 0;
+    std::vector<rugo_vec2> joints;
+};
+
+struct LevelFaces {
+    std::vector<int> faceOf; // per segment: index in faces, -1 if the segment is not straight
+    std::vector<Face> faces;
+};
+
+// What the bridge derives from one shape at one contact level, shared by every body that uses it.
+struct ShapeData {
+    const rugo_shape* shape = nullptr;
+    int level = 0;     // absolute contact level L
+    int maxPieces = 8; // the cap it was built for
+    int users = 0;     // bodies using it
+    std::vector<Piece> pieces;
+    std::vector<int> pieceOf;      // per segment of level L
+    std::vector<LevelFaces> faces; // levels L .. J (index j - L)
+    rugo_friction_map friction;    // the shape's
+    rugo_restitution restitution;
+};
+
+// ---- records ------------------------------------------------------------------------------------------
 
 struct BodyRec {
     b2Body* body = nullptr;
     const rugo_shape* shape = nullptr;
+    ShapeData* data = nullptr;
     double density = 1.0;
-    int serial = 0;     // attach order: a deterministic canonical order for pair queries
-    int relLevel = 0;   // contact level relative to the finest (<= 0)
-    int level = 0;      // absolute contact level
-    int proxyLevel = 0; // absolute proxy level
+    int serial = 0;      // attach order: queries run in this order (determinism)
+    int level = 0;       // absolute contact level
+    int relLevel = 0;    // relative contact level
+    double budget = 0.0; // its error budget (m; RoughBodyDef's or the bridge's; < 0 or NaN: none)
     std::vector<b2Fixture*> proxies;
     rugo_vec2 rootCorners[4]; // local frame, for the speed bound
     b2MassData applied;       // what GetMassData returned right after the bridge set the mass
     bool massValid = false;
-    b2Transform stepStart;       // the pose when Bridge::Step began (a moved body means Box2D's TOI phase)
-    std::vector<double> bandMax; // per absolute level J_min..J (index level - J_min): certified max of λ(t)
+    b2Transform stepStart; // the pose when Bridge::Step began (a moved body means Box2D's TOI phase)
 };
 
 struct ProxyRef {
     BodyRec* rec;
-    int node;
+    int piece;
 };
 
-// One bridge point in Box2D's orientation (fixture A -> fixture B), world coordinates.
-struct BPoint {
-    b2Vec2 pA, pB; // on A's side and B's side (curves or primitive boundary)
-    b2Vec2 n;      // unit, A -> B
-    b2Vec2 m;      // joints: the rough curve's normal there, oriented A -> B (flatness test)
-    double s;      // band-adjusted separation
+// One contact of a librugo query as the bridge uses it (bridge_query.cpp converts librugo's), in the
+// query's orientation: A is the query's first shape, normal from A to B.
+struct QContact {
+    rugo_vec2 pa, pb, n;
+    double sep; // curve distance along n (negative: overlap)
+    double tolA, tolB;
+    int segA, segB; // segment at the level used (-1: primitive)
+    double tA, tB;
+    int levelA, levelB;
+    double mu, eps; // mixed friction and restitution at the points
+    int region;
+    uint64_t id;
+    // Not a contact of this pair (one-sided edges: a point another chain child reports), only where a
+    // face of the rough body lies over this child: the patch builder completes that face on the child.
+    bool seed;
+};
+
+// One end of a contact patch, query orientation.
+// The Box2D ids of a patch's points: its lower end along the tangent (or its one point), its upper end.
+constexpr uint32_t kPatchEndKey = 1;
+
+struct PatchPoint {
+    rugo_vec2 pa, pb; // on A's curve and on B's (curve or primitive surface)
+    rugo_vec2 la, lb; // the same in A's and B's body frames (material points)
+    double band;      // the bands there: s = (pb - pa) . n - band
+    double s;         // band-adjusted separation along the patch normal
     double mu, eps;
-    uint32 key;
-    bool edgeFace = false; // a joint whose closest point is inside an edge: n is that edge's face normal
+    uint32_t key; // Box2D contact id (warm starting)
+};
+
+// A contact patch: one normal, one or two points, owned by one proxy pair (pieces of A and B; -1 for
+// a primitive side, whose b2Contact is its own per child).
+struct Patch {
+    rugo_vec2 n;
+    int ownerA = -1, ownerB = -1;
+    int count = 0;
+    PatchPoint p[2];
+};
+
+// One side of a query, for the patch builder: a rough body (its shape data, pose and level) or a
+// Box2D primitive (world geometry).
+struct PatchSide {
+    const ShapeData* data = nullptr; // rough side
+    rugo_transform x;                // the side's body pose
+    int serial = 0;
+    // Primitive side: type, world vertices (polygon; edge: 2), their outward normals (polygon),
+    // radius, material.
+    b2Shape::Type type = b2Shape::e_typeCount;
+    b2Vec2 v[b2_maxPolygonVertices];
+    b2Vec2 normals[b2_maxPolygonVertices];
+    int n = 0;
+    float radius = 0.0f;
+    double mu = 0.0, eps = 0.0;
+    int child = 0;
+    bool chainNext = false; // a chain child with a next child: its second vertex is the next child's
 };
 
 struct CacheEntry {
@@ -62,48 +160,41 @@ struct CacheEntry {
     float xf[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     double margin = 0.0;
     int level = 0;
-    uint32_t start = 0, count = 0;
-    bool toi = false; // run in Box2D's TOI phase
-    // Rough pairs: the first JointChunk (Impl::jointChunks) of the joints of the query's shape A [0]
-    // and B [1] (kNoJoints: none computed yet).
-    uint32_t joints[2] = {0xFFFFFFFFu, 0xFFFFFFFFu};
+    uint32_t start = 0, count = 0; // Impl::patches[start, start + count)
 };
 
-constexpr uint32_t kNoJoints = 0xFFFFFFFFu;
-
-// One joint's closest point on the other body's curve (same poses, same level): shared by every proxy
-// pair of the body pair that offers the joint (each used to recompute it: measured ~70% of a step).
-struct JointInfo {
-    rugo_curve_point cp;
-    signed char inside = -1; // rugo_contour_contains, -1 = not computed yet
-    bool done = false;
-};
-// The joints of one proxy piece (node) of one side of a body pair's query: Impl::jointPool[base ..
-// base + per] (its per joints and the piece's end), chained from CacheEntry::joints.
-struct JointChunk {
-    int node;
-    uint32_t next, base;
-};
-
-// A joint point joins a contact region only if its own closest-point direction is within ~10° of the
-// region's normal (it then takes that normal; attachJoint).
-constexpr float kJointRegionCos = 0.985f;
-// Largest |restitution| a speculative point gets (TOI phase): a point approaching 1000x slower than
-// its gap per step is as good as not approaching.
+// Largest |restitution| a speculative manifold gets: a point approaching 1000x slower than its gap
+// per step is as good as not approaching.
 constexpr double kMaxSpeculativeRestitution = 1000.0;
-// Rotation per step (radians) from which a pair counts as fast for the TOI rule (docs/box2d.md).
+// A pair turning by more than this (radians) in a step is fast: Box2D's continuous phase re-solves it
+// even at the poses its step solve had (bridge_evaluate.cpp).
 constexpr double kFastTurn = 0.3;
+// A contact answers from its last query (BridgeDef::reuseDistance) for at most this many steps.
+constexpr uint64_t kWarmMaxAge = 16;
+// ... and one with points only while the bodies moved by at most this share of the distance.
+constexpr double kWarmPatchShare = 0.1;
+// Depth (in linear slops) given to a point of a time of impact whose curves are still apart: Box2D's
+// position solve of the continuous phase stops at 1.5 slops, so it moves the bodies back by half a
+// slop, out of the target of its next time-of-impact search.
+constexpr double kToiDepth = 2.0;
 // Contacts per query the librugo context is sized for when a body is attached (a body pair's query
 // reports a handful; a pile's deepest pairs a few more): past it, librugo grows the context in a step.
 constexpr int kQueryReserveContacts = 16;
+// Regions whose normals agree within 30 degrees form one patch (a face resting on several bumps, a
+// body resting on two feet or on two crests of a wavy ground): their extreme points become the
+// manifold's two points, with the mean of their normals.
+constexpr double kMergeCos = 0.866;
+// A face of one body is the contact face only if its direction is within ~10 degrees of the patch's
+// tangent (otherwise the contact is at the face's end, against another feature).
+constexpr double kFaceSin = 0.17;
 
-inline uint32 hashId(uint64_t id) {
-    // splitmix64 finaliser folded to 32 bits: distinct librugo ids rarely collide in a manifold.
+inline uint32_t hashId(uint64_t id) {
+    // splitmix64 finaliser folded to 32 bits: distinct ids rarely collide in a manifold.
     uint64_t z = id + 0x9E3779B97F4A7C15ull;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     z ^= z >> 31;
-    return static_cast<uint32>(z ^ (z >> 32));
+    return static_cast<uint32_t>(z ^ (z >> 32));
 }
 
 inline uint64_t mixHash(uint64_t h, uint64_t v) {
@@ -131,36 +222,48 @@ inline rugo_transform toRugo(const b2Transform& x) {
     return t;
 }
 
-// The queries of this bridge: today's round-off contacts at minima of the distance (the thesis' rule),
-// which its manifolds, joint points and speculative points are built around.
-inline rugo_contact_query legacyQuery() {
-    rugo_contact_query q = rugo_default_contact_query();
-    q.resolution = 0.0;
-    q.contact_rule = RUGO_CONTACT_THESIS;
-    return q;
-}
-
 inline b2Vec2 toB2(rugo_vec2 v) { return b2Vec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 inline rugo_vec2 toRv(b2Vec2 v) { return rugo_v2(static_cast<double>(v.x), static_cast<double>(v.y)); }
 
-// The query a cache miss runs (bridge_cache.cpp): a reference to a callable, which must outlive the
-// call, with no allocation (a capturing lambda in a std::function may allocate per query).
-class QueryRun {
-  public:
-    template <class F>
-    QueryRun(const F& f) // NOLINT: implicit, so that call sites pass their lambda as it is
-        : m_fn(&f),
-          m_call([](const void* fn, rugo_contact* out, int cap, int* n, rugo_query_stats* qs) -> rugo_status {
-              return (*static_cast<const F*>(fn))(out, cap, n, qs);
-          }) {}
-    rugo_status operator()(rugo_contact* out, int cap, int* n, rugo_query_stats* qs) const {
-        return m_call(m_fn, out, cap, n, qs);
-    }
+// ---- librugo's query API (bridge_query.cpp: the only file that calls it) ---------------------------
 
-  private:
-    const void* m_fn;
-    rugo_status (*m_call)(const void*, rugo_contact*, int, int*, rugo_query_stats*);
+struct QueryParams {
+    int level = 0;           // relative level (0 finest)
+    double margin = 0.0;     // speculative reach beyond the bands (m)
+    double resolution = 0.0; // the error budget librugo may use (m); today's queries use round-off
 };
+// librugo's query context and a buffer of its contacts; opaque outside bridge_query.cpp.
+struct QueryEngine;
+QueryEngine* queryEngineCreate(); // nullptr if memory runs out
+void queryEngineDestroy(QueryEngine* e);
+// Room for queries of shapes up to `shape` with `contacts` contacts, now rather than in a step.
+rugo_status queryEngineReserve(QueryEngine* e, const rugo_shape* shape, int contacts);
+// Contacts of shape a against b (or a primitive), converted into out[0, *n) (at most cap; *found =
+// how many librugo found). Statistics are added to *qs.
+rugo_status queryShapes(QueryEngine* e, const rugo_shape* a, const rugo_transform& xa, const rugo_shape* b,
+                        const rugo_transform& xb, const QueryParams& p, QContact* out, int cap, int* n,
+                        int* found, BridgeStats* qs);
+rugo_status queryPrimitive(QueryEngine* e, const rugo_shape* a, const rugo_transform& xa,
+                           const PatchSide& prim, const QueryParams& p, QContact* out, int cap, int* n,
+                           int* found, BridgeStats* qs);
+// Does the shape's curve (at relative level `level`) touch or cross the convex polygon (world
+// vertices, counter-clockwise; count 1 = a point)?
+bool queryOverlapsPolygon(QueryEngine* e, const rugo_shape* s, const rugo_transform& x, int level,
+                          const rugo_vec2* v, int count);
+
+// ---- patches (bridge_patch.cpp) ----------------------------------------------------------------------
+
+// Builds the patches of one query: contacts c[0, n) (query orientation, already resolved against
+// one-sided edges) into out (appended). Returns how many were left unowned (ownerA -2) because every
+// proxy pair of their points had a deeper patch already.
+int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& B, std::vector<Patch>* out,
+                 std::vector<int>* scratch);
+
+// ---- shapes (bridge_shape.cpp) ----------------------------------------------------------------------
+
+// Pieces and faces of a shape at absolute contact level `level`, at most maxPieces pieces; false if
+// memory runs out.
+bool buildShapeData(const rugo_shape* s, int level, int maxPieces, ShapeData* out);
 
 } // namespace detail
 
@@ -174,39 +277,33 @@ using namespace detail; // NOLINT: the bridge's own sources only (this header is
 #define RUGO_BRIDGE_HIDDEN
 #endif
 
-struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2ContactFilter, public b2DestructionListener {
+struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
+                                         public b2ContactFilter,
+                                         public b2DestructionListener {
     b2World* world = nullptr;
     BridgeDef def;
     b2ContactListener* prevListener = nullptr;
     b2ContactFilter* prevFilter = nullptr;
     b2DestructionListener* userDestruction = nullptr;
-    rugo_collide_context* ctx = nullptr;
+    QueryEngine* query = nullptr;
     std::unordered_map<const b2Body*, BodyRec*> bodies;
     std::unordered_map<const b2Fixture*, ProxyRef> proxies;
+    // Shape data by (shape, level, maxPieces), shared by the bodies using it (ShapeData::users).
+    std::map<std::tuple<const rugo_shape*, int, int>, std::unique_ptr<ShapeData>> shapes;
     int nextSerial = 0;
     float dt = 1.0f / 60.0f;
-    bool afterSolve = false; // a PostSolve was seen since the collide phase: later PreSolves are TOI
+    uint64_t stepSerial = 0; // Bridge::Step count: a RoughContact evaluated twice at one pose in a step
+    bool afterSolve = false; // a PostSolve was seen since the collide phase: later evaluations are TOI
     bool inStep = false;     // inside Bridge::Step (the stepStart poses are current)
-    bool toiPhase = false;   // the PreSolve being handled runs in Box2D's TOI phase
-    double curMargin = 0.0;  // the margin of the current proxy pair's query
-    double curReach = 0.0;   // the larger extent (from its centre of mass) of the pair's bodies
-    bool fastPair = false;   // TOI phase and fast (kFastTurn, margin > reach): the TOI rule applies
     BridgeStats stats;
 
-    // Query cache (open addressing; generation counter clears it in O(1)).
+    // Patch cache (open addressing; the generation counter clears it in O(1)).
     std::vector<CacheEntry> table;
-    std::vector<rugo_contact> pool;
-    std::vector<rugo_contact> scratch;
-    std::vector<JointInfo> jointPool; // per step like pool (CacheEntry::joints)
-    std::vector<JointChunk> jointChunks;
-    size_t lastEntry = 0; // table index of the last cachedQuery's entry
+    std::vector<Patch> patches;
+    std::vector<QContact> scratch; // one query's contacts
+    std::vector<int> patchScratch; // buildPatches' work list
     uint64_t gen = 1;
     size_t used = 0;
-    std::vector<BPoint> cand;
-    std::vector<BPoint> joints;
-    std::vector<BPoint> apart; // TOI phase: joints of the owned piece that are apart but within the margin
-    // All of the query's librugo contacts (any proxy pair) that touch: the regions joints attach to.
-    std::vector<BPoint> regions;
     struct DrawnContact {
         b2Vec2 p, n;
     };
@@ -232,12 +329,6 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
     // Bodies destroyed since construction (SayGoodbye of any fixture): a callback of the bridge's own
     // (QueryAABB, Draw) that changed it may have destroyed bodies the bridge still holds.
     long destroyedFixtures = 0;
-    // Per-step caches are reserved for this many joints (reserveFor), the point lists of one proxy
-    // pair for this many joint points (reservePoints).
-    size_t jointReserve = 0;
-    size_t pointReserve = 0;
-    size_t ncand = 0;         // cand[0, ncand) are librugo's contacts, the rest joints
-    bool dropEndFlag = false; // gatherPrimitive: a chain child's second vertex belongs to the next child
 
     Impl();
     ~Impl() override;
@@ -250,20 +341,25 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
         auto it = bodies.find(b);
         return it == bodies.end() ? nullptr : it->second;
     }
-    static int ownerNode(int segment, int level, int proxyLevel) { return segment >> (level - proxyLevel); }
+    // The piece of `data` holding segment `segment` of absolute level `level` (>= the data's level).
+    static int pieceOf(const ShapeData* data, int segment, int level) {
+        return data->pieceOf[static_cast<size_t>(segment >> (level - data->level))];
+    }
 
     // bridge.cpp: listener chaining and body records
     void BeginContact(b2Contact* c) override;
     void EndContact(b2Contact* c) override;
+    void PreSolve(b2Contact* c, const b2Manifold* old) override;
     void PostSolve(b2Contact* c, const b2ContactImpulse* imp) override;
     bool ShouldCollide(b2Fixture* a, b2Fixture* b) override;
     void SayGoodbye(b2Joint* j) override;
     void SayGoodbye(b2Fixture* f) override;
     void forget(BodyRec* r);
+    void releaseShapeData(ShapeData* d);
     void rechain();
     std::vector<b2Body*> bodiesInAttachOrder() const;
 
-    // bridge_body.cpp: mass, levels, bands, reach and speed
+    // bridge_body.cpp: mass, levels, reach
     // The rough part's mass at a density: kg, local centroid, inertia about it and about the body origin.
     struct RoughMass {
         double mass;
@@ -275,44 +371,45 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
     static bool sameMass(const b2MassData& a, const b2MassData& b);
     void applyMass(BodyRec* r);
     bool massStale(const BodyRec* r) const;
-    static double bandExcess(const rugo_shape* s, int from);
-    static std::vector<double> bandMaxima(const rugo_shape* s);
-    static int absLevel(const rugo_shape* s, int rel);
     static double roughReach(const BodyRec* r);
     static double fixtureReach(const b2Fixture* f, int child);
-    static double speedBound(const b2Body* a, double ra, const b2Body* b, double rb);
-    static double approach(const b2Body* a, b2Vec2 pa, const b2Body* b, b2Vec2 pb, b2Vec2 n);
     static bool moved(const BodyRec* r);
 
-    // bridge_cache.cpp: the query cache. cachedQuery runs `run` unless the same query (bodies or
-    // fixture, child, float poses, margin, level) ran this step; the contacts are pool[start, start+count).
-    void reserveFor(size_t n, int per, int perFinest);
-    void reservePoints();
-    bool cachedQuery(const void* a, const void* b, int child, const b2Transform& xa, const b2Transform& xb,
-                     double margin, int level, QueryRun run, uint32_t* start, uint32_t* count);
+    // bridge_cache.cpp: the patch cache. Finds the patches of a query (bodies or fixture, child, float
+    // poses, margin, level) run this step, or runs `run` (which appends them to `patches`).
+    void reserveFor(size_t bodyCount);
+    template <class F>
+    bool cachedPatches(const void* a, const void* b, int child, const b2Transform& xa, const b2Transform& xb,
+                       double margin, int level, F&& run, uint32_t* start, uint32_t* count);
+    bool cacheHas(const void* a, const void* b, int child, const b2Transform& xa, const b2Transform& xb,
+                  double margin, int level) const;
+    size_t cacheSlot(const void* a, const void* b, int child, const float* xf, double margin, int level,
+                     bool* found);
+    void cacheFill(size_t slot, const void* a, const void* b, int child, const float* xf, double margin,
+                   int level, uint32_t start);
     static uint64_t cacheHash(const void* a, const void* b, int child, const float* xf);
-    bool seenInCollide(const void* a, const void* b, int child, const b2Transform& xa,
-                       const b2Transform& xb) const;
 
-    // bridge_presolve.cpp: PreSolve
-    void PreSolve(b2Contact* c, const b2Manifold* old) override;
-    bool atCollidePoses(const ProxyRef* ra, const ProxyRef* rb, b2Fixture* fa, b2Fixture* fb,
-                        b2Contact* c) const;
-    void gatherRough(const ProxyRef* ra, const ProxyRef* rb);
-    void gatherPrimitive(const ProxyRef* r, bool roughIsA, b2Fixture* other, int child);
-    void disable(b2Contact* c);
-    void write(b2Contact* c, const b2Manifold* old, bool roughIsA, const b2Body* bA, const b2Body* bB);
-
-    // bridge_joints.cpp: joint points
-    static double obbDistance(const rugo_obb* b, rugo_vec2 p);
-    static bool primitiveDistance(const b2Fixture* f, int child, b2Vec2 p, double* sd, b2Vec2* q,
-                                  double* tEdge);
-    template <class F> static void forJoints(const BodyRec* r, int node, int L, bool withEnd, F&& fn);
-    void jointsVsPrimitive(const ProxyRef* r, bool roughIsA, const b2Fixture* other, int child, bool dropEnd);
-    void jointsVsRough(const ProxyRef* self, const ProxyRef* oth, bool selfIsA, int pairRel);
-    void pushJoint(b2Vec2 pa, b2Vec2 pb, bool inside, b2Vec2 surfaceNormal, double s, float mu, float eps,
-                   const BodyRec* R, int k, uint32 tag, std::vector<BPoint>* out);
-    bool attachJoint(BPoint* j) const;
+    // bridge_evaluate.cpp: the patches of a pair, into a manifold.
+    bool roughPatches(BodyRec* qa, BodyRec* qb, const b2Transform& xa, const b2Transform& xb, double margin,
+                      const RoughContact* current, uint32_t* start, uint32_t* count);
+    bool primitivePatches(BodyRec* r, b2Fixture* other, int child, const b2Transform& xr,
+                          const b2Transform& xo, double margin, const RoughContact* current, uint32_t* start,
+                          uint32_t* count);
+    void evaluate(RoughContact* c, b2Manifold* m, const b2Transform& xfA, const b2Transform& xfB);
+    // The resolution of a query between a and b (b nullptr: an ordinary fixture): queryResolution times
+    // the smaller budget; 0 (round-off) without one.
+    double resolutionFor(const BodyRec* a, const BodyRec* b) const {
+        const double f = def.queryResolution;
+        double budget = a->budget;
+        if (b != nullptr && !(b->budget >= budget)) budget = b->budget;
+        return f > 0.0 && std::isfinite(f) && budget > 0.0 && std::isfinite(budget) ? f * budget : 0.0;
+    }
+    double warmDistance() const {
+        return def.reuseDistance > 0.0 && std::isfinite(def.reuseDistance) ? def.reuseDistance : 0.0;
+    }
+    void rollingResistance(RoughContact* rc, float impulse, double arm);
+    void giveUnowned(uint32_t first, const BodyRec* qa, const void* other, int child,
+                     const RoughContact* current);
 
     // bridge_one_sided.cpp: one-sided edges, chain children and b2EdgeShape with m_oneSided.
     // Box2D 2.4.1 (b2_collide_edge.cpp) collides a one-sided edge only with a body whose centroid is in
@@ -330,11 +427,70 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
         bool hasPrev = false, hasNext = false; // a real neighbouring child, not only a ghost vertex
         bool roundEnds = false;                // a two-sided edge: beyond its ends, its round caps
     };
-    OneSided oneSided; // of the fixture child being gathered (gatherPrimitive)
     static OneSided makeOneSided(const b2EdgeShape& e, const b2Transform& x, bool hasPrev, bool hasNext);
     static OneSided makeTwoSided(const b2EdgeShape& e, const b2Transform& x, b2Vec2 centroid);
     static bool resolveOneSided(const OneSided& o, b2Vec2 p, b2Vec2* m, double* dist);
 };
+
+namespace detail {
+
+// The bridge's contact for every pair of fixtures of which one is a proxy (bridge_contact.cpp). Box2D
+// creates and destroys it through the registry; it holds no resource of its own (a world destroyed
+// first frees it without running its destructor).
+class RUGO_BRIDGE_HIDDEN RoughContact : public b2Contact {
+  public:
+    RoughContact(b2Fixture* fA, int32 iA, b2Fixture* fB, int32 iB, Bridge::Impl* impl, const ProxyRef* ra,
+                 const ProxyRef* rb);
+    void Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB) override;
+
+    Bridge::Impl* impl;
+    BodyRec* recA; // the proxy's body record on fixture A's side (nullptr: an ordinary fixture)
+    BodyRec* recB;
+    int pieceA, pieceB;
+    // The last evaluation: Bridge::Impl::stepSerial and the two float poses.
+    uint64_t lastStep = 0;
+    float lastPose[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    bool repeated = false; // the last evaluation repeated the one before at the same poses (disabled)
+    // The last query's answer for this contact (BridgeDef::reuseDistance): the step, the two body poses
+    // and the margin it ran at, and its patch (query orientation, material points) if it had one.
+    bool warm = false, warmHasPatch = false;
+    uint64_t warmStep = 0;
+    b2Transform warmA, warmB;
+    double warmMargin = 0.0;
+    Patch warmPatch;
+    rugo_vec2 warmNormal; // the patch normal in the query's A side's frame
+
+    // Installs the bridge's create and destroy functions in Box2D's registry (once per process).
+    static void install();
+};
+
+// The live bridges by world (bridge_contact.cpp).
+void registerBridge(const b2World* world, Bridge::Impl* impl);
+void unregisterBridge(const Bridge::Impl* impl);
+
+} // namespace detail
+
+// ---- the cache's template (bridge_cache.cpp has the rest) --------------------------------------------
+template <class F>
+bool Bridge::Impl::cachedPatches(const void* a, const void* b, int child, const b2Transform& xa,
+                                 const b2Transform& xb, double margin, int level, F&& run, uint32_t* start,
+                                 uint32_t* count) {
+    const float xf[8] = {xa.p.x, xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y, xb.q.c, xb.q.s};
+    bool found = false;
+    const size_t slot = cacheSlot(a, b, child, xf, margin, level, &found);
+    if (found) {
+        ++stats.cacheHits;
+        *start = table[slot].start;
+        *count = table[slot].count;
+        return true;
+    }
+    const uint32_t first = static_cast<uint32_t>(patches.size());
+    const bool ok = run();
+    cacheFill(slot, a, b, child, xf, margin, level, first);
+    *start = first;
+    *count = table[slot].count;
+    return ok;
+}
 
 } // namespace rugo
 

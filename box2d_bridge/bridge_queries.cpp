@@ -73,7 +73,7 @@ bool Bridge::RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const {
         if (found && static_cast<float>(frac) >= best.fraction) continue;
         found = true;
         best.body = r->body;
-        best.fixture = r->proxies[static_cast<size_t>(cp.segment >> (r->level - r->proxyLevel))];
+        best.fixture = r->proxies[static_cast<size_t>(Impl::pieceOf(r->data, cp.segment, r->level))];
         best.point = toB2(rugo_transform_point(x, cp.point));
         best.normal = toB2(rugo_rotate(x.q, nrm));
         best.fraction = static_cast<float>(frac);
@@ -124,19 +124,9 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
         b2Body* b = candidates[i];
         if (b == nullptr) continue; // destroyed by an earlier callback
         const BodyRec* r = I.rec(b);
-        if (r != nullptr) { // decided by the curve
-            rugo_contact_query q = legacyQuery();
-            q.lod = r->relLevel;
-            const rugo_transform x = toRugo(b->GetTransform());
-            rugo_primitive box = rugo_make_circle(v[0], 0.0);
-            if (!degenerate) {
-                box.count = 4;
-                for (int k = 0; k < 4; ++k) box.points[k] = v[k];
-            }
-            rugo_contact_output o = rugo_contact_output_of(nullptr, 0); // the state only
-            const rugo_status st = rugo_collide_primitive(r->shape, x, &box, rugo_identity_transform(), &q, I.ctx, &o);
-            if (st != RUGO_OK || o.state == RUGO_STATE_APART) continue;
-        }
+        if (r != nullptr && !queryOverlapsPolygon(I.query, r->shape, toRugo(b->GetTransform()), r->relLevel,
+                                                  v, degenerate ? 1 : 4))
+            continue; // decided by the curve
         if (!callback(b)) return;
         if (I.world == nullptr) return; // ReleaseWorld inside the callback
         // Creating a body changes the list's head, destroying one the count (and a destroyed body with

@@ -1,31 +1,38 @@
 /// @file rugo/box2d.hpp
 /// librugo — the Box2D 2.4 bridge: rough curved bodies in an ordinary b2World.
 ///
-/// One rugo::Bridge per b2World. Constructing it installs a contact listener, a contact filter and a
-/// destruction listener on the world that chain to whatever the world had before (and to whatever the
-/// user sets later: Step() notices a replaced listener or filter and chains to the new one). Attaching a
-/// rugo_shape to a b2Body gives the body density-0 proxy fixtures — the MOBBtree's boxes at a proxy level,
-/// which enclose the curve and its tolerance band — and the exact mass of the contour. Box2D's broad phase
-/// and its proxy-vs-proxy test decide which proxy pairs may touch; in PreSolve the bridge replaces the
-/// manifold of every contact that involves a proxy with librugo's contacts for the curve pieces under the
-/// two proxies, and sets the contact's friction and restitution from the surfaces at those points.
+/// One rugo::Bridge per b2World. Attaching a rugo_shape to a b2Body gives the body a few density-0 proxy
+/// fixtures — convex polygons of at most 8 vertices (b2_maxPolygonVertices) whose core and skin enclose
+/// convex runs of the curve and its tolerance band: one for a convex shape, a few for a concave one — and
+/// the exact mass of the contour. Box2D uses the proxies only for its broad phase, its time of impact and
+/// its sensors. The collision of every proxy pair is the bridge's: it registers a b2Contact subclass in
+/// Box2D's contact registry for the shape-type pairs a proxy can be in, whose Evaluate writes librugo's
+/// contacts into the manifold (one librugo query per body pair and pose, shared by the pair's proxy
+/// contacts), with the friction and restitution of the surfaces at the points.
 ///
 /// Semantics (docs/box2d.md has the full statement):
 ///  - Separation in the manifold is the curve distance minus the tolerance bands λ_A(t_A) + λ_B(t_B):
 ///    bodies rest on their asperities, like Box2D's polygon skin.
-///  - Each real contact point belongs to exactly one proxy pair (the pair of proxies whose tree nodes
-///    hold the two curve segments); other proxy pairs of the same body pair do not repeat it.
-///  - A proxy pair without a curve contact is disabled for the step (b2Contact::SetEnabled(false)) and
-///    its manifold is emptied; Begin/EndContact still follow the proxies (Box2D's own notion).
-///  - Continuous collision: see Bridge::Step and docs/box2d.md ("speculative within the step").
+///  - A contact patch (a contact region of librugo's, regions with nearly the same normal merged, a
+///    flat face on a flat face completed to the ends of the stretch they share) is owned by exactly one
+///    proxy pair and becomes one b2Contact with one normal and at most two points, at the patch's ends,
+///    as Box2D clips a face: its block solver then holds stacks.
+///  - Box2D's own Begin/EndContact, PreSolve and PostSolve follow these manifolds: a contact touches when
+///    the bridge wrote points. The user's PreSolve runs after the bridge's Evaluate and may change the
+///    friction, the restitution, the tangent speed or disable the contact.
+///  - Continuous collision: points apart but closing within the step are speculative (see Bridge::Step
+///    and docs/box2d.md, "Continuous collision").
 ///  - Box2D is single precision; librugo computes in double and converts at the boundary.
 ///
 /// Lifetime: shapes are shared, never copied, and must outlive every body they are attached to. Destroy
 /// the bridge before its world (it restores the world's callbacks and removes its proxies); if the world
-/// was destroyed first, call ReleaseWorld() before destroying the bridge. Destroying a rough body with
-/// b2World::DestroyBody is fine (the destruction listener forgets it).
+/// was destroyed first, call ReleaseWorld() before destroying the bridge (and before creating another
+/// world). Destroying a rough body with b2World::DestroyBody is fine (the destruction listener forgets it).
 ///
-/// Thread safety: as Box2D — one thread drives the world and the bridge.
+/// Thread safety: as Box2D 2.4 — one thread drives every world and bridge of the process. Box2D's contact
+/// registry is process-global: the first Bridge installs the bridge's contact functions there (for
+/// every world; pairs without a proxy go to Box2D's own functions unchanged), and a process-global list
+/// of live bridges by world tells the bridge's functions which bridge a fixture belongs to.
 ///
 /// Units: Box2D's (metres, kilograms, seconds, radians); shapes are in metres. Errors are returned as
 /// rugo_status (never thrown); only the constructor can throw (std::bad_alloc, as any C++ allocation).
@@ -54,17 +61,30 @@ struct BridgeDef {
     /// bodies' budgets. Per body, see RoughBodyDef::errorBudget. A negative or NaN budget keeps every
     /// body at its finest level.
     double errorBudget = 0.005;
-    /// Automatic proxy level: at most 2^maxProxyLevel proxies per body (never finer than the body's
-    /// contact level, never coarser than the tree's coarsest level).
-    int maxProxyLevel = 3;
-    /// Continuous collision policy (docs/box2d.md): a proxy pair whose curves are apart by a gap that
-    /// the bodies' approach speed closes within the step gets that closest pair as a speculative point
-    /// (positive separation), so fast rough bodies do not tunnel and stop at most that gap short.
-    /// false: only touching points (s <= 0) are ever submitted.
+    /// Most proxy fixtures per body (1 .. 8; 0 or beyond: 8). A convex shape gets one; a concave one a
+    /// convex piece per convex run of its outline, merged down to this many. Per body, see
+    /// RoughBodyDef::maxProxies.
+    int maxProxies = 8;
+    /// Continuous collision policy (docs/box2d.md): a patch whose curves are apart by a gap that the
+    /// bodies' approach closes within the step gets speculative points (positive separation) at its
+    /// ends, which Box2D's solver lets close by their gap and no further, so fast rough bodies do not
+    /// tunnel and flat faces land flat. false: only touching points (s <= 0) are ever submitted.
     bool speculative = true;
-    /// Contacts per proxy pair are reduced to Box2D's 2 manifold points (deepest, then farthest).
-    /// Friction of the contact: how the per-point μ of the (at most 2) points are combined (a value
-    /// that is not a rugo_mix_rule falls back to this default).
+    /// Experimental, off by default (docs/box2d.md, "Warm contacts"): a proxy contact whose two bodies have
+    /// moved relative to each other by at most this distance (metres: a bound on how far any point of one
+    /// moved in the other's frame) since its last librugo query, within 16 steps and outside Box2D's
+    /// continuous phase, answers from that query instead of querying again (an empty answer over this
+    /// distance, its points carried with the bodies over a tenth of it); queries then look this much
+    /// farther (their margin). 0 (or negative, NaN): query every step. With 2.5 mm, scene 3 of
+    /// bench_box2d_scenes runs 2.8x faster, but the rolling-disc, sliding-block and landing tests of
+    /// test_box2d fail: a reused patch misses the contact points that appear meanwhile.
+    double reuseDistance = 0.0;
+    /// Resolution of the bridge's librugo queries (rugo_contact_query.resolution) as a fraction of the
+    /// pair's error budget (the smaller of the two bodies' errorBudget): 0 = round-off answers. Negative
+    /// or NaN: 0. The contact rule is the thesis' (minima of the curves' distance) either way.
+    double queryResolution = 0.0;
+    /// Friction of a contact: how the per-point μ of its (at most 2) points are combined (a value that
+    /// is not a rugo_mix_rule falls back to this default).
     rugo_mix_rule pointFrictionMix = RUGO_MIX_MEAN;
     /// Box2D has no getter for the world's destruction listener: give the one you had set on the world
     /// here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
@@ -82,10 +102,8 @@ struct RoughBodyDef {
     /// two levels.
     int lod = RUGO_LOD_AUTO;
     double errorBudget = -1.0; ///< metres; < 0 or NaN = BridgeDef::errorBudget
-    /// Absolute MOBBtree level (J_min..J) of the proxy boxes; RUGO_LOD_AUTO = automatic (see BridgeDef).
-    /// Must not be finer than the body's contact level (the boxes must enclose that level's curve and
-    /// band).
-    int proxyLevel = RUGO_LOD_AUTO;
+    /// Most proxy fixtures of this body (1 .. 8); 0 = BridgeDef::maxProxies.
+    int maxProxies = 0;
     /// Given to every proxy fixture, as b2FixtureDef would.
     b2Filter filter;
     bool isSensor = false;      ///< makes every proxy fixture a sensor (Box2D reports, no contact response)
@@ -96,8 +114,8 @@ struct RoughBodyDef {
 enum DrawFlags : unsigned {
     kDrawCurve = 1u,    ///< the curve at the body's contact level (b2Draw::DrawSegment polylines)
     kDrawBand = 2u,     ///< the tolerance band's two offset curves
-    kDrawProxies = 4u,  ///< the proxy boxes (DrawPolygon)
-    kDrawContacts = 8u  ///< the last step's rough contact points and normals
+    kDrawProxies = 4u,  ///< the proxies: each core polygon pushed out by its skin (DrawPolygon)
+    kDrawContacts = 8u  ///< the last step's rough manifold points and normals
 };
 
 /// The closest hit of Bridge::RayCast.
@@ -113,13 +131,18 @@ struct RayHit {
 
 /// Counters since construction or ResetStats().
 struct BridgeStats {
-    long preSolves = 0;          ///< PreSolve calls on contacts with a proxy
-    long toiPreSolves = 0;       ///< of those, during Box2D's continuous (TOI) phase
+    long evaluations = 0;        ///< Evaluate calls of the bridge's contacts (Box2D's narrow phase)
+    long toiEvaluations = 0;     ///< of those, during Box2D's continuous (TOI) phase
+    long emptyEvaluations = 0;   ///< of those, with no manifold point (not touching)
+    long proxyRejections = 0;    ///< of those, decided by the proxies' distance alone (no query)
+    long reusedEvaluations = 0;  ///< of those, answered from the contact's last query (reuseDistance)
+    long preSolves = 0;          ///< PreSolve calls Box2D made on contacts with a proxy (chained to yours)
     long queries = 0;            ///< librugo collision queries run (one per body pair and pose)
-    long cacheHits = 0;          ///< proxy pairs answered from a query already run for the same poses
+    long cacheHits = 0;          ///< proxy contacts answered from a query already run for the same poses
+    long patches = 0;            ///< contact patches built from the queries
+    long patchesDropped = 0;     ///< patches whose proxy pair already owned a deeper one (not submitted)
     long pointsSubmitted = 0;    ///< manifold points written
     long speculativePoints = 0;  ///< of those, with positive separation (CCD policy)
-    long disabledContacts = 0;   ///< proxy pairs disabled for a step (no curve contact)
     /// librugo query statistics, summed (rugo_query_stats). @{
     long boxTests = 0, segmentPairs = 0, fallbacks = 0;
     /// @}
@@ -156,9 +179,8 @@ public:
     /// Errors: RUGO_ERR_NULL_ARGUMENT (body or def.shape), RUGO_ERR_BAD_ARGUMENT (body of another world,
     /// density not finite or < 0, or 0 on a dynamic body, or so large or small that the shape's mass or
     /// inertia leaves [1e6 FLT_MIN, 1e-6 FLT_MAX] (Box2D's floats need room for products and inverses),
-    /// proxyLevel outside the tree or finer than the contact level), RUGO_ERR_ALREADY_ATTACHED,
-    /// RUGO_ERR_WORLD_LOCKED (inside Step or a callback, or an EndContact that Box2D raises outside
-    /// Step), RUGO_ERR_OUT_OF_MEMORY.
+    /// maxProxies < 0 or > 8), RUGO_ERR_ALREADY_ATTACHED, RUGO_ERR_WORLD_LOCKED (inside Step or a
+    /// callback, or an EndContact that Box2D raises outside Step), RUGO_ERR_OUT_OF_MEMORY.
     rugo_status Attach(b2Body* body, const RoughBodyDef& def);
     /// Removes the proxies and the rough mass (Box2D recomputes the mass from the remaining fixtures).
     /// Errors: RUGO_ERR_NULL_ARGUMENT, RUGO_ERR_NOT_ATTACHED, RUGO_ERR_WORLD_LOCKED.
@@ -170,16 +192,18 @@ public:
     const rugo_shape* GetShape(const b2Body* body) const;
     /// The body's absolute contact level; -1 if not rough.
     int GetLevel(const b2Body* body) const;
-    /// The body's absolute proxy level; -1 if not rough.
-    int GetProxyLevel(const b2Body* body) const;
-    /// Is this fixture one of the bridge's proxies? If so and node is not nullptr, *node = its tree node
-    /// k at the proxy level.
-    bool IsProxy(const b2Fixture* fixture, int* node = nullptr) const;
+    /// The number of the body's proxy fixtures; 0 if not rough.
+    int GetProxyCount(const b2Body* body) const;
+    /// Is this fixture one of the bridge's proxies? If so and piece is not nullptr, *piece = which of
+    /// the body's proxies it is (0 .. GetProxyCount - 1, in outline order).
+    bool IsProxy(const b2Fixture* fixture, int* piece = nullptr) const;
 
     /// The step wrapper: re-chains a listener or filter the user replaced, re-applies the exact mass of
     /// every rough body whose mass Box2D has reset (SetType, fixture changes, SetFixedRotation), then
     /// calls b2World::Step (timeStep in seconds, iteration counts as Box2D's). Calling b2World::Step
-    /// directly also works, but then mass resets are only repaired by SyncMass.
+    /// directly also works, but then mass resets are only repaired by SyncMass, speculative points
+    /// assume a 1/60 s step, and Box2D's continuous phase re-solves contacts it has already solved
+    /// (docs/box2d.md, "Continuous collision").
     void Step(float timeStep, int32 velocityIterations, int32 positionIterations);
     /// Re-applies the exact mass now: the rough contour's integrals times density, plus the mass of the
     /// body's ordinary fixtures. Errors: NULL_ARGUMENT, NOT_ATTACHED, WORLD_LOCKED.

@@ -32,15 +32,18 @@
 // Usage:
 //   bench_box2d_scenes [--quick] [--n 16,64,256,1024] [--s 32,64,128,512] [--grid] [--steps K]
 //                      [--warmup W] [--repeat R] [--max-n CAP] [--steps-large K] [--variants afpc]
-//                      [--check-every K] [--max-proxy-level P] [--no-ccd] [--alloc-trace] [--verbose]
+//                      [--check-every K] [--max-proxies P] [--reuse D] [--resolution F] [--no-ccd]
+//                      [--alloc-trace] [--verbose]
 //                      [OUTDIR]
 // With OUTDIR the run's CSV, comments and summary also go to OUTDIR/bench_box2d_scenes.csv: results are
 // kept per machine as samples/bench/results/<machine>/bench_box2d_scenes.csv (results/README.md).
 // Default: N = 16, 64, 256, 1024 at S = 64, and S = 32, 64, 128, 512 at N = 256 (--grid: every pair);
 // 300 steps of which 60 warm-up (--steps-large K: K steps for N >= 1024 or S >= 512; warm-up at most
 // half the steps). --max-n caps N; --variants picks a(uto), f(inest), p(olygon), c(ircle); --repeat
-// keeps the best time of R runs, the variants' runs alternating. --max-proxy-level and --no-ccd change the bridge's proxy level cap
-// (BridgeDef::maxProxyLevel) and Box2D's continuous collision for an experiment; --alloc-trace prints
+// keeps the best time of R runs, the variants' runs alternating. --max-proxies and --no-ccd change the bridge's proxy cap
+// (BridgeDef::maxProxies) and Box2D's continuous collision for an experiment; --reuse D sets
+// BridgeDef::reuseDistance (metres; 0: query every step) and --resolution F BridgeDef::queryResolution
+// (a fraction of the error budget; 0: round-off); --alloc-trace prints
 // the callers of the counted allocations; --verbose each new worst level-of-detail pair.
 // --quick (the test suite): N = 16, S = 32, 60 steps; checks that every variant runs, stays in the
 // container, makes contacts, that the level-of-detail check ran and that the bridge and librugo do not
@@ -378,7 +381,9 @@ struct Options {
     int warmup = 60, repeat = 1, maxN = 1 << 30, stepsLarge = 0;
     int checkEvery = 30;
     std::string variants = "afpc";
-    int maxProxyLevel = -1;      // BridgeDef::maxProxyLevel override (-1: the default)
+    int maxProxies = 0;          // BridgeDef::maxProxies override (0: the default)
+    double reuse = -1.0;         // BridgeDef::reuseDistance override (< 0: the default)
+    double resolution = -1.0;    // BridgeDef::queryResolution override (< 0: the default)
     bool continuous = true;      // b2World::SetContinuousPhysics
     bool allocTrace = false;
     bool verbose = false;
@@ -391,7 +396,9 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
     args.bodies = n;
     args.segments = set->segments;
     args.pileShapes = set;
-    args.maxProxyLevel = opt.maxProxyLevel;
+    args.maxProxies = opt.maxProxies;
+    args.reuseDistance = opt.reuse;
+    args.queryResolution = opt.resolution;
     args.continuous = opt.continuous;
     scene_table::World run;
     if (!scene_table::Create(*scene_table::Find("rock_pile"), args, &run)) {
@@ -633,8 +640,12 @@ int main(int argc, char** argv) {
             opt.checkEvery = std::atoi(argv[++i]);
         else if (a == "--variants" && more)
             opt.variants = argv[++i];
-        else if (a == "--max-proxy-level" && more)
-            opt.maxProxyLevel = std::atoi(argv[++i]);
+        else if (a == "--max-proxies" && more)
+            opt.maxProxies = std::atoi(argv[++i]);
+        else if (a == "--reuse" && more)
+            opt.reuse = std::atof(argv[++i]);
+        else if (a == "--resolution" && more)
+            opt.resolution = std::atof(argv[++i]);
         else if (a == "--no-ccd")
             opt.continuous = false;
         else if (a == "--verbose")
@@ -646,7 +657,8 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--n LIST] [--s LIST] [--grid] [--steps K] [--warmup W] [--repeat R]\n"
                                  "          [--max-n CAP] [--steps-large K] [--variants afpc] [--check-every K]\n"
-                                 "          [--max-proxy-level P] [--no-ccd] [--alloc-trace] [--verbose] [OUTDIR]\n",
+                                 "          [--max-proxies P] [--reuse D] [--resolution F] [--no-ccd] [--alloc-trace]\n"
+                                 "          [--verbose] [OUTDIR]\n",
                          argv[0]);
             return 2;
         }
@@ -762,7 +774,7 @@ int main(int argc, char** argv) {
                  st.budgetPairs > 0 ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs) : 0.0,
                  1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
                  static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
-                 static_cast<double>(st.bs.toiPreSolves) / all, st.keFinal, st.hash, st.maxGapRatio,
+                 static_cast<double>(st.bs.toiEvaluations) / all, st.keFinal, st.hash, st.maxGapRatio,
                  1e3 * st.maxContactAboveGap, st.gapPairs);
             std::fflush(stdout);
             if (!st.contained) allOk = false;

@@ -220,9 +220,9 @@ int main(int argc, char** argv) {
                 r.meanRough, r.maxRough);
     std::printf("memory per rough body: bridge %zu B + Box2D %zu B (%d proxies); all %d shapes %zu B, shared\n",
                 r.bridgeBytes, r.box2dBytes, r.proxies, r.shapes, r.shapeBytes);
-    std::printf("bridge: %ld queries, %ld cache hits, %ld points (%ld speculative), %ld disabled, %ld TOI presolves\n",
+    std::printf("bridge: %ld queries, %ld cache hits, %ld points (%ld speculative), %ld empty, %ld TOI evaluations\n",
                 r.stats.queries, r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints,
-                r.stats.disabledContacts, r.stats.toiPreSolves);
+                r.stats.emptyEvaluations, r.stats.toiEvaluations);
     std::printf("energy: initial %.3f J, largest growth %.4f J, final %.3f J, final kinetic %.5f J\n", r.e0, r.eMaxGrowth,
                 r.eFinal, r.keFinal);
     std::printf("deepest rough contact during the run: %.4f m beyond the bands (%s / %s at t = %.3f s); deepest "
@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
                      " \"contacts_mean\": %.4f, \"contacts_max\": %d, \"rough_contacts_mean\": %.4f, \"rough_contacts_max\": %d,\n"
                      " \"memory_per_rough_body\": {\"bridge_bytes\": %zu, \"box2d_bytes\": %zu, \"proxies\": %d},\n"
                      " \"shared_shape_bytes\": %zu,\n"
-                     " \"bridge\": {\"queries\": %ld, \"cache_hits\": %ld, \"points\": %ld, \"speculative\": %ld, \"disabled\": %ld, \"toi_presolves\": %ld},\n"
+                     " \"bridge\": {\"queries\": %ld, \"cache_hits\": %ld, \"points\": %ld, \"speculative\": %ld, \"empty\": %ld, \"toi_evaluations\": %ld},\n"
                      " \"energy\": {\"initial\": %.9g, \"max_growth\": %.9g, \"final\": %.9g, \"final_kinetic\": %.9g},\n"
                      " \"min_manifold_separation\": %.9g, \"worst_penetration_beyond_bands\": %.9g,\n"
                      " \"worst_ordinary_penetration\": %.9g, \"final_penetration_beyond_bands\": %.9g, \"final_ordinary_penetration\": %.9g,\n"
@@ -249,7 +249,7 @@ int main(int argc, char** argv) {
                      r.bodies, r.rough, r.shapes, r.steps, s.time_step, r.seconds, 1e3 * r.seconds / static_cast<double>(r.steps),
                      r.meanContacts, r.maxContacts, r.meanRough, r.maxRough, r.bridgeBytes, r.box2dBytes, r.proxies, r.shapeBytes,
                      r.stats.queries, r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints,
-                     r.stats.disabledContacts, r.stats.toiPreSolves, r.e0, r.eMaxGrowth, r.eFinal, r.keFinal, r.minSeparation,
+                     r.stats.emptyEvaluations, r.stats.toiEvaluations, r.e0, r.eMaxGrowth, r.eFinal, r.keFinal, r.minSeparation,
                      r.worstExcess, r.worstOrdinary, r.finalExcess, r.finalOrdinary, r.minY, r.maxAbsX, r.hash);
         sample_expect("results.json written", std::fclose(f) == 0);
     }

@@ -46,6 +46,9 @@ inline double Cross(rugo_vec2 o, rugo_vec2 a, rugo_vec2 b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
+
+} // namespace
+
 // The polygon variant: vertices on the finest curve, each chord as long as the curve between its ends
 // stays within eps of it (greedy over kSamplesPerSegment samples per segment), then a fan from the
 // centroid merged greedily into convex pieces of at most b2_maxPolygonVertices vertices. The outlines
@@ -119,8 +122,6 @@ bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Pie
     }
     return true;
 }
-
-} // namespace
 
 bool BuildShapes(int segments, ShapeSet* set) {
     set->segments = segments;
@@ -209,7 +210,9 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
     if (var == kAuto || var == kFinest) {
         rugo::BridgeDef bd;
         bd.errorBudget = kBudget;
-        if (args.maxProxyLevel >= 0) bd.maxProxyLevel = args.maxProxyLevel;
+        if (args.maxProxies > 0) bd.maxProxies = args.maxProxies;
+        if (args.reuseDistance >= 0.0) bd.reuseDistance = args.reuseDistance;
+        if (args.queryResolution >= 0.0) bd.queryResolution = args.queryResolution;
         world->bridge = std::make_unique<rugo::Bridge>(world->world.get(), bd);
     }
     // Container: floor and two walls (static boxes, two-sided).

@@ -49,6 +49,13 @@ struct ShapeSet {
     }
 };
 
+// The finest curve of s as a polygon whose chords deviate from it by at most eps (checked 4x denser
+// than fitted; *dev the largest deviation found, *nverts its vertices), cut into convex pieces of at
+// most b2_maxPolygonVertices vertices (a fan from apex). false if the polygon is not star-shaped about
+// apex.
+bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Piece>* pieces, int* nverts,
+                double* dev);
+
 // Builds the shapes of `segments` control points; false with a message if one fails.
 bool BuildShapes(int segments, ShapeSet* set);
 

@@ -17,6 +17,9 @@ quote); OUT_DIR receives the SVG files (default docs/img). Written, from the fil
                               compounds, native circles) against the body count (S = 64) and against
                               the segment count (N = 256), log-log (bench_box2d_scenes.csv, and the
                               largest sizes from bench_box2d_scenes_large.csv when that run was separate)
+    bench_hard_cases.svg      µs per query against the resolution δ / size (1e-2 ... 1e-9), one line per hard
+                              case at the origin (1e6 away dashed), with a δ^-1/2 reference line
+                              (bench_hard_cases.csv)
 A configuration with a missed or spurious contact is drawn hollow at an error of at least D = 0.005
 (the benchmark's contact window), as the benchmark's summary counts it.
 """
@@ -318,6 +321,42 @@ def box2d_scenes_plot(csv_paths, out_path):
         f.write(svg_doc(left + 2 * (W + gap), note_y + 30, body))
 
 
+HARD_COLOURS = ["#1f6fb4", "#d0502a", "#2a9d50", "#7b3fa0", "#e8a33d", "#17a2b8", "#8c564b", "#555555"]
+
+
+def hard_cases_plot(csv_path, out_path):
+    """bench_hard_cases: cost against the resolution, with a delta^-1/2 line through the cheapest case at 1e-2."""
+    rows = [r for r in read_csv(csv_path) if float(r["delta_rel"]) > 0]
+    cases = []
+    for r in rows:
+        if r["case"] not in cases:
+            cases.append(r["case"])
+    us = [float(r["us_median"]) for r in rows]
+    xlim = (1e-9 / 2, 1e-2 * 2)
+    ylim = (10.0 ** math.floor(math.log10(min(us))), 10.0 ** math.ceil(math.log10(max(us))))
+    W, H = 760, 520
+    # the x axis runs from coarse (left) to fine (right)
+    p = Panel(90, 40, 430, 420, (xlim[1], xlim[0]), ylim)
+    p.frame("Hard cases: cost against the resolution", "resolution δ / size (finer to the right)",
+            "µs per query (median)", [(10.0 ** e, f"1e{e}") for e in range(-9, -1)], decade_ticks(ylim[0], ylim[1]))
+    for i, c in enumerate(cases):
+        col = HARD_COLOURS[i % len(HARD_COLOURS)]
+        for far in ("0", "1"):
+            pts = sorted(((float(r["delta_rel"]), float(r["us_median"])) for r in rows
+                          if r["case"] == c and r["far"] == far), reverse=True)
+            p.series(pts, col, dashed=(far == "1"))
+        p.text(540, 60 + 18 * i, c, 11, colour=col)
+    base = min(float(r["us_median"]) for r in rows if float(r["delta_rel"]) == 1e-2)
+    ref = [(d, base * (d / 1e-2) ** -0.5) for d in (1e-2, 1e-9)]
+    p.series(ref, "#000000", dashed=True)
+    p.text(540, 60 + 18 * len(cases) + 10, "dashed black: δ^-1/2 from the cheapest case", 10)
+    p.text(540, 60 + 18 * len(cases) + 26, "dashed colour: 1e6 from the origin", 10)
+    p.hline(100.0, "#888", "100 µs (goal at the default δ 1e-4)")
+    p.hline(1000.0, "#888", "1 ms (goal at 1e-6)")
+    with open(out_path, "w") as f:
+        f.write(svg_doc(W, H, p.out))
+
+
 def read_csv_comments(path):
     """A CSV whose comment lines start with '#' and that may end with other text (a benchmark's stdout)."""
     with open(path, newline="") as f:
@@ -351,6 +390,10 @@ def main(argv):
     if os.path.exists(b2[0]):
         path = os.path.join(out_dir, "bench_box2d_scenes.svg")
         box2d_scenes_plot([p for p in b2 if os.path.exists(p)], path)
+        written.append(path)
+    if os.path.exists(os.path.join(csv_dir, "bench_hard_cases.csv")):
+        path = os.path.join(out_dir, "bench_hard_cases.svg")
+        hard_cases_plot(os.path.join(csv_dir, "bench_hard_cases.csv"), path)
         written.append(path)
     if not written:
         sys.stderr.write(f"plot_benchmarks.py: no benchmark CSV in {csv_dir}\n")

@@ -68,7 +68,8 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     w->g = rugo__v2_length(def->gravity);
     w->query = rugo_default_contact_query();
     w->query.level = def->level;
-    if (rugo_sweep_prune_create(&a, &w->sap) != RUGO_OK || rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
+    if (rugo__sweep_prune_create(&a, &w->sap) != RUGO_OK ||
+        rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
         rugo_world_destroy(w);
         return RUGO_ERR_OUT_OF_MEMORY;
     }
@@ -79,7 +80,7 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
 void rugo_world_destroy(rugo_world* w) {
     if (w == NULL) return;
     rugo_allocator a = w->allocator;
-    rugo_sweep_prune_destroy(w->sap);
+    rugo__sweep_prune_destroy(w->sap);
     rugo_collide_context_destroy(w->ctx);
     rugo__array* all[] = {&w->bodies,      &w->start,   &w->boxes,    &w->saved,
                           &w->pair_depth0, &w->scratch, &w->contacts, &w->records};

@@ -144,7 +144,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
         point = pts[i];
     }
 
-    rugo_impulse_input in;
+    rugo__impulse_input in;
     in.inv_mass_a = A->inv_mass;
     in.inv_inertia_a = A->inv_inertia;
     in.inv_mass_b = B->inv_mass;
@@ -161,8 +161,8 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     eps = contact_restitution(w, A, B, vn, lam, la, lb, delta, base_eps, &micro);
     in.restitution = eps;
     in.friction = w->def.friction && mu >= 0.0 && isfinite(mu) ? mu : 0.0;
-    rugo_impulse_result r;
-    if (rugo_collision_impulse(&in, &r) != RUGO_OK || r.branch == 0) return 0;
+    rugo__impulse_result r;
+    if (rugo__collision_impulse(&in, &r) != RUGO_OK || r.branch == 0) return 0;
     A->v = rugo_v2_add(A->v, rugo_v2_scale(A->inv_mass, r.impulse));
     A->w += A->inv_inertia * rugo_v2_cross(in.r_a, r.impulse);
     B->v = rugo_v2_sub(B->v, rugo_v2_scale(B->inv_mass, r.impulse));

@@ -82,7 +82,7 @@ START_TEST(absolute_commands) {
     ck_assert_int_eq(p.subpath_count, 1);
     ck_assert_int_eq(p.subpaths[0].first, 0);
     ck_assert_int_eq(p.subpaths[0].count, 9);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     ck_assert_vec_near(p.subpaths[0].start, 10, 20, 0);
     ck_assert_int_eq(p.segment_count, 9);
     const rugo_path_segment* s = p.segments;
@@ -161,7 +161,7 @@ START_TEST(curve_points) {
     rugo_path p;
     parse_ok("M0 0 Q 1 2 2 0 M0 0 C 0 1 1 1 1 0", &p);
     ck_assert_int_eq(p.subpath_count, 2);
-    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    ck_assert(!p.subpaths[1].closed);
     /* Q: 1/4 (0,0) + 1/2 (1,2) + 1/4 (2,0) = (1, 1); derivative at 1/2 = (2 - 0, 0 - 0) = (2, 0). */
     ck_assert_vec_near(seg_point(&p, 0, 0.5), 1, 1, 1e-15);
     ck_assert_vec_near(rugo_path_segment_derivative(&p.segments[0], 0.5), 2, 0, 1e-15);
@@ -309,14 +309,14 @@ START_TEST(implicit_commands) {
     ck_assert_vec_near(p.subpaths[1].start, 0, 0, 0);
     ck_assert_int_eq(p.subpaths[1].count, 2);
     ck_assert_vec_near(p.segments[p.subpaths[1].first].p[0], 0, 0, 0);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
-    ck_assert_int_eq(p.subpaths[1].closed, 1);
+    ck_assert(p.subpaths[0].closed);
+    ck_assert(p.subpaths[1].closed);
     rugo_path_free(&p);
     /* A second moveto (relative to the end of the first subpath's closing point). */
     parse_ok("M 1 1 h 1 z m 2 0 h 1", &p);
     ck_assert_int_eq(p.subpath_count, 2);
     ck_assert_vec_near(p.subpaths[1].start, 3, 1, 0);
-    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    ck_assert(!p.subpaths[1].closed);
     rugo_path_free(&p);
     /* Empty data: no subpaths, not an error. */
     parse_ok("", &p);
@@ -568,7 +568,7 @@ START_TEST(find_path_in_document) {
     ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "a&b", NULL, &el, &e), RUGO_OK);
     ck_assert_str_eq(el.d, "M 1 0 H 2 Z");
     ck_assert_uint_eq(el.d_length, 11);
-    ck_assert_int_eq(el.d_has_entities, 1);
+    ck_assert(el.d_has_entities);
     ck_assert_int_eq(el.line, 10);
     ck_assert_int_eq(el.column, 5);
     /* translate(10,20) scale(2) rotate(90): (1,0) -> (0,1) -> (0,2) -> (10,22). */
@@ -579,7 +579,7 @@ START_TEST(find_path_in_document) {
     /* The first real element with the id "r" is inside the closed translate(100) group. */
     ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "r", NULL, &el, &e), RUGO_OK);
     ck_assert_str_eq(el.d, "M 8 8");
-    ck_assert_int_eq(el.d_has_entities, 0);
+    ck_assert(!el.d_has_entities);
     ck_assert_vec_near(rugo_affine_apply(el.transform, rugo_v2(0, 0)), 100, 0, 0);
     rugo_svg_path_element_free(&el);
     /* An id that only occurs in comments or CDATA is not found. */
@@ -717,7 +717,7 @@ START_TEST(sample_square_by_hand) {
         ck_assert_vec_near(s.points[i], want[i][0], want[i][1], 1e-13);
     ck_assert_near(s.perimeter, 40, 1e-13);
     ck_assert_near(s.area, 100, 1e-12);
-    ck_assert_int_eq(s.reversed, 0);
+    ck_assert(!s.reversed);
     ck_assert_int_eq(s.segment_count, 4);
     ck_assert_int_eq(s.subpath, 0);
     rugo_outline_samples_free(&s);
@@ -727,7 +727,7 @@ START_TEST(sample_square_by_hand) {
     /* Under SVG's y flip the same drawing runs clockwise: the samples come out reversed, start kept. */
     rugo_affine flip = {1, 0, 0, -1, 0, 0};
     sample_ok(&p, -1, flip, 10, &s);
-    ck_assert_int_eq(s.reversed, 1);
+    ck_assert(s.reversed);
     ck_assert_vec_near(s.points[0], 0, 0, 0);
     ck_assert_vec_near(s.points[1], 0, -5, 1e-13);
     ck_assert_vec_near(s.points[9], 10.0 / 3, 0, 1e-13);
@@ -764,7 +764,7 @@ START_TEST(sample_circle_of_arcs) {
         ck_assert_vec_near(s.points[i], 10 * cos(ang), 10 * sin(ang), 1e-12);
     }
     ck_assert_near(step_max / step_min, 1, 1e-10);
-    ck_assert_int_eq(s.reversed, 0);
+    ck_assert(!s.reversed);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
 }
@@ -1065,7 +1065,7 @@ START_TEST(path_from_points) {
     rugo_path p;
     ck_assert_int_eq(rugo_path_from_points(pts, 6, NULL, &p), RUGO_OK);
     ck_assert_int_eq(p.subpath_count, 1);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     ck_assert_int_eq(p.segment_count, 4); /* the repeat and the closing repeat give no segment */
     ck_assert_vec_near(p.segments[3].p[1], 0, 0, 0);
     rugo_outline_samples s;
@@ -1124,7 +1124,7 @@ START_TEST(rock_samples) {
     rugo_path p;
     ck_assert_int_eq(rugo_path_parse(el.d, el.d_length, NULL, &p, &e), RUGO_OK);
     ck_assert_int_eq(p.subpath_count, 1);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     rugo_path_free(&p);
     rugo_svg_path_element_free(&el);
 
@@ -1133,8 +1133,8 @@ START_TEST(rock_samples) {
     ck_assert_int_eq(rugo_svg_import_outline(text, len, "rock", &sd, &s, &e), RUGO_OK);
     ck_assert_int_eq(s.count, 4096);
     ck_assert_int_eq(s.segment_count, 9);
-    ck_assert_int_eq(s.reversed, 1); /* drawn clockwise as seen on screen, which stays clockwise in the
-                                        y-up frame: the samples were reversed */
+    ck_assert(s.reversed); /* drawn clockwise as seen on screen, which stays clockwise in the
+                              y-up frame: the samples were reversed */
     /* Independent values (Python cross-check): perimeter 259.835191015432, area 5286.30072137481. */
     ck_assert_near(s.perimeter, 259.835191015432, 1e-9);
     ck_assert_near(s.area, 5286.30072137481, 1e-8);
@@ -1223,8 +1223,8 @@ START_TEST(rock_fit_error) {
     ck_assert_int_eq(f32.control_count, 32);
     ck_assert(f32.max_error <= f32.max_error_at_parameter);
     ck_assert(f32.rms_error <= f32.max_error);
-    ck_assert_int_eq(f32.tolerance_met, 1);
-    ck_assert_int_eq(f32.reversed, 0); /* the samples were counter-clockwise already */
+    ck_assert(f32.tolerance_met);
+    ck_assert(!f32.reversed); /* the samples were counter-clockwise already */
     rugo_contour c = {f64.control_points, 64};
     ck_assert(rugo_contour_signed_area(c) > 0);
     ck_assert_int_eq(rugo_contour_check(f64.control_points, 64, RUGO_CHECK_ALL, NULL, NULL), RUGO_OK);
@@ -1278,14 +1278,14 @@ START_TEST(automatic_control_count) {
     rugo_outline_fit f;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 32);
-    ck_assert_int_eq(f.tolerance_met, 1);
+    ck_assert(f.tolerance_met);
     ck_assert(f.max_error <= 1e-4);
     rugo_outline_fit_free(&f);
     fd.tolerance = 1e-30;
     fd.max_control_count = 64;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 64);
-    ck_assert_int_eq(f.tolerance_met, 0);
+    ck_assert(!f.tolerance_met);
     rugo_outline_fit_free(&f);
     /* The search also stops at sample_count / 4 (100 samples: 16). */
     rugo_outline_samples_free(&s);
@@ -1295,7 +1295,7 @@ START_TEST(automatic_control_count) {
     fd.max_control_count = 1 << 20;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 16);
-    ck_assert_int_eq(f.tolerance_met, 0);
+    ck_assert(!f.tolerance_met);
     rugo_outline_fit_free(&f);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
@@ -1349,7 +1349,7 @@ START_TEST(fit_bad_input) {
         pts[i] = rugo_v2(cos(-2 * PI * i / 64), sin(-2 * PI * i / 64));
     fd.control_count = 8;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
-    ck_assert_int_eq(f.reversed, 1);
+    ck_assert(f.reversed);
     rugo_contour c = {f.control_points, 8};
     ck_assert(rugo_contour_signed_area(c) > 0);
     rugo_outline_fit_free(&f);

@@ -782,7 +782,7 @@ START_TEST(shape_parse_valid) {
     ck_assert(desc.control_points[2].x == -1e-3);
     ck_assert(desc.control_points[2].y == 200.0);
     ck_assert(desc.allocator.alloc != NULL);
-    ck_assert_int_eq(desc.has_roughness, 1);
+    ck_assert(desc.has_roughness);
     ck_assert_int_eq(desc.roughness.kind, RUGO_ROUGHNESS_CONSTANT);
     ck_assert(desc.roughness.constant == 0.5);
     rugo_shape_desc_free(&desc);
@@ -1131,7 +1131,7 @@ static rugo_shape_desc parse_rough_ok(const char* body) {
     ck_assert_msg(st == RUGO_OK, "input <%s>: status %d (%s) at %s: %s", buf, (int)st, rugo_status_string(st),
                   err.path, err.message);
     ck_assert_int_eq(desc.count, 4);
-    ck_assert_int_eq(desc.has_roughness, 1);
+    ck_assert(desc.has_roughness);
     return desc;
 }
 
@@ -1205,13 +1205,13 @@ START_TEST(roughness_defaults) {
     ck_assert(d.friction.alpha == fm.alpha && d.friction.lambda_min == fm.lambda_min);
     ck_assert(d.restitution.epsilon == rs.epsilon && d.restitution.epsilon_max == rs.epsilon_max);
     ck_assert_ptr_null(d.tolerances);
-    ck_assert_int_eq(d.has_perturbation, 0);
+    ck_assert(!d.has_perturbation);
     /* A shape without roughness says so. */
     rugo_shape_desc desc;
     rugo_parse_error err;
     const char* t = "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]]}";
     ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_OK);
-    ck_assert_int_eq(desc.has_roughness, 0);
+    ck_assert(!desc.has_roughness);
     rugo_shape_desc_free(&desc);
 }
 END_TEST
@@ -1227,7 +1227,7 @@ START_TEST(roughness_parse_valid) {
         ck_assert_ptr_null(d.roughness.tolerances);
         assert_default_settings(&d.roughness);
         rugo_shape_desc_free(&d);
-        ck_assert_int_eq(d.has_roughness, 0);
+        ck_assert(!d.has_roughness);
     }
     /* Per-segment values (zero and negative zero are tolerances too). */
     rugo_shape_desc d = parse_rough_ok("\"tolerances\": [0.25, 0, -0, 1e-300]");
@@ -1289,7 +1289,7 @@ START_TEST(roughness_parse_valid) {
     rugo_parse_error err;
     const char* e = "{\"control_points\": [], \"roughness\": {\"tolerances\": []}}";
     ck_assert_int_eq(shape_parse_n(e, strlen(e), &d, &err), RUGO_OK);
-    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert(d.has_roughness);
     ck_assert_int_eq(d.roughness.tolerance_count, 0);
     rugo_shape_desc_free(&d);
 
@@ -1310,7 +1310,7 @@ START_TEST(roughness_parse_valid) {
     char* text = read_data("star32_tipo5.json", &length);
     ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &d, &err), RUGO_OK);
     ck_assert_int_eq(d.count, 32);
-    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert(d.has_roughness);
     ck_assert_int_eq(d.roughness.preset, RUGO_PRESET_TIPO_5);
     ck_assert(d.roughness.seed == 7 && d.roughness.friction.alpha == 1.5 &&
               d.roughness.restitution.epsilon == 0.4);
@@ -1511,7 +1511,7 @@ START_TEST(roughness_parse_errors) {
     /* error may be NULL; nothing leaks on any error (the sanitizer build checks). */
     rough_text("\"tolerances\": [1, 2, 3, 4], \"q\": 0", buf, sizeof buf);
     ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), NULL, &desc, NULL), RUGO_ERR_BAD_QUANTILE);
-    ck_assert_int_eq(desc.has_roughness, 0);
+    ck_assert(!desc.has_roughness);
     ck_assert_ptr_null(desc.roughness.tolerances);
 }
 END_TEST
@@ -1572,7 +1572,7 @@ static rugo_roughness_desc random_roughness(test_rng* r, int n) {
     d.restitution.epsilon = e1 < e2 ? e1 : e2;
     d.restitution.epsilon_max = e1 < e2 ? e2 : e1;
     if (test_rng_next(r) % 2 && n <= 16) {
-        d.has_perturbation = 1;
+        d.has_perturbation = true;
         d.perturbation_method = (rugo_roughen_method)(test_rng_next(r) % 2);
         d.perturbation_levels = 1 + (int)(test_rng_next(r) % 3);
         d.perturbation_count = n << d.perturbation_levels;
@@ -1598,7 +1598,7 @@ START_TEST(roughness_round_trip_bits) {
         for (int i = 0; i < n; ++i)
             pts[i] = rugo_v2(random_double(&r), random_double(&r));
         rugo_shape_desc desc = make_desc(pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT));
-        desc.has_roughness = 1;
+        desc.has_roughness = true;
         desc.roughness = random_roughness(&r, n);
         char* text = NULL;
         size_t len = 0;
@@ -1609,7 +1609,7 @@ START_TEST(roughness_round_trip_bits) {
         ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s: %s at %d:%d\n%s",
                       err.path, err.message, err.line, err.column, text);
         ck_assert_int_eq(back.count, n);
-        ck_assert_int_eq(back.has_roughness, 1);
+        ck_assert(back.has_roughness);
         for (int i = 0; i < n; ++i) {
             ck_assert(bits_of(back.control_points[i].x) == bits_of(pts[i].x));
             ck_assert(bits_of(back.control_points[i].y) == bits_of(pts[i].y));
@@ -1630,13 +1630,13 @@ START_TEST(roughness_round_trip_bits) {
     rugo_real tol[4] = {0.25, 0.5, 0, 1};
     rugo_vec2 pert[8] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5}, {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
     rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-    d.has_roughness = 1;
+    d.has_roughness = true;
     d.roughness = rugo_default_roughness_desc();
     d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
     d.roughness.tolerances = tol;
     d.roughness.tolerance_count = 4;
     d.roughness.seed = 42;
-    d.roughness.has_perturbation = 1;
+    d.roughness.has_perturbation = true;
     d.roughness.perturbation_method = RUGO_ROUGHEN_LOCAL;
     d.roughness.perturbation_levels = 1;
     d.roughness.perturbation_points = pert;
@@ -1656,7 +1656,7 @@ START_TEST(roughness_round_trip_bits) {
                      "        [1, 0.5],\n        [1, 1],\n        [0.5, 1],\n        [0, 1],\n"
                      "        [0, 0.5]\n      ]\n    }\n  }\n}\n");
     rugo_text_free(NULL, text);
-    d.roughness.has_perturbation = 0;
+    d.roughness.has_perturbation = false;
     d.roughness.kind = RUGO_ROUGHNESS_PRESET;
     d.roughness.preset = RUGO_PRESET_TIPO_5;
     ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
@@ -1690,7 +1690,7 @@ START_TEST(roughness_write_errors) {
     rugo_real tol[4] = {1, 1, 1, 1};
     rugo_vec2 pert[8] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}};
     rugo_shape_desc d = make_desc(pts, 4, RUGO_FILTER_DEFAULT);
-    d.has_roughness = 1;
+    d.has_roughness = true;
     char* text = (char*)1;
     size_t len = 5;
     /* Each case: break one member of a valid description, expect the status, restore. */
@@ -1713,7 +1713,7 @@ START_TEST(roughness_write_errors) {
         r->kind = RUGO_ROUGHNESS_TOLERANCES;
         r->tolerances = tol;
         r->tolerance_count = 4;
-        r->has_perturbation = 1;
+        r->has_perturbation = true;
         r->perturbation_levels = 1;
         r->perturbation_count = 8;
         r->perturbation_points = pert;
@@ -1807,11 +1807,11 @@ START_TEST(roughness_write_errors) {
         ck_assert_ptr_null(text);
         ck_assert_int_eq((int)len, 0);
         /* Without has_roughness the roughness is not looked at. */
-        d.has_roughness = 0;
+        d.has_roughness = false;
         ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
         ck_assert_ptr_null(strstr(text, "roughness"));
         rugo_text_free(NULL, text);
-        d.has_roughness = 1;
+        d.has_roughness = true;
     }
 }
 END_TEST
@@ -1829,7 +1829,7 @@ START_TEST(roughness_write_size_limit) {
         tol[i] = 1.2345678901234567e-300;
     }
     rugo_shape_desc d = make_desc(pts, n, RUGO_FILTER_DEFAULT);
-    d.has_roughness = 1;
+    d.has_roughness = true;
     d.roughness = rugo_default_roughness_desc();
     d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
     d.roughness.tolerances = tol;
@@ -1924,7 +1924,7 @@ START_TEST(roughness_out_of_memory) {
             break;
         }
         ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
-        ck_assert_int_eq(desc.has_roughness, 0);
+        ck_assert(!desc.has_roughness);
         ck_assert_ptr_null(desc.roughness.tolerances);
         ck_assert_int_eq(ctx.live, 0);
         ck_assert_int_lt(budget, 100);
@@ -2753,7 +2753,7 @@ START_TEST(arc_round_trip_bits) {
     rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (int iter = 0; iter < 400; ++iter) {
         rugo_shape_desc desc = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-        desc.has_roughness = 1;
+        desc.has_roughness = true;
         rugo_roughness_range g[12];
         rugo_profile_sample p[12];
         int m = (int)(test_rng_next(&r) % 12);
@@ -2968,7 +2968,7 @@ START_TEST(arc_resolve_errors) {
         if (cases[i].c.points == SQ4 && cases[i].c.count == 4) {
             rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
             rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-            d.has_roughness = 1;
+            d.has_roughness = true;
             d.roughness = cases[i].d;
             char* text = NULL;
             size_t len = 0;

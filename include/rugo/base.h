@@ -38,9 +38,12 @@
  *
  * Conventions: the prefix rugo_ / RUGO_; objects are created from a def filled by
  * rugo_default_xxx_def(); every function that takes outside input returns a rugo_status and never
- * aborts, prints or exits; memory goes through a rugo_allocator; doubles; deterministic results. */
+ * aborts, prints or exits; memory goes through a rugo_allocator; doubles; deterministic results;
+ * yes/no answers, flag out-parameters and flag fields are C99 `bool` (stdbool.h, which base.h
+ * includes); counts, indices, levels and kinds are int. */
 
 #include <math.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 /** Marks the public API: every function declared in include/rugo/ and the Box2D bridge's class

@@ -124,7 +124,7 @@ typedef struct rugo_subpath {
     int first;       /**< index of its first segment */
     int count;       /**< number of segments (0 for a lone moveto) */
     rugo_vec2 start; /**< its initial point (the moveto's) */
-    int closed;      /**< 1 if ended by Z/z */
+    bool closed;     /**< true if ended by Z/z */
 } rugo_subpath;
 
 /** A parsed path; owns its arrays (allocated with `allocator`, freed by rugo_path_free). */
@@ -198,7 +198,7 @@ typedef struct rugo_outline_samples {
     rugo_real area;      /**< area of the sample polygon (> 0), squared length units */
     int subpath;         /**< index of the subpath sampled */
     int segment_count;   /**< its segments S (segments shorter than 1e-12 of the perimeter not counted) */
-    int reversed;        /**< 1 if the transformed subpath ran clockwise and the samples were reversed */
+    bool reversed;       /**< true if the transformed subpath ran clockwise and the samples were reversed */
     rugo_allocator allocator; /**< the allocator of points */
 } rugo_outline_samples;
 
@@ -232,7 +232,8 @@ typedef struct rugo_svg_path_element {
     char* d;               /**< the decoded `d` attribute (entities replaced), NUL-terminated */
     size_t d_length;       /**< bytes of d, without the NUL */
     size_t d_offset;       /**< byte offset of the raw attribute value in the document */
-    int d_has_entities;    /**< 1 if decoding changed the value (positions inside d are then approximate) */
+    bool d_has_entities;   /**< true if decoding changed the value (positions inside d are then
+                                approximate) */
     rugo_affine transform; /**< the element's transform composed with those of all its ancestors (root
                                 first): path coordinates to the root's user units, y down */
     int line;              /**< 1-based line of the element's '<' in the document */

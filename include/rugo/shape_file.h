@@ -115,7 +115,7 @@ typedef struct rugo_roughness_desc {
     rugo_restitution restitution; /**< "restitution": {"epsilon", "epsilon_max"} (rugo_default_restitution) */
     /* Optional display geometry (written by `rugo roughen`): "perturbation": {"method": "wavelet" |
      * "local", "levels": m, "control_points": [...]}, with exactly count << m control points. */
-    int has_perturbation;           /**< 1 if the "perturbation" members below are set */
+    bool has_perturbation;          /**< true if the "perturbation" members below are set */
     rugo_roughen_method perturbation_method; /**< "method": how the perturbed points were made */
     int perturbation_levels;        /**< "levels" m, 1..RUGO_MAX_PERTURBATION_LEVELS */
     rugo_vec2* perturbation_points; /**< the perturbed outline's control points, owned like tolerances */
@@ -141,7 +141,7 @@ typedef struct rugo_shape_desc {
     rugo_filter filter;        /**< "filter" (default RUGO_FILTER_DEFAULT) */
     rugo_allocator allocator;  /**< the allocator of every array of the desc */
     /* Added with roughness; zero (no roughness) when a caller leaves them out of an initializer. */
-    int has_roughness;             /**< 1 if the file has a "roughness" object */
+    bool has_roughness;            /**< true if the file has a "roughness" object */
     rugo_roughness_desc roughness; /**< meaningful when has_roughness; its arrays are owned like
                                       control_points and freed by rugo_shape_desc_free */
 } rugo_shape_desc;
@@ -173,8 +173,8 @@ typedef struct rugo_shape_desc {
  * "roughness.profile[5][0]". */
 RUGO_API rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
                                            rugo_shape_desc* out, rugo_parse_error* error);
-/** Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0 (NULL is
- * fine; a zeroed desc is fine). */
+/** Frees the control points and the roughness arrays; leaves count 0 and has_roughness false (NULL
+ * is fine; a zeroed desc is fine). */
 RUGO_API void rugo_shape_desc_free(rugo_shape_desc* desc);
 
 /** The tolerance of every finest segment, out[0..n) (caller-owned, n entries, length units; n = the

@@ -187,18 +187,18 @@ rugo_real rugo_contour_signed_area(rugo_contour c) {
     return 0.5 * ksum_value(&sum);
 }
 
-int rugo_contour_orient_ccw(rugo_vec2* points, int count) {
-    if (points == NULL || count < 2) return 0;
+bool rugo_contour_orient_ccw(rugo_vec2* points, int count) {
+    if (points == NULL || count < 2) return false;
     rugo_contour c;
     c.points = points;
     c.count = count;
-    if (!(rugo_contour_signed_area(c) < 0.0)) return 0;
+    if (!(rugo_contour_signed_area(c) < 0.0)) return false;
     for (int i = 0, k = count - 1; i < k; ++i, --k) {
         rugo_vec2 tmp = points[i];
         points[i] = points[k];
         points[k] = tmp;
     }
-    return 1;
+    return true;
 }
 
 /* Power form of segment j about its own control point c_j: derivatives are translation invariant,
@@ -549,8 +549,8 @@ int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p) {
     return winding;
 }
 
-int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
-    if (c.points == NULL || c.count < 1) return 0;
+bool rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
+    if (c.points == NULL || c.count < 1) return false;
     int winding = 0;
     for (int j = 0; j < c.count; ++j)
         winding += rugo__contour_winding_segment(c, j, p);
@@ -562,13 +562,15 @@ int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
 
 #define RAY_JOINT_SLACK 1e-12
 
-int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction,
-                          rugo_real* fraction, rugo_curve_point* hit, rugo_vec2* normal) {
+bool rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction,
+                           rugo_real* fraction, rugo_curve_point* hit, rugo_vec2* normal) {
     rugo_vec2 d = direction;
     rugo_real dd = rugo_v2_dot(d, d);
-    if (c.points == NULL || c.count < 1 || !(dd > 0.0) || !isfinite(dd) || !(max_fraction >= 0.0)) return 0;
+    if (c.points == NULL || c.count < 1 || !(dd > 0.0) || !isfinite(dd) || !(max_fraction >= 0.0))
+        return false;
     rugo_real dmax = fmax(fabs(d.x), fabs(d.y));
-    int found = 0, best_j = 0;
+    bool found = false;
+    int best_j = 0;
     rugo_real best_s = max_fraction, best_t = 0.0;
     for (int j = 0; j < c.count; ++j) {
         rugo_vec2 q[4], b[4], k[4];
@@ -625,14 +627,14 @@ int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
             rugo_real s = rugo_v2_dot(power_point(k, cand[i]), d) / dd;
             if (s < 0.0 && s >= -s_slack) s = 0.0;
             if (s >= 0.0 && s <= max_fraction && (!found || s < best_s)) {
-                found = 1;
+                found = true;
                 best_s = s;
                 best_j = j;
                 best_t = fmin(1.0, fmax(0.0, cand[i]));
             }
         }
     }
-    if (!found) return 0;
+    if (!found) return false;
     if (best_t >= 1.0) { /* t = 1 belongs to the next segment */
         best_j = rugo__wrap(best_j + 1, c.count);
         best_t = 0.0;
@@ -645,5 +647,5 @@ int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
         hit->distance = best_s * sqrt(dd);
     }
     if (normal) *normal = rugo_contour_normal(c, best_j, best_t);
-    return 1;
+    return true;
 }

@@ -36,7 +36,7 @@ rugo_curve_point rugo__contour_closest_among(rugo_contour c, rugo_vec2 p, const 
  * bounds (ZERO_AREA; rugo_contour_check demands 1e-12 of the curve's bounds, which contain the
  * joints, so every outline a build accepts passes). No crossing test. `reversed` is what
  * rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL, OUT_OF_MEMORY. */
-rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
+rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, bool reversed,
                                       const unsigned char* points, const unsigned char* world,
                                       const unsigned char* local, const rugo_allocator* allocator,
                                       rugo_pyramid** out);

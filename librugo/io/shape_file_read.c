@@ -213,7 +213,7 @@ rugo_roughness_desc rugo_default_roughness_desc(void) {
     r.estimator = RUGO_ESTIMATOR_DETAIL;
     r.friction = rugo_default_friction_map();
     r.restitution = rugo_default_restitution();
-    r.has_perturbation = 0;
+    r.has_perturbation = false;
     r.perturbation_method = RUGO_ROUGHEN_WAVELET;
     return r;
 }
@@ -659,7 +659,7 @@ static rugo_status read_perturbation(const rctx* c, const rugo__json_value* obj,
                            "%d control points; %d levels above %d control points need %lld", count, levels, n,
                            (long long)n << levels);
     }
-    r->has_perturbation = 1;
+    r->has_perturbation = true;
     r->perturbation_method = (rugo_roughen_method)index;
     r->perturbation_levels = levels;
     r->perturbation_points = pts;
@@ -777,6 +777,6 @@ void rugo_shape_desc_free(rugo_shape_desc* desc) {
     desc->control_points = NULL;
     desc->count = 0;
     free_roughness(&desc->allocator, &desc->roughness);
-    desc->has_roughness = 0;
-    desc->roughness.has_perturbation = 0;
+    desc->has_roughness = false;
+    desc->roughness.has_perturbation = false;
 }

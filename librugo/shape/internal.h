@@ -20,7 +20,7 @@ typedef struct rugo__shape_parts {
     int finest, coarsest;
     rugo_filter filter;
     rugo_box_method box_method;
-    int rough, reversed;
+    bool rough, reversed;
     rugo_mass_properties mass;
     rugo_friction_map friction;
     rugo_restitution restitution;

@@ -194,13 +194,13 @@ static rugo_status check_query(const rugo_shape* s, int level, rugo_vec2 p, rugo
     return rugo__v2_finite(p) ? RUGO_OK : RUGO_ERR_NOT_FINITE;
 }
 
-rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside) {
+rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, bool* inside) {
     if (inside == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    *inside = 0;
+    *inside = false;
     rugo_contour curve;
     const rugo_status st = check_query(s, level, p, &curve);
     if (st != RUGO_OK) return st;
-    *inside = rugo__level_contains(s, level, p, NULL);
+    *inside = rugo__level_contains(s, level, p, NULL) != 0;
     return RUGO_OK;
 }
 

@@ -25,8 +25,8 @@ rugo_world_def rugo_default_world_def(void) {
     d.level = 0;
     d.max_bisections = 8;
     d.penetration_tolerance = 0.01;
-    d.micro_collisions = 1;
-    d.friction = 1;
+    d.micro_collisions = true;
+    d.friction = true;
     d.max_contacts_per_pair = 8;
     d.cookie = WORLD_DEF_COOKIE;
     return d;
@@ -55,8 +55,6 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     if (def->integrator != RUGO_INTEGRATE_SYMPLECTIC_EULER && def->integrator != RUGO_INTEGRATE_EXPLICIT_EULER)
         return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_bisections < 0 || def->max_bisections > 30) return RUGO_ERR_BAD_ARGUMENT;
-    if ((def->micro_collisions != 0 && def->micro_collisions != 1) || (def->friction != 0 && def->friction != 1))
-        return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS) return RUGO_ERR_BAD_ARGUMENT;
 
     rugo_allocator a = rugo__allocator_or_default(&def->allocator);

@@ -25,8 +25,9 @@ static rugo_real band_of(const rugo_contact* c) {
 /* ε of a contact approaching at vn (< 0): the surfaces' ε, or for a micro-collision (7.3) ε_c(δ)
  * applied to an incoming speed of at most sqrt(2 g δ), the speed of a fall through the depth reached
  * (7.21-7.22): dissipative, so resting bodies settle. Never above 1 (no energy added). */
-static rugo_real contact_restitution(const rugo_world* w, const body* A, const body* B, rugo_real vn, rugo_real lam,
-                                     rugo_real la, rugo_real lb, rugo_real delta, rugo_real base_eps, int* micro) {
+static rugo_real contact_restitution(const rugo_world* w, const body* A, const body* B, rugo_real vn,
+                                     rugo_real lam, rugo_real la, rugo_real lb, rugo_real delta,
+                                     rugo_real base_eps, bool* micro) {
     rugo_real eps = base_eps;
     *micro = w->def.micro_collisions && w->g > 0.0 && lam > 0.0 && vn < 0.0 && -vn < sqrt(2.0 * w->g * lam);
     if (*micro) {
@@ -117,7 +118,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
         arm_b[i] = rugo_v2_dot(rugo_v2_perp(rb), nba);
     }
     rugo_real vref = vns[0] < vns[1] ? vns[0] : vns[1];
-    int micro = 0;
+    bool micro = false;
     rugo_real eps = contact_restitution(w, A, B, vref, lam, la, lb, delta, base_eps, &micro);
     rugo_real im = A->inv_mass + B->inv_mass;
     rugo_real m11 = im + A->inv_inertia * arm_a[0] * arm_a[0] + B->inv_inertia * arm_b[0] * arm_b[0];

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
         d.control_points = pts;
         d.count = n;
         d.filter = RUGO_FILTER_DEFAULT;
-        d.has_roughness = 1;
+        d.has_roughness = true;
         d.roughness = rugo_default_roughness_desc();
         d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
         d.roughness.tolerances = tol;

@@ -189,7 +189,7 @@ int cmd_deform(int argc, char** argv) {
     shape_out.filter = desc.filter;
     rugo_real* carried = NULL;
     if (desc.has_roughness) {
-        shape_out.has_roughness = 1;
+        shape_out.has_roughness = true;
         rc = carried_roughness(a.positional[0], &desc, rugo_pyramid_was_reversed(p), c.points,
                                &shape_out.roughness, &carried);
     }

@@ -58,7 +58,7 @@ int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed,
                       const rugo_vec2* points, rugo_roughness_desc* out, rugo_real** tol) {
     *tol = NULL;
     *out = in->roughness;
-    out->has_perturbation = 0;
+    out->has_perturbation = false;
     out->perturbation_points = NULL;
     out->perturbation_count = 0;
     out->perturbation_levels = 0;
@@ -169,7 +169,7 @@ int cmd_roughen(int argc, char** argv) {
     out.kind = RUGO_ROUGHNESS_TOLERANCES;
     out.tolerances = tol;
     out.tolerance_count = n;
-    out.has_perturbation = 0;
+    out.has_perturbation = false;
     out.perturbation_points = NULL;
     out.perturbation_count = 0;
     out.perturbation_levels = 0;
@@ -194,7 +194,7 @@ int cmd_roughen(int argc, char** argv) {
             rc = fail("roughen", st);
             goto done;
         }
-        out.has_perturbation = 1;
+        out.has_perturbation = true;
         out.perturbation_method = (rugo_roughen_method)method;
         out.perturbation_levels = levels;
         out.perturbation_points = pert;
@@ -205,7 +205,7 @@ int cmd_roughen(int argc, char** argv) {
     w.control_points = desc.control_points;
     w.count = n;
     w.filter = desc.filter;
-    w.has_roughness = 1;
+    w.has_roughness = true;
     w.roughness = out;
     rc = write_desc(opt(&a, "-o", NULL), &w, NULL);
 done:

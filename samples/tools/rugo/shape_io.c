@@ -49,7 +49,7 @@ static int desc_of_baked(const char* path, const rugo_shape* s, rugo_shape_desc*
     memcpy(desc->control_points, c.points, sizeof(rugo_vec2) * (size_t)c.count);
     memcpy(desc->roughness.tolerances, t.total, sizeof(rugo_real) * (size_t)c.count);
     desc->count = c.count;
-    desc->has_roughness = 1;
+    desc->has_roughness = true;
     desc->roughness.tolerance_count = c.count;
     desc->roughness.friction = rugo_shape_friction_map(s);
     desc->roughness.restitution = rugo_shape_restitution(s);

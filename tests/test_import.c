@@ -28,10 +28,11 @@ static void data_path(const char* name, char* out, size_t size) {
 static char* read_data(const char* name, size_t* length) {
     char path[1024];
     data_path(name, path, sizeof path);
-    char* text = NULL;
-    rugo_status st = rugo_read_file(path, NULL, &text, length);
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, NULL, &text);
     ck_assert_msg(st == RUGO_OK, "%s: %s", path, rugo_status_string(st));
-    return text;
+    *length = text.length;
+    return text.data; /* the default allocator's: free() */
 }
 
 static void parse_ok(const char* d, rugo_path* p) {
@@ -995,48 +996,51 @@ END_TEST
 
 START_TEST(points_text) {
     const char* t = "x,y\r\n# a comment\r\n1,2\r\n\r\n 3 4 \n5;6\n7\t8\n-1e1 , +.5\n";
-    rugo_vec2* pts = NULL;
-    int n = -1;
+    rugo_point_list pts;
     rugo_parse_error e;
-    ck_assert_int_eq(rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 5);
-    ck_assert_vec_near(pts[0], 1, 2, 0);
-    ck_assert_vec_near(pts[1], 3, 4, 0);
-    ck_assert_vec_near(pts[2], 5, 6, 0);
-    ck_assert_vec_near(pts[3], 7, 8, 0);
-    ck_assert_vec_near(pts[4], -10, 0.5, 0);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(t, strlen(t), NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 5);
+    ck_assert_vec_near(pts.points[0], 1, 2, 0);
+    ck_assert_vec_near(pts.points[1], 3, 4, 0);
+    ck_assert_vec_near(pts.points[2], 5, 6, 0);
+    ck_assert_vec_near(pts.points[3], 7, 8, 0);
+    ck_assert_vec_near(pts.points[4], -10, 0.5, 0);
+    rugo_point_list_free(&pts);
+    ck_assert(pts.points == NULL && pts.count == 0);
+    rugo_point_list_free(&pts); /* a zeroed list, and NULL, are fine */
+    rugo_point_list_free(NULL);
     /* JSON is told by its '{'. */
     const char* j = "  {\"points\": [[1, 2], [3, 4], [5, 7]]}";
-    ck_assert_int_eq(rugo_points_text_parse(j, strlen(j), NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 3);
-    ck_assert_vec_near(pts[2], 5, 7, 0);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(j, strlen(j), NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 3);
+    ck_assert_vec_near(pts.points[2], 5, 7, 0);
+    rugo_point_list_free(&pts);
     const char* jbad = "{\"points\": [[1, 2], [3]]}";
-    ck_assert_int_eq(rugo_points_text_parse(jbad, strlen(jbad), NULL, &pts, &n, &e), RUGO_ERR_BAD_FIELD);
-    ck_assert_ptr_null(pts);
+    ck_assert_int_eq(rugo_points_text_parse(jbad, strlen(jbad), NULL, &pts, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_null(pts.points);
     /* The data file rugo fit reads. */
     size_t len = 0;
     char* c64 = read_data("circle64_points.json", &len);
-    ck_assert_int_eq(rugo_points_text_parse(c64, len, NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 64);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(c64, len, NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 64);
+    rugo_point_list_free(&pts);
     free(c64);
     /* Empty text: no points. */
-    ck_assert_int_eq(rugo_points_text_parse("", 0, NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 0);
-    ck_assert_ptr_null(pts);
+    ck_assert_int_eq(rugo_points_text_parse("", 0, NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 0);
+    ck_assert_ptr_null(pts.points);
 }
 END_TEST
 
 static void points_fail(const char* t, rugo_status status, int line, int column, const char* fragment) {
-    rugo_vec2* pts = (rugo_vec2*)&pts;
-    int n = -1;
+    rugo_point_list pts;
+    pts.points = (rugo_vec2*)&pts;
+    pts.count = -1;
     rugo_parse_error e;
-    rugo_status st = rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e);
+    rugo_status st = rugo_points_text_parse(t, strlen(t), NULL, &pts, &e);
     ck_assert_msg(st == status, "<%s>: status %d, expected %d (%s)", t, st, status, e.message);
-    ck_assert_ptr_null(pts);
-    ck_assert_int_eq(n, 0);
+    ck_assert_ptr_null(pts.points);
+    ck_assert_int_eq(pts.count, 0);
     ck_assert_msg(e.line == line && e.column == column, "<%s>: at %d:%d, expected %d:%d", t, e.line, e.column,
                   line, column);
     if (fragment != NULL) ck_assert_msg(strstr(e.message, fragment) != NULL, "<%s>: \"%s\"", t, e.message);
@@ -1051,11 +1055,10 @@ START_TEST(bad_points_text) {
     points_fail("0x10,1\n", RUGO_ERR_PARSE, 1, 2, "separator");
     points_fail("1,2\n1e999,0\n", RUGO_ERR_NOT_FINITE, 2, 1, "beyond the range");
     points_fail("1,2\n3-4\n", RUGO_ERR_PARSE, 2, 2, "separator");
-    rugo_vec2* pts;
-    int n;
-    ck_assert_int_eq(rugo_points_text_parse(NULL, 0, NULL, &pts, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_points_text_parse("1 2", 3, NULL, NULL, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &n, NULL),
+    rugo_point_list pts;
+    ck_assert_int_eq(rugo_points_text_parse(NULL, 0, NULL, &pts, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", 3, NULL, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, NULL),
                      RUGO_ERR_TOO_LARGE);
 }
 END_TEST
@@ -1361,16 +1364,17 @@ END_TEST
 START_TEST(points_pipeline_matches_fit_contour) {
     size_t len = 0;
     char* text = read_data("circle64_points.json", &len);
-    rugo_vec2* pts = NULL;
-    int n = 0;
-    ck_assert_int_eq(rugo_points_text_parse(text, len, NULL, &pts, &n, NULL), RUGO_OK);
+    rugo_point_list list;
+    ck_assert_int_eq(rugo_points_text_parse(text, len, NULL, &list, NULL), RUGO_OK);
     free(text);
+    const rugo_vec2* pts = list.points;
+    const int n = list.count;
     rugo_path p;
     ck_assert_int_eq(rugo_path_from_points(pts, n, NULL, &p), RUGO_OK);
     rugo_outline_samples s;
     sample_ok(&p, -1, rugo_affine_identity(), n, &s);
     ck_assert_int_eq(s.count, n);
-    const int flip = s.reversed;
+    const bool flip = s.reversed;
     for (int i = 0; i < n; ++i) {
         const rugo_vec2 q = pts[flip ? (n - i) % n : i];
         ck_assert(s.points[i].x == q.x && s.points[i].y == q.y);
@@ -1391,7 +1395,7 @@ START_TEST(points_pipeline_matches_fit_contour) {
     rugo_outline_fit_free(&f);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
-    rugo_points_free(NULL, pts);
+    rugo_point_list_free(&list);
 }
 END_TEST
 

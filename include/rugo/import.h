@@ -288,14 +288,14 @@ RUGO_API rugo_status rugo_svg_import_outline(const char* text, size_t length, co
  * "x,y", "x y", "x;y" or "x<TAB>y" (blanks around the separator allowed, CR LF line ends fine); lines
  * that are blank or start with '#' are skipped, and so is a first line without any digit (a CSV
  * header such as "x,y"). Numbers use the SVG decimal syntax (sign, fraction, exponent; no hex, inf
- * or nan). *points is allocated with `allocator` (may be NULL; free with rugo_points_free); an empty
- * list gives count 0 and NULL.
- * Errors (*points NULL and *count 0; error gets line, column and a message): NULL_ARGUMENT,
+ * or nan). out->points is allocated with `allocator` (may be NULL: malloc/free; free the list with
+ * rugo_point_list_free); an empty list gives count 0 and NULL.
+ * Errors (*out zeroed; error gets line, column and a message): NULL_ARGUMENT,
  * TOO_LARGE (beyond RUGO_MAX_JSON_BYTES), PARSE (a line that is not two numbers), NOT_FINITE (a number
  * that overflows, e.g. 1e999), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY, and
  * the errors of rugo_points_parse for JSON. */
 RUGO_API rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                                            rugo_vec2** points, int* count, rugo_parse_error* error);
+                                            rugo_point_list* out, rugo_parse_error* error);
 
 #ifdef __cplusplus
 }

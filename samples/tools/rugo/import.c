@@ -74,13 +74,12 @@ int cmd_import(int argc, char** argv) {
     if (mv && parse_int(mv, 3, RUGO_MAX_CONTROL_POINTS, &m) != 0)
         return usage_error("--samples must be an integer from 3 to 1048576, got '%s'", mv);
     const char* file = a.positional[0];
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+    rugo_text text;
+    rugo_status st = rugo_read_file(file, NULL, &text);
     if (st != RUGO_OK) return fail(file, st);
-    const int svg = looks_like_xml(text, len);
+    const int svg = looks_like_xml(text.data, text.length);
     if (!svg && id) {
-        rugo_text_free(NULL, text);
+        rugo_text_free(&text);
         return usage_error("--path-id applies to SVG input; %s is a points file", file);
     }
     rugo_outline_samples s;
@@ -90,30 +89,29 @@ int cmd_import(int argc, char** argv) {
     /* SVG: the default sampling, raised to 8 samples per control point for large explicit counts. */
     sd.sample_count = m ? m : (n > RUGO_DEFAULT_OUTLINE_SAMPLES / 8 ? (n > RUGO_MAX_CONTROL_POINTS / 8 ? RUGO_MAX_CONTROL_POINTS : 8 * n) : 0);
     if (svg) {
-        st = rugo_svg_import_outline(text, len, id, &sd, &s, &err);
-        rugo_text_free(NULL, text);
+        st = rugo_svg_import_outline(text.data, text.length, id, &sd, &s, &err);
+        rugo_text_free(&text);
     } else {
         /* A point list: its points are the samples, unless --samples resamples the polygon through them. */
-        rugo_vec2* pts = NULL;
-        int count = 0;
-        st = rugo_points_text_parse(text, len, NULL, &pts, &count, &err);
-        rugo_text_free(NULL, text);
+        rugo_point_list pts;
+        st = rugo_points_text_parse(text.data, text.length, NULL, &pts, &err);
+        rugo_text_free(&text);
         rugo_path poly;
         memset(&poly, 0, sizeof poly);
         if (st == RUGO_OK) {
-            st = rugo_path_from_points(pts, count, NULL, &poly);
+            st = rugo_path_from_points(pts.points, pts.count, NULL, &poly);
             if (st != RUGO_OK) {
                 memset(&err, 0, sizeof err);
-                snprintf(err.message, sizeof err.message, "%d points do not make an outline", count);
+                snprintf(err.message, sizeof err.message, "%d points do not make an outline", pts.count);
             }
         }
         if (st == RUGO_OK) {
             sd.path = &poly;
-            sd.sample_count = m ? m : count;
+            sd.sample_count = m ? m : pts.count;
             st = rugo_outline_sample(&sd, &s, &err);
         }
         rugo_path_free(&poly);
-        rugo_points_free(NULL, pts);
+        rugo_point_list_free(&pts);
     }
     if (st != RUGO_OK) {
         report_parse_error(file, st, &err);

@@ -80,18 +80,17 @@ static void print_reals(FILE* f, const rugo_real* v, int n) {
 
 /* Reads a CSV roughness profile (docs/roughness.md); 0, or EXIT_INPUT after a message naming the file,
  * line, column and sample. */
-static int load_profile_csv(const char* file, rugo_profile_sample** samples, int* count) {
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+static int load_profile_csv(const char* file, rugo_roughness_profile* profile) {
+    rugo_text text;
+    rugo_status st = rugo_read_file(file, NULL, &text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, file, rugo_status_string(st),
                 (int)st);
         return EXIT_INPUT;
     }
     rugo_parse_error err;
-    st = rugo_roughness_profile_parse_csv(text, len, NULL, samples, count, &err);
-    rugo_text_free(NULL, text);
+    st = rugo_roughness_profile_parse_csv(text.data, text.length, NULL, profile, &err);
+    rugo_text_free(&text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s:%d:%d: %s%s%s (status %d: %s)\n", g_command, file, err.line, err.column,
                 err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
@@ -140,9 +139,9 @@ int cmd_roughen(int argc, char** argv) {
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
-    rugo_profile_sample* profile = NULL;
-    int profile_count = 0;
-    if (fv && (rc = load_profile_csv(fv, &profile, &profile_count))) {
+    rugo_roughness_profile profile;
+    memset(&profile, 0, sizeof profile);
+    if (fv && (rc = load_profile_csv(fv, &profile))) {
         rugo_shape_desc_free(&desc);
         return rc;
     }
@@ -155,8 +154,8 @@ int cmd_roughen(int argc, char** argv) {
     }
     if (fv) { /* resolved on the input's points, in its own order, below */
         r.kind = RUGO_ROUGHNESS_PROFILE;
-        r.profile = profile;
-        r.profile_count = profile_count;
+        r.profile = profile.samples;
+        r.profile_count = profile.count;
     }
     if (sv) r.seed = seed;
     rugo_real* tol = NULL;
@@ -211,7 +210,7 @@ int cmd_roughen(int argc, char** argv) {
 done:
     free(pert);
     free(tol);
-    rugo_roughness_profile_free(NULL, profile);
+    rugo_roughness_profile_free(&profile);
     rugo_shape_desc_free(&desc);
     return rc;
 }

@@ -102,6 +102,20 @@ RUGO_API rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, ru
  * +x and the segments under them). Re-entrant, no allocation. On error *inside (if not NULL) is
  * false. Errors: NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
 RUGO_API rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, bool* inside);
+/** The first hit of the ray origin + s * direction, s in [0, max_fraction], on the curve of `level`
+ * (J_min..J; shape's local frame): the same answer, bit for bit, as rugo_contour_ray_cast on that
+ * level's curve, computed through the MOBBtree (only the segments under the boxes the ray segment
+ * meets, taken in the same order, and none beyond the best hit so far). *found says whether it hit;
+ * on a hit *fraction = s, *hit (segment, t, point, distance = s |direction|) and *normal (unit,
+ * outward) are filled as there; fraction, hit and normal may be NULL, and are left untouched without
+ * a hit or on error. An origin on the curve hits at s = 0; a hit at a joint is t = 0 of the next
+ * segment. Re-entrant, no allocation. Errors (then *found, if not NULL, is false): NULL_ARGUMENT (s
+ * or found), BAD_LEVEL, NOT_FINITE (origin, direction or max_fraction not finite, or a coordinate of
+ * origin or direction beyond 1e150, where squared lengths overflow), BAD_ARGUMENT (max_fraction < 0,
+ * or a direction of zero length or too short to square). */
+RUGO_API rugo_status rugo_shape_ray_cast(const rugo_shape* s, int level, rugo_vec2 origin,
+                                         rugo_vec2 direction, rugo_real max_fraction, rugo_real* fraction,
+                                         rugo_curve_point* hit, rugo_vec2* normal, bool* found);
 /** The shape's MOBBtree (owned by the shape); NULL for NULL. */
 RUGO_API const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
 /** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */

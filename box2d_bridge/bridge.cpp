@@ -167,14 +167,16 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     const rugo_shape* s = def.shape;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     int level;
-    if (def.level == kAutoLevel) {
+    if (def.lod == RUGO_LOD_AUTO) {
         const double budget = def.errorBudget >= 0.0 ? def.errorBudget : I.def.errorBudget;
-        level = Impl::autoLevel(s, budget);
+        level = rugo_shape_level_for_error(s, budget);
+    } else if (def.lod > 0) {
+        return RUGO_ERR_BAD_ARGUMENT;
     } else {
-        level = def.level > 0 ? J : std::max(Jmin, J + std::max(def.level, Jmin - J));
+        level = std::max(Jmin, J + std::max(def.lod, Jmin - J));
     }
     int proxyLevel;
-    if (def.proxyLevel == kAutoLevel) {
+    if (def.proxyLevel == RUGO_LOD_AUTO) {
         proxyLevel = std::max(Jmin, std::min(level, I.def.maxProxyLevel));
     } else {
         if (def.proxyLevel < Jmin || def.proxyLevel > J || def.proxyLevel > level)

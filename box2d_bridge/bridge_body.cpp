@@ -64,21 +64,6 @@ bool Bridge::Impl::massStale(const BodyRec* r) const {
     return !sameMass(now, r->applied);
 }
 
-// The coarsest level whose certified level-of-detail error (rugo_shape_level_error: how far its
-// curve-plus-band can lie from the finest one's, anywhere on the outline) is within the budget at
-// it and at every finer level, so a pair evaluated at the finer of its two levels keeps each body's
-// share of the error within its budget too.
-int Bridge::Impl::autoLevel(const rugo_shape* s, double budget) {
-    const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
-    int level = J;
-    for (int j = J - 1; j >= Jmin; --j) {
-        double e = 0.0;
-        if (rugo_shape_level_error(s, j, nullptr, &e) != RUGO_OK || !(e <= budget)) break;
-        level = j;
-    }
-    return level;
-}
-
 // Largest excess of λ(t) over the segment value λ^j_k at levels from..J: queries at those levels
 // grow boxes by it, so the proxies must too.
 double Bridge::Impl::bandExcess(const rugo_shape* s, int from) {

@@ -131,6 +131,15 @@ inline rugo_transform toRugo(const b2Transform& x) {
     return t;
 }
 
+// The queries of this bridge: today's round-off contacts at minima of the distance (the thesis' rule),
+// which its manifolds, joint points and speculative points are built around.
+inline rugo_contact_query legacyQuery() {
+    rugo_contact_query q = rugo_default_contact_query();
+    q.resolution = 0.0;
+    q.contact_rule = RUGO_CONTACT_THESIS;
+    return q;
+}
+
 inline b2Vec2 toB2(rugo_vec2 v) { return b2Vec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 inline rugo_vec2 toRv(b2Vec2 v) { return rugo_v2(static_cast<double>(v.x), static_cast<double>(v.y)); }
 
@@ -266,7 +275,6 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener, public b2Cont
     static bool sameMass(const b2MassData& a, const b2MassData& b);
     void applyMass(BodyRec* r);
     bool massStale(const BodyRec* r) const;
-    static int autoLevel(const rugo_shape* s, double budget);
     static double bandExcess(const rugo_shape* s, int from);
     static std::vector<double> bandMaxima(const rugo_shape* s);
     static int absLevel(const rugo_shape* s, int rel);

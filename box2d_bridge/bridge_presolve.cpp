@@ -111,11 +111,14 @@ void Bridge::Impl::gatherRough(const ProxyRef* ra, const ProxyRef* rb) {
     cachedQuery(
         QA, QB, -1, xa, xb, margin, level,
         [&](rugo_contact* out, int cap, int* n, rugo_query_stats* qs) {
-            rugo_contact_query q = rugo_default_contact_query();
-            q.level = level;
+            rugo_contact_query q = legacyQuery();
+            q.lod = level;
             q.margin = margin;
-            rugo_contact_state state;
-            return rugo_collide_shapes(ctx, QA->shape, ta, QB->shape, tb, &q, out, cap, n, &state, qs);
+            rugo_contact_output o = rugo_contact_output_of(out, cap);
+            const rugo_status st = rugo_collide_shapes(QA->shape, ta, QB->shape, tb, &q, ctx, &o);
+            *n = o.count;
+            *qs = o.stats;
+            return st;
         },
         &start, &count);
     for (uint32_t i = 0; i < count; ++i) {
@@ -177,36 +180,40 @@ void Bridge::Impl::gatherPrimitive(const ProxyRef* r, bool roughIsA, b2Fixture* 
     cachedQuery(
         R, other, child, xr, xo, margin, level,
         [&](rugo_contact* out, int cap, int* n, rugo_query_stats* qs) -> rugo_status {
-            rugo_contact_query q = rugo_default_contact_query();
-            q.level = level;
+            rugo_contact_query q = legacyQuery();
+            q.lod = level;
             q.margin = margin;
-            rugo_contact_state state;
+            rugo_primitive p = rugo_make_circle(rugo_v2(0.0, 0.0), 0.0);
             switch (sh->GetType()) {
             case b2Shape::e_circle: {
                 const b2CircleShape* cs = static_cast<const b2CircleShape*>(sh);
-                return rugo_collide_circle(ctx, R->shape, tr, rugo_transform_point(to, toRv(cs->m_p)),
-                                           static_cast<double>(cs->m_radius), &q, out, cap, n, &state, qs);
+                p = rugo_make_circle(toRv(cs->m_p), static_cast<double>(cs->m_radius));
+                break;
             }
             case b2Shape::e_polygon: {
                 const b2PolygonShape* ps = static_cast<const b2PolygonShape*>(sh);
-                rugo_vec2 v[b2_maxPolygonVertices];
+                p.count = ps->m_count;
+                p.radius = static_cast<double>(ps->m_radius);
                 for (int i = 0; i < ps->m_count; ++i)
-                    v[i] = rugo_transform_point(to, toRv(ps->m_vertices[i]));
-                return rugo_collide_polygon(ctx, R->shape, tr, v, ps->m_count,
-                                            static_cast<double>(ps->m_radius), &q, out, cap, n, &state, qs);
+                    p.points[i] = toRv(ps->m_vertices[i]);
+                break;
             }
             case b2Shape::e_edge:
             case b2Shape::e_chain: {
                 const b2EdgeShape* es =
                     sh->GetType() == b2Shape::e_edge ? static_cast<const b2EdgeShape*>(sh) : &edge;
-                return rugo_collide_segment(ctx, R->shape, tr, rugo_transform_point(to, toRv(es->m_vertex1)),
-                                            rugo_transform_point(to, toRv(es->m_vertex2)),
-                                            static_cast<double>(es->m_radius), &q, out, cap, n, &state, qs);
+                p = rugo_make_capsule(toRv(es->m_vertex1), toRv(es->m_vertex2), static_cast<double>(es->m_radius));
+                break;
             }
             default:
                 *n = 0;
                 return RUGO_ERR_BAD_ARGUMENT;
             }
+            rugo_contact_output o = rugo_contact_output_of(out, cap);
+            const rugo_status st = rugo_collide_primitive(R->shape, tr, &p, to, &q, ctx, &o);
+            *n = o.count;
+            *qs = o.stats;
+            return st;
         },
         &start, &count);
     const double mu = static_cast<double>(other->GetFriction());

@@ -125,16 +125,17 @@ void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& c
         if (b == nullptr) continue; // destroyed by an earlier callback
         const BodyRec* r = I.rec(b);
         if (r != nullptr) { // decided by the curve
-            int n = 0;
-            rugo_contact_state state = RUGO_STATE_APART;
-            rugo_contact_query q = rugo_default_contact_query();
-            q.level = r->relLevel;
+            rugo_contact_query q = legacyQuery();
+            q.lod = r->relLevel;
             const rugo_transform x = toRugo(b->GetTransform());
-            rugo_status st = degenerate ? rugo_collide_circle(I.ctx, r->shape, x, v[0], 0.0, &q, nullptr, 0,
-                                                              &n, &state, nullptr)
-                                        : rugo_collide_polygon(I.ctx, r->shape, x, v, 4, 0.0, &q, nullptr, 0,
-                                                               &n, &state, nullptr);
-            if (st != RUGO_OK || state == RUGO_STATE_APART) continue;
+            rugo_primitive box = rugo_make_circle(v[0], 0.0);
+            if (!degenerate) {
+                box.count = 4;
+                for (int k = 0; k < 4; ++k) box.points[k] = v[k];
+            }
+            rugo_contact_output o = rugo_contact_output_of(nullptr, 0); // the state only
+            const rugo_status st = rugo_collide_primitive(r->shape, x, &box, rugo_identity_transform(), &q, I.ctx, &o);
+            if (st != RUGO_OK || o.state == RUGO_STATE_APART) continue;
         }
         if (!callback(b)) return;
         if (I.world == nullptr) return; // ReleaseWorld inside the callback

@@ -44,29 +44,32 @@ static inline void fuzz_query_shape(const rugo_shape* s, const rugo_shape* other
     rugo_collide_context* ctx = NULL;
     if (rugo_collide_context_create(NULL, &ctx) != RUGO_OK) return;
     rugo_contact c[16];
-    int count = 0;
-    rugo_contact_state state = RUGO_STATE_APART;
-    rugo_query_stats stats;
+    rugo_contact_output o = rugo_contact_output_of(c, 16);
     rugo_contact_query q = rugo_default_contact_query();
     const rugo_mass_properties m = rugo_shape_mass(s);
     FUZZ_CHECK(isfinite(m.area) && isfinite(m.inertia) && isfinite(m.centroid.x) && isfinite(m.centroid.y));
-    rugo_status st = rugo_collide_shapes(ctx, s, xa, other, xb, &q, c, 16, &count, &state, &stats);
-    fuzz_check_contacts(st, c, count, 16, state);
-    q.level = -1;
-    st = rugo_collide_shapes(ctx, s, xa, other, xb, &q, c, 16, &count, &state, &stats);
-    fuzz_check_contacts(st, c, count, 16, state);
+    rugo_status st = rugo_collide_shapes(s, xa, other, xb, &q, ctx, &o);
+    fuzz_check_contacts(st, c, o.count, 16, o.state);
+    q.lod = -1;
+    st = rugo_collide_shapes(s, xa, other, xb, &q, ctx, &o);
+    fuzz_check_contacts(st, c, o.count, 16, o.state);
     const rugo_obb* root = rugo_mobb_tree_root(rugo_shape_tree(s));
     const rugo_vec2 centre = rugo_transform_point(xa, root->center);
     const rugo_real r = 0.5 * (root->half[0] + root->half[1]);
-    st = rugo_collide_circle(ctx, s, xa, centre, r, NULL, c, 16, &count, &state, &stats);
-    fuzz_check_contacts(st, c, count, 16, state);
-    st = rugo_collide_segment(ctx, s, xa, rugo_v2(centre.x - 2 * r, centre.y), rugo_v2(centre.x + 2 * r, centre.y),
-                              0.01 * r, NULL, c, 16, &count, &state, &stats);
-    fuzz_check_contacts(st, c, count, 16, state);
+    const rugo_transform id = rugo_identity_transform();
+    const rugo_primitive circle = rugo_make_circle(centre, r);
+    st = rugo_collide_primitive(s, xa, &circle, id, NULL, ctx, &o);
+    fuzz_check_contacts(st, c, o.count, 16, o.state);
+    const rugo_primitive capsule =
+        rugo_make_capsule(rugo_v2(centre.x - 2 * r, centre.y), rugo_v2(centre.x + 2 * r, centre.y), 0.01 * r);
+    st = rugo_collide_primitive(s, xa, &capsule, id, NULL, ctx, &o);
+    fuzz_check_contacts(st, c, o.count, 16, o.state);
     const rugo_vec2 box[4] = {rugo_v2(centre.x - r, centre.y - r), rugo_v2(centre.x + r, centre.y - r),
                               rugo_v2(centre.x + r, centre.y + r), rugo_v2(centre.x - r, centre.y + r)};
-    st = rugo_collide_polygon(ctx, s, xa, box, 4, 0.0, NULL, c, 16, &count, &state, &stats);
-    fuzz_check_contacts(st, c, count, 16, state);
+    rugo_primitive square;
+    st = rugo_make_polygon(box, 4, 0.0, &square);
+    if (st == RUGO_OK) st = rugo_collide_primitive(s, xa, &square, id, NULL, ctx, &o);
+    if (st == RUGO_OK) fuzz_check_contacts(st, c, o.count, 16, o.state);
     rugo_collide_context_destroy(ctx);
 }
 

@@ -74,35 +74,43 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     rugo_collide_context* ctx = NULL;
     FUZZ_CHECK(rugo_collide_context_create(NULL, &ctx) == RUGO_OK);
     rugo_contact c[32];
-    int count = 0, count2 = 0;
-    rugo_contact_state state = RUGO_STATE_APART, state2 = RUGO_STATE_APART;
-    rugo_query_stats stats;
     for (int round = 0; round < 4 && b.n > 0; ++round) {
         const rugo_transform xa = pose(&b, scale), xb = pose(&b, scale);
         rugo_contact_query q = rugo_default_contact_query();
         const unsigned opt = next(&b);
-        q.level = (int)(opt % 8) - 4;
+        /* levels of detail 0 .. -4, and the automatic one with a budget of up to 5 % of the scale */
+        q.lod = opt % 8 == 7 ? RUGO_LOD_AUTO : -(int)(opt % 8) % 5;
+        if (q.lod == RUGO_LOD_AUTO) q.lod_error_budget = scale * 0.05 * unit(&b);
         if (opt & 0x10) q.margin = scale * 0.2 * unit(&b);
         if (opt & 0x20) q.tolerance = scale * 0.1 * unit(&b);
         q.friction_mix = (rugo_mix_rule)((opt >> 6) % 4);
-        rugo_status st = rugo_collide_shapes(ctx, A, xa, B, xb, &q, c, 32, &count, &state, &stats);
+        rugo_contact_output o = rugo_contact_output_of(c, 32);
+        rugo_status st = rugo_collide_shapes(A, xa, B, xb, &q, ctx, &o);
         FUZZ_CHECK(st == RUGO_OK);
-        fuzz_check_contacts(st, c, count, 32, state);
-        st = rugo_collide_shapes(ctx, B, xb, A, xa, &q, c, 32, &count2, &state2, &stats);
+        fuzz_check_contacts(st, c, o.count, 32, o.state);
+        const rugo_contact_state state = o.state;
+        st = rugo_collide_shapes(B, xb, A, xa, &q, ctx, &o);
         FUZZ_CHECK(st == RUGO_OK);
-        fuzz_check_contacts(st, c, count2, 32, state2);
-        if (q.margin == 0.0) FUZZ_CHECK(state == state2); /* what touches does not depend on the order */
+        fuzz_check_contacts(st, c, o.count, 32, o.state);
+        if (q.margin == 0.0) FUZZ_CHECK(state == o.state); /* what touches does not depend on the order */
         const rugo_vec2 centre = rugo_v2(offset + scale * 2.0 * (unit(&b) - 0.5), offset + scale * 2.0 * (unit(&b) - 0.5));
         const double r = scale * unit(&b);
-        st = rugo_collide_circle(ctx, A, xa, centre, r, &q, c, 32, &count, &state, &stats);
-        fuzz_check_contacts(st, c, count, 32, state);
-        st = rugo_collide_segment(ctx, A, xa, centre, rugo_v2(centre.x + scale * unit(&b), centre.y - scale * unit(&b)),
-                                  0.1 * r, &q, c, 32, &count, &state, &stats);
-        fuzz_check_contacts(st, c, count, 32, state);
+        const rugo_transform id = rugo_identity_transform();
+        const rugo_primitive circle = rugo_make_circle(centre, r);
+        st = rugo_collide_primitive(A, xa, &circle, id, &q, ctx, &o);
+        fuzz_check_contacts(st, c, o.count, 32, o.state);
+        const rugo_primitive capsule =
+            rugo_make_capsule(centre, rugo_v2(centre.x + scale * unit(&b), centre.y - scale * unit(&b)), 0.1 * r);
+        st = rugo_collide_primitive(A, xa, &capsule, id, &q, ctx, &o);
+        fuzz_check_contacts(st, c, o.count, 32, o.state);
         const rugo_vec2 tri[3] = {centre, rugo_v2(centre.x + r + scale * 1e-3, centre.y),
                                   rugo_v2(centre.x, centre.y + r + scale * 1e-3)};
-        st = rugo_collide_polygon(ctx, A, xa, tri, 3, 0.0, &q, c, 32, &count, &state, &stats);
-        fuzz_check_contacts(st, c, count, 32, state);
+        rugo_primitive triangle;
+        st = rugo_make_polygon(tri, 3, 0.0, &triangle);
+        if (st == RUGO_OK) {
+            st = rugo_collide_primitive(A, xa, &triangle, id, &q, ctx, &o);
+            fuzz_check_contacts(st, c, o.count, 32, o.state);
+        }
     }
     rugo_collide_context_destroy(ctx);
     rugo_shape_destroy(A);

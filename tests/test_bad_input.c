@@ -192,16 +192,16 @@ START_TEST(parameters_out_of_range) {
     int n = 0;
     rugo_contact_state state;
     rugo_transform bad = rugo_make_transform(NAN, 0, 0);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, s, bad, s, rugo_identity_transform(), NULL, c, 4, &n, &state, NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, s, bad, s, rugo_identity_transform(), NULL, c, 4, &n, &state, NULL),
                      RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), NULL, c, -1,
+    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), NULL, c, -1,
                                          &n, &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_circle(ctx, s, rugo_identity_transform(), rugo_v2(0, 0), -1.0, NULL, c, 4, &n, &state, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, s, rugo_identity_transform(), rugo_v2(0, 0), -1.0, NULL, c, 4, &n, &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.margin = -1.0;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), &q, c, 4, &n,
+    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), &q, c, 4, &n,
                                          &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     rugo_collide_context_destroy(ctx);

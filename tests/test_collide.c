@@ -643,11 +643,11 @@ static rugo_transform place_b(const tshape* A, rugo_transform xa, const tshape* 
 
 static rugo_contact_state lib_state(rugo_collide_context* ctx, const tshape* A, rugo_transform xa,
                                     const tshape* B, rugo_transform xb, double override) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     int n;
     rugo_contact_state s;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, NULL, 0, &n, &s, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, NULL, 0, &n, &s, NULL), RUGO_OK);
     return s;
 }
 
@@ -681,12 +681,12 @@ static void check_pose(rugo_collide_context* ctx, const tshape* A, rugo_transfor
     enum { CAP = 256 };
     static rugo_contact c[CAP];
     static refres R;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
     int n = 0;
     rugo_contact_state state;
     rugo_query_stats qs;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, CAP, &n, &state, &qs), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, CAP, &n, &state, &qs), RUGO_OK);
     ck_assert_int_eq(n, qs.contacts_found);
     st->poses++;
     st->segment_pairs += qs.segment_pairs;
@@ -858,11 +858,11 @@ END_TEST
 static int query(rugo_collide_context* ctx, const tshape* A, rugo_transform xa, const tshape* B,
                  rugo_transform xb, double override, int level, rugo_contact* c, int cap,
                  rugo_contact_state* state) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
-    q.level = level;
+    q.lod = level;
     int n = -1;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, cap, &n, state, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, cap, &n, state, NULL), RUGO_OK);
     return n;
 }
 
@@ -1235,7 +1235,7 @@ START_TEST(test_region_depth_is_a_closest_pair) {
                                {-0x1.f8d85e4b03c2bp-2, -0x1.bd73866c3d051p-1}};
     rugo_collide_context* ctx = NULL;
     rugo_collide_context_create(NULL, &ctx);
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.margin = 0x1.1e27bd9c8656p-6;
     int overlapping = 0;
     for (int k = -5; k <= 5; ++k) {
@@ -1246,9 +1246,9 @@ START_TEST(test_region_depth_is_a_closest_pair) {
         rugo_contact cs[16], cp[16];
         int ns = -1, np = -1;
         rugo_contact_state ss, sp;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, block, xa, octagon, xb, &q, cs, 16, &ns, &ss, NULL),
+        ck_assert_int_eq(test_collide_shapes(ctx, block, xa, octagon, xb, &q, cs, 16, &ns, &ss, NULL),
                          RUGO_OK);
-        ck_assert_int_eq(rugo_collide_polygon(ctx, block, xa, V, 8, 0.0, &q, cp, 16, &np, &sp, NULL),
+        ck_assert_int_eq(test_collide_polygon(ctx, block, xa, V, 8, 0.0, &q, cp, 16, &np, &sp, NULL),
                          RUGO_OK);
         ck_assert_int_eq(ss, sp);
         double ds = HUGE_VAL, dp = HUGE_VAL;
@@ -1298,10 +1298,10 @@ START_TEST(test_long_primitives_keep_resolution) {
                 rugo_status status;
                 if (kind == 0) {
                     const rugo_vec2 box[4] = {{-W, top - 1.0}, {W, top - 1.0}, {W, top}, {-W, top}};
-                    status = rugo_collide_polygon(ctx, s, x, box, 4, 0.0, NULL, ct, 16, &n, &st, NULL);
+                    status = test_collide_polygon(ctx, s, x, box, 4, 0.0, NULL, ct, 16, &n, &st, NULL);
                 } else {
                     const double r = kind == 1 ? 0.05 : 0.0;
-                    status = rugo_collide_segment(ctx, s, x, rugo_v2(-W, top - r), rugo_v2(W, top - r), r,
+                    status = test_collide_segment(ctx, s, x, rugo_v2(-W, top - r), rugo_v2(W, top - r), r,
                                                   NULL, ct, 16, &n, &st, NULL);
                 }
                 ck_assert_int_eq(status, RUGO_OK);
@@ -1386,12 +1386,12 @@ START_TEST(test_coarse_levels_are_simple_curves) {
         const double low = lowest_height(fine, angle, &at);
         const rugo_transform xt = rugo_make_transform(0.0, 0.5 + 0.01 - low, angle);
         for (int level = 0; level >= -3; --level) {
-            rugo_contact_query q = rugo_default_contact_query();
-            q.level = level;
+            rugo_contact_query q = test_exact_query();
+            q.lod = level;
             rugo_contact c[8];
             int count = -1;
             rugo_contact_state st;
-            ck_assert_int_eq(rugo_collide_polygon(ctx, t4, xt, floor, 4, 0.0, &q, c, 8, &count, &st, NULL),
+            ck_assert_int_eq(test_collide_polygon(ctx, t4, xt, floor, 4, 0.0, &q, c, 8, &count, &st, NULL),
                              RUGO_OK);
             ck_assert_msg(st == RUGO_STATE_APART && count == 0, "angle %d level %d: state %d", a, level,
                           (int)st);
@@ -1439,22 +1439,22 @@ START_TEST(test_sharp_corner_tilted) {
                     rugo_contact c[16];
                     rugo_contact_state st = RUGO_STATE_APART;
                     int n = -1;
-                    rugo_contact_query q = rugo_default_contact_query();
+                    rugo_contact_query q = test_exact_query();
                     const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
                     const rugo_vec2 raised[4] = {{-5, -1}, {5, -1}, {5, -0.001}, {-5, -0.001}};
                     rugo_status r = RUGO_OK;
                     if (kind == 0)
-                        r = rugo_collide_shapes(ctx, blk, xb, floor, rugo_make_transform(0, -0.5, 0), &q, c,
+                        r = test_collide_shapes(ctx, blk, xb, floor, rugo_make_transform(0, -0.5, 0), &q, c,
                                                 16, &n, &st, NULL);
                     else if (kind == 1)
-                        r = rugo_collide_segment(ctx, blk, xb, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, c, 16,
+                        r = test_collide_segment(ctx, blk, xb, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, c, 16,
                                                  &n, &st, NULL);
                     else if (kind == 2)
-                        r = rugo_collide_polygon(ctx, blk, xb, box, 4, 0.0, &q, c, 16, &n, &st, NULL);
+                        r = test_collide_polygon(ctx, blk, xb, box, 4, 0.0, &q, c, 16, &n, &st, NULL);
                     else if (kind == 3) /* the same face as a polygon 1 mm lower grown by 1 mm */
-                        r = rugo_collide_polygon(ctx, blk, xb, raised, 4, 0.001, &q, c, 16, &n, &st, NULL);
+                        r = test_collide_polygon(ctx, blk, xb, raised, 4, 0.001, &q, c, 16, &n, &st, NULL);
                     else /* a circle of radius 100 whose top is at y = 0 under the corner */
-                        r = rugo_collide_circle(ctx, blk, xb, rugo_v2(corner.x, -100.0), 100.0, &q, c, 16, &n,
+                        r = test_collide_circle(ctx, blk, xb, rugo_v2(corner.x, -100.0), 100.0, &q, c, 16, &n,
                                                 &st, NULL);
                     ck_assert_int_eq(r, RUGO_OK);
                     /* the primitives are smooth (no band): only the block's band reaches them */
@@ -1487,7 +1487,7 @@ START_TEST(test_sharp_corner_tilted) {
             rugo_contact c[8];
             rugo_contact_state st;
             int n = -1;
-            ck_assert_int_eq(rugo_collide_shapes(ctx, blk, xa, blk, xb, NULL, c, 8, &n, &st, NULL), RUGO_OK);
+            ck_assert_int_eq(test_collide_shapes(ctx, blk, xa, blk, xb, NULL, c, 8, &n, &st, NULL), RUGO_OK);
             ck_assert_msg(st == RUGO_STATE_CONTACT && n == 1,
                           "corner over corner, %g wide, %d points: state %s, %d contacts", width, mult,
                           rugo_contact_state_name(st), n);
@@ -1579,18 +1579,18 @@ START_TEST(test_shallow_overlap_has_contact) {
                     rugo_contact k[16];
                     rugo_contact_state st = RUGO_STATE_APART;
                     int n = -1;
-                    rugo_contact_query q = rugo_default_contact_query();
+                    rugo_contact_query q = test_exact_query();
                     const rugo_vec2 box[4] = {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}};
                     rugo_status r;
                     if (kind == 0)
-                        r = rugo_collide_shapes(ctx, A, xa, floor, xf, &q, k, 16, &n, &st, NULL);
+                        r = test_collide_shapes(ctx, A, xa, floor, xf, &q, k, 16, &n, &st, NULL);
                     else if (kind == 1)
-                        r = rugo_collide_segment(ctx, A, xa, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, k, 16,
+                        r = test_collide_segment(ctx, A, xa, rugo_v2(-5, 0), rugo_v2(5, 0), 0.0, &q, k, 16,
                                                  &n, &st, NULL);
                     else if (kind == 2)
-                        r = rugo_collide_polygon(ctx, A, xa, box, 4, 0.0, &q, k, 16, &n, &st, NULL);
+                        r = test_collide_polygon(ctx, A, xa, box, 4, 0.0, &q, k, 16, &n, &st, NULL);
                     else
-                        r = rugo_collide_shapes(ctx, floor, xf, A, xa, &q, k, 16, &n, &st, NULL);
+                        r = test_collide_shapes(ctx, floor, xf, A, xa, &q, k, 16, &n, &st, NULL);
                     ck_assert_int_eq(r, RUGO_OK);
                     /* 1e-12 is below the resolution of near-tangent smooth curves against a 40-unit floor
                      * (2.5e-14 of its size: crossings that close merge into a touching): CONTACT there */
@@ -1659,10 +1659,10 @@ START_TEST(test_coincident_curves) {
         rugo_contact c[64];
         rugo_contact_state st;
         rugo_query_stats qs;
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         int n = 0;
         clock_t t0 = clock();
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, x, A->s, x, &q, c, 64, &n, &st, &qs), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, x, A->s, x, &q, c, 64, &n, &st, &qs), RUGO_OK);
         double ms = 1e3 * (double)(clock() - t0) / CLOCKS_PER_SEC;
         assert_finite_contacts(c, n);
         printf("coincident %s: %s, %d contacts (found %d), %ld segment pairs, %.1f ms\n", A->name,
@@ -1758,13 +1758,13 @@ START_TEST(test_far_and_scaled) {
             int n1 = query(ctx, A, xa, B, xb, override, 0, c1, 64, &s1);
             int n2;
             const double sc = scales[v];
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = test_exact_query();
             q.tolerance = override >= 0 ? override * sc : -1.0;
             if (v == 0) {
                 rugo_transform ya = xa, yb = xb;
                 ya.p = rugo_v2_add(xa.p, shifts[0]);
                 yb.p = rugo_v2_add(xb.p, shifts[0]);
-                ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, ya, B->s, yb, &q, c2, 64, &n2, &s2, NULL),
+                ck_assert_int_eq(test_collide_shapes(ctx, A->s, ya, B->s, yb, &q, c2, 64, &n2, &s2, NULL),
                                  RUGO_OK);
                 for (int i = 0; i < n2; ++i) {
                     c2[i].point_a = rugo_v2_sub(c2[i].point_a, shifts[0]);
@@ -1779,7 +1779,7 @@ START_TEST(test_far_and_scaled) {
                 rugo_transform ya = xa, yb = xb;
                 ya.p = rugo_v2_sub(rugo_v2_scale(sc, xa.p), rugo_rotate(xa.q, sh));
                 yb.p = rugo_v2_sub(rugo_v2_scale(sc, xb.p), rugo_rotate(xb.q, sh));
-                ck_assert_int_eq(rugo_collide_shapes(ctx, sa, ya, sb, yb, &q, c2, 64, &n2, &s2, NULL),
+                ck_assert_int_eq(test_collide_shapes(ctx, sa, ya, sb, yb, &q, c2, 64, &n2, &s2, NULL),
                                  RUGO_OK);
                 for (int i = 0; i < n2; ++i) {
                     c2[i].point_a = rugo_v2_scale(1.0 / sc, c2[i].point_a);
@@ -1994,12 +1994,12 @@ static void prim_reference(const curve* A, const tprim* P, double cutoff, double
 
 static rugo_status prim_query(rugo_collide_context* ctx, const tshape* A, rugo_transform xa, const tprim* P,
                               double override, rugo_contact* c, int cap, int* n, rugo_contact_state* st) {
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = override;
-    if (P->nv == 1) return rugo_collide_circle(ctx, A->s, xa, P->v[0], P->R, &q, c, cap, n, st, NULL);
+    if (P->nv == 1) return test_collide_circle(ctx, A->s, xa, P->v[0], P->R, &q, c, cap, n, st, NULL);
     if (P->nv == 2)
-        return rugo_collide_segment(ctx, A->s, xa, P->v[0], P->v[1], P->R, &q, c, cap, n, st, NULL);
-    return rugo_collide_polygon(ctx, A->s, xa, P->v, P->nv, P->R, &q, c, cap, n, st, NULL);
+        return test_collide_segment(ctx, A->s, xa, P->v[0], P->v[1], P->R, &q, c, cap, n, st, NULL);
+    return test_collide_polygon(ctx, A->s, xa, P->v, P->nv, P->R, &q, c, cap, n, st, NULL);
 }
 
 static void random_prim(test_rng* r, int kind, double scale, tprim* P) {
@@ -2190,11 +2190,11 @@ START_TEST(test_primitive_penetration) {
     rugo_contact c[16];
     int n;
     rugo_contact_state st;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     for (int k = 0; k < 4; ++k) {
         const double depth = 0.05 * (k + 1);
         /* circle */
-        ck_assert_int_eq(rugo_collide_circle(ctx, Q->s, rugo_identity_transform(),
+        ck_assert_int_eq(test_collide_circle(ctx, Q->s, rugo_identity_transform(),
                                              rugo_v2(0.1, 0.8 + 0.3 - depth), 0.3, &q, c, 16, &n, &st, NULL),
                          RUGO_OK);
         ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
@@ -2204,7 +2204,7 @@ START_TEST(test_primitive_penetration) {
         /* box pressed flat: depth from its bottom side */
         rugo_vec2 box[4] = {{-0.2, 0.8 - depth}, {0.3, 0.8 - depth}, {0.3, 1.2}, {-0.2, 1.2}};
         ck_assert_int_eq(
-            rugo_collide_polygon(ctx, Q->s, rugo_identity_transform(), box, 4, 0.0, &q, c, 16, &n, &st, NULL),
+            test_collide_polygon(ctx, Q->s, rugo_identity_transform(), box, 4, 0.0, &q, c, 16, &n, &st, NULL),
             RUGO_OK);
         ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
         ck_assert_int_ge(n, 1);
@@ -2213,13 +2213,13 @@ START_TEST(test_primitive_penetration) {
         /* a corner poking in */
         rugo_vec2 tri[3] = {{0.0, 0.8 - depth}, {0.3, 1.3}, {-0.3, 1.3}};
         ck_assert_int_eq(
-            rugo_collide_polygon(ctx, Q->s, rugo_identity_transform(), tri, 3, 0.0, &q, c, 16, &n, &st, NULL),
+            test_collide_polygon(ctx, Q->s, rugo_identity_transform(), tri, 3, 0.0, &q, c, 16, &n, &st, NULL),
             RUGO_OK);
         ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
         ck_assert_near(c[0].separation, -depth, 1e-12);
         ck_assert_near(c[0].point_b.x, 0.0, 1e-12);
         /* an edge through the side: its deepest point inside */
-        ck_assert_int_eq(rugo_collide_segment(ctx, Q->s, rugo_identity_transform(), rugo_v2(0.1, 0.8 - depth),
+        ck_assert_int_eq(test_collide_segment(ctx, Q->s, rugo_identity_transform(), rugo_v2(0.1, 0.8 - depth),
                                               rugo_v2(0.1, 2.0), 0.0, &q, c, 16, &n, &st, NULL),
                          RUGO_OK);
         ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
@@ -2227,7 +2227,7 @@ START_TEST(test_primitive_penetration) {
         ck_assert_near(c[0].separation, -depth, 1e-9);
         ck_assert(angle_between(c[0].normal, rugo_v2(0, 1)) < 1e-7);
         /* a capsule lying on the side */
-        ck_assert_int_eq(rugo_collide_segment(ctx, Q->s, rugo_identity_transform(),
+        ck_assert_int_eq(test_collide_segment(ctx, Q->s, rugo_identity_transform(),
                                               rugo_v2(-0.2, 0.9 - depth), rugo_v2(0.2, 0.9 - depth), 0.1, &q,
                                               c, 16, &n, &st, NULL),
                          RUGO_OK);
@@ -2235,14 +2235,14 @@ START_TEST(test_primitive_penetration) {
         ck_assert_near(c[0].separation, -depth, 1e-12);
     }
     /* A circle inside the shape, a shape inside a big circle: the shortest way out. */
-    ck_assert_int_eq(rugo_collide_circle(ctx, Q->s, rugo_identity_transform(), rugo_v2(0.1, 0.5), 0.1, &q, c,
+    ck_assert_int_eq(test_collide_circle(ctx, Q->s, rugo_identity_transform(), rugo_v2(0.1, 0.5), 0.1, &q, c,
                                          16, &n, &st, NULL),
                      RUGO_OK);
     ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
     ck_assert_int_eq(n, 1);
     ck_assert_near(c[0].separation, -(0.3 + 0.1), 1e-12);
     ck_assert(angle_between(c[0].normal, rugo_v2(0, 1)) < 1e-12);
-    ck_assert_int_eq(rugo_collide_circle(ctx, Q->s, rugo_identity_transform(), rugo_v2(0, 0), 10.0, &q, c, 16,
+    ck_assert_int_eq(test_collide_circle(ctx, Q->s, rugo_identity_transform(), rugo_v2(0, 0), 10.0, &q, c, 16,
                                          &n, &st, NULL),
                      RUGO_OK);
     ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
@@ -2274,7 +2274,7 @@ START_TEST(test_tree_pairs_against_all_pairs) {
         int lb = rugo_shape_coarsest_level(B->s) + (int)(test_rng_next(&r) % 8) - 1;
         int n = -1;
         long tests = -1;
-        ck_assert_int_eq(rugo_tree_pairs(ctx, ta, xa, la, tb, xb, lb, pairs, CAP, &n, &tests), RUGO_OK);
+        ck_assert_int_eq(rugo_tree_pairs(ta, xa, la, tb, xb, lb, ctx, pairs, CAP, &n, &tests), RUGO_OK);
         ck_assert_int_le(n, CAP);
         /* Brute force at the clamped levels, same frame (B's boxes into A's). */
         int ca = la < rugo_mobb_tree_coarsest_level(ta)
@@ -2312,10 +2312,10 @@ START_TEST(test_tree_pairs_against_all_pairs) {
         int n_all = 0, n_few = 0;
         long t1, t2;
         rugo_transform x = rugo_identity_transform();
-        ck_assert_int_eq(rugo_tree_pairs(ctx, rugo_shape_tree(A->s), x, 6, rugo_shape_tree(A->s), x, 6, pairs,
+        ck_assert_int_eq(rugo_tree_pairs(rugo_shape_tree(A->s), x, 6, rugo_shape_tree(A->s), x, 6, ctx, pairs,
                                          CAP, &n_all, &t1),
                          RUGO_OK);
-        ck_assert_int_eq(rugo_tree_pairs(ctx, rugo_shape_tree(A->s), x, 6, rugo_shape_tree(A->s), x, 6, pairs,
+        ck_assert_int_eq(rugo_tree_pairs(rugo_shape_tree(A->s), x, 6, rugo_shape_tree(A->s), x, 6, ctx, pairs,
                                          3, &n_few, &t2),
                          RUGO_OK);
         ck_assert_int_eq(n_all, n_few);
@@ -2407,7 +2407,7 @@ START_TEST(test_tree_pairs_match_reference_traversal) {
         rel.p = rugo_inv_rotate(xa.q, rugo_v2_sub(xb.p, xa.p));
         int n = -1;
         long tests = -1, ref_tests = -1;
-        ck_assert_int_eq(rugo_tree_pairs(ctx, ta, xa, la, tb, xb, lb, pairs, CAP, &n, &tests), RUGO_OK);
+        ck_assert_int_eq(rugo_tree_pairs(ta, xa, la, tb, xb, lb, ctx, pairs, CAP, &n, &tests), RUGO_OK);
         const int nr = ref_tree_pairs(ta, sa, tb, sb, rel, ref, CAP, &ref_tests);
         ck_assert_int_eq(n, nr);
         ck_assert_int_eq(tests, ref_tests);
@@ -2449,16 +2449,16 @@ START_TEST(test_context_reserve) {
         const tshape* B = &g_shapes[(k / N_SHAPES) % N_SHAPES];
         rugo_transform xa, xb;
         random_poses(&r, A, B, 0, -1.0, pose_ctx, &xa, &xb);
-        rugo_contact_query q = rugo_default_contact_query();
-        q.level = -(k % 3);
+        rugo_contact_query q = test_exact_query();
+        q.lod = -(k % 3);
         rugo_contact cs[CONTACTS];
         int n = 0;
         rugo_contact_state state;
         rugo_query_stats st;
-        ck_assert_int_eq(rugo_collide_shapes(cw, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, &st), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(cw, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, &st), RUGO_OK);
         most = st.contacts_found > most ? st.contacts_found : most;
         touching += n > 0;
-        ck_assert_int_eq(rugo_collide_shapes(co, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(co, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, NULL), RUGO_OK);
     }
     const long after_reserve = (1L << 40) - with.budget - reserved;
     const long grown = (1L << 40) - without.budget - base_without;
@@ -2497,8 +2497,8 @@ START_TEST(test_context_reserve) {
         const int fine = rugo_shape_finest_level(big);
         int cnt = 0;
         long tests = 0;
-        ck_assert_int_eq(rugo_tree_pairs(cb, tr, rugo_identity_transform(), fine, tr,
-                                         rugo_make_transform(0.01, 0.0, 0.1), fine, NULL, 0, &cnt, &tests),
+        ck_assert_int_eq(rugo_tree_pairs(tr, rugo_identity_transform(), fine, tr,
+                                         rugo_make_transform(0.01, 0.0, 0.1), fine, cb, NULL, 0, &cnt, &tests),
                          RUGO_OK);
         printf("context reserve, 512 segments: %d segment pairs, %ld allocations after the reserve\n", cnt,
                (1L << 40) - bb.budget - res);
@@ -2524,8 +2524,8 @@ START_TEST(test_context_reserve) {
     rugo_contact cs[CONTACTS];
     int n = -1;
     rugo_contact_state state;
-    rugo_contact_query q = rugo_default_contact_query();
-    ck_assert_int_eq(rugo_collide_shapes(ct, g_shapes[0].s, rugo_make_transform(0, 0, 0), g_shapes[0].s,
+    rugo_contact_query q = test_exact_query();
+    ck_assert_int_eq(test_collide_shapes(ct, g_shapes[0].s, rugo_make_transform(0, 0, 0), g_shapes[0].s,
                                          rugo_make_transform(0.5, 0, 0), &q, cs, CONTACTS, &n, &state, NULL),
                      RUGO_OK);
     rugo_collide_context_destroy(ct);
@@ -2608,27 +2608,27 @@ START_TEST(test_context_and_truncation) {
     int n;
     rugo_contact_state st;
     rugo_query_stats qs;
-    rugo_contact_query q = rugo_default_contact_query();
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
+    rugo_contact_query q = test_exact_query();
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
     ck_assert_int_eq(st, RUGO_STATE_INTERSECTING);
     const long before = cnt.allocs;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
     ck_assert_int_eq(cnt.allocs, before);
     /* NULL query = the defaults */
     int n2;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, NULL, c, 64, &n2, &st, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, NULL, c, 64, &n2, &st, NULL), RUGO_OK);
     ck_assert_int_eq(n, n2);
     /* Truncation: count <= capacity, contacts_found the total, deepest first within a region. */
     q.tolerance = 0.05;
     xb = rugo_make_transform(2.4, 0.0, 0.3);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, A->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, A->s, xb, &q, c, 64, &n, &st, &qs), RUGO_OK);
     for (int i = 1; i < n; ++i)
         ck_assert(c[i].region > c[i - 1].region ||
                   (c[i].region == c[i - 1].region && c[i].separation >= c[i - 1].separation));
     if (qs.contacts_found > 1) {
         int n1;
         rugo_query_stats q1;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, A->s, xb, &q, c + 32, 1, &n1, &st, &q1), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, A->s, xb, &q, c + 32, 1, &n1, &st, &q1), RUGO_OK);
         ck_assert_int_eq(n1, 1);
         ck_assert_int_eq(q1.contacts_found, qs.contacts_found);
         ck_assert(c[32].id == c[0].id);
@@ -2642,7 +2642,7 @@ START_TEST(test_context_and_truncation) {
         rugo_allocator a2 = counting_allocator(&c2);
         rugo_collide_context* x2 = NULL;
         ck_assert_int_eq(rugo_collide_context_create(&a2, &x2), RUGO_OK);
-        rugo_status s2 = rugo_collide_shapes(x2, A->s, rugo_identity_transform(), B->s,
+        rugo_status s2 = test_collide_shapes(x2, A->s, rugo_identity_transform(), B->s,
                                              rugo_make_transform(0.9, 0.3, 1.0), NULL, c, 64, &n, &st, NULL);
         ck_assert(s2 == RUGO_OK || s2 == RUGO_ERR_OUT_OF_MEMORY);
         rugo_collide_context_destroy(x2);
@@ -2661,105 +2661,161 @@ START_TEST(test_bad_inputs) {
     rugo_contact c[4];
     int n = 7;
     rugo_contact_state st = RUGO_STATE_CONTACT;
-    rugo_contact_query q = rugo_default_contact_query();
-    ck_assert_int_eq(q.level, 0);
+    const rugo_contact_query defaults = rugo_default_contact_query();
+    ck_assert(defaults.resolution == RUGO_RESOLUTION_AUTO);
+    ck_assert_int_eq(defaults.lod, 0);
+    rugo_contact_query q = test_exact_query();
+    ck_assert_int_eq(q.lod, 0);
     ck_assert(q.tolerance < 0);
     ck_assert_int_eq(q.friction_mix, RUGO_MIX_MAX);
     ck_assert_int_eq(q.restitution_mix, RUGO_MIX_MIN);
-    ck_assert_int_eq(rugo_collide_shapes(NULL, a, x, a, x, &q, c, 4, &n, &st, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(test_collide_shapes(NULL, a, x, a, x, &q, c, 4, &n, &st, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(n, 0);
     ck_assert_int_eq(st, RUGO_STATE_APART);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, NULL, x, a, x, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, NULL, x, a, x, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, NULL, x, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, NULL, x, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &q, c, 4, NULL, &st, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &q, c, 4, &n, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &q, NULL, 4, &n, &st, NULL),
+    ck_assert_int_eq(rugo_collide_shapes(a, x, a, x, &q, ctx, NULL), RUGO_ERR_NULL_ARGUMENT);
+    {
+        rugo_contact_output o = rugo_contact_output_of(c, 4);
+        o.count = 5;
+        o.state = RUGO_STATE_CONTACT;
+        o.stats.box_tests = 3;
+        ck_assert_int_eq(rugo_collide_shapes(a, x, NULL, x, &q, ctx, &o), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(o.count, 0);
+        ck_assert_int_eq(o.state, RUGO_STATE_APART);
+        ck_assert_int_eq(o.stats.box_tests, 0);
+    }
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &q, NULL, 4, &n, &st, NULL),
                      RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &q, c, -1, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, nanx, a, x, &q, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, nanx, &q, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &q, c, -1, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, nanx, a, x, &q, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, nanx, &q, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
     rugo_contact_query bq = q;
     bq.cookie = 0;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
     bq = q;
     bq.tolerance = NAN;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
     bq.tolerance = INFINITY;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq = q;
+    bq.resolution = NAN;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq.resolution = INFINITY;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
+    bq.resolution = -0.5;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    bq.resolution = RUGO_RESOLUTION_AUTO;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_OK);
     bq = q;
     bq.friction_mix = (rugo_mix_rule)9;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
     bq = q;
     bq.restitution_mix = (rugo_mix_rule)-1;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
-    /* levels out of range are clamped, not errors */
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    /* levels of detail beyond the coarsest are clamped, not errors; a positive one (an absolute level,
+     * the thesis' numbering) is not a level of detail */
     bq = q;
-    bq.level = -100;
+    bq.lod = -100;
     ck_assert_int_eq(
-        rugo_collide_shapes(ctx, a, x, a, rugo_make_transform(5, 0, 0), &bq, c, 4, &n, &st, NULL), RUGO_OK);
-    bq.level = 100;
+        test_collide_shapes(ctx, a, x, a, rugo_make_transform(5, 0, 0), &bq, c, 4, &n, &st, NULL), RUGO_OK);
+    bq.lod = 100;
     ck_assert_int_eq(
-        rugo_collide_shapes(ctx, a, x, a, rugo_make_transform(5, 0, 0), &bq, c, 4, &n, &st, NULL), RUGO_OK);
+        test_collide_shapes(ctx, a, x, a, rugo_make_transform(5, 0, 0), &bq, c, 4, &n, &st, NULL),
+        RUGO_ERR_BAD_ARGUMENT);
+    bq.lod = RUGO_LOD_AUTO;
+    bq.lod_error_budget = 1e-3;
+    ck_assert_int_eq(
+        test_collide_shapes(ctx, a, x, a, rugo_make_transform(5, 0, 0), &bq, c, 4, &n, &st, NULL), RUGO_OK);
+    bq.lod_error_budget = -1.0;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_BAD_ARGUMENT);
+    bq.lod_error_budget = NAN;
+    ck_assert_int_eq(test_collide_shapes(ctx, a, x, a, x, &bq, c, 4, &n, &st, NULL), RUGO_ERR_NOT_FINITE);
     /* primitives */
-    ck_assert_int_eq(rugo_collide_circle(ctx, a, x, rugo_v2(0, 0), -1, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, a, x, rugo_v2(0, 0), -1, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_circle(ctx, a, x, rugo_v2(0, 0), NAN, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, a, x, rugo_v2(0, 0), NAN, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_collide_circle(ctx, a, x, rugo_v2(INFINITY, 0), 1, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, a, x, rugo_v2(INFINITY, 0), 1, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_collide_circle(NULL, a, x, rugo_v2(0, 0), 1, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(NULL, a, x, rugo_v2(0, 0), 1, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_circle(ctx, a, nanx, rugo_v2(0, 0), 1, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, a, nanx, rugo_v2(0, 0), 1, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_collide_circle(ctx, a, x, rugo_v2(0, 0), 1, &bq, c, -1, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, a, x, rugo_v2(0, 0), 1, &bq, c, -1, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(
-        rugo_collide_segment(ctx, a, x, rugo_v2(0, 0), rugo_v2(1, 0), -0.1, &q, c, 4, &n, &st, NULL),
+        test_collide_segment(ctx, a, x, rugo_v2(0, 0), rugo_v2(1, 0), -0.1, &q, c, 4, &n, &st, NULL),
         RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(
-        rugo_collide_segment(ctx, a, x, rugo_v2(0, NAN), rugo_v2(1, 0), 0.1, &q, c, 4, &n, &st, NULL),
+        test_collide_segment(ctx, a, x, rugo_v2(0, NAN), rugo_v2(1, 0), 0.1, &q, c, 4, &n, &st, NULL),
         RUGO_ERR_NOT_FINITE);
     ck_assert_int_eq(
-        rugo_collide_segment(ctx, a, x, rugo_v2(3, 3), rugo_v2(3, 3), 0.1, &q, c, 4, &n, &st, NULL), RUGO_OK);
+        test_collide_segment(ctx, a, x, rugo_v2(3, 3), rugo_v2(3, 3), 0.1, &q, c, 4, &n, &st, NULL), RUGO_OK);
     rugo_vec2 sq[9] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 1.5}, {0, 0}, {0, 0}, {0, 0}, {0, 0}};
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 4, 0.0, &q, c, 4, &n, &st, NULL), RUGO_OK);
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, NULL, 4, 0.0, &q, c, 4, &n, &st, NULL),
-                     RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 2, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 4, 0.0, &q, c, 4, &n, &st, NULL), RUGO_OK);
+    {
+        rugo_contact_output o = rugo_contact_output_of(c, 4);
+        const rugo_primitive circle = rugo_make_circle(rugo_v2(0, 0), 1.0);
+        ck_assert_int_eq(rugo_collide_primitive(a, x, NULL, x, &q, ctx, &o), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_collide_primitive(a, x, &circle, x, &q, ctx, NULL), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_collide_primitive(a, x, &circle, nanx, &q, ctx, &o), RUGO_ERR_NOT_FINITE);
+        rugo_primitive poly;
+        ck_assert_int_eq(rugo_make_polygon(NULL, 4, 0.0, &poly), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_make_polygon(sq, 4, 0.0, NULL), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_int_eq(rugo_make_polygon(sq, 2, 0.0, &poly), RUGO_ERR_BAD_ARGUMENT);
+        ck_assert_int_eq(rugo_make_polygon(sq, 5, 0.0, &poly), RUGO_ERR_BAD_ARGUMENT); /* not convex */
+        ck_assert_int_eq(rugo_make_polygon(sq, 4, 0.01, &poly), RUGO_OK);
+        ck_assert_int_eq(poly.count, 4);
+        /* a primitive placed by a transform: the same contacts as its points moved to the world */
+        const rugo_transform xb = rugo_make_transform(0.3, -0.2, 0.7);
+        rugo_primitive moved = poly;
+        for (int i = 0; i < 4; ++i) moved.points[i] = rugo_transform_point(xb, poly.points[i]);
+        rugo_contact c1[4], c2[4];
+        rugo_contact_output o1 = rugo_contact_output_of(c1, 4), o2 = rugo_contact_output_of(c2, 4);
+        ck_assert_int_eq(rugo_collide_primitive(a, x, &poly, xb, &q, ctx, &o1), RUGO_OK);
+        ck_assert_int_eq(rugo_collide_primitive(a, x, &moved, x, &q, ctx, &o2), RUGO_OK);
+        ck_assert_int_eq(o1.state, o2.state);
+        ck_assert_int_eq(o1.count, o2.count);
+        for (int i = 0; i < o1.count; ++i) ck_assert_near(c1[i].separation, c2[i].separation, 1e-12);
+    }
+    /* two points are a segment (a primitive of any count 1..8), not an error */
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 2, 0.0, &q, c, 4, &n, &st, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 0, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 9, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 9, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 4, -1.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 4, -1.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 5, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 5, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT); /* not convex */
     rugo_vec2 cw[4] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, cw, 4, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, cw, 4, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     rugo_vec2 col[4] = {{0, 0}, {1, 0}, {2, 0}, {1, 1}};
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, col, 4, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, col, 4, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     rugo_vec2 star[5];
     for (int i = 0; i < 5; ++i)
         star[i] = rugo_v2(cos(TWO_PI * 2 * i / 5), sin(TWO_PI * 2 * i / 5)); /* winds twice */
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, star, 5, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, star, 5, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     sq[1].x = NAN;
-    ck_assert_int_eq(rugo_collide_polygon(ctx, a, x, sq, 4, 0.0, &q, c, 4, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 4, 0.0, &q, c, 4, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
     /* tree pairs */
     rugo_node_pair p[4];
     long t;
     const rugo_mobb_tree* tr = rugo_shape_tree(a);
-    ck_assert_int_eq(rugo_tree_pairs(NULL, tr, x, 3, tr, x, 3, p, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, NULL, x, 3, tr, x, 3, p, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, tr, x, 3, tr, x, 3, p, 4, NULL, &t), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, tr, x, 3, tr, x, 3, NULL, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, tr, x, 3, tr, x, 3, p, -1, &n, &t), RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, tr, nanx, 3, tr, x, 3, p, 4, &n, &t), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_tree_pairs(ctx, tr, x, 3, tr, x, 3, NULL, 0, &n, NULL), RUGO_OK);
+    ck_assert_int_eq(rugo_tree_pairs(tr, x, 3, tr, x, 3, NULL, p, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tree_pairs(NULL, x, 3, tr, x, 3, ctx, p, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tree_pairs(tr, x, 3, tr, x, 3, ctx, p, 4, NULL, &t), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tree_pairs(tr, x, 3, tr, x, 3, ctx, NULL, 4, &n, &t), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_tree_pairs(tr, x, 3, tr, x, 3, ctx, p, -1, &n, &t), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_tree_pairs(tr, nanx, 3, tr, x, 3, ctx, p, 4, &n, &t), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_tree_pairs(tr, x, 3, tr, x, 3, ctx, NULL, 0, &n, NULL), RUGO_OK);
     ck_assert_str_eq(rugo_contact_state_name(RUGO_STATE_APART), "apart");
     ck_assert_str_eq(rugo_contact_state_name(RUGO_STATE_CONTACT), "contact");
     ck_assert_str_eq(rugo_contact_state_name(RUGO_STATE_INTERSECTING), "intersecting");
@@ -2782,11 +2838,11 @@ START_TEST(test_surface_values) {
         random_poses(&r, A, B, 1, -1.0, ctx, &xa, &xb);
         rugo_contact c[32];
         rugo_contact_state st;
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.friction_mix = (rugo_mix_rule)(k % 4);
         q.restitution_mix = (rugo_mix_rule)((k / 4) % 4);
         int n;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 32, &n, &st, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c, 32, &n, &st, NULL), RUGO_OK);
         for (int i = 0; i < n; ++i) {
             rugo_tolerance_level ta, tb;
             rugo_shape_tolerance_level(A->s, c[i].level_a, &ta);
@@ -2808,9 +2864,9 @@ START_TEST(test_surface_values) {
     rugo_contact c[32];
     rugo_contact_state st;
     int n;
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     q.tolerance = 0.3;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, rugo_identity_transform(), B->s,
+    ck_assert_int_eq(test_collide_shapes(ctx, A->s, rugo_identity_transform(), B->s,
                                          rugo_make_transform(3.0, 0, 0), &q, c, 32, &n, &st, NULL),
                      RUGO_OK);
     for (int i = 0; i < n; ++i)
@@ -3076,17 +3132,17 @@ START_TEST(test_query_margin) {
         const double size = fmax(A->size, B->size), margin = 0.05 * size;
         rugo_transform xa, xb;
         random_poses(&r, A, B, 0, -1.0, ctx, &xa, &xb);
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         int n0 = 0, n1 = 0, nm = 0;
         rugo_contact_state s0, s1, sm;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c0, CAP, &n0, &s0, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c0, CAP, &n0, &s0, NULL), RUGO_OK);
         q.margin = 0.0;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c1, CAP, &n1, &s1, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, c1, CAP, &n1, &s1, NULL), RUGO_OK);
         ck_assert_int_eq(n0, n1);
         ck_assert_int_eq(s0, s1);
         ck_assert(memcmp(c0, c1, (size_t)n0 * sizeof(rugo_contact)) == 0);
         q.margin = margin;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, A->s, xa, B->s, xb, &q, cm, CAP, &nm, &sm, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, A->s, xa, B->s, xb, &q, cm, CAP, &nm, &sm, NULL), RUGO_OK);
         if (s0 == RUGO_STATE_INTERSECTING) {
             ck_assert_int_eq(sm, RUGO_STATE_INTERSECTING);
             continue;
@@ -3136,29 +3192,29 @@ START_TEST(test_query_margin) {
     ck_assert_int_eq(spurious, 0);
     ck_assert(extra > 0);
     /* Bad margins. */
-    rugo_contact_query q = rugo_default_contact_query();
+    rugo_contact_query q = test_exact_query();
     int n;
     rugo_contact_state st;
     q.margin = -1e-3;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, g_shapes[0].s, rugo_identity_transform(), g_shapes[1].s,
+    ck_assert_int_eq(test_collide_shapes(ctx, g_shapes[0].s, rugo_identity_transform(), g_shapes[1].s,
                                          rugo_make_transform(5, 0, 0), &q, c0, CAP, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     q.margin = NAN;
-    ck_assert_int_eq(rugo_collide_circle(ctx, g_shapes[0].s, rugo_identity_transform(), rugo_v2(5, 0), 1.0, &q, c0,
+    ck_assert_int_eq(test_collide_circle(ctx, g_shapes[0].s, rugo_identity_transform(), rugo_v2(5, 0), 1.0, &q, c0,
                                          CAP, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
     /* Primitives: a circle just beyond the band is reported with the margin only. */
     const tshape* A = &g_shapes[0];
     rugo_transform xa = rugo_identity_transform();
-    q = rugo_default_contact_query();
+    q = test_exact_query();
     q.tolerance = 0.0;
     rugo_vec2 far = rugo_v2(A->radius * 3.0, 0.0);
     rugo_curve_point cp = rugo_contour_closest_point(A->fine, far);
     const double radius = cp.distance - 0.01 * A->size; /* gap 1% of the size */
-    ck_assert_int_eq(rugo_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
     ck_assert_int_eq(n, 0);
     q.margin = 0.02 * A->size;
-    ck_assert_int_eq(rugo_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
+    ck_assert_int_eq(test_collide_circle(ctx, A->s, xa, far, radius, &q, c0, CAP, &n, &st, NULL), RUGO_OK);
     ck_assert_int_ge(n, 1);
     ck_assert(fabs(c0[0].separation - 0.01 * A->size) <= 1e-9 * A->size);
     rugo_collide_context_destroy(ctx);
@@ -3377,20 +3433,20 @@ START_TEST(test_work_against_segments) {
             xb.p = rugo_v2(mid * u.x, mid * u.y);
             int cnt = 0;
             rugo_contact_state st;
-            ck_assert_int_eq(rugo_collide_shapes(ctx, a, xa, b, xb, NULL, NULL, 0, &cnt, &st, NULL), RUGO_OK);
+            ck_assert_int_eq(test_collide_shapes(ctx, a, xa, b, xb, NULL, NULL, 0, &cnt, &st, NULL), RUGO_OK);
             if (st == RUGO_STATE_INTERSECTING)
                 lo = mid;
             else
                 hi = mid;
         }
         xb.p = rugo_v2((hi + 1e-7) * u.x, (hi + 1e-7) * u.y);
-        rugo_contact_query q = rugo_default_contact_query();
+        rugo_contact_query q = test_exact_query();
         q.margin = 2e-7;
         rugo_contact c[8];
         int cnt = 0;
         rugo_contact_state st;
         rugo_query_stats qs;
-        ck_assert_int_eq(rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, 8, &cnt, &st, &qs), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(ctx, a, xa, b, xb, &q, c, 8, &cnt, &st, &qs), RUGO_OK);
         ck_assert_int_eq(st, RUGO_STATE_CONTACT);
         ck_assert_int_eq(cnt, 1);
         ck_assert_near(c[0].separation, 1e-7, 1e-9);

@@ -936,13 +936,13 @@ END_TEST
  * NAN unless the state is CONTACT (apart curves). */
 static double deepest_band_separation(rugo_collide_context* ctx, const rugo_shape* a, const rugo_shape* b,
                                       rugo_transform xb, int level, double margin) {
-    rugo_contact_query q = rugo_default_contact_query();
-    q.level = level;
+    rugo_contact_query q = test_exact_query();
+    q.lod = level;
     q.margin = margin;
     rugo_contact c[64];
     int count = 0;
     rugo_contact_state state;
-    ck_assert_int_eq(rugo_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 64, &count, &state,
+    ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 64, &count, &state,
                                          NULL),
                      RUGO_OK);
     if (state != RUGO_STATE_CONTACT || count == 0) return NAN;
@@ -995,12 +995,12 @@ START_TEST(level_error_bounds_contact_separation) {
         double lo = 0.0, hi = 400.0;
         for (int it = 0; it < 50; ++it) {
             const double mid = 0.5 * (lo + hi);
-            rugo_contact_query q = rugo_default_contact_query();
+            rugo_contact_query q = test_exact_query();
             rugo_contact c[8];
             int count = 0;
             rugo_contact_state state;
             rugo_transform xb = rugo_make_transform(mid * u.c, mid * u.s, rot);
-            ck_assert_int_eq(rugo_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 8, &count,
+            ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 8, &count,
                                                  &state, NULL),
                              RUGO_OK);
             if (state == RUGO_STATE_INTERSECTING) lo = mid;

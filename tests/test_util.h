@@ -48,6 +48,26 @@ typedef struct test_budget_ctx {
 void* test_budget_alloc(size_t n, void* ctx);
 void test_budget_free(void* p, void* ctx);
 
+/* rugo_default_contact_query() at resolution 0: the round-off answers the accuracy tests pin. */
+rugo_contact_query test_exact_query(void);
+
+/* The contact queries as the suites assert on them (a NULL query: test_exact_query()): the caller's array and room in, the count, state
+ * and statistics out (stats may be NULL), through rugo_contact_output. The primitives as
+ * rugo_collide_primitive takes them, in world coordinates. */
+rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
+                                rugo_transform xb, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
+                                int* count, rugo_contact_state* state, rugo_query_stats* stats);
+rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
+                                double radius, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
+                                int* count, rugo_contact_state* state, rugo_query_stats* stats);
+rugo_status test_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
+                                 rugo_vec2 p2, double radius, const rugo_contact_query* q, rugo_contact* contacts,
+                                 int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats);
+rugo_status test_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 const rugo_vec2* vertices, int vertex_count, double radius,
+                                 const rugo_contact_query* q, rugo_contact* contacts, int capacity, int* count,
+                                 rugo_contact_state* state, rugo_query_stats* stats);
+
 /* Runs one suite and returns the process exit code. */
 int test_run_suite(Suite* s);
 

@@ -44,8 +44,6 @@
 /// The Box2D 2.4 bridge of librugo (target rugo::box2d).
 namespace rugo {
 
-/// A level value meaning "choose automatically".
-constexpr int kAutoLevel = -1000000;
 
 /// Settings of a Bridge, given to its constructor.
 struct BridgeDef {
@@ -78,14 +76,16 @@ struct BridgeDef {
 struct RoughBodyDef {
     const rugo_shape* shape = nullptr; ///< shared, not copied; must outlive the attachment
     double density = 1.0;              ///< kg/m^2 (> 0 for a dynamic body)
-    /// Level of detail of this body's contacts: 0 = finest, -1 = one level coarser, ... (clamped to the
-    /// shape's coarsest level; a positive value means the finest); kAutoLevel = from errorBudget. A body
-    /// pair uses the finer of its two levels.
-    int level = kAutoLevel;
+    /// Level of detail of this body's contacts, as rugo_contact_query::lod counts it: 0 = finest, -1 =
+    /// one level coarser, ... (clamped to the shape's coarsest level); RUGO_LOD_AUTO = from errorBudget
+    /// (rugo_shape_level_for_error). A positive value is BAD_ARGUMENT. A body pair uses the finer of its
+    /// two levels.
+    int lod = RUGO_LOD_AUTO;
     double errorBudget = -1.0; ///< metres; < 0 or NaN = BridgeDef::errorBudget
-    /// Absolute MOBBtree level of the proxy boxes; kAutoLevel = automatic (see BridgeDef). Must not be
-    /// finer than the body's contact level (the boxes must enclose that level's curve and band).
-    int proxyLevel = kAutoLevel;
+    /// Absolute MOBBtree level (J_min..J) of the proxy boxes; RUGO_LOD_AUTO = automatic (see BridgeDef).
+    /// Must not be finer than the body's contact level (the boxes must enclose that level's curve and
+    /// band).
+    int proxyLevel = RUGO_LOD_AUTO;
     /// Given to every proxy fixture, as b2FixtureDef would.
     b2Filter filter;
     bool isSensor = false;      ///< makes every proxy fixture a sensor (Box2D reports, no contact response)

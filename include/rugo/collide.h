@@ -20,7 +20,7 @@
  *  - Primitive contacts carry the shape's own friction and restitution, unmixed.
  * Nothing is missed: the narrow phase certifies apart/contact/crossing with Bezier-hull subdivision
  * when Newton does not converge. Queries allocate only when a context grows (it never shrinks).
- * A NULL query means rugo_default_contact_query(); capacity 0 with NULL stats returns the state only.
+ * A NULL query means rugo_default_contact_query(); an output of capacity 0 asks for the state only.
  * Rotations in transforms are assumed unit (only finiteness is checked).
  *
  * Units: positions, separations and tolerances in the shapes' length units; μ and ε dimensionless.
@@ -64,7 +64,7 @@ typedef struct rugo_contact {
     /** Parameters in [0, 1) on those segments (t_b = 0 for primitives). @{ */
     rugo_real t_a, t_b;
     /** @} */
-    /** The level of each shape used (0 for primitives). @{ */
+    /** The absolute level (J_min..J) of each shape used (0 for primitives). @{ */
     int level_a, level_b;
     /** @} */
     /** λ(t) at the points (the override if the query gives one), length units. @{ */
@@ -85,13 +85,50 @@ typedef struct rugo_query_stats {
     int contacts_found;     /**< before truncation to the caller's capacity */
 } rugo_query_stats;
 
+/** rugo_contact_query.lod (and the Box2D bridge's RoughBodyDef::lod): each shape's coarsest level whose
+ * certified level-of-detail error (rugo_shape_level_error) is at most the query's lod_error_budget at
+ * that level and every finer one. */
+#define RUGO_LOD_AUTO (-1000000)
+
+/** Where a contact's points are (rugo_contact_query.contact_rule). */
+typedef enum rugo_contact_rule {
+    /** At a local minimum of the band-adjusted distance d - λ_A(t_A) - λ_B(t_B): the surfaces touch
+     * where their bands reach farthest, so the points and separations a coarser level of detail
+     * reports stay within its certified error of the finest level's (the default). */
+    RUGO_CONTACT_BAND_ADJUSTED = 0,
+    /** At a local minimum of the distance d between the curves, the bands added afterwards (the
+     * thesis' 6.15): the rule of the thesis' simulator (rugo_world_def.contact_rule's default). */
+    RUGO_CONTACT_THESIS = 1
+} rugo_contact_rule;
+
+/** rugo_contact_query.resolution: 1e-4 of the smaller shape's size (the diagonal of its root box). */
+#define RUGO_RESOLUTION_AUTO (-1.0)
+
 /** Options of a contact query. Start from rugo_default_contact_query() (or pass NULL for the
  * defaults). */
 typedef struct rugo_contact_query {
-    /** Level of detail: 0 = the finest level of each shape, -1 = one level coarser, ... (clamped at
-     * each shape's coarsest level); a positive value is an absolute level (clamped to each shape's
-     * range). Coarse levels use their coarse segments with their accumulated tolerances λ^j. */
-    int level;
+    /** The resolution δ the query is certified to (length units; docs/contacts.md, "Resolution"): no
+     * contact whose band-adjusted separation is below the threshold (the band plus margin) by more
+     * than δ is missed, and every reported separation is within δ of the true one (round-off where the
+     * point was polished by Newton on the true curves); overlaps shallower than δ may be reported as a
+     * touching. A stretch along which the curves stay parallel to δ (flat on flat, a disc in a matching
+     * bowl) is one contact region whose two ends (and deepest point) are its contacts. The work is
+     * bounded by the number of pieces flat to δ near the contact, about (length / δ)^(1/2). 0: the
+     * round-off answers (every crossing and minimum certified to the last bits, at a cost that grows
+     * without bound for conforming curves). Default RUGO_RESOLUTION_AUTO: 1e-4 of the smaller shape's
+     * size. Errors: NOT_FINITE, BAD_ARGUMENT (negative other than RUGO_RESOLUTION_AUTO). */
+    rugo_real resolution;
+    /** Where contacts are (rugo_contact_rule); default RUGO_CONTACT_BAND_ADJUSTED. Errors: BAD_ARGUMENT
+     * for an unknown rule. */
+    rugo_contact_rule contact_rule;
+    /** Level of detail, relative to each shape: 0 = its finest level, -1 = one level coarser, ...
+     * (clamped at its coarsest level), or RUGO_LOD_AUTO. Coarse levels use their coarse segments with
+     * their accumulated tolerances λ^j. Contacts report the absolute level used (level_a, level_b).
+     * Errors: BAD_ARGUMENT for a positive value (absolute levels are not levels of detail). */
+    int lod;
+    /** With RUGO_LOD_AUTO: the largest certified error a shape's level may have (length units, >= 0;
+     * default 0: the finest level). Errors: NOT_FINITE, BAD_ARGUMENT (negative). */
+    rugo_real lod_error_budget;
     /** < 0 (default): use the shapes' tolerances; >= 0: both shapes get this constant band (length
      * units) instead. */
     rugo_real tolerance;
@@ -104,8 +141,24 @@ typedef struct rugo_contact_query {
     int cookie; /**< set by rugo_default_contact_query; catches uninitialised queries */
 } rugo_contact_query;
 
-/** Level 0 (finest), the shapes' tolerances, max for μ, min for ε, margin 0, cookie set. */
+/** Resolution RUGO_RESOLUTION_AUTO, level of detail 0 (finest), budget 0, the shapes' tolerances, max
+ * for μ, min for ε, margin 0, cookie set. */
 RUGO_API rugo_contact_query rugo_default_contact_query(void);
+
+/** Where a query writes what it found. The caller sets `contacts` and `capacity` (its room: contacts
+ * may be NULL when capacity is 0); the query sets the rest. Capacity 0 asks for the state only: the
+ * query then stops as soon as the state is known, and count, contacts_found and the statistics of the
+ * stages it skipped stay 0. */
+typedef struct rugo_contact_output {
+    rugo_contact* contacts;   /**< caller's array of `capacity` contacts (deepest first within each region, regions in a stable order) */
+    int capacity;             /**< room in `contacts` (>= 0) */
+    int count;                /**< contacts written (<= capacity) */
+    rugo_contact_state state; /**< what the query found */
+    rugo_query_stats stats;   /**< what it cost */
+} rugo_contact_output;
+
+/** An output over the caller's array: contacts, capacity; the rest zero. */
+RUGO_API rugo_contact_output rugo_contact_output_of(rugo_contact* contacts, int capacity);
 
 /** Reusable scratch for queries (node stacks, pair lists; opaque). One per thread. */
 typedef struct rugo_collide_context rugo_collide_context;
@@ -119,47 +172,56 @@ RUGO_API void rugo_collide_context_destroy(rugo_collide_context* ctx);
 /** Allocates now the room that queries between two shapes no larger than `shape` (its coarsest and
  * finest levels) with up to `contacts` contacts would grow the context to, so that such queries do
  * not allocate later (e.g. call it when a body is added, not during a step). Queries at coarser
- * levels, and against circles, capsules, segments and polygons, need less. A query beyond it (shapes
- * deeply overlapping, many more contacts) still grows the context. Calls add up to the largest
- * sizes asked for; the context never shrinks. Errors: NULL_ARGUMENT, BAD_ARGUMENT (contacts < 0 or
- * beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY (the context keeps what it had). */
+ * levels, and against primitives, need less. A query beyond it (shapes deeply overlapping, many more
+ * contacts) still grows the context. Calls add up to the largest sizes asked for; the context never
+ * shrinks. Errors: NULL_ARGUMENT, BAD_ARGUMENT (contacts < 0 or beyond RUGO_MAX_CONTROL_POINTS),
+ * OUT_OF_MEMORY (the context keeps what it had). */
 RUGO_API rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, const rugo_shape* shape,
                                                   int contacts);
 
-/** Contacts between two shapes placed by xa and xb. Writes at most `capacity` contacts (deepest
- * first within each region, regions in a stable order), the number written to *count, the state to
- * *state; stats may be NULL. Errors: NULL_ARGUMENT, BAD_ARGUMENT (query cookie, capacity < 0),
- * NOT_FINITE (a transform), OUT_OF_MEMORY (the context could not grow). */
-RUGO_API rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                         const rugo_shape* b, rugo_transform xb,
-                                         const rugo_contact_query* query, rugo_contact* contacts,
-                                         int capacity, int* count, rugo_contact_state* state,
-                                         rugo_query_stats* stats);
+/** Contacts between shape A placed by xa and shape B placed by xb, into *out (out->contacts and
+ * out->capacity set by the caller; see rugo_contact_output). query may be NULL (the defaults). Errors
+ * (then out->count is 0 and out->state APART): NULL_ARGUMENT (a, b, ctx, out, or contacts with
+ * capacity > 0), BAD_ARGUMENT (query cookie, lod, budget, margin, mix rules, capacity < 0),
+ * NOT_FINITE (a transform or a query length), OUT_OF_MEMORY (the context could not grow). */
+RUGO_API rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
+                                         rugo_transform xb, const rugo_contact_query* query,
+                                         rugo_collide_context* ctx, rugo_contact_output* out);
 
-/** A shape against a circle (B, smooth, tolerance 0, in world coordinates) of the given centre and
- * radius; see rugo_collide_polygon for the primitives and rugo_collide_shapes for outputs and errors
- * (BAD_ARGUMENT also for a negative radius). */
-RUGO_API rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                         rugo_vec2 center, rugo_real radius, const rugo_contact_query* query,
-                                         rugo_contact* contacts, int capacity, int* count,
-                                         rugo_contact_state* state, rugo_query_stats* stats);
-/** A shape against a segment p1-p2 with a radius (a capsule; radius 0 is an edge), in world
- * coordinates; see rugo_collide_polygon. */
-RUGO_API rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                          rugo_vec2 p1, rugo_vec2 p2, rugo_real radius,
-                                          const rugo_contact_query* query, rugo_contact* contacts,
-                                          int capacity, int* count, rugo_contact_state* state,
-                                          rugo_query_stats* stats);
-/** A shape against Box2D-like primitives (B, smooth, tolerance 0, in world coordinates): a circle, a
- * segment with radius (a capsule; radius 0 is an edge), a convex polygon of 3..8 counter-clockwise
- * vertices with radius (Box2D's polygon skin). Same outputs and errors as rugo_collide_shapes;
- * BAD_ARGUMENT also for a negative radius or a polygon that is not convex and counter-clockwise.
- * This function: the convex polygon (vertices borrowed for the call). */
-RUGO_API rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                          const rugo_vec2* vertices, int vertex_count, rugo_real radius,
-                                          const rugo_contact_query* query, rugo_contact* contacts,
-                                          int capacity, int* count, rugo_contact_state* state,
-                                          rugo_query_stats* stats);
+/** The most points a primitive has (Box2D's b2_maxPolygonVertices). */
+#define RUGO_PRIMITIVE_MAX_POINTS 8
+
+/** A Box2D-like convex primitive: the convex hull of its points grown by a radius — one point is a
+ * circle, two a capsule (radius 0: a segment, an edge with no inside), 3..8 a convex polygon with a
+ * skin (Box2D's polygon radius). Points counter-clockwise, in the primitive's own frame (its transform
+ * is given to the query). A plain value: build it with rugo_make_circle, rugo_make_capsule,
+ * rugo_make_segment or rugo_make_polygon. */
+typedef struct rugo_primitive {
+    rugo_vec2 points[RUGO_PRIMITIVE_MAX_POINTS]; /**< the first `count` are used */
+    int count;                                   /**< 1 .. RUGO_PRIMITIVE_MAX_POINTS */
+    rugo_real radius;                            /**< >= 0, length units */
+} rugo_primitive;
+
+/** A circle (one point and a radius). */
+RUGO_API rugo_primitive rugo_make_circle(rugo_vec2 center, rugo_real radius);
+/** A capsule: the segment p1-p2 grown by radius (two equal points: a circle). */
+RUGO_API rugo_primitive rugo_make_capsule(rugo_vec2 p1, rugo_vec2 p2, rugo_real radius);
+/** A segment (an edge: no inside; a capsule of radius 0). */
+RUGO_API rugo_primitive rugo_make_segment(rugo_vec2 p1, rugo_vec2 p2);
+/** A convex polygon of 3..8 counter-clockwise points with a skin radius, into *out (validated as
+ * rugo_collide_primitive validates it). Errors: NULL_ARGUMENT, NOT_FINITE, BAD_ARGUMENT (count outside
+ * 3..8, negative radius, not convex and counter-clockwise, repeated or collinear points). */
+RUGO_API rugo_status rugo_make_polygon(const rugo_vec2* points, int count, rugo_real radius,
+                                       rugo_primitive* out);
+
+/** Contacts between shape A placed by xa and primitive B placed by xb (B smooth: tolerance 0 unless
+ * the query overrides it), into *out as rugo_collide_shapes. Contacts carry the shape's own friction
+ * and restitution, unmixed (segment_b -1, t_b 0, level_b 0). Errors: those of rugo_collide_shapes, and
+ * NULL_ARGUMENT (b), NOT_FINITE (a point or the radius), BAD_ARGUMENT (count outside 1..8, negative
+ * radius, 3..8 points not convex and counter-clockwise). */
+RUGO_API rugo_status rugo_collide_primitive(const rugo_shape* a, rugo_transform xa, const rugo_primitive* b,
+                                            rugo_transform xb, const rugo_contact_query* query,
+                                            rugo_collide_context* ctx, rugo_contact_output* out);
 
 /** A pair of MOBBtree nodes whose boxes overlap (rugo_tree_pairs). */
 typedef struct rugo_node_pair {
@@ -172,9 +234,10 @@ typedef struct rugo_node_pair {
  * tree). Writes at most capacity pairs; *count = number found (may exceed capacity);
  * *box_tests = OBB tests done (box_tests may be NULL). Errors: NULL_ARGUMENT (ctx, a tree, count, or
  * pairs with capacity > 0), BAD_ARGUMENT (capacity < 0), NOT_FINITE (a transform), OUT_OF_MEMORY. */
-RUGO_API rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
-                                     int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
-                                     rugo_node_pair* pairs, int capacity, int* count, long* box_tests);
+RUGO_API rugo_status rugo_tree_pairs(const rugo_mobb_tree* a, rugo_transform xa, int level_a,
+                                     const rugo_mobb_tree* b, rugo_transform xb, int level_b,
+                                     rugo_collide_context* ctx, rugo_node_pair* pairs, int capacity, int* count,
+                                     long* box_tests);
 
 /** Manifold reduction in place: keeps at most k contacts per region (k >= 1; smaller k counts as 1):
  * the deepest, then repeatedly the one farthest from those kept. Order is preserved otherwise. Returns

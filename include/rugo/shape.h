@@ -89,6 +89,10 @@ RUGO_API rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, 
  * 0 at the finest level. Errors (then *max_error is NaN): NULL_ARGUMENT, BAD_LEVEL. */
 RUGO_API rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment,
                                             rugo_real* max_error);
+/** The level of detail a certified error budget allows: the coarsest level j whose
+ * rugo_shape_level_error is at most `budget` (length units) at j and at every finer level (computed once,
+ * when the shape is built). The finest level for a negative or NaN budget; -1 for NULL. */
+RUGO_API int rugo_shape_level_for_error(const rugo_shape* s, rugo_real budget);
 /** Closest point on the curve of `level` (J_min..J) to p (shape's local frame) into *out: the same
  * answer, bit for bit, as rugo_contour_closest_point on that level's curve, computed through the
  * MOBBtree (the boxes near p and the few segments under them instead of a pass over all segments).

@@ -46,7 +46,12 @@ typedef struct rugo_world_def {
     rugo_vec2 gravity;        /**< m/s^2; default (0, -9.81) */
     rugo_real time_step;      /**< s, > 0; default 1/60 */
     rugo_integrator integrator; /**< default RUGO_INTEGRATE_SYMPLECTIC_EULER */
-    int level;                /**< level of detail of contacts (rugo_contact_query.level); default 0 */
+    int lod;                  /**< level of detail of contacts (rugo_contact_query.lod: 0 finest, < 0 coarser); default 0 */
+    /** Resolution of contacts (rugo_contact_query.resolution); default 0, the round-off answers: the
+     * thesis' simulator reproduces its experiments with its own contacts. */
+    rugo_real resolution;
+    /** Where contacts are (rugo_contact_query.contact_rule); default RUGO_CONTACT_THESIS (6.15). */
+    rugo_contact_rule contact_rule;
     int max_bisections;       /**< halvings of a step toward the time of contact; default 8, 0..30 */
     /** Penetration beyond the bands that triggers bisection, as a fraction of the smaller body's size
      * (root box half-diagonal); default 0.01. */

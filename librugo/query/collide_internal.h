@@ -161,6 +161,7 @@ typedef struct hit {
     int vertex;     /* primitives: the vertex of a corner candidate, else -1 */
     int dead;       /* removed as a duplicate */
     int coincident; /* found by a narrow call whose pieces coincide (infinitely many roots) */
+    int flat;       /* a minimum on a stretch flat to the query's resolution (rugo__pair_point.flat) */
 } hit;
 
 /* Appends *h to the hit buffer b (*n used); 0 if out of memory. */
@@ -240,8 +241,10 @@ typedef struct query_side {
     rugo_real slack;         /* growth of the boxes */
 } query_side;
 
-/* s for shape at the query's level (0 finest, < 0 coarser, > 0 absolute); override >= 0: the query's
- * tolerance instead of the shape's. */
+/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked). */
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q);
+/* s for shape at absolute `level` (J_min..J); override >= 0: the query's tolerance instead of the
+ * shape's. */
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override);
 /* λ at (seg, t) of the side's level, or the override. */
 rugo_real rugo__query_side_tolerance(const query_side* s, int seg, rugo_real t, rugo_real override);
@@ -333,8 +336,13 @@ typedef struct contact_out {
     rugo_real override;
 } contact_out;
 
+/* The query's resolution δ for shapes of the given sizes (RUGO_RESOLUTION_AUTO: 1e-4 of the smaller). */
+static inline rugo_real rugo__query_resolution(const rugo_contact_query* q, rugo_real size_a, rugo_real size_b) {
+    if (q->resolution != RUGO_RESOLUTION_AUTO) return q->resolution;
+    return 1e-4 * (size_a < size_b ? size_a : size_b);
+}
 /* RUGO_OK, or what is wrong with the query or the caller's room for contacts. */
-rugo_status rugo__check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity);
+rugo_status rugo__check_query(const rugo_contact_query* q, const rugo_contact_output* out);
 /* Adds a contact from a pair in A's frame: pa on A (segment sa at ta), pb on B, n unit from A to B.
  * id_b: B's segment, or the primitive's feature, for the id. 0 if out of memory. */
 int rugo__emit_contact(contact_out* o, int sa, rugo_real ta, int sb, rugo_real tb, rugo_vec2 pa, rugo_vec2 pb,
@@ -355,6 +363,9 @@ typedef struct shape_pair {
     int src;
     int coincident;   /* some pieces coincide */
     rugo_real margin; /* query margin: minima up to band + margin count */
+    rugo_real delta;  /* the query's resolution (0: round-off, the certified narrow phase) */
+    rugo_real override; /* the query's constant band (>= 0), or -1 */
+    int thesis_rule;    /* RUGO_CONTACT_THESIS: minima of the distance, not of the band-adjusted distance */
     /* Bezier pieces computed at most once per query and segment (NULL: not set up, see piece table) */
     rugo_vec2 (*tab)[4]; /* A's n pieces, then B's n (in A's frame) */
     uint32_t* stamp;     /* entry valid iff stamp == epoch */

@@ -1,5 +1,5 @@
 /* A shape as one side of a query: its curve at the query's level of detail (levels as
- * rugo_contact_query.level numbers them), the tolerances and band bounds of that level, how much its
+ * rugo_contact_query.lod selects them), the tolerances and band bounds of that level, how much its
  * boxes grow, and containment and closest points through its tree. Separate because both kinds of
  * query (shapes, primitives) and their output read a side the same way. */
 #include "query/collide_internal.h"
@@ -15,10 +15,15 @@ static int resolve_level(const rugo_shape* s, int level) {
     return l;
 }
 
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q) {
+    if (q->lod == RUGO_LOD_AUTO) return rugo_shape_level_for_error(shape, q->lod_error_budget);
+    return resolve_level(shape, q->lod);
+}
+
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override) {
     s->shape = shape;
     s->tree = rugo_shape_tree(shape);
-    s->level = resolve_level(shape, level);
+    s->level = level;
     s->jmin = rugo_shape_coarsest_level(shape);
     rugo_shape_level(shape, s->level, &s->curve);
     s->n = s->curve.count;

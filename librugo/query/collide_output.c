@@ -13,7 +13,9 @@
 rugo_contact_query rugo_default_contact_query(void) {
     rugo_contact_query q;
     memset(&q, 0, sizeof q);
-    q.level = 0;
+    q.resolution = RUGO_RESOLUTION_AUTO;
+    q.lod = 0;
+    q.lod_error_budget = 0.0;
     q.tolerance = -1.0;
     q.friction_mix = RUGO_MIX_MAX;
     q.restitution_mix = RUGO_MIX_MIN;
@@ -34,12 +36,25 @@ const char* rugo_contact_state_name(rugo_contact_state s) {
     }
 }
 
-rugo_status rugo__check_query(const rugo_contact_query* q, rugo_contact* contacts, int capacity) {
+rugo_contact_output rugo_contact_output_of(rugo_contact* contacts, int capacity) {
+    rugo_contact_output o;
+    memset(&o, 0, sizeof o);
+    o.contacts = contacts;
+    o.capacity = capacity;
+    return o;
+}
+
+rugo_status rugo__check_query(const rugo_contact_query* q, const rugo_contact_output* out) {
     if (q->cookie != QUERY_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
-    if (capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
-    if (capacity > 0 && contacts == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (!isfinite(q->tolerance) || !isfinite(q->margin)) return RUGO_ERR_NOT_FINITE;
-    if (q->margin < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    if (out->capacity < 0) return RUGO_ERR_BAD_ARGUMENT;
+    if (out->capacity > 0 && out->contacts == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    if (!isfinite(q->tolerance) || !isfinite(q->margin) || !isfinite(q->lod_error_budget) ||
+        !isfinite(q->resolution))
+        return RUGO_ERR_NOT_FINITE;
+    if (q->resolution < 0.0 && q->resolution != RUGO_RESOLUTION_AUTO) return RUGO_ERR_BAD_ARGUMENT;
+    if ((unsigned)q->contact_rule > (unsigned)RUGO_CONTACT_THESIS) return RUGO_ERR_BAD_ARGUMENT;
+    if (q->margin < 0.0 || q->lod_error_budget < 0.0) return RUGO_ERR_BAD_ARGUMENT;
+    if (q->lod > 0 && q->lod != RUGO_LOD_AUTO) return RUGO_ERR_BAD_ARGUMENT;
     if ((unsigned)q->friction_mix > (unsigned)RUGO_MIX_GEOMETRIC ||
         (unsigned)q->restitution_mix > (unsigned)RUGO_MIX_GEOMETRIC)
         return RUGO_ERR_BAD_ARGUMENT;

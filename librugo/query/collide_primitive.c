@@ -78,7 +78,7 @@ static void primitive_frame_and_levels(primitive_query* s, rugo_collide_context*
     s->P = P;
     rugo__primitive_into_frame(P, xa);
 
-    rugo__query_side_init(&s->A, a, q->level, override);
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
     primitive_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;
@@ -503,118 +503,126 @@ static rugo_status primitive_no_crossing(primitive_query* s, int is_edge, rugo_c
 /* The query: the plan of rugo_collide_shapes (collide_internal.h) with B's boundary for B's curve. The
  * state is INTERSECTING as soon as crossings are found, whatever their contacts. */
 static rugo_status collide_primitive(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                     primitive* P, const rugo_contact_query* query, rugo_contact* contacts,
-                                     int capacity, int* count, rugo_contact_state* state,
-                                     rugo_query_stats* stats) {
-    /* checks */
-    rugo_contact_query defq = rugo_default_contact_query();
-    const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = rugo__check_query(q, contacts, capacity);
-    if (st != RUGO_OK) return st;
-    if (!rugo__transform_finite(xa)) return RUGO_ERR_NOT_FINITE;
-
+                                     primitive* P, const rugo_contact_query* q, rugo_contact_output* out) {
     /* frame and levels */
     primitive_query s;
-    primitive_frame_and_levels(&s, ctx, a, xa, P, q, stats);
-    s.want = capacity > 0 || stats != NULL;
+    primitive_frame_and_levels(&s, ctx, a, xa, P, q, &out->stats);
+    s.want = out->capacity > 0;
     const int is_edge = P->V == 2 && P->R == 0.0;
     /* traversal: A's candidate pieces */
-    st = primitive_candidates(&s);
-    if (st != RUGO_OK) return st;
+    rugo_status st = primitive_candidates(&s);
     /* narrow phase */
-    st = primitive_narrow_phase(&s);
+    if (st == RUGO_OK) st = primitive_narrow_phase(&s);
     if (st != RUGO_OK) return st;
     /* crossings and regions (for an edge, its pieces inside A), with the minima outside them and the
      * overlaps below the resolution; without crossings, containment or the minima */
     primitive_crossings(&s);
+    rugo_contact_state state = RUGO_STATE_APART;
     if (s.m > 0) {
-        *state = RUGO_STATE_INTERSECTING;
+        state = RUGO_STATE_INTERSECTING;
         st = is_edge ? primitive_edge_crossings(&s) : primitive_regions(&s);
     } else {
-        st = primitive_no_crossing(&s, is_edge, state);
+        st = primitive_no_crossing(&s, is_edge, &state);
     }
     if (st != RUGO_OK) return st;
     /* finish */
-    rugo__finish_contacts(&s.o, contacts, capacity, count, stats);
+    out->state = state;
+    rugo__finish_contacts(&s.o, out->contacts, out->capacity, &out->count, &out->stats);
     return RUGO_OK;
 }
 
 /* ---------------------------------------------------------------------------------------------------
- * The public entry points: argument checks, then the primitive. */
+ * The primitive's constructors and the public entry point: argument checks, then the query. */
 
-static rugo_status primitive_checks(rugo_collide_context* ctx, const rugo_shape* a, int* count,
-                                    rugo_contact_state* state, rugo_query_stats* stats) {
-    if (count != NULL) *count = 0;
-    if (state != NULL) *state = RUGO_STATE_APART;
-    if (stats != NULL) memset(stats, 0, sizeof *stats);
-    if (ctx == NULL || a == NULL || count == NULL || state == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    return RUGO_OK;
+rugo_primitive rugo_make_circle(rugo_vec2 center, rugo_real radius) {
+    rugo_primitive p;
+    memset(&p, 0, sizeof p);
+    p.points[0] = center;
+    p.count = 1;
+    p.radius = radius;
+    return p;
 }
 
-rugo_status rugo_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                rugo_vec2 center, rugo_real radius, const rugo_contact_query* query,
-                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                rugo_query_stats* stats) {
-    rugo_status st = primitive_checks(ctx, a, count, state, stats);
-    if (st != RUGO_OK) return st;
-    if (!rugo__v2_finite(center) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
-    if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    primitive P;
-    memset(&P, 0, sizeof P);
-    P.V = 1;
-    P.v[0] = center;
-    P.R = radius;
-    return collide_primitive(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
+rugo_primitive rugo_make_capsule(rugo_vec2 p1, rugo_vec2 p2, rugo_real radius) {
+    rugo_primitive p;
+    memset(&p, 0, sizeof p);
+    p.points[0] = p1;
+    p.points[1] = p2;
+    p.count = 2;
+    p.radius = radius;
+    return p;
 }
 
-rugo_status rugo_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                 rugo_vec2 p1, rugo_vec2 p2, rugo_real radius,
-                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
-                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
-    rugo_status st = primitive_checks(ctx, a, count, state, stats);
-    if (st != RUGO_OK) return st;
-    if (!rugo__v2_finite(p1) || !rugo__v2_finite(p2) || !isfinite(radius)) return RUGO_ERR_NOT_FINITE;
-    if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    primitive P;
-    memset(&P, 0, sizeof P);
-    P.R = radius;
-    P.v[0] = p1;
-    P.v[1] = p2;
-    /* A segment of zero length is a circle (or a point). */
-    P.V = (p1.x == p2.x && p1.y == p2.y) ? 1 : 2;
-    return collide_primitive(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
-}
+rugo_primitive rugo_make_segment(rugo_vec2 p1, rugo_vec2 p2) { return rugo_make_capsule(p1, p2, 0.0); }
 
-rugo_status rugo_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                 const rugo_vec2* vertices, int vertex_count, rugo_real radius,
-                                 const rugo_contact_query* query, rugo_contact* contacts, int capacity,
-                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
-    rugo_status st = primitive_checks(ctx, a, count, state, stats);
-    if (st != RUGO_OK) return st;
-    if (vertices == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (vertex_count < 3 || vertex_count > 8) return RUGO_ERR_BAD_ARGUMENT;
-    for (int i = 0; i < vertex_count; ++i)
-        if (!rugo__v2_finite(vertices[i])) return RUGO_ERR_NOT_FINITE;
+/* The primitive's points and radius: finite, a radius >= 0, 1..8 points, 3..8 convex and
+ * counter-clockwise (every turn strictly left, total turning one revolution). */
+static rugo_status check_primitive(const rugo_vec2* points, int count, rugo_real radius) {
+    if (count < 1 || count > RUGO_PRIMITIVE_MAX_POINTS) return RUGO_ERR_BAD_ARGUMENT;
+    for (int i = 0; i < count; ++i)
+        if (!rugo__v2_finite(points[i])) return RUGO_ERR_NOT_FINITE;
     if (!isfinite(radius)) return RUGO_ERR_NOT_FINITE;
     if (radius < 0.0) return RUGO_ERR_BAD_ARGUMENT;
-    /* Convex and counter-clockwise: every turn strictly left, total turning one revolution. */
+    if (count < 3) return RUGO_OK;
     rugo_real size = 0.0, turning = 0.0;
-    for (int i = 0; i < vertex_count; ++i)
-        size = fmax(size, rugo__v2_length(rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i])));
+    for (int i = 0; i < count; ++i)
+        size = fmax(size, rugo__v2_length(rugo_v2_sub(points[(i + 1) % count], points[i])));
     if (!(size > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
-    for (int i = 0; i < vertex_count; ++i) {
-        const rugo_vec2 e0 = rugo_v2_sub(vertices[(i + 1) % vertex_count], vertices[i]);
-        const rugo_vec2 e1 = rugo_v2_sub(vertices[(i + 2) % vertex_count], vertices[(i + 1) % vertex_count]);
+    for (int i = 0; i < count; ++i) {
+        const rugo_vec2 e0 = rugo_v2_sub(points[(i + 1) % count], points[i]);
+        const rugo_vec2 e1 = rugo_v2_sub(points[(i + 2) % count], points[(i + 1) % count]);
         if (!(rugo__v2_length(e0) > 1e-12 * size)) return RUGO_ERR_BAD_ARGUMENT;
         if (!(rugo_v2_cross(e0, e1) > 1e-12 * size * size)) return RUGO_ERR_BAD_ARGUMENT;
         turning += atan2(rugo_v2_cross(e0, e1), rugo_v2_dot(e0, e1));
     }
     if (fabs(turning - 2.0 * PI_VALUE) > 1e-6) return RUGO_ERR_BAD_ARGUMENT;
+    return RUGO_OK;
+}
+
+rugo_status rugo_make_polygon(const rugo_vec2* points, int count, rugo_real radius, rugo_primitive* out) {
+    if (out == NULL || points == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    if (count < 3) return RUGO_ERR_BAD_ARGUMENT;
+    const rugo_status st = check_primitive(points, count, radius);
+    if (st != RUGO_OK) return st;
+    for (int i = 0; i < count; ++i)
+        out->points[i] = points[i];
+    out->count = count;
+    out->radius = radius;
+    return RUGO_OK;
+}
+
+rugo_status rugo_collide_primitive(const rugo_shape* a, rugo_transform xa, const rugo_primitive* b,
+                                   rugo_transform xb, const rugo_contact_query* query, rugo_collide_context* ctx,
+                                   rugo_contact_output* out) {
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    out->count = 0;
+    out->state = RUGO_STATE_APART;
+    memset(&out->stats, 0, sizeof out->stats);
+    if (ctx == NULL || a == NULL || b == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    rugo_status st = check_primitive(b->points, b->count, b->radius);
+    if (st != RUGO_OK) return st;
+    rugo_contact_query defq = rugo_default_contact_query();
+    const rugo_contact_query* q = query != NULL ? query : &defq;
+    st = rugo__check_query(q, out);
+    if (st != RUGO_OK) return st;
+    if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    /* B's points in the world (the identity leaves them as they are, bit for bit); a segment of zero
+     * length is a circle (or a point). */
     primitive P;
     memset(&P, 0, sizeof P);
-    P.V = vertex_count;
-    for (int i = 0; i < vertex_count; ++i)
-        P.v[i] = vertices[i];
-    P.R = radius;
-    return collide_primitive(ctx, a, xa, &P, query, contacts, capacity, count, state, stats);
+    P.V = b->count;
+    for (int i = 0; i < b->count; ++i)
+        P.v[i] = rugo_transform_point(xb, b->points[i]);
+    for (int i = 0; i < P.V; ++i)
+        if (!rugo__v2_finite(P.v[i])) return RUGO_ERR_NOT_FINITE;
+    if (P.V == 2 && P.v[0].x == P.v[1].x && P.v[0].y == P.v[1].y) P.V = 1;
+    P.R = b->radius;
+    st = collide_primitive(ctx, a, xa, &P, q, out);
+    if (st != RUGO_OK) {
+        out->count = 0;
+        out->state = RUGO_STATE_APART;
+        memset(&out->stats, 0, sizeof out->stats);
+    }
+    return st;
 }

@@ -7,6 +7,8 @@
 #include "query/collide_internal.h"
 
 #include "curve/poly.h"
+#include "query/narrow_resolved.h"
+#include "rough/internal.h"
 
 #include <float.h>
 #include <stdint.h>
@@ -20,10 +22,34 @@ static rugo_vec2 normal_on_b(const shape_pair* g, int seg, rugo_real t) {
     return rugo_rotate(g->rel.q, rugo__curve_normal(g->B->curve, seg, t));
 }
 
-/* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. */
-static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const rugo_vec2 f[4], int kb,
-                       const rugo_vec2 gb[4], rugo_real cutoff, rugo__array* xs, size_t* nx, rugo__array* ss,
-                       size_t* ns) {
+/* What a narrow call is asked for: the first pass's crossings and minima within the band, an overlap
+ * region's penetration pairs (saddles), or the closest pair of two curves one inside the other. */
+typedef enum narrow_ask { ASK_FIRST_PASS, ASK_DEPTHS, ASK_CLOSEST } narrow_ask;
+
+/* A side's segment k as a piece with its band (λ's two cubic halves, or the query's constant band). */
+static void banded_piece(const shape_pair* g, const query_side* s, int k, const rugo_vec2 p[4],
+                         rugo__banded_piece* out) {
+    for (int i = 0; i < 4; ++i)
+        out->p[i] = p[i];
+    if (g->thesis_rule) { /* minima of the distance itself: no band in the narrow phase */
+        memset(out->band, 0, sizeof out->band);
+    } else if (g->override >= 0.0) {
+        for (int h = 0; h < 2; ++h)
+            for (int i = 0; i < 4; ++i)
+                out->band[h][i] = g->override;
+    } else {
+        rugo__tolerance_halves(s->lambda, s->n, k, out->band);
+    }
+}
+
+/* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. At a resolution
+ * (g->delta > 0) the first pass and the region depths run the narrow phase to that resolution, on the
+ * band-adjusted distance (`cutoff` then bounds φ = d - λ_A - λ_B for minima: band_cutoff), falling back
+ * to the round-off phase where that one ran out of its box budget; the closest pair of a containment
+ * always runs the round-off phase. */
+static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, narrow_ask ask, int ka, const rugo_vec2 f[4],
+                       int kb, const rugo_vec2 gb[4], rugo_real cutoff, rugo_real band_cutoff, rugo__array* xs,
+                       size_t* nx, rugo__array* ss, size_t* ns) {
     const rugo_vec2 o = f[0];
     rugo_vec2 fl[4], gl[4];
     for (int i = 0; i < 4; ++i) {
@@ -31,7 +57,16 @@ static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const r
         gl[i] = rugo_v2_sub(gb[i], o);
     }
     rugo__narrow_result r;
-    rugo__narrow_pieces(fl, gl, cutoff, &r);
+    int resolved = 0;
+    if (g->delta > 0.0 && ask == ASK_FIRST_PASS) {
+        rugo__banded_piece bf, bg;
+        banded_piece(g, g->A, ka, fl, &bf);
+        banded_piece(g, g->B, kb, gl, &bg);
+        rugo__narrow_resolved(&bf, &bg, g->thesis_rule ? cutoff : band_cutoff, NAN, g->delta,
+                              RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &r);
+        resolved = !r.overflow;
+    }
+    if (!resolved) rugo__narrow_pieces(fl, gl, cutoff, &r);
     const int src = g->src++;
     if (g->stats != NULL) {
         g->stats->segment_pairs += 1;
@@ -63,6 +98,7 @@ static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, int ka, const r
             h.src = src;
             h.vertex = -1;
             h.coincident = r.overflow;
+            h.flat = pp[i].flat;
             if (!rugo__push_hit(ctx, dst, nd, &h)) return 0;
         }
     }
@@ -153,8 +189,8 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
         const rugo_vec2* f = rugo__cached_piece_a(&pc, g, p.k_a);
         const rugo_vec2* h = rugo__cached_piece_b(&pc, g, p.k_b);
         ns = 0;
-        if (!narrow_pair(ctx, g, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NULL,
-                      NULL, &ctx->ss2, &ns))
+        if (!narrow_pair(ctx, g, ASK_CLOSEST, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale,
+                         NAN, NULL, NULL, &ctx->ss2, &ns))
             return RUGO_ERR_OUT_OF_MEMORY;
         const hit* hs = (const hit*)ctx->ss2.data;
         for (size_t j = 0; j < ns; ++j)
@@ -255,10 +291,63 @@ static int minimum_faces(const shape_pair* g, const hit* h) {
            rugo__faces_outward(g->B->curve, h->sb, h->tb, rugo_v2_scale(-1.0, d), g->rel.q);
 }
 
-/* Minima within the band (not inside a region if regs != NULL), each its own region from `first`. */
+/* Along a segment index that wraps at n: are u and v within `reach` of each other? */
+static int near_cyclic(rugo_real u, rugo_real v, rugo_real n, rugo_real reach) {
+    rugo_real d = fabs(u - v);
+    if (d > 0.5 * n) d = n - d;
+    return d <= reach;
+}
+
+/* The normal of a point of a stretch flat to the resolution: located only to δ along the stretch, its
+ * two points need not face each other exactly, but both curves' normals there do (to the stretch's
+ * flatness); their mean, A's outward one and B's inward one. */
+static rugo_vec2 flat_normal(const shape_pair* g, const hit* h) {
+    /* at a sharp corner of either curve its own normal is a flank's: the minimum's rule decides */
+    const rugo_real near = OVERLAP_NEAR * g->scale;
+    rugo_vec2 corner;
+    if (rugo__corner_near(g->A->curve, h->sa, h->pa, near, &corner) ||
+        rugo__corner_near(g->B->curve, h->sb, rugo_inv_transform_point(g->rel, h->pb), near, &corner))
+        return minimum_normal(g, h);
+    const rugo_vec2 na = normal_on_a(g, h->sa, h->ta), nb = normal_on_b(g, h->sb, h->tb);
+    const rugo_vec2 m = rugo_v2_sub(na, nb);
+    const rugo_real len = rugo__v2_length(m);
+    return len > 0.0 ? rugo_v2_scale(1.0 / len, m) : minimum_normal(g, h);
+}
+
+/* A conforming stretch reported as many points (one or two per segment pair, each within δ of the
+ * others): its region keeps its first and last point along A and its deepest one. The contacts of
+ * [from, o->n) are in emission order, so a region's points are consecutive. */
+static void reduce_stretches(contact_out* o, size_t from) {
+    rugo_contact* c = (rugo_contact*)o->ctx->out.data;
+    size_t w = from;
+    for (size_t i = from; i < o->n;) {
+        size_t j = i + 1;
+        while (j < o->n && c[j].region == c[i].region) ++j;
+        size_t deep = i;
+        for (size_t k = i + 1; k < j; ++k)
+            if (c[k].separation - c[k].tolerance_a - c[k].tolerance_b <
+                c[deep].separation - c[deep].tolerance_a - c[deep].tolerance_b)
+                deep = k;
+        const rugo_contact first = c[i], last = c[j - 1], deepest = c[deep];
+        c[w++] = first;
+        if (deep != i && deep != j - 1) c[w++] = deepest;
+        if (j - 1 != i) c[w++] = last;
+        i = j;
+    }
+    o->n = w;
+}
+
+/* Minima within the band (not inside a region if regs != NULL), regions numbered from `first`: each an
+ * own region, but for the points of a stretch flat to the resolution, which share one (consecutive
+ * along both curves, within δ of each other's band-adjusted separation) and are then reduced to its
+ * ends and deepest point. */
 static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns, const regions* regs,
                                int first, rugo_real override) {
     int region = first;
+    const size_t from = o->n;
+    const hit* prev = NULL; /* the last minimum emitted */
+    rugo_real prev_phi = 0.0;
+    int stretches = 0;
     for (size_t i = 0; i < ns; ++i) {
         const hit* h = &hs[i];
         if (h->dead || h->kind != RUGO__MINIMUM) continue;
@@ -266,18 +355,26 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
             if (h->distance <= SAME_POINT * g->scale) continue; /* a crossing point */
             if (rugo__in_any_region(regs, h->ua, h->ub)) continue;
         }
-        const rugo_real band = rugo__query_side_tolerance(g->A, h->sa, h->ta, override) +
-                               rugo__query_side_tolerance(g->B, h->sb, h->tb, override) + g->margin;
-        if (!(h->distance <= band)) continue;
+        const rugo_real lambda = rugo__query_side_tolerance(g->A, h->sa, h->ta, override) +
+                                 rugo__query_side_tolerance(g->B, h->sb, h->tb, override);
+        if (!(h->distance <= lambda + g->margin)) continue;
         if (!minimum_faces(g, h)) continue;
         /* Index within its segment pair: minima of one pair are sorted by A's parameter already. */
         int index = 0;
         for (size_t j = 0; j < i; ++j)
             if (!hs[j].dead && hs[j].kind == RUGO__MINIMUM && hs[j].sa == h->sa && hs[j].sb == h->sb) ++index;
-        const rugo_vec2 n = minimum_normal(g, h);
-        if (!rugo__emit_contact(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, n, region++, 0, index, h->sb))
+        const rugo_vec2 n = h->flat ? flat_normal(g, h) : minimum_normal(g, h);
+        const rugo_real phi = rugo_v2_dot(rugo_v2_sub(h->pb, h->pa), n) - lambda;
+        const int joins = prev != NULL && (h->flat || prev->flat) && near_cyclic(h->ua, prev->ua, g->A->n, 1.5) &&
+                          near_cyclic(h->ub, prev->ub, g->B->n, 1.5) && fabs(phi - prev_phi) <= g->delta;
+        if (!joins && prev != NULL) ++region;
+        stretches |= joins;
+        if (!rugo__emit_contact(o, h->sa, h->ta, h->sb, h->tb, h->pa, h->pb, n, region, 0, index, h->sb))
             return RUGO_ERR_OUT_OF_MEMORY;
+        prev = h;
+        prev_phi = phi;
     }
+    if (stretches) reduce_stretches(o, from);
     return RUGO_OK;
 }
 
@@ -356,7 +453,8 @@ static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g,
                 if (acos(c) > sa->half + sb->half + 1e-9) continue;
             }
             size_t ns = 0;
-            if (!narrow_pair(ctx, g, sa->k, sa->b, sb->k, sb->b, cutoff, NULL, NULL, &ctx->ss2, &ns))
+            if (!narrow_pair(ctx, g, ASK_DEPTHS, sa->k, sa->b, sb->k, sb->b, cutoff, NAN, NULL, NULL, &ctx->ss2,
+                             &ns))
                 return RUGO_ERR_OUT_OF_MEMORY;
             const hit* hs = (const hit*)ctx->ss2.data;
             for (size_t k = 0; k < ns; ++k) {
@@ -466,8 +564,8 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     s->ctx = ctx;
     s->q = q;
     s->override = override;
-    rugo__query_side_init(&s->A, a, q->level, override);
-    rugo__query_side_init(&s->B, b, q->level, override);
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
+    rugo__query_side_init(&s->B, b, rugo__query_level(b, q), override);
     shape_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;
@@ -478,6 +576,10 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
                     rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
     g->stats = stats;
     g->margin = q->margin;
+    g->override = override;
+    g->thesis_rule = q->contact_rule == RUGO_CONTACT_THESIS;
+    g->delta = rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(s->A.tree)),
+                                      rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
     if (!rugo__piece_table_setup(ctx, g)) return RUGO_ERR_OUT_OF_MEMORY;
     contact_out* o = &s->o;
     memset(o, 0, sizeof *o);
@@ -530,7 +632,9 @@ static rugo_status shapes_narrow_phase(shape_query* s) {
         const rugo_real band = override >= 0.0 ? 2.0 * override : s->A.band[p.k_a] + s->B.band[p.k_b];
         const rugo_real cut = band + s->q->margin;
         const rugo_real cutoff = cut * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale;
-        if (!narrow_pair(ctx, g, p.k_a, f, p.k_b, h, cutoff, &ctx->xs, &s->nx, &ctx->ss, &s->ns))
+        const rugo_real band_cutoff = s->q->margin + CUTOFF_PAD * g->scale;
+        if (!narrow_pair(ctx, g, ASK_FIRST_PASS, p.k_a, f, p.k_b, h, cutoff, band_cutoff, &ctx->xs, &s->nx,
+                         &ctx->ss, &s->ns))
             return RUGO_ERR_OUT_OF_MEMORY;
     }
     s->eps = SAME_POINT * g->scale;
@@ -648,46 +752,46 @@ static rugo_status shapes_no_crossing(shape_query* s, rugo_contact_state* state)
 /* The plan (collide_internal.h): checks, frame and levels, candidates, narrow phase, crossings, then
  * the regions or, without crossings, containment or the minima, then finish. The state is
  * INTERSECTING as soon as crossings are found, whatever their contacts. */
-rugo_status rugo_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* query,
-                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
-                                rugo_query_stats* stats) {
+rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b, rugo_transform xb,
+                                const rugo_contact_query* query, rugo_collide_context* ctx,
+                                rugo_contact_output* out) {
     /* checks */
-    if (count != NULL) *count = 0;
-    if (state != NULL) *state = RUGO_STATE_APART;
-    if (stats != NULL) memset(stats, 0, sizeof *stats);
-    if (ctx == NULL || a == NULL || b == NULL || count == NULL || state == NULL)
-        return RUGO_ERR_NULL_ARGUMENT;
+    if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    out->count = 0;
+    out->state = RUGO_STATE_APART;
+    memset(&out->stats, 0, sizeof out->stats);
+    if (ctx == NULL || a == NULL || b == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_contact_query defq = rugo_default_contact_query();
     const rugo_contact_query* q = query != NULL ? query : &defq;
-    rugo_status st = rugo__check_query(q, contacts, capacity);
+    rugo_status st = rugo__check_query(q, out);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
 
     /* frame and levels */
     shape_query s;
-    st = shapes_frame_and_levels(&s, ctx, a, xa, b, xb, q, stats);
+    st = shapes_frame_and_levels(&s, ctx, a, xa, b, xb, q, &out->stats);
     if (st != RUGO_OK) return st;
-    s.want = capacity > 0 || stats != NULL;
+    s.want = out->capacity > 0;
     /* traversal: candidate segment pairs */
     st = shapes_candidates(&s);
-    if (st != RUGO_OK) return st;
     /* narrow phase */
-    st = shapes_narrow_phase(&s);
-    if (st != RUGO_OK) return st;
+    if (st == RUGO_OK) st = shapes_narrow_phase(&s);
     /* crossings and regions, with the minima outside them and the overlaps below the resolution;
      * without crossings, containment or the minima */
-    st = shapes_crossings(&s);
-    if (st != RUGO_OK) return st;
-    if (s.m > 0) {
-        *state = RUGO_STATE_INTERSECTING;
+    if (st == RUGO_OK) st = shapes_crossings(&s);
+    rugo_contact_state state = RUGO_STATE_APART;
+    if (st == RUGO_OK && s.m > 0) {
+        state = RUGO_STATE_INTERSECTING;
         st = shapes_regions(&s);
-    } else {
-        st = shapes_no_crossing(&s, state);
+    } else if (st == RUGO_OK) {
+        st = shapes_no_crossing(&s, &state);
     }
-    if (st != RUGO_OK) return st;
+    if (st != RUGO_OK) {
+        memset(&out->stats, 0, sizeof out->stats);
+        return st;
+    }
     /* finish */
-    rugo__finish_contacts(&s.o, contacts, capacity, count, stats);
+    out->state = state;
+    rugo__finish_contacts(&s.o, out->contacts, out->capacity, &out->count, &out->stats);
     return RUGO_OK;
 }
-

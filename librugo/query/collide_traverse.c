@@ -180,9 +180,9 @@ rugo_status rugo__traverse(rugo_collide_context* ctx, const tree_side* A, const 
     return RUGO_OK;
 }
 
-rugo_status rugo_tree_pairs(rugo_collide_context* ctx, const rugo_mobb_tree* a, rugo_transform xa,
-                            int level_a, const rugo_mobb_tree* b, rugo_transform xb, int level_b,
-                            rugo_node_pair* pairs, int capacity, int* count, long* box_tests) {
+rugo_status rugo_tree_pairs(const rugo_mobb_tree* a, rugo_transform xa, int level_a, const rugo_mobb_tree* b,
+                            rugo_transform xb, int level_b, rugo_collide_context* ctx, rugo_node_pair* pairs,
+                            int capacity, int* count, long* box_tests) {
     if (count != NULL) *count = 0;
     if (box_tests != NULL) *box_tests = 0;
     if (ctx == NULL || a == NULL || b == NULL || count == NULL) return RUGO_ERR_NULL_ARGUMENT;

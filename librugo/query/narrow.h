@@ -54,6 +54,8 @@ typedef struct rugo__pair_point {
     int kind;           /* rugo__stationary_kind for stationary pairs; for crossings: +1 if g crosses f
                            from f's outside (right of f' for a CCW f: the outward side) to its inside
                            as t increases, -1 the other way, 0 a touching (tangential, no crossing) */
+    int flat;           /* a minimum on a stretch where the band-adjusted distance is flat to the
+                           resolution (narrow_resolved.h): located to the resolution, not polished */
 } rugo__pair_point;
 
 typedef struct rugo__narrow_result {

@@ -156,6 +156,7 @@ int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo
         out[i].pb = c;
         out[i].distance = scale * pd[i];
         out[i].kind = pk[i];
+        out[i].flat = 0;
     }
     return n;
 }

@@ -24,4 +24,9 @@ rugo_status rugo__roughness_sample_check(const rugo_profile_sample* prev, const 
  * documented there: BAD_ARGUMENT where the reader says BAD_FIELD). */
 rugo_status rugo__roughness_arc_source_check(const rugo_roughness_desc* r);
 
+/* λ(t) on segment `segment` (wrapping) as rugo_tolerance_at interpolates it (tolerance.c), before its
+ * clamp: two cubics, over t in [0, 1/2] and [1/2, 1], each as Bernstein coefficients in its own
+ * parameter (2t and 2t - 1). The contact queries at a resolution carry the band this way. */
+void rugo__tolerance_halves(const rugo_real* lambda, int count, int segment, rugo_real out[2][4]);
+
 #endif

@@ -43,6 +43,7 @@
 
 #include "rugo/contour.h"
 #include "core/internal.h"
+#include "rough/internal.h"
 
 #include <float.h>
 #include <string.h>
@@ -142,6 +143,19 @@ static void piece_values(const rugo_real* lambda, int count, int k, rugo_real l[
     for (int i = 0; i < 4; ++i) {
         l[i] = lambda[rugo__wrap(k - 1 + i, count)];
         if (fabs(l[i]) > *scale) *scale = fabs(l[i]);
+    }
+}
+
+void rugo__tolerance_halves(const rugo_real* lambda, int count, int segment, rugo_real out[2][4]) {
+    rugo_real scale = 0.0;
+    const int seg = rugo__wrap(segment, count);
+    for (int half = 0; half < 2; ++half) {
+        int k;
+        rugo_real u0;
+        piece_of(seg, half == 0 ? 0.0 : 0.5, &k, &u0); /* the piece covers u0 .. u0 + 1/2 */
+        rugo_real l[4];
+        piece_values(lambda, count, k, l, &scale);
+        piece_bernstein(l, u0, 0.5, out[half]);
     }
 }
 

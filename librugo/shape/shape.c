@@ -31,6 +31,7 @@ struct rugo_shape {
     bool reversed;
     rugo_real* band_bound; /* level j at offset 2^j - 2^J_min, 2^j values */
     rugo_real band_excess[31];
+    rugo_real level_error[31]; /* rugo_shape_level_error's bound per level (+inf where it fails) */
     /* A shape loaded from parts (baked.c) keeps λ and β here instead of in a rugo_tolerances, whose
      * constructor would recompute them: own, total, bound, each laid out like band_bound, then the
      * band bounds themselves (band_bound points there: one allocation). */
@@ -105,6 +106,15 @@ static rugo_status simple_coarsest(const rugo_pyramid* p, const rugo_allocator* 
         }
     }
     return RUGO_OK;
+}
+
+/* The certified level-of-detail error of every level, once: queries at RUGO_LOD_AUTO choose by it. */
+static void store_level_errors(rugo_shape* s) {
+    for (int j = s->coarsest; j <= s->finest; ++j) {
+        rugo_real e = HUGE_VAL;
+        if (rugo_shape_level_error(s, j, NULL, &e) != RUGO_OK || !(e >= 0.0)) e = HUGE_VAL;
+        s->level_error[j] = e;
+    }
 }
 
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem) {
@@ -219,6 +229,7 @@ rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_
         }
         s->band_excess[j] = j == s->finest ? 0.0 : excess;
     }
+    store_level_errors(s);
     *out = s;
     return RUGO_OK;
 }
@@ -263,6 +274,14 @@ rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* pe
         return RUGO_OK;
     }
     return rugo_tolerance_level_error(coarse, tc.total, finest, tf.total, per_segment, max_error);
+}
+
+int rugo_shape_level_for_error(const rugo_shape* s, rugo_real budget) {
+    if (s == NULL) return -1;
+    int level = s->finest;
+    if (!(budget >= 0.0)) return level;
+    while (level > s->coarsest && s->level_error[level - 1] <= budget) --level;
+    return level;
 }
 
 const rugo_pyramid* rugo_shape_pyramid(const rugo_shape* s) { return s ? s->pyramid : NULL; }
@@ -365,6 +384,7 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
     rugo_real excess[31];
     rugo__decode_f64_le(excess, parts->band_excess, (size_t)(J - Jmin + 1));
     for (int j = Jmin; j <= J; ++j) s->band_excess[j] = excess[j - Jmin];
+    store_level_errors(s);
     *out = s;
     return RUGO_OK;
 }

@@ -22,7 +22,9 @@ rugo_world_def rugo_default_world_def(void) {
     d.gravity = rugo_v2(0.0, -9.81);
     d.time_step = 1.0 / 60.0;
     d.integrator = RUGO_INTEGRATE_SYMPLECTIC_EULER;
-    d.level = 0;
+    d.lod = 0;
+    d.resolution = 0.0;
+    d.contact_rule = RUGO_CONTACT_THESIS;
     d.max_bisections = 8;
     d.penetration_tolerance = 0.01;
     d.micro_collisions = true;
@@ -56,6 +58,10 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
         return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_bisections < 0 || def->max_bisections > 30) return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS) return RUGO_ERR_BAD_ARGUMENT;
+    if (!isfinite(def->resolution)) return RUGO_ERR_NOT_FINITE;
+    if (def->lod > 0 || (def->resolution < 0.0 && def->resolution != RUGO_RESOLUTION_AUTO) ||
+        (unsigned)def->contact_rule > (unsigned)RUGO_CONTACT_THESIS)
+        return RUGO_ERR_BAD_ARGUMENT;
 
     rugo_allocator a = rugo__allocator_or_default(&def->allocator);
     rugo_world* w = (rugo_world*)rugo__alloc_array(&a, 1, sizeof *w);
@@ -65,7 +71,9 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     w->allocator = a;
     w->g = rugo__v2_length(def->gravity);
     w->query = rugo_default_contact_query();
-    w->query.level = def->level;
+    w->query.lod = def->lod;
+    w->query.resolution = def->resolution;
+    w->query.contact_rule = def->contact_rule;
     if (rugo__sweep_prune_create(&a, &w->sap) != RUGO_OK ||
         rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
         rugo_world_destroy(w);

@@ -102,20 +102,18 @@ rugo_status rugo__gather_contacts(rugo_world* w) {
         const body* a = &rugo__world_bodies(w)[pairs[p].a];
         const body* b = &rugo__world_bodies(w)[pairs[p].b];
         if (a->type == RUGO_BODY_STATIC && b->type == RUGO_BODY_STATIC) continue;
-        int count = 0;
-        rugo_contact_state state;
-        rugo_query_stats qs;
-        st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query, rugo__world_scratch(w),
-                                 (int)w->scratch.capacity, &count, &state, &qs);
+        rugo_contact_output out = rugo_contact_output_of(rugo__world_scratch(w), (int)w->scratch.capacity);
+        st = rugo_collide_shapes(a->shape, a->xf, b->shape, b->xf, &w->query, w->ctx, &out);
         if (st != RUGO_OK) return st;
-        w->stats.box_tests += qs.box_tests;
-        if ((size_t)qs.contacts_found > w->scratch.capacity) {
-            if (!rugo__world_reserve(w, &w->scratch, qs.contacts_found, sizeof(rugo_contact)))
+        w->stats.box_tests += out.stats.box_tests;
+        if ((size_t)out.stats.contacts_found > w->scratch.capacity) {
+            if (!rugo__world_reserve(w, &w->scratch, out.stats.contacts_found, sizeof(rugo_contact)))
                 return RUGO_ERR_OUT_OF_MEMORY;
-            st = rugo_collide_shapes(w->ctx, a->shape, a->xf, b->shape, b->xf, &w->query,
-                                     rugo__world_scratch(w), (int)w->scratch.capacity, &count, &state, &qs);
+            out = rugo_contact_output_of(rugo__world_scratch(w), (int)w->scratch.capacity);
+            st = rugo_collide_shapes(a->shape, a->xf, b->shape, b->xf, &w->query, w->ctx, &out);
             if (st != RUGO_OK) return st;
         }
+        int count = out.count;
         if (count == 0) continue;
         count = rugo_reduce_manifold(rugo__world_scratch(w), count, w->def.max_contacts_per_pair);
         if (count > w->def.max_contacts_per_pair) count = w->def.max_contacts_per_pair;

@@ -251,28 +251,30 @@ bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2T
                        const b2Transform& xb, const b2PolygonShape* box, int level, std::vector<rugo_contact>* buf, double* s,
                        rugo_contact_state* stateOut, int* countOut) {
     rugo_contact_query q = rugo_default_contact_query();
-    q.level = level;
+    q.lod = level;
     q.margin = 0.05;
-    int n = 0;
-    rugo_contact_state state;
-    rugo_query_stats qs;
+    rugo_contact_output out = rugo_contact_output_of(nullptr, 0);
     for (int attempt = 0; attempt < 2; ++attempt) {
         rugo_status st;
+        out = rugo_contact_output_of(buf->data(), static_cast<int>(buf->size()));
         if (box) {
-            rugo_vec2 v[b2_maxPolygonVertices];
+            rugo_primitive p = rugo_make_circle(rugo_v2(0.0, 0.0), 0.0);
+            p.count = box->m_count;
+            p.radius = box->m_radius;
             for (int i = 0; i < box->m_count; ++i) {
                 const b2Vec2 w = b2Mul(xb, box->m_vertices[i]);
-                v[i] = rugo_v2(w.x, w.y);
+                p.points[i] = rugo_v2(w.x, w.y);
             }
-            st = rugo_collide_polygon(ctx, a, ToRugo(xa), v, box->m_count, box->m_radius, &q, buf->data(),
-                                      static_cast<int>(buf->size()), &n, &state, &qs);
+            st = rugo_collide_primitive(a, ToRugo(xa), &p, rugo_identity_transform(), &q, ctx, &out);
         } else {
-            st = rugo_collide_shapes(ctx, a, ToRugo(xa), b, ToRugo(xb), &q, buf->data(), static_cast<int>(buf->size()), &n, &state, &qs);
+            st = rugo_collide_shapes(a, ToRugo(xa), b, ToRugo(xb), &q, ctx, &out);
         }
         if (st != RUGO_OK) return false;
-        if (qs.contacts_found <= static_cast<int>(buf->size())) break;
-        buf->resize(static_cast<size_t>(qs.contacts_found));
+        if (out.stats.contacts_found <= static_cast<int>(buf->size())) break;
+        buf->resize(static_cast<size_t>(out.stats.contacts_found));
     }
+    const int n = out.count;
+    const rugo_contact_state state = out.state;
     if (n == 0) return false;
     double best = 1e30;
     for (int i = 0; i < n; ++i) {

@@ -105,6 +105,7 @@ extern "C" {
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <functional>
@@ -621,19 +622,25 @@ struct Pose {
     rugo_transform xa, xb;
 };
 
+/* The resolution the "rugo L" methods run at (0: round-off; --resolution sets it). */
+double g_resolution = 0.0;
+
 rugo_contact_query make_query(int level, double margin) {
     rugo_contact_query q = rugo_default_contact_query();
-    q.level = level;
+    q.lod = level;
     q.margin = margin;
+    q.resolution = g_resolution;
     return q;
 }
 
 rugo_contact_state state_at(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
                             rugo_transform xb) {
-    int n = 0;
-    rugo_contact_state st = RUGO_STATE_APART;
-    rugo_collide_shapes(ctx, a, xa, b, xb, nullptr, nullptr, 0, &n, &st, nullptr);
-    return st;
+    /* the poses are placed by the round-off answer, whatever resolution the methods run at */
+    rugo_contact_query q = rugo_default_contact_query();
+    q.resolution = 0.0;
+    rugo_contact_output out = rugo_contact_output_of(nullptr, 0); /* the state only */
+    rugo_collide_shapes(a, xa, b, xb, &q, ctx, &out);
+    return out.state;
 }
 
 /* Distance along dir from A's position at which B first stops crossing A (bisection on the state). */
@@ -655,9 +662,10 @@ void rugo_contacts(rugo_collide_context* ctx, const Body& A, rugo_transform xa, 
                    int level, std::vector<Cnt>& out, rugo_query_stats* qs) {
     static rugo_contact c[kCap];
     const rugo_contact_query q = make_query(level, kWindow);
-    int n = 0;
-    rugo_contact_state st;
-    rugo_collide_shapes(ctx, A.shape, xa, B.shape, xb, &q, c, kCap, &n, &st, qs);
+    rugo_contact_output o = rugo_contact_output_of(c, kCap);
+    rugo_collide_shapes(A.shape, xa, B.shape, xb, &q, ctx, &o);
+    if (qs != nullptr) *qs = o.stats;
+    const int n = o.count;
     out.clear();
     for (int i = 0; i < n; ++i) {
         Cnt k;
@@ -1355,10 +1363,9 @@ SweepRow sweep_point(rugo_collide_context* ctx, const std::string& kind, const s
     xb.p = rugo_v2(from.x + d * dir.x, from.y + d * dir.y);
     const rugo_contact_query q = make_query(0, 2.0 * gap);
     static rugo_contact c[kCap];
-    int cnt = 0;
-    rugo_contact_state st;
-    rugo_query_stats qs;
-    rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, kCap, &cnt, &st, &qs);
+    rugo_contact_output out = rugo_contact_output_of(c, kCap);
+    rugo_collide_shapes(a, xa, b, xb, &q, ctx, &out);
+    const rugo_query_stats qs = out.stats;
     SweepRow r;
     r.kind = kind;
     r.shapes = shapes;
@@ -1370,7 +1377,7 @@ SweepRow sweep_point(rugo_collide_context* ctx, const std::string& kind, const s
     double best = HUGE_VAL; /* best single query */
     for (int rep = 0; rep < reps; ++rep) {
         const double t0 = now_ns();
-        rugo_collide_shapes(ctx, a, xa, b, xb, &q, c, kCap, &cnt, &st, nullptr);
+        rugo_collide_shapes(a, xa, b, xb, &q, ctx, &out);
         best = std::min(best, now_ns() - t0);
     }
     r.time_ns = best;
@@ -1396,11 +1403,10 @@ HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body
     rugo_query_stats qs;
     rugo_contacts(ctx, A, xa, B, xb, 0, got, &qs);
     evaluate(pr, got, h.rugo);
-    int n = 0;
-    rugo_contact_state st;
     const rugo_contact_query q = make_query(0, kWindow);
-    rugo_collide_shapes(ctx, A.shape, xa, B.shape, xb, &q, nullptr, 0, &n, &st, nullptr);
-    h.state = (int)st;
+    rugo_contact_output out = rugo_contact_output_of(nullptr, 0); /* the state only */
+    rugo_collide_shapes(A.shape, xa, B.shape, xb, &q, ctx, &out);
+    h.state = (int)out.state;
     PolyBody pa, pb;
     build_poly(A.pts, m, true, pa);
     build_poly(B.pts, m, true, pb);
@@ -1473,6 +1479,18 @@ int bench_ray_casts(bool quick) {
     return bad != 0 ? 1 : 0;
 }
 
+/* One pass of queries over the poses, in ns (its own function: a profiler can count it alone). */
+__attribute__((noinline)) double time_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
+                                            const std::vector<Pose>& poses, const rugo_contact_query& q,
+                                            rugo_contact* buf) {
+    const double t0 = now_ns();
+    for (const Pose& p : poses) {
+        rugo_contact_output out = rugo_contact_output_of(buf, kCap);
+        rugo_collide_shapes(bodies[(size_t)p.a].shape, p.xa, bodies[(size_t)p.b].shape, p.xb, &q, ctx, &out);
+    }
+    return now_ns() - t0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1485,13 +1503,15 @@ int main(int argc, char** argv) {
             contacts_hash = true;
         else if (std::strcmp(argv[i], "--ray-casts") == 0)
             ray_casts = true;
+        else if (std::strcmp(argv[i], "--resolution") == 0 && i + 1 < argc)
+            g_resolution = std::atof(argv[++i]);
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
-            std::fprintf(
-                stderr,
-                "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]\n",
-                argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]; "
+                         "[--resolution D] for the rugo methods (default 0)\n",
+                         argv[0]);
             return 2;
         } else
             dir = argv[i];
@@ -1544,11 +1564,11 @@ int main(int argc, char** argv) {
             static rugo_contact cbuf[kCap];
             std::uint64_t h = SAMPLE_FNV_OFFSET;
             for (size_t i = 0; i < P; ++i) {
-                int n = 0;
-                rugo_contact_state st = RUGO_STATE_APART;
-                rugo_collide_shapes(ctx, bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
-                                    poses[i].xb, &q, cbuf, kCap, &n, &st, nullptr);
-                const int head[2] = {(int)st, n};
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                    poses[i].xb, &q, ctx, &out);
+                const int n = out.count;
+                const int head[2] = {(int)out.state, n};
                 h = sample_fnv1a(h, head, sizeof head);
                 for (int k = 0; k < n; ++k) { /* field by field: padding bytes are not part of the answer */
                     const rugo_contact& c = cbuf[k];
@@ -1561,7 +1581,11 @@ int main(int argc, char** argv) {
                     h = sample_fnv1a(h, &c.id, sizeof c.id);
                 }
             }
-            std::printf("contacts_hash level %d: %016llx (%zu poses)\n", L, (unsigned long long)h, P);
+            /* and the time per query (best of 5 passes over the poses; a quick look, not the benchmark) */
+            double best = HUGE_VAL;
+            for (int rep = 0; rep < 5; ++rep) best = std::min(best, time_poses(ctx, bodies, poses, q, cbuf));
+            std::printf("contacts_hash level %d: %016llx (%zu poses; %.0f ns per query)\n", L, (unsigned long long)h, P,
+                        best / (double)P);
         }
         rugo_collide_context_destroy(ctx);
         for (auto& b : bodies) rugo_shape_destroy(b.shape);
@@ -1648,9 +1672,8 @@ int main(int argc, char** argv) {
                 boxes += qs.box_tests;
                 return;
             }
-            int n = 0;
-            rugo_contact_state st;
-            rugo_collide_shapes(ctx, A.shape, poses[i].xa, B.shape, poses[i].xb, &q, cbuf, kCap, &n, &st, nullptr);
+            rugo_contact_output o = rugo_contact_output_of(cbuf, kCap);
+            rugo_collide_shapes(A.shape, poses[i].xa, B.shape, poses[i].xb, &q, ctx, &o);
         });
         std::printf("# rugo level %d: %.1f box tests, %.1f segment pairs per query\n", L, (double)boxes / (double)P,
                     r.pairs);

@@ -248,7 +248,7 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
             rugo::RoughBodyDef rd;
             rd.shape = set.shapes[static_cast<size_t>(k)];
             rd.density = kDensity;
-            rd.level = var == kAuto ? rugo::kAutoLevel : 0;
+            rd.lod = var == kAuto ? RUGO_LOD_AUTO : 0;
             if (world->bridge->Attach(b, rd) != RUGO_OK) return false;
         } else if (var == kPolygon) {
             for (const Piece& pc : set.pieces[static_cast<size_t>(k)]) {

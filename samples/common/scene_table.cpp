@@ -36,7 +36,7 @@ bool BuildBodies(const scene& s, World* w) {
             rugo::RoughBodyDef rd;
             rd.shape = sb.shape;
             rd.density = sb.density;
-            rd.level = sb.level;
+            rd.lod = sb.level;
             const rugo_status st = w->bridge->Attach(body, rd);
             if (st != RUGO_OK) {
                 std::fprintf(stderr, "Attach(%s): %s\n", sb.name, rugo_status_string(st));

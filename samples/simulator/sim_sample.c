@@ -35,7 +35,7 @@ int sim_build(sim_run* r, const scene* s, const rugo_world_def* def) {
     rugo_world_def wd = def ? *def : rugo_default_world_def();
     wd.gravity = s->gravity;
     wd.time_step = s->time_step;
-    wd.level = s->level;
+    wd.lod = s->level;
     rugo_status st = rugo_world_create(&wd, &r->world);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo_world_create: %s\n", rugo_status_string(st));

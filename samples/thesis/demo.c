@@ -173,19 +173,22 @@ int main(int argc, char** argv) {
         }
         rugo_contact contacts[16];
         rugo_contact_state state = RUGO_STATE_APART;
-        rugo_query_stats stats;
         rugo_contact_query q = rugo_default_contact_query();
         if (ok) {
-            ok = rugo_collide_shapes(ctx, sa, xa, sb, xb, &q, contacts, 16, &contacts_fine, &state, &stats) == RUGO_OK;
+            rugo_contact_output out = rugo_contact_output_of(contacts, 16);
+            ok = rugo_collide_shapes(sa, xa, sb, xb, &q, ctx, &out) == RUGO_OK;
+            contacts_fine = out.count;
+            state = out.state;
             sample_expect("the rough shapes touch within their bands", ok && state == RUGO_STATE_CONTACT && contacts_fine > 0);
             for (int i = 0; i < contacts_fine; ++i) {
                 if (i == 0 || contacts[i].separation < min_sep) min_sep = contacts[i].separation;
                 if (contacts[i].friction > max_mu) max_mu = contacts[i].friction;
             }
             rugo_contact coarse[16];
-            rugo_contact_state cs;
-            q.level = -1;
-            ok = rugo_collide_shapes(ctx, sa, xa, sb, xb, &q, coarse, 16, &contacts_coarse, &cs, NULL) == RUGO_OK;
+            q.lod = -1;
+            rugo_contact_output coarse_out = rugo_contact_output_of(coarse, 16);
+            ok = rugo_collide_shapes(sa, xa, sb, xb, &q, ctx, &coarse_out) == RUGO_OK;
+            contacts_coarse = coarse_out.count;
             sample_expect("level -1 query ran", ok);
             /* The picture: both curves with their bands, contact points and normals. */
             rugo_contour ca, cb;

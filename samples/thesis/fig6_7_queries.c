@@ -47,10 +47,12 @@ typedef struct object {
 } object;
 
 static rugo_contact_state state_of(rugo_collide_context* ctx, const object* a, const object* b) {
-    int n;
-    rugo_contact_state st;
-    rugo_collide_shapes(ctx, a->shape, a->x, b->shape, b->x, NULL, NULL, 0, &n, &st, NULL);
-    return st;
+    /* placed by the round-off answer, whatever resolution the figure's queries run at */
+    rugo_contact_query q = rugo_default_contact_query();
+    q.resolution = 0.0;
+    rugo_contact_output out = rugo_contact_output_of(NULL, 0); /* the state only */
+    rugo_collide_shapes(a->shape, a->x, b->shape, b->x, &q, ctx, &out);
+    return out.state;
 }
 
 /* Smallest distance d along dir from `from` at which b (placed at from + d dir) intersects none of
@@ -174,22 +176,22 @@ int main(int argc, char** argv) {
             const object* B = &obj[pb[k]];
             int np = 0;
             long tests = 0;
-            rugo_tree_pairs(ctx, rugo_shape_tree(A->shape), A->x, rugo_shape_finest_level(A->shape),
-                            rugo_shape_tree(B->shape), B->x, rugo_shape_finest_level(B->shape), NULL, 0, &np,
+            rugo_tree_pairs(rugo_shape_tree(A->shape), A->x, rugo_shape_finest_level(A->shape),
+                            rugo_shape_tree(B->shape), B->x, rugo_shape_finest_level(B->shape), ctx, NULL, 0, &np,
                             &tests);
             tests_total += tests;
-            rugo_contact_state st = RUGO_STATE_APART;
-            rugo_query_stats qs;
+            rugo_contact_output out = rugo_contact_output_of(c[k], CAP);
             int reps = 0;
             double t0 = now(), t1 = t0;
             do { /* repeat until 20 ms have passed (at least 3 times) for a stable mean */
-                rugo_collide_shapes(ctx, A->shape, A->x, B->shape, B->x, NULL, c[k], CAP, &nc[k], &st, &qs);
+                rugo_collide_shapes(A->shape, A->x, B->shape, B->x, NULL, ctx, &out);
                 ++reps;
                 t1 = now();
             } while (reps < 3 || t1 - t0 < 0.02);
             secs += (t1 - t0) / reps;
-            states[s][k] = (int)st;
-            pairs_total += qs.segment_pairs;
+            nc[k] = out.count;
+            states[s][k] = (int)out.state;
+            pairs_total += out.stats.segment_pairs;
             contacts_total += nc[k];
             for (int i = 0; i < nc[k]; ++i) {
                 all_finite &= isfinite(c[k][i].separation) && isfinite(c[k][i].normal.x) &&

@@ -331,28 +331,29 @@ int main(int argc, char** argv) {
         for (int cx = 0; cx <= 20; ++cx) {
             rugo_transform x = rugo_make_transform(-0.6 + 0.05 * cx, 1.6, 0.35);
             rugo_contact c[CAP];
-            int n = 0;
-            rugo_contact_state st = RUGO_STATE_APART;
-            for (int step = 0; step < 2000 && st == RUGO_STATE_APART; ++step) {
+            rugo_contact_output out = rugo_contact_output_of(c, CAP);
+            for (int step = 0; step < 2000 && out.state == RUGO_STATE_APART; ++step) {
                 x.p.y -= 0.0005;
-                if (rugo_collide_shapes(ctx, rock, id, pebble, x, &q, c, CAP, &n, &st, NULL) != RUGO_OK) return 1;
+                if (rugo_collide_shapes(rock, id, pebble, x, &q, ctx, &out) != RUGO_OK) return 1;
             }
             rugo_contact_query coarse = q;
-            coarse.level = -2;
+            coarse.lod = -2;
             rugo_contact cc[CAP];
-            int nc = 0;
-            rugo_contact_state stc = RUGO_STATE_APART;
-            if (rugo_collide_shapes(ctx, rock, id, pebble, x, &coarse, cc, CAP, &nc, &stc, NULL) != RUGO_OK) return 1;
-            if (st == RUGO_STATE_CONTACT && stc == RUGO_STATE_CONTACT && n > 0 && c[0].friction > best_mu) {
+            rugo_contact_output coarse_out = rugo_contact_output_of(cc, CAP);
+            if (rugo_collide_shapes(rock, id, pebble, x, &coarse, ctx, &coarse_out) != RUGO_OK) return 1;
+            if (out.state == RUGO_STATE_CONTACT && coarse_out.state == RUGO_STATE_CONTACT && out.count > 0 &&
+                c[0].friction > best_mu) {
                 best_mu = c[0].friction;
                 xb = x;
             }
         }
-        if (rugo_collide_shapes(ctx, rock, id, pebble, xb, &q, contacts[0], CAP, &count[0], &state[0], NULL) != RUGO_OK)
-            return 1;
-        q.level = -2;
-        if (rugo_collide_shapes(ctx, rock, id, pebble, xb, &q, contacts[1], CAP, &count[1], &state[1], NULL) != RUGO_OK)
-            return 1;
+        for (int k = 0; k < 2; ++k) {
+            q.lod = k == 0 ? 0 : -2;
+            rugo_contact_output out = rugo_contact_output_of(contacts[k], CAP);
+            if (rugo_collide_shapes(rock, id, pebble, xb, &q, ctx, &out) != RUGO_OK) return 1;
+            count[k] = out.count;
+            state[k] = out.state;
+        }
         rugo_collide_context_destroy(ctx);
         printf("pebble at (%.4f, %.4f): level 0 %s with %d contacts, level -2 %s with %d contacts\n", xb.p.x, xb.p.y,
                rugo_contact_state_name(state[0]), count[0], rugo_contact_state_name(state[1]), count[1]);

@@ -2,22 +2,31 @@
 #include "cli.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static void print_vec(const char* name, rugo_vec2 v) { printf("\"%s\": [%.17g, %.17g]", name, v.x, v.y); }
 
 int cmd_contacts(int argc, char** argv) {
-    static const char* const vals[] = {"--pose-a", "--pose-b", "--level", "--tolerance", NULL};
+    static const char* const vals[] = {"--pose-a", "--pose-b", "--lod", "--level", "--error-budget", "--tolerance", NULL};
     args a;
     int rc = parse_args(argc, argv, vals, NULL, &a);
     if (rc) return rc;
     if (a.positional_count != 2) return usage_error("expects two shape files A.json B.json%s", "");
-    const char *pa = opt(&a, "--pose-a", NULL), *pb = opt(&a, "--pose-b", NULL), *lv = opt(&a, "--level", NULL),
+    /* --level is the older name of --lod */
+    const char *pa = opt(&a, "--pose-a", NULL), *pb = opt(&a, "--pose-b", NULL),
+               *lv = opt(&a, "--lod", NULL), *bv = opt(&a, "--error-budget", NULL),
                *tv = opt(&a, "--tolerance", NULL);
+    if (lv == NULL) lv = opt(&a, "--level", NULL);
     rugo_transform xa = rugo_identity_transform(), xb = rugo_identity_transform();
     if (pa && parse_pose(pa, &xa) != 0) return usage_error("--pose-a must be X,Y,THETA, got '%s'", pa);
     if (pb && parse_pose(pb, &xb) != 0) return usage_error("--pose-b must be X,Y,THETA, got '%s'", pb);
     rugo_contact_query q = rugo_default_contact_query();
-    if (lv && parse_int(lv, -30, 30, &q.level) != 0) return usage_error("--level must be an integer, got '%s'", lv);
+    if (lv && strcmp(lv, "auto") == 0)
+        q.lod = RUGO_LOD_AUTO;
+    else if (lv && parse_int(lv, -30, 0, &q.lod) != 0)
+        return usage_error("--lod must be 0 (the finest level), -1, -2, ... (coarser) or auto, got '%s'", lv);
+    if (bv && (parse_real(bv, &q.lod_error_budget) != 0 || !(q.lod_error_budget >= 0.0)))
+        return usage_error("--error-budget must be a length >= 0 (with --lod auto), got '%s'", bv);
     if (tv && (parse_real(tv, &q.tolerance) != 0 || q.tolerance < 0.0))
         return usage_error("--tolerance must be a number >= 0, got '%s'", tv);
     rugo_shape_desc da, db;
@@ -45,7 +54,11 @@ int cmd_contacts(int argc, char** argv) {
             st = RUGO_ERR_OUT_OF_MEMORY;
             break;
         }
-        st = rugo_collide_shapes(ctx, sa, xa, sb, xb, &q, contacts, capacity, &count, &state, &stats);
+        rugo_contact_output out = rugo_contact_output_of(contacts, capacity);
+        st = rugo_collide_shapes(sa, xa, sb, xb, &q, ctx, &out);
+        count = out.count;
+        state = out.state;
+        stats = out.stats;
         if (st != RUGO_OK || stats.contacts_found <= capacity) break;
         capacity = stats.contacts_found; /* every contact, not a truncated list */
     }

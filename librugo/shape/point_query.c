@@ -2,12 +2,12 @@
  * with the same answers, bit for bit, as the contour's passes over all segments (contour.c), at the
  * cost of the boxes near the point (or along its ray) and the few segments under them.
  *
- * Both rely on the tree holding the query level's segments: node (j, k) contains its descendants'
- * boxes down to that level, and each of those its own segment (mobb.h), with round-off pads of their
- * own. A box is skipped only when it keeps more than POINT_PAD (relative to the shape's size and p's
- * distance from it) clear of what the query needs; the contour's per-segment computations are
- * relative to p with errors of a few ulps of the control points' distances from p, far below the
- * pad. */
+ * All three rely on the tree holding the query level's segments: node (j, k) contains its
+ * descendants' boxes down to that level, and each of those its own segment (mobb.h), with round-off
+ * pads of their own. A box is skipped only when it keeps more than POINT_PAD (relative to the shape's
+ * size and the distance of p, or of the ray's origin, from it) clear of what the query needs; the
+ * contour's per-segment computations are relative to p with errors of a few ulps of the control
+ * points' distances from p, far below the pad. */
 #include "rugo/shape.h"
 
 #include "core/internal.h"

@@ -191,9 +191,9 @@ void Bridge::Impl::jointsVsRough(const ProxyRef* self, const ProxyRef* oth, bool
         // Whether the joint is inside O (level LO's curve, through the tree), computed once.
         const auto isInside = [&]() {
             if (ji.inside < 0) {
-                int in = 0;
+                bool in = false;
                 rugo_shape_contains(O->shape, LO, pl, &in);
-                ji.inside = in != 0 ? 1 : 0;
+                ji.inside = in ? 1 : 0;
             }
             return ji.inside != 0;
         };

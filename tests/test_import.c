@@ -697,6 +697,72 @@ static void sample_ok(const rugo_path* p, int subpath, rugo_affine m, int count,
     ck_assert_msg(st == RUGO_OK, "status %d: %s", st, e.message);
 }
 
+/* Speed of the cubic (0,0) (1,1) (0,1) (1,0), which has a cusp at t = 1/2, in long double. */
+static long double cusp_speed(long double t) {
+    const long double u = 1.0L - t;
+    const long double dx = 3.0L * (u * u - 2.0L * u * t + t * t), dy = 3.0L * (u * u - t * t);
+    return sqrtl(dx * dx + dy * dy);
+}
+
+static long double cusp_simpson(long double a, long double fa, long double m, long double fm, long double b,
+                                long double fb, long double whole, long double tol, int depth) {
+    const long double lm = 0.5L * (a + m), rm = 0.5L * (m + b), flm = cusp_speed(lm), frm = cusp_speed(rm);
+    const long double left = (m - a) / 6.0L * (fa + 4.0L * flm + fm), right = (b - m) / 6.0L * (fm + 4.0L * frm + fb);
+    const long double delta = left + right - whole;
+    if (depth >= 60 || fabsl(delta) <= 15.0L * tol) return left + right + delta / 15.0L;
+    return cusp_simpson(a, fa, lm, flm, m, fm, left, 0.5L * tol, depth + 1) +
+           cusp_simpson(m, fm, rm, frm, b, fb, right, 0.5L * tol, depth + 1);
+}
+
+/* Arc length of the cusp cubic from 0 to t, by adaptive Simpson (an independent reference). */
+static long double cusp_length(long double t) {
+    long double total = 0.0L, a = 0.0L;
+    while (a < t) { /* pieces ending at the cusp, so that no piece straddles it */
+        const long double b = a < 0.5L && t > 0.5L ? 0.5L : t, m = 0.5L * (a + b);
+        const long double fa = cusp_speed(a), fm = cusp_speed(m), fb = cusp_speed(b);
+        total += cusp_simpson(a, fa, m, fm, b, fb, (b - a) / 6.0L * (fa + 4.0L * fm + fb), 1e-17L, 0);
+        a = b;
+    }
+    return total;
+}
+
+/* The outline sampler measures and places by the library's certified arc length: on a cubic with a
+ * cusp, the perimeter is within 1e-12 of the reference, and every sample on the cubic sits at j L/(e+1)
+ * of its arc length within 1e-12 L (its parameter recovered from y = 3 t (1 - t), exact near the cusp,
+ * and the side of the cusp from x). */
+START_TEST(sample_cusp_arc_length) {
+    rugo_path p;
+    parse_ok("M 0 0 C 1 1 0 1 1 0 Z", &p);
+    rugo_outline_samples s;
+    sample_ok(&p, -1, rugo_affine_identity(), 41, &s);
+    const long double L = cusp_length(1.0L);
+    ck_assert_msg(fabsl(s.perimeter - (L + 1.0L)) <= 1e-12L * (L + 1.0L), "perimeter %.17g vs %.17Lg", s.perimeter,
+                  L + 1.0L);
+    double pos[64];
+    int e = 0;
+    for (int i = 0; i < s.count; ++i) {
+        if (!(s.points[i].y > 0.0)) continue; /* the closing line and the cubic's ends */
+        const long double u = (0.75L - (long double)s.points[i].y) / 3.0L; /* (t - 1/2)^2 */
+        const long double t = 0.5L + (s.points[i].x < 0.5 ? -1.0L : 1.0L) * sqrtl(u > 0.0L ? u : 0.0L);
+        ck_assert(e < 64);
+        pos[e++] = (double)cusp_length(t);
+    }
+    ck_assert_int_ge(e, 20);
+    for (int i = 0; i < e; ++i)
+        for (int j = i + 1; j < e; ++j)
+            if (pos[j] < pos[i]) {
+                const double tmp = pos[i];
+                pos[i] = pos[j];
+                pos[j] = tmp;
+            }
+    for (int j = 0; j < e; ++j)
+        ck_assert_msg(fabsl(pos[j] - L * (j + 1) / (e + 1)) <= 1e-12L * L, "sample %d of %d: %.17g vs %.17Lg", j + 1,
+                      e, pos[j], L * (j + 1) / (e + 1));
+    rugo_outline_samples_free(&s);
+    rugo_path_free(&p);
+}
+END_TEST
+
 static double polygon_area(const rugo_vec2* p, int n) {
     double a = 0.0;
     for (int i = 0; i < n; ++i)
@@ -1305,6 +1371,59 @@ START_TEST(automatic_control_count) {
 }
 END_TEST
 
+/* A circle of radius 1e-300 (and 1e300): every squared distance underflowed (overflowed) and the fit
+ * reported an error of 0. The fit runs on the samples scaled by a power of two, so its errors are
+ * those of the unit circle's fit times the radius, and a power-of-two radius gives exactly the scaled
+ * control points. */
+START_TEST(fit_outline_extreme_radius) {
+    enum { M = 64, N = 16 };
+    rugo_vec2 unit[M], tiny[M];
+    for (int i = 0; i < M; ++i) unit[i] = rugo_v2(cos(2 * PI * i / M), sin(2 * PI * i / M));
+    rugo_outline_fit_def fd = rugo_default_outline_fit_def();
+    fd.samples = unit;
+    fd.sample_count = M;
+    fd.control_count = N;
+    rugo_outline_fit ref, f;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &ref), RUGO_OK);
+    ck_assert(ref.max_error > 1e-6 && ref.max_error < 1e-2); /* the cubic's deviation from a circle */
+    const double radii[4] = {1e-300, 1e300, 0x1p-997, 0x1p+997};
+    for (int v = 0; v < 4; ++v) {
+        for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(radii[v], unit[i]);
+        fd.samples = tiny;
+        ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+        ck_assert_int_eq(f.control_count, N);
+        ck_assert_msg(fabs(f.max_error / radii[v] - ref.max_error) <= 1e-9 * ref.max_error,
+                      "radius %g: max_error %g", radii[v], f.max_error);
+        ck_assert(fabs(f.rms_error / radii[v] - ref.rms_error) <= 1e-9 * ref.rms_error);
+        ck_assert(fabs(f.max_error_at_parameter / radii[v] - ref.max_error_at_parameter) <=
+                  1e-9 * ref.max_error_at_parameter);
+        for (int j = 0; j < N; ++j) {
+            if (v >= 2) { /* a power of two: the same bits, scaled */
+                ck_assert(f.control_points[j].x == radii[v] * ref.control_points[j].x);
+                ck_assert(f.control_points[j].y == radii[v] * ref.control_points[j].y);
+            } else {
+                ck_assert(fabs(f.control_points[j].x / radii[v] - ref.control_points[j].x) <= 1e-12);
+                ck_assert(fabs(f.control_points[j].y / radii[v] - ref.control_points[j].y) <= 1e-12);
+            }
+        }
+        rugo_outline_fit_free(&f);
+    }
+    /* The automatic search on the tiny circle finds the count the unit circle's would. */
+    fd.control_count = 0;
+    fd.samples = unit;
+    fd.tolerance = 1e-4;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &ref), RUGO_OK);
+    for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(1e-300, unit[i]);
+    fd.samples = tiny;
+    fd.tolerance = 1e-304;
+    ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
+    ck_assert_int_eq(f.control_count, ref.control_count);
+    ck_assert_int_eq(f.tolerance_met, ref.tolerance_met);
+    rugo_outline_fit_free(&f);
+    rugo_outline_fit_free(&ref);
+}
+END_TEST
+
 START_TEST(fit_bad_input) {
     rugo_vec2 pts[64];
     for (int i = 0; i < 64; ++i)
@@ -1426,6 +1545,7 @@ static Suite* import_suite(void) {
 
     TCase* ts = tcase_create("sampling");
     tcase_add_test(ts, sample_square_by_hand);
+    tcase_add_test(ts, sample_cusp_arc_length);
     tcase_add_test(ts, sample_circle_of_arcs);
     tcase_add_test(ts, sample_circle_of_cubics);
     tcase_add_test(ts, sample_subpath_choice);
@@ -1446,6 +1566,7 @@ static Suite* import_suite(void) {
     tcase_add_test(tf, circle_fit_error);
     tcase_add_test(tf, automatic_control_count);
     tcase_add_test(tf, fit_bad_input);
+    tcase_add_test(tf, fit_outline_extreme_radius);
     tcase_add_test(tf, points_pipeline_matches_fit_contour);
     suite_add_tcase(s, tf);
 #endif

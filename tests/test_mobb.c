@@ -805,12 +805,27 @@ static void ref_projection_extremes(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_
     *hi = mx;
 }
 
+/* Method (a)'s weight of a segment: its arc length by the 4-point Gauss-Legendre rule (3.6)-(3.7), as
+ * mobb.c weighs (a weight needs no more; rugo_contour_segment_length is the certified length). */
+static double ref_weight_length(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
+    static const double x[4] = {0.06943184420297371238802676, 0.3300094782075718675986671,
+                                0.6699905217924281324013329, 0.9305681557970262876119732};
+    static const double wt[4] = {0.173927422568726928686532, 0.326072577431273071313468,
+                                 0.326072577431273071313468, 0.173927422568726928686532};
+    double sum = 0.0;
+    for (int g = 0; g < 4; ++g) {
+        double t = x[g], dx = (v.x * t + w.x) * t + r.x, dy = (v.y * t + w.y) * t + r.y;
+        sum += wt[g] * sqrt(dx * dx + dy * dy);
+    }
+    return 0.5 * sum;
+}
+
 static rugo_obb ref_segment_box(rugo_contour c, int segment, double band, double min_length, double* length_out) {
     rugo_vec2 v, w, r, b[4];
     rugo_contour_derivative_coefficients(c, segment, &v, &w, &r);
     rugo_contour_bezier(c, segment, b);
     double length = rugo_contour_segment_length(c, segment);
-    if (length_out) *length_out = length;
+    if (length_out) *length_out = ref_weight_length(v, w, r);
     rugo_vec2 samples[5];
     int ns = 0;
     if (length > min_length) {

@@ -93,6 +93,7 @@ void test_budget_free(void* p, void* ctx) {
 rugo_contact_query test_exact_query(void) {
     rugo_contact_query q = rugo_default_contact_query();
     q.resolution = 0.0;
+    q.contact_rule = RUGO_CONTACT_THESIS;
     return q;
 }
 

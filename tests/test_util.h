@@ -48,7 +48,8 @@ typedef struct test_budget_ctx {
 void* test_budget_alloc(size_t n, void* ctx);
 void test_budget_free(void* p, void* ctx);
 
-/* rugo_default_contact_query() at resolution 0: the round-off answers the accuracy tests pin. */
+/* rugo_default_contact_query() at resolution 0 with the thesis' rule (minima of the distance): the
+ * round-off answers the accuracy tests pin against their references. */
 rugo_contact_query test_exact_query(void);
 
 /* The contact queries as the suites assert on them (a NULL query: test_exact_query()): the caller's array and room in, the count, state

@@ -127,6 +127,7 @@ typedef enum rugo_status {
     RUGO_ERR_TRUNCATED = 27,        /**< a file or buffer shorter than its header says */
     RUGO_ERR_TOO_LARGE = 28,        /**< an input beyond the documented size limit */
     RUGO_ERR_BAD_SIZE = 29,         /**< an outline too small or too large for a shape (RUGO_SHAPE_MIN_SIZE..MAX_SIZE) */
+    RUGO_ERR_CACHE_MISMATCH = 30,   /**< a contact cache holding another pair's answer (clear it, or keep one per pair) */
     RUGO_STATUS_COUNT               /**< the number of codes (not a status) */
 } rugo_status;
 

@@ -83,6 +83,7 @@ typedef struct rugo_query_stats {
     long newton_iterations; /**< total Newton iterations */
     long fallbacks;         /**< pairs decided by subdivision because Newton did not settle */
     int contacts_found;     /**< before truncation to the caller's capacity */
+    int reused;             /**< 1: the answer is the contact cache's, moved with the shapes (no search) */
 } rugo_query_stats;
 
 /** rugo_contact_query.lod (and the Box2D bridge's RoughBodyDef::lod): each shape's coarsest level whose
@@ -145,20 +146,45 @@ typedef struct rugo_contact_query {
  * for μ, min for ε, margin 0, cookie set. */
 RUGO_API rugo_contact_query rugo_default_contact_query(void);
 
+/** The last answer for one pair of shapes, kept by the caller from step to step (opaque; one per pair;
+ * see rugo_contact_output.cache and docs/contacts.md, "Coherence"). */
+typedef struct rugo_contact_cache rugo_contact_cache;
+
 /** Where a query writes what it found. The caller sets `contacts` and `capacity` (its room: contacts
- * may be NULL when capacity is 0); the query sets the rest. Capacity 0 asks for the state only: the
- * query then stops as soon as the state is known, and count, contacts_found and the statistics of the
- * stages it skipped stay 0. */
+ * may be NULL when capacity is 0), and optionally `cache`; the query sets the rest. Capacity 0 asks for
+ * the state only: the query then stops as soon as the state is known, and count, contacts_found and
+ * the statistics of the stages it skipped stay 0. */
 typedef struct rugo_contact_output {
     rugo_contact* contacts;   /**< caller's array of `capacity` contacts (deepest first within each region, regions in a stable order) */
     int capacity;             /**< room in `contacts` (>= 0) */
+    /** Optional (NULL: none): the pair's cache. A query whose shapes moved relative to each other by
+     * at most a quarter of its resolution since the answer the cache holds returns that answer moved
+     * with the shapes (stats.reused 1; still certified to the resolution); otherwise it searches and
+     * stores its answer in the cache. Resolution 0 reuses only an unchanged pair of poses. */
+    rugo_contact_cache* cache;
     int count;                /**< contacts written (<= capacity) */
     rugo_contact_state state; /**< what the query found */
     rugo_query_stats stats;   /**< what it cost */
 } rugo_contact_output;
 
-/** An output over the caller's array: contacts, capacity; the rest zero. */
+/** An output over the caller's array: contacts, capacity; the rest zero (no cache). */
 RUGO_API rugo_contact_output rugo_contact_output_of(rugo_contact* contacts, int capacity);
+
+/** Creates an empty contact cache with room for `capacity` contacts into *out (owned by the caller; free
+ * with rugo_contact_cache_destroy). It allocates through a copy of `allocator` (NULL = malloc/free)
+ * here and in rugo_contact_cache_reserve only: queries never allocate for it (an answer with more
+ * contacts than its room is not kept). Errors: NULL_ARGUMENT, BAD_ARGUMENT (capacity < 0 or beyond
+ * RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY. */
+RUGO_API rugo_status rugo_contact_cache_create(const rugo_allocator* allocator, int capacity,
+                                               rugo_contact_cache** out);
+/** Grows the cache's room to at least `capacity` contacts (it never shrinks; the answer it holds is
+ * kept). Errors: NULL_ARGUMENT, BAD_ARGUMENT (as create), OUT_OF_MEMORY (the cache keeps what it had). */
+RUGO_API rugo_status rugo_contact_cache_reserve(rugo_contact_cache* cache, int capacity);
+/** Forgets the answer (e.g. when a shape of the pair is destroyed or replaced); the room is kept. The
+ * next query with it searches, for any pair. NULL is allowed. */
+RUGO_API void rugo_contact_cache_clear(rugo_contact_cache* cache);
+/** Frees the cache; NULL is allowed. */
+RUGO_API void rugo_contact_cache_destroy(rugo_contact_cache* cache);
 
 /** Reusable scratch for queries (node stacks, pair lists; opaque). One per thread. */
 typedef struct rugo_collide_context rugo_collide_context;
@@ -183,7 +209,9 @@ RUGO_API rugo_status rugo_collide_context_reserve(rugo_collide_context* ctx, con
  * out->capacity set by the caller; see rugo_contact_output). query may be NULL (the defaults). Errors
  * (then out->count is 0 and out->state APART): NULL_ARGUMENT (a, b, ctx, out, or contacts with
  * capacity > 0), BAD_ARGUMENT (query cookie, lod, budget, margin, mix rules, capacity < 0),
- * NOT_FINITE (a transform or a query length), OUT_OF_MEMORY (the context could not grow). */
+ * NOT_FINITE (a transform or a query length), OUT_OF_MEMORY (the context could not grow),
+ * CACHE_MISMATCH (out->cache holds the answer of other shapes, of shapes since destroyed and rebuilt
+ * differently, or of another context: clear it; the cache is left as it was). */
 RUGO_API rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
                                          rugo_transform xb, const rugo_contact_query* query,
                                          rugo_collide_context* ctx, rugo_contact_output* out);
@@ -215,7 +243,8 @@ RUGO_API rugo_status rugo_make_polygon(const rugo_vec2* points, int count, rugo_
                                        rugo_primitive* out);
 
 /** Contacts between shape A placed by xa and primitive B placed by xb (B smooth: tolerance 0 unless
- * the query overrides it), into *out as rugo_collide_shapes. Contacts carry the shape's own friction
+ * the query overrides it), into *out as rugo_collide_shapes (at round-off whatever query.resolution, which
+ * is checked; out->cache is not used). Contacts carry the shape's own friction
  * and restitution, unmixed (segment_b -1, t_b 0, level_b 0). Errors: those of rugo_collide_shapes, and
  * NULL_ARGUMENT (b), NOT_FINITE (a point or the radius), BAD_ARGUMENT (count outside 1..8, negative
  * radius, 3..8 points not convex and counter-clockwise). */

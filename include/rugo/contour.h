@@ -90,17 +90,20 @@ RUGO_API void rugo_contour_bezier(rugo_contour c, int segment, rugo_vec2 out[4])
 RUGO_API void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2* v, rugo_vec2* w,
                                                    rugo_vec2* r);
 
-/** Arc length of one segment (length units) by 4-point Gauss-Legendre (3.6)-(3.7). The segment
- * index wraps; 0 for count < 1. */
+/** Arc length of one segment (length units) to a relative error below 1e-13: adaptive 7-15 point
+ * Gauss-Kronrod with its error estimate, the segment split first where its speed nearly vanishes (a
+ * cusp, a tripled control point), bisecting until the estimates sum to at most 1e-13 of the length
+ * (docs/accuracy.md). The segment index wraps; 0 for count < 1. */
 RUGO_API rugo_real rugo_contour_segment_length(rugo_contour c, int segment);
-/** Arc length of one segment by adaptive Gauss-Legendre to |error| <= tolerance (absolute); the
- * estimate of the error actually reached, round-off included, goes to *error_bound (may be NULL).
- * Returns RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if the depth limit is reached,
+/** Arc length of one segment by the same adaptive Gauss-Kronrod to |error| <= tolerance (absolute);
+ * the estimate of the error actually reached, round-off included, goes to *error_bound (may be NULL).
+ * Returns RUGO_ERR_NOT_CONVERGED (with the best estimate in *length) if 256 pieces do not reach it,
  * e.g. for a tolerance tighter than double precision allows; NULL_ARGUMENT, TOO_FEW_POINTS,
  * BAD_ARGUMENT (tolerance not finite and > 0). */
 RUGO_API rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
                                                           rugo_real* length, rugo_real* error_bound);
-/** Whole perimeter (length units), 4-point Gauss-Legendre per segment. 0 for count < 1. */
+/** Whole perimeter (length units): the sum of rugo_contour_segment_length (compensated), so within
+ * 1e-13 relative. 0 for count < 1. */
 RUGO_API rugo_real rugo_contour_perimeter(rugo_contour c);
 
 /** Exact mass properties of the enclosed region for unit density, by Green's theorem with Gauss

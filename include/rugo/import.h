@@ -194,7 +194,8 @@ RUGO_API rugo_outline_sample_def rugo_default_outline_sample_def(void);
 typedef struct rugo_outline_samples {
     rugo_vec2* points;   /**< counter-clockwise in the transformed frame; points[0] is the subpath's start */
     int count;           /**< M, less any exactly repeated points removed */
-    rugo_real perimeter; /**< arc length of the transformed subpath (adaptive Gauss-Legendre), length units */
+    rugo_real perimeter; /**< arc length of the transformed subpath (adaptive Gauss-Kronrod, relative
+                              error below 1e-13), length units */
     rugo_real area;      /**< area of the sample polygon (> 0), squared length units */
     int subpath;         /**< index of the subpath sampled */
     int segment_count;   /**< its segments S (segments shorter than 1e-12 of the perimeter not counted) */

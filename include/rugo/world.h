@@ -73,6 +73,12 @@ typedef struct rugo_body_def {
     rugo_vec2 linear_velocity;  /**< of the centre of mass, m/s */
     rugo_real angular_velocity; /**< rad/s */
     rugo_real density;          /**< kg/m^2, > 0 for a dynamic body; default 1 */
+    /** Rolling resistance from roughness (docs/roughness.md, "Rolling resistance"), >= 0, default 0
+     * (off: the thesis' dynamics): at each impulse of a contact, an angular impulse of at most
+     * k J_n (λ_A + λ_B) against the two bodies' relative turning (J_n the normal impulse, λ the bands at
+     * the contact, k the larger of the two bodies' values), never more than stops it. Errors: NOT_FINITE,
+     * BAD_ARGUMENT (negative). */
+    rugo_real rolling_resistance;
     void* user_data;            /**< the caller's, returned in rugo_body_state; never dereferenced */
     int cookie;                 /**< set by rugo_default_body_def; catches uninitialised defs */
 } rugo_body_def;

@@ -37,6 +37,7 @@ const char* rugo_status_string(rugo_status status) {
     case RUGO_ERR_TRUNCATED: return "data shorter than its header says (truncated)";
     case RUGO_ERR_TOO_LARGE: return "input beyond the size limit";
     case RUGO_ERR_BAD_SIZE: return "outline too small or too large for a shape";
+    case RUGO_ERR_CACHE_MISMATCH: return "contact cache holds another pair of shapes or context (clear it)";
     case RUGO_STATUS_COUNT: break;
     }
     return "unknown status";

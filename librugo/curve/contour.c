@@ -212,11 +212,7 @@ static void segment_power_local(rugo_contour c, int j, rugo_vec2 k[4]) {
 /* ---------------------------------------------------------------------------------------------------
  * Arc length (3.6)-(3.7). */
 
-/* Gauss-Legendre rules on [0, 1]: nodes and weights (the weights sum to 1). */
-static const rugo_real gl4_x[4] = {0.06943184420297371238802676, 0.3300094782075718675986671,
-                                   0.6699905217924281324013329, 0.9305681557970262876119732};
-static const rugo_real gl4_w[4] = {0.173927422568726928686532, 0.326072577431273071313468,
-                                   0.326072577431273071313468, 0.173927422568726928686532};
+/* Gauss-Legendre rule on [0, 1] (6 points, for the mass properties): nodes and weights (sum 1). */
 static const rugo_real gl6_x[6] = {0.03376524289842398609384922, 0.1693953067668677431693002,
                                    0.3806904069584015456847491, 0.6193095930415984543152509,
                                    0.8306046932331322568306998, 0.9662347571015760139061508};
@@ -224,55 +220,26 @@ static const rugo_real gl6_w[6] = {0.08566224618958517252014807, 0.1803807865240
                                    0.2339569672863455236949352, 0.2339569672863455236949352,
                                    0.1803807865240693037849168, 0.08566224618958517252014807};
 
-/* Integral of |f'| over [a, b] by 4-point Gauss-Legendre. */
-static rugo_real speed_gl4(const rugo_vec2 k[4], rugo_real a, rugo_real b) {
-    rugo_real h = b - a, s = 0.0;
-    for (int i = 0; i < 4; ++i) s += gl4_w[i] * rugo__v2_length(power_d1(k, a + h * gl4_x[i]));
-    return h * s;
+static double power_speed(const void* ctx, double t) {
+    return rugo__v2_length(power_d1((const rugo_vec2*)ctx, t));
+}
+
+/* Segment j's length by rugo__arc_length (curve/internal.h), split where f' nearly vanishes: with
+ * f'(t) = k1 + 2 k2 t + 3 k3 t^2. */
+static void segment_arc(rugo_contour c, int segment, rugo_real rel_tol, rugo_real abs_tol, rugo__arc* arc) {
+    rugo_vec2 k[4];
+    segment_power_local(c, segment, k);
+    double breaks[RUGO__ARC_MAX_BREAKS];
+    const int nb = rugo__arc_speed_breaks(k[1], rugo_v2(2.0 * k[2].x, 2.0 * k[2].y),
+                                          rugo_v2(3.0 * k[3].x, 3.0 * k[3].y), breaks);
+    rugo__arc_length(power_speed, k, breaks, nb, rel_tol, abs_tol, arc);
 }
 
 rugo_real rugo_contour_segment_length(rugo_contour c, int segment) {
     if (c.points == NULL || c.count < 1) return 0.0;
-    rugo_vec2 k[4];
-    segment_power_local(c, segment, k);
-    return speed_gl4(k, 0.0, 1.0);
-}
-
-/* Depth 40 resolves features down to 1e-12 of the segment; the evaluation budget bounds the work
- * when the tolerance asks for more than double precision can give. */
-#define ARC_MAX_DEPTH 40
-#define ARC_MAX_RULES 20000
-
-typedef struct arc_ctx {
-    const rugo_vec2* k;
-    rugo_real tol; /* per unit of parameter */
-    int rules;     /* GL4 evaluations so far */
-    int failed;
-    ksum err;
-} arc_ctx;
-
-/* whole = GL4 on [a, b]. The halves' sum is accepted once it agrees with whole to the interval's
- * share of the tolerance. |whole - halves| is the error estimate of `whole`; the halves are far more
- * accurate (GL4 error falls as h^8 for smooth speed, and still at least as h^2 at a cusp, where
- * |f'| has a kink), so summing these differences bounds the error of the result from above. */
-static rugo_real arc_adapt(arc_ctx* x, rugo_real a, rugo_real b, rugo_real whole, int depth) {
-    rugo_real m = a + 0.5 * (b - a);
-    rugo_real left = speed_gl4(x->k, a, m), right = speed_gl4(x->k, m, b);
-    x->rules += 2;
-    /* The halves' own round-off joins the estimate, so that the bound stays honest when the two
-     * estimates agree to the last bit, and a tolerance below double precision is not "met". */
-    rugo_real halves = left + right, diff = fabs(halves - whole) + 4.0 * DBL_EPSILON * fabs(halves);
-    /* Never accept at the top level: one lucky agreement of two estimates proves little. */
-    if (depth > 0 && diff <= x->tol * (b - a)) {
-        ksum_add(&x->err, diff);
-        return halves;
-    }
-    if (depth >= ARC_MAX_DEPTH || x->rules >= ARC_MAX_RULES || !isfinite(diff)) {
-        x->failed = 1;
-        ksum_add(&x->err, diff);
-        return halves;
-    }
-    return arc_adapt(x, a, m, left, depth + 1) + arc_adapt(x, m, b, right, depth + 1);
+    rugo__arc arc;
+    segment_arc(c, segment, RUGO__ARC_REL_TOL, 0.0, &arc);
+    return arc.length;
 }
 
 rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, rugo_real tolerance,
@@ -283,18 +250,11 @@ rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, ru
     if (c.points == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (c.count < 4) return RUGO_ERR_TOO_FEW_POINTS;
     if (!(tolerance > 0.0) || !isfinite(tolerance)) return RUGO_ERR_BAD_ARGUMENT;
-    rugo_vec2 k[4];
-    segment_power_local(c, segment, k);
-    arc_ctx x;
-    x.k = k;
-    x.tol = tolerance;
-    x.rules = 1;
-    x.failed = 0;
-    x.err.s = x.err.c = 0.0;
-    rugo_real len = arc_adapt(&x, 0.0, 1.0, speed_gl4(k, 0.0, 1.0), 0);
-    *length = len;
-    if (error_bound) *error_bound = ksum_value(&x.err);
-    return x.failed ? RUGO_ERR_NOT_CONVERGED : RUGO_OK;
+    rugo__arc arc;
+    segment_arc(c, segment, 0.0, tolerance, &arc);
+    *length = arc.length;
+    if (error_bound) *error_bound = arc.error;
+    return arc.converged ? RUGO_OK : RUGO_ERR_NOT_CONVERGED;
 }
 
 rugo_real rugo_contour_perimeter(rugo_contour c) {

@@ -61,6 +61,45 @@ rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarse
                                       const unsigned char* local, const rugo_allocator* allocator,
                                       rugo_pyramid** out);
 
+/* ---- arc length (arc_length.c): the one arc-length integrator of the library ---------------------- */
+
+/* The speed |c'(t)| of a curve piece on [0, 1], for ctx. */
+typedef double (*rugo__speed_fn)(const void* ctx, double t);
+
+/* Relative error bound every length the library reports or places samples by is computed to:
+ * perimeters, segment lengths (roughness ranges and profiles), outline sampling. */
+#define RUGO__ARC_REL_TOL 1e-13
+#define RUGO__ARC_MAX_PIECES 256
+#define RUGO__ARC_MAX_BREAKS 4
+
+/* An accepted piece [a, b] of the parameter interval, its length and the bound on that length's error. */
+typedef struct rugo__arc_piece {
+    double a, b, length, error;
+} rugo__arc_piece;
+
+/* The result: the pieces in order of a (covering [0, 1]), their total length and total error bound
+ * (compensated sums); converged = 0 when the bound could not be brought within the tolerance in
+ * RUGO__ARC_MAX_PIECES pieces, or a length is not finite. */
+typedef struct rugo__arc {
+    double length, error;
+    int count, converged;
+    rugo__arc_piece piece[RUGO__ARC_MAX_PIECES];
+} rugo__arc;
+
+/* The arc length of a curve on [0, 1] to error <= max(abs_tol, rel_tol * length): 7-15 point
+ * Gauss-Kronrod on the pieces between the breaks (interior points where the speed nearly vanishes,
+ * e.g. from rugo__arc_speed_breaks; any order, those outside (0, 1) ignored), bisecting the piece of
+ * largest error estimate (|K15 - G7| plus round-off) until the sum of the estimates meets the
+ * tolerance. Deterministic: the same calls in the same order. */
+void rugo__arc_length(rugo__speed_fn speed, const void* ctx, const double* breaks, int break_count,
+                      double rel_tol, double abs_tol, rugo__arc* out);
+/* 15-point Kronrod on [a, b]; *error (may be NULL) gets |K15 - G7| plus round-off. */
+double rugo__arc_gk15(rugo__speed_fn speed, const void* ctx, double a, double b, double* error);
+/* The interior minima of |d(t)| on (0, 1) for a quadratic derivative d(t) = a + b t + c t^2 that lie
+ * below a quarter of its largest value there (cusps and near-cusps), into breaks (room for
+ * RUGO__ARC_MAX_BREAKS); returns their count. */
+int rugo__arc_speed_breaks(rugo_vec2 a, rugo_vec2 b, rugo_vec2 c, double* breaks);
+
 /* ---- paths (path_segment.c) and the outline sampler (outline_sample.c), also for io's SVG readers --- */
 
 /* "RSmp": marks a def that came from rugo_default_outline_sample_def (the sampler and

@@ -1,7 +1,7 @@
 /* Arc-length sampling of one closed subpath of a path (rugo_outline_sample, import.h): adaptive
- * Gauss-Legendre arc length per segment, samples shared among the segments by largest remainders, each
- * placed by inverting the arc length, then the sample polygon's orientation and area, all under the
- * def's affine map. */
+ * Gauss-Kronrod arc length per segment (rugo__arc_length), samples shared among the segments by
+ * largest remainders, each placed by inverting the arc length, then the sample polygon's orientation
+ * and area, all under the def's affine map. */
 #include "rugo/import.h"
 
 #include "core/internal.h"
@@ -37,82 +37,35 @@ static const double kGLx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664
 static const double kGLw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
                                0.1012285362903763};
 
-static double gl_length(const mapped* g, double a, double b) {
-    const double h = 0.5 * (b - a), c = 0.5 * (a + b);
-    double sum = 0.0;
-    for (int i = 0; i < 4; ++i)
-        sum += kGLw[i] * (mapped_speed(g, c - h * kGLx[i]) + mapped_speed(g, c + h * kGLx[i]));
-    return h * sum;
-}
+static double speed_of(const void* g, double t) { return mapped_speed((const mapped*)g, t); }
 
-/* Adaptive arc length, as a left-to-right walk over accepted intervals ("leaves"), so that the same
- * walk both measures a segment and, repeated, places samples in it: an interval is accepted when its
- * halves agree with it to kLeafTolerance of the segment's length per unit of parameter, or at depth
- * kLeafDepth (a cusp or a kink of the speed refines only the intervals next to it). */
-#define LEAF_DEPTH 16
-static const double kLeafTolerance = 1e-12;
-
-typedef struct leaf_walk {
-    const mapped* g;
-    double scale; /* the segment's length estimate, for the relative test */
-    int top;
-    struct {
-        double a, b, whole;
-        int depth;
-    } stack[LEAF_DEPTH + 2];
-} leaf_walk;
-
-static void leaf_walk_init(leaf_walk* w, const mapped* g) {
-    w->g = g;
-    w->stack[0].a = 0.0;
-    w->stack[0].b = 1.0;
-    w->stack[0].whole = gl_length(g, 0.0, 1.0);
-    w->stack[0].depth = 0;
-    w->scale = fabs(w->stack[0].whole);
-    w->top = 1;
-}
-
-/* Next leaf [*a, *b] and its length; 0 when the walk is over. */
-static int leaf_walk_next(leaf_walk* w, double* a, double* b, double* len) {
-    while (w->top > 0) {
-        --w->top;
-        const double la = w->stack[w->top].a, lb = w->stack[w->top].b, whole = w->stack[w->top].whole;
-        const int depth = w->stack[w->top].depth;
-        const double mid = 0.5 * (la + lb);
-        const double left = gl_length(w->g, la, mid), right = gl_length(w->g, mid, lb);
-        /* A length that overflows (a speed beyond doubles, or inf - inf in the derivative of control
-         * points near DBL_MAX) can never pass the test: without the isfinite stop every such segment
-         * was split to the full depth, 2^LEAF_DEPTH leaves, only for the sampling to refuse the
-         * non-finite total afterwards (found while writing fuzz_import: 600 such segments, 24 s). */
-        if (depth >= LEAF_DEPTH || !isfinite(left + right) ||
-            fabs(left + right - whole) <= kLeafTolerance * w->scale * (lb - la)) {
-            *a = la;
-            *b = lb;
-            *len = left + right;
-            return 1;
+/* A segment's arc length by rugo__arc_length (curve/internal.h), to RUGO__ARC_REL_TOL, its pieces
+ * kept for placing samples. Lines, quadratics and cubics have a quadratic derivative (under the map
+ * too): fitted through t = 0, 1/2, 1, it gives the speed's near-zero minima to split at; an arc's
+ * speed never comes near zero. */
+static void mapped_arc(const mapped* g, rugo__arc* arc) {
+    double breaks[RUGO__ARC_MAX_BREAKS];
+    int nb = 0;
+    if (g->s->kind != RUGO_PATH_ARC) {
+        rugo_vec2 d[3];
+        for (int i = 0; i < 3; ++i) {
+            const rugo_vec2 u = rugo__path_segment_derivative(g->s, 0.5 * i);
+            d[i] = rugo_v2(g->m.a * u.x + g->m.c * u.y, g->m.b * u.x + g->m.d * u.y);
         }
-        /* Right half below the left one, so the left one comes out first. */
-        w->stack[w->top].a = mid;
-        w->stack[w->top].b = lb;
-        w->stack[w->top].whole = right;
-        w->stack[w->top].depth = depth + 1;
-        ++w->top;
-        w->stack[w->top].a = la;
-        w->stack[w->top].b = mid;
-        w->stack[w->top].whole = left;
-        w->stack[w->top].depth = depth + 1;
-        ++w->top;
+        /* d(t) = d0 + b t + c t^2 with d(1/2) = d0 + b/2 + c/4 and d(1) = d0 + b + c. */
+        const rugo_vec2 c =
+            rugo_v2(2.0 * (d[0].x - 2.0 * d[1].x + d[2].x), 2.0 * (d[0].y - 2.0 * d[1].y + d[2].y));
+        const rugo_vec2 bb = rugo_v2(d[2].x - d[0].x - c.x, d[2].y - d[0].y - c.y);
+        if (rugo__v2_finite(c) && rugo__v2_finite(bb) && rugo__v2_finite(d[0]))
+            nb = rugo__arc_speed_breaks(d[0], bb, c, breaks);
     }
-    return 0;
+    rugo__arc_length(speed_of, g, breaks, nb, RUGO__ARC_REL_TOL, 0.0, arc);
 }
 
 static double mapped_length(const mapped* g) {
-    leaf_walk w;
-    leaf_walk_init(&w, g);
-    double a, b, len, total = 0.0;
-    while (leaf_walk_next(&w, &a, &b, &len))
-        total += len;
-    return total;
+    rugo__arc arc;
+    mapped_arc(g, &arc);
+    return arc.length;
 }
 
 /* The parameter t in [a, b] where the arc length from the segment's start reaches target, given the
@@ -124,7 +77,7 @@ static double invert_arc_length(const mapped* g, double a, double b, double s_a,
     frac = frac < 0.0 ? 0.0 : (frac > 1.0 ? 1.0 : frac);
     double t = a + (b - a) * frac;
     for (int it = 0; it < 200; ++it) {
-        const double f = s_a + gl_length(g, a, t) - target;
+        const double f = s_a + rugo__arc_gk15(speed_of, g, a, t, NULL) - target;
         if (f == 0.0) break;
         if (f > 0.0)
             hi = t;
@@ -396,26 +349,21 @@ rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline
         pts[w++] = mapped_point(&g, 0.0);
         const int e = extra[k];
         if (e == 0) continue;
-        /* Targets j len_k / (e + 1), j = 1..e, placed during a second identical walk. */
-        leaf_walk lw;
-        leaf_walk_init(&lw, &g);
-        double a, b, l, s_a = 0.0;
+        /* Targets j len_k / (e + 1), j = 1..e, each placed in the piece of the segment's arc length
+         * (the same computation as len[k], so the same pieces) that holds it. */
+        rugo__arc arc;
+        mapped_arc(&g, &arc);
+        double s_a = 0.0;
         int j = 1;
-        int more = leaf_walk_next(&lw, &a, &b, &l);
-        while (more && j <= e) {
-            double na, nb, nl;
-            const int next = leaf_walk_next(&lw, &na, &nb, &nl);
-            const double s_b = s_a + l;
+        for (int p = 0; p < arc.count && j <= e; ++p) {
+            const rugo__arc_piece* pc = &arc.piece[p];
+            const double s_b = s_a + pc->length;
             for (; j <= e; ++j) {
                 const double target = len[k] * ((double)j / (double)(e + 1));
-                if (target >= s_b && next) break;
-                pts[w++] = mapped_point(&g, invert_arc_length(&g, a, b, s_a, l, target));
+                if (target >= s_b && p + 1 < arc.count) break;
+                pts[w++] = mapped_point(&g, invert_arc_length(&g, pc->a, pc->b, s_a, pc->length, target));
             }
             s_a = s_b;
-            a = na;
-            b = nb;
-            l = nl;
-            more = next;
         }
         RUGO_ASSERT(j == e + 1);
     }

@@ -6,6 +6,7 @@
 #include "rugo/contour.h"
 #include "rugo/fit.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -75,6 +76,25 @@ rugo_status fit_once(const rugo_outline_fit_def& def, const rugo_allocator& al, 
     return RUGO_OK;
 }
 
+/* The power of two 2^k that brings the samples' largest coordinate into [1/2, 1), or 0 when no scaling is
+ * needed: within [2^-200, 2^200] squared distances neither underflow nor overflow. Beyond, e.g. a circle
+ * of radius 1e-300, every squared distance underflows to 0 and the fit reported an error of 0 (or
+ * failed); scaling by a power of two is exact for normal numbers, so the fit of the scaled samples is
+ * the scaled fit. Non-finite samples: 0 (rugo_fit_contour reports them). */
+int sample_scale_exponent(const rugo_vec2* samples, int count) {
+    double mx = 0.0;
+    for (int k = 0; k < count; ++k) {
+        if (!std::isfinite(samples[k].x) || !std::isfinite(samples[k].y)) return 0;
+        mx = std::fmax(mx, std::fmax(std::fabs(samples[k].x), std::fabs(samples[k].y)));
+    }
+    if (!(mx > 0.0) || (mx >= std::ldexp(1.0, -200) && mx <= std::ldexp(1.0, 200))) return 0;
+    int e = 0;
+    (void)std::frexp(mx, &e);
+    return -e;
+}
+
+rugo_status fit_outline_scaled(const rugo_outline_fit_def* def, rugo_outline_fit* out);
+
 } // namespace
 
 extern "C" {
@@ -100,6 +120,9 @@ rugo_status rugo_fit_outline(const rugo_outline_fit_def* def, rugo_outline_fit* 
     if (def == nullptr || out == nullptr) return RUGO_ERR_NULL_ARGUMENT;
     if (def->cookie != kOutlineFitCookie) return RUGO_ERR_BAD_ARGUMENT;
     if (def->samples == nullptr) return RUGO_ERR_NULL_ARGUMENT;
+    if (def->sample_count > 0 && def->sample_count <= RUGO_MAX_CONTROL_POINTS &&
+        sample_scale_exponent(def->samples, def->sample_count) != 0)
+        return fit_outline_scaled(def, out);
     const int automatic = def->control_count == 0;
     int lo = def->control_count, hi = def->control_count;
     if (automatic) {
@@ -161,3 +184,39 @@ void rugo_outline_fit_free(rugo_outline_fit* fit) {
 }
 
 } // extern "C"
+
+namespace {
+
+/* rugo_fit_outline on the samples scaled by 2^k (sample_scale_exponent), the result scaled back. */
+rugo_status fit_outline_scaled(const rugo_outline_fit_def* def, rugo_outline_fit* out) {
+    const int k = sample_scale_exponent(def->samples, def->sample_count);
+    const rugo_allocator al = rugo__allocator_or_default(&def->allocator);
+    rugo_vec2* scaled = static_cast<rugo_vec2*>(
+        rugo__alloc_array(&al, static_cast<std::size_t>(def->sample_count), sizeof(rugo_vec2)));
+    if (scaled == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
+    for (int i = 0; i < def->sample_count; ++i)
+        scaled[i] = rugo_v2(std::ldexp(def->samples[i].x, k), std::ldexp(def->samples[i].y, k));
+    rugo_outline_fit_def d = *def;
+    d.samples = scaled;
+    d.tolerance = std::ldexp(def->tolerance, k);
+    /* A tolerance the scaling pushes out of range is clamped (the validation stays the unscaled one's). */
+    const int clamped = std::isfinite(def->tolerance) && def->tolerance > 0.0 &&
+                        (!std::isfinite(d.tolerance) || !(d.tolerance > 0.0));
+    if (clamped) d.tolerance = std::isfinite(d.tolerance) ? DBL_TRUE_MIN : DBL_MAX;
+    const rugo_status st = rugo_fit_outline(&d, out);
+    rugo__free(&al, scaled);
+    if (st != RUGO_OK) return st;
+    for (int i = 0; i < out->control_count; ++i)
+        out->control_points[i] =
+            rugo_v2(std::ldexp(out->control_points[i].x, -k), std::ldexp(out->control_points[i].y, -k));
+    out->max_error = std::ldexp(out->max_error, -k);
+    out->rms_error = std::ldexp(out->rms_error, -k);
+    out->max_error_at_parameter = std::ldexp(out->max_error_at_parameter, -k);
+    /* Judged in the scaled problem, where the errors are exact, unless the tolerance was clamped. */
+    if (clamped)
+        out->tolerance_met = !(def->tolerance > 0.0) || out->max_error <= def->tolerance;
+    return RUGO_OK;
+}
+
+} // namespace
+

@@ -241,8 +241,10 @@ typedef struct query_side {
     rugo_real slack;         /* growth of the boxes */
 } query_side;
 
-/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked). */
-int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q);
+/* The absolute level the query's level of detail gives the shape (rugo_contact_query.lod, checked),
+ * or a coarser one whose certified error, added to that level's, is at most level_budget (a share of
+ * the query's resolution; 0: none). */
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q, rugo_real level_budget);
 /* s for shape at absolute `level` (J_min..J); override >= 0: the query's tolerance instead of the
  * shape's. */
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override);
@@ -335,6 +337,14 @@ typedef struct contact_out {
     const query_side* B; /* NULL for primitives */
     rugo_real override;
 } contact_out;
+
+/* How a query's resolution δ is shared: each shape may take a coarser level whose error is within
+ * δ/4 of the chosen one's, the narrow phase runs at δ/2, and a cached answer is given back while the
+ * shapes have moved relative to each other by at most δ/4 (contact_cache.c), so every separation stays
+ * within δ. */
+#define RESOLUTION_LEVEL_SHARE 0.25
+#define RESOLUTION_NARROW_SHARE 0.5
+#define RESOLUTION_MOTION_SHARE 0.25
 
 /* The query's resolution δ for shapes of the given sizes (RUGO_RESOLUTION_AUTO: 1e-4 of the smaller). */
 static inline rugo_real rugo__query_resolution(const rugo_contact_query* q, rugo_real size_a, rugo_real size_b) {
@@ -443,6 +453,24 @@ int rugo__primitive_normal_fits(const primitive* P, const hit* h, rugo_vec2 n);
  * every stationary pair (with B's normal or corner) into ss. 0 if out of memory. */
 int rugo__primitive_narrow(rugo_collide_context* ctx, primitive_pair* g, int ka, rugo__array* xs, size_t* nx,
                            rugo__array* ss, size_t* ns);
+
+/* ---------------------------------------------------------------------------------------------------
+ * The contact cache (contact_cache.c). */
+
+/* CACHE_MISMATCH if c holds the answer of another pair of shapes (or of shapes rebuilt differently
+ * since) or of another context; OK for an empty cache. */
+rugo_status rugo__cache_check(const rugo_contact_cache* c, const rugo_shape* a, const rugo_shape* b,
+                              const rugo_collide_context* ctx);
+/* Gives back the cached answer, moved with the shapes, if the query is the cached one and the shapes
+ * moved relative to each other by at most RESOLUTION_MOTION_SHARE delta (delta 0: not at all); 1 if it
+ * did. c must have passed rugo__cache_check. */
+int rugo__cache_reuse(const rugo_contact_cache* c, rugo_transform xa, rugo_transform xb,
+                      const rugo_contact_query* q, rugo_real delta, rugo_contact_output* out);
+/* Keeps out's answer (if whole and within the cache's room; else the cache is emptied), searched at xa,
+ * xb with B's side at its query level (override: the query's constant band, or < 0). */
+void rugo__cache_store(rugo_contact_cache* c, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
+                       rugo_transform xb, const rugo_contact_query* q, const rugo_collide_context* ctx,
+                       const query_side* B, rugo_real override, const rugo_contact_output* out);
 
 /* ---------------------------------------------------------------------------------------------------
  * Overlaps below the resolution (collide_below_resolution.c). */

@@ -15,9 +15,15 @@ static int resolve_level(const rugo_shape* s, int level) {
     return l;
 }
 
-int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q) {
-    if (q->lod == RUGO_LOD_AUTO) return rugo_shape_level_for_error(shape, q->lod_error_budget);
-    return resolve_level(shape, q->lod);
+int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q, rugo_real level_budget) {
+    const int level = q->lod == RUGO_LOD_AUTO ? rugo_shape_level_for_error(shape, q->lod_error_budget)
+                                              : resolve_level(shape, q->lod);
+    /* A resolution allows a coarser level whose error against the finest, added to the chosen level's
+     * own, stays within its share of the resolution: the answer moves by at most that much. */
+    int j = level;
+    const rugo_real own = rugo__shape_level_error(shape, level);
+    while (j > rugo_shape_coarsest_level(shape) && rugo__shape_level_error(shape, j - 1) + own <= level_budget) --j;
+    return j;
 }
 
 void rugo__query_side_init(query_side* s, const rugo_shape* shape, int level, rugo_real override) {

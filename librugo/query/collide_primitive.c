@@ -78,7 +78,7 @@ static void primitive_frame_and_levels(primitive_query* s, rugo_collide_context*
     s->P = P;
     rugo__primitive_into_frame(P, xa);
 
-    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q, 0.0), override);
     primitive_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;

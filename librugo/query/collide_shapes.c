@@ -42,6 +42,34 @@ static void banded_piece(const shape_pair* g, const query_side* s, int k, const 
     }
 }
 
+/* The round-off narrow phase finds the minima of the distance; with bands that vary (the shapes' own,
+ * not a constant override) the band-adjusted rule wants those of φ = d - λ_A - λ_B: each minimum is
+ * moved to the minimum of φ that Newton reaches from it on the two pieces (left where Newton does not
+ * converge, and where the pieces carry no band). A minimum of φ whose basin holds no minimum of the
+ * distance is found only at a resolution above 0 (docs/contacts.md). */
+static void polish_to_bands(const shape_pair* g, int ka, const rugo_vec2 fl[4], int kb, const rugo_vec2 gl[4],
+                            rugo__narrow_result* r) {
+    rugo__banded_piece bf, bg;
+    banded_piece(g, g->A, ka, fl, &bf);
+    banded_piece(g, g->B, kb, gl, &bg);
+    int banded = 0;
+    for (int h = 0; h < 2 && !banded; ++h)
+        for (int i = 0; i < 4 && !banded; ++i)
+            banded = bf.band[h][i] != bf.band[0][0] || bg.band[h][i] != bg.band[0][0];
+    if (!banded) return;
+    for (int i = 0; i < r->stationary_count; ++i) {
+        rugo__pair_point* p = &r->stationary[i];
+        if (p->kind != RUGO__MINIMUM) continue;
+        rugo_real s = p->s, t = p->t, phi = 0.0;
+        if (!rugo__polish_band_minimum(&bf, &bg, &s, &t, &phi)) continue;
+        p->s = s;
+        p->t = t;
+        p->pa = rugo__bezier_point(fl, s);
+        p->pb = rugo__bezier_point(gl, t);
+        p->distance = rugo__v2_length(rugo_v2_sub(p->pb, p->pa));
+    }
+}
+
 /* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. At a resolution
  * (g->delta > 0) the first pass and the region depths run the narrow phase to that resolution, on the
  * band-adjusted distance (`cutoff` then bounds φ = d - λ_A - λ_B for minima: band_cutoff), falling back
@@ -66,7 +94,10 @@ static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, narrow_ask ask,
                               RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &r);
         resolved = !r.overflow;
     }
-    if (!resolved) rugo__narrow_pieces(fl, gl, cutoff, &r);
+    if (!resolved) {
+        rugo__narrow_pieces(fl, gl, cutoff, &r);
+        if (ask == ASK_FIRST_PASS && !g->thesis_rule && g->override < 0.0) polish_to_bands(g, ka, fl, kb, gl, &r);
+    }
     const int src = g->src++;
     if (g->stats != NULL) {
         g->stats->segment_pairs += 1;
@@ -557,6 +588,12 @@ typedef struct shape_query {
 } shape_query;
 
 /* Frame and levels: both shapes at the query's level, B's pieces in A's frame, the output. */
+/* The query's resolution δ for the two shapes (length units). */
+static rugo_real query_delta(const rugo_shape* a, const rugo_shape* b, const rugo_contact_query* q) {
+    return rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(a))),
+                                  rugo__box_size(rugo_mobb_tree_root(rugo_shape_tree(b))));
+}
+
 static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context* ctx, const rugo_shape* a,
                                            rugo_transform xa, const rugo_shape* b, rugo_transform xb,
                                            const rugo_contact_query* q, rugo_query_stats* stats) {
@@ -564,8 +601,9 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     s->ctx = ctx;
     s->q = q;
     s->override = override;
-    rugo__query_side_init(&s->A, a, rugo__query_level(a, q), override);
-    rugo__query_side_init(&s->B, b, rugo__query_level(b, q), override);
+    const rugo_real delta = query_delta(a, b, q);
+    rugo__query_side_init(&s->A, a, rugo__query_level(a, q, RESOLUTION_LEVEL_SHARE * delta), override);
+    rugo__query_side_init(&s->B, b, rugo__query_level(b, q, RESOLUTION_LEVEL_SHARE * delta), override);
     shape_pair* g = &s->g;
     memset(g, 0, sizeof *g);
     g->A = &s->A;
@@ -578,8 +616,7 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     g->margin = q->margin;
     g->override = override;
     g->thesis_rule = q->contact_rule == RUGO_CONTACT_THESIS;
-    g->delta = rugo__query_resolution(q, rugo__box_size(rugo_mobb_tree_root(s->A.tree)),
-                                      rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
+    g->delta = RESOLUTION_NARROW_SHARE * delta;
     if (!rugo__piece_table_setup(ctx, g)) return RUGO_ERR_OUT_OF_MEMORY;
     contact_out* o = &s->o;
     memset(o, 0, sizeof *o);
@@ -766,6 +803,12 @@ rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const ru
     rugo_status st = rugo__check_query(q, out);
     if (st != RUGO_OK) return st;
     if (!rugo__transform_finite(xa) || !rugo__transform_finite(xb)) return RUGO_ERR_NOT_FINITE;
+    /* the pair's cached answer, if the shapes have hardly moved since (contact_cache.c) */
+    if (out->cache != NULL) {
+        st = rugo__cache_check(out->cache, a, b, ctx);
+        if (st != RUGO_OK) return st;
+        if (rugo__cache_reuse(out->cache, xa, xb, q, query_delta(a, b, q), out)) return RUGO_OK;
+    }
 
     /* frame and levels */
     shape_query s;
@@ -793,5 +836,6 @@ rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const ru
     /* finish */
     out->state = state;
     rugo__finish_contacts(&s.o, out->contacts, out->capacity, &out->count, &out->stats);
+    if (out->cache != NULL) rugo__cache_store(out->cache, a, xa, b, xb, q, ctx, &s.B, s.override, out);
     return RUGO_OK;
 }

@@ -985,6 +985,23 @@ void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece
     out->overflow |= c.overflow;
 }
 
+int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s, rugo_real* t,
+                              rugo_real* phi) {
+    rctx c;
+    c.f = f;
+    c.g = g;
+    c.banded_f = is_banded(f);
+    c.banded_g = is_banded(g);
+    c.newton = 0;
+    rugo_real ext = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ext = mx(ext, mx(fabs(f->p[i].x - f->p[0].x), fabs(f->p[i].y - f->p[0].y)));
+        ext = mx(ext, mx(fabs(g->p[i].x - f->p[0].x), fabs(g->p[i].y - f->p[0].y)));
+    }
+    c.scale = ext;
+    return polish_minimum(&c, s, t, phi);
+}
+
 void rugo__banded_piece_smooth(const rugo_vec2 p[4], rugo__banded_piece* out) {
     memset(out, 0, sizeof *out);
     for (int i = 0; i < 4; ++i)

@@ -51,6 +51,12 @@ enum {
 void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real cutoff,
                            rugo_real saddle_cutoff, rugo_real delta, int want, rugo__narrow_result* out);
 
+/* Newton on the gradient of φ from (s, t) (the pieces' own domain; φ must not rise): 1 and the minimum
+ * of φ it converged to, with *phi; 0 where it did not converge, leaving s and t. The round-off queries
+ * move the distance's minima to the band-adjusted ones this way. */
+int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s, rugo_real* t,
+                              rugo_real* phi);
+
 /* A smooth piece (λ = 0) from four Bezier points. */
 void rugo__banded_piece_smooth(const rugo_vec2 p[4], rugo__banded_piece* out);
 

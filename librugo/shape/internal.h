@@ -37,6 +37,15 @@ typedef struct rugo__shape_parts {
     rugo_allocator allocator;
 } rugo__shape_parts;
 
+/* rugo_shape_level_error's bound at a level (J_min..J; computed when the shape was built; +inf where it
+ * failed or the level is out of range). */
+rugo_real rugo__shape_level_error(const rugo_shape* s, int level);
+
+/* A 64-bit hash of everything a contact query reads from the shape (every level's control points and
+ * bands, the friction map, the restitution), computed when the shape was built; 0 for NULL. Equal
+ * shapes have equal fingerprints, in any process. */
+uint64_t rugo__shape_fingerprint(const rugo_shape* s);
+
 /* A shape from stored parts, without recomputing them (values are decoded once, into the pyramid,
  * the tree and the shape). Checks levels and the surface; the pyramid constructor below checks the
  * outline. Errors: NULL_ARGUMENT, BAD_LEVEL, the surface's, OUT_OF_MEMORY, the outline's. */

@@ -32,6 +32,7 @@ struct rugo_shape {
     rugo_real* band_bound; /* level j at offset 2^j - 2^J_min, 2^j values */
     rugo_real band_excess[31];
     rugo_real level_error[31]; /* rugo_shape_level_error's bound per level (+inf where it fails) */
+    uint64_t fingerprint;      /* of what a query answers from (rugo__shape_fingerprint) */
     /* A shape loaded from parts (baked.c) keeps λ and β here instead of in a rugo_tolerances, whose
      * constructor would recompute them: own, total, bound, each laid out like band_bound, then the
      * band bounds themselves (band_bound points there: one allocation). */
@@ -108,14 +109,39 @@ static rugo_status simple_coarsest(const rugo_pyramid* p, const rugo_allocator* 
     return RUGO_OK;
 }
 
-/* The certified level-of-detail error of every level, once: queries at RUGO_LOD_AUTO choose by it. */
-static void store_level_errors(rugo_shape* s) {
+/* FNV-1a over n bytes. */
+static uint64_t hash_bytes(uint64_t h, const void* v, size_t n) {
+    const unsigned char* b = (const unsigned char*)v;
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
+
+/* What is derived once the parts are in place: the certified level-of-detail error of every level
+ * (queries at RUGO_LOD_AUTO choose by it), and the fingerprint of everything a contact query reads
+ * (every level's points and bands, the surface), by which a contact cache knows its shapes. */
+static void store_derived(rugo_shape* s) {
     for (int j = s->coarsest; j <= s->finest; ++j) {
         rugo_real e = HUGE_VAL;
         if (rugo_shape_level_error(s, j, NULL, &e) != RUGO_OK || !(e >= 0.0)) e = HUGE_VAL;
         s->level_error[j] = e;
     }
+    uint64_t h = 14695981039346656037ull;
+    const rugo_real head[] = {(rugo_real)s->coarsest, (rugo_real)s->finest, (rugo_real)s->reversed,
+                              s->friction.alpha, s->friction.lambda_min, s->friction.base,
+                              s->restitution.epsilon, s->restitution.epsilon_max};
+    h = hash_bytes(h, head, sizeof head);
+    for (int j = s->coarsest; j <= s->finest; ++j) {
+        rugo_contour c;
+        rugo_tolerance_level tl;
+        rugo_pyramid_level(s->pyramid, j, &c);
+        rugo_shape_tolerance_level(s, j, &tl);
+        h = hash_bytes(h, c.points, (size_t)c.count * sizeof *c.points);
+        h = hash_bytes(h, tl.total, (size_t)tl.count * sizeof *tl.total);
+    }
+    s->fingerprint = h;
 }
+
+uint64_t rugo__shape_fingerprint(const rugo_shape* s) { return s != NULL ? s->fingerprint : 0; }
 
 rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_contour_problem* problem) {
     if (out != NULL) *out = NULL;
@@ -229,7 +255,7 @@ rugo_status rugo_shape_create(const rugo_shape_def* def, rugo_shape** out, rugo_
         }
         s->band_excess[j] = j == s->finest ? 0.0 : excess;
     }
-    store_level_errors(s);
+    store_derived(s);
     *out = s;
     return RUGO_OK;
 }
@@ -274,6 +300,11 @@ rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* pe
         return RUGO_OK;
     }
     return rugo_tolerance_level_error(coarse, tc.total, finest, tf.total, per_segment, max_error);
+}
+
+rugo_real rugo__shape_level_error(const rugo_shape* s, int level) {
+    if (s == NULL || level < s->coarsest || level > s->finest) return HUGE_VAL;
+    return s->level_error[level];
 }
 
 int rugo_shape_level_for_error(const rugo_shape* s, rugo_real budget) {
@@ -384,7 +415,7 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
     rugo_real excess[31];
     rugo__decode_f64_le(excess, parts->band_excess, (size_t)(J - Jmin + 1));
     for (int j = Jmin; j <= J; ++j) s->band_excess[j] = excess[j - Jmin];
-    store_level_errors(s);
+    store_derived(s);
     *out = s;
     return RUGO_OK;
 }

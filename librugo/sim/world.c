@@ -108,8 +108,10 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     if (def->shape == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (def->type != RUGO_BODY_STATIC && def->type != RUGO_BODY_DYNAMIC) return RUGO_ERR_BAD_ARGUMENT;
     if (!rugo__v2_finite(def->transform.p) || !isfinite(def->transform.q.c) || !isfinite(def->transform.q.s) ||
-        !rugo__v2_finite(def->linear_velocity) || !isfinite(def->angular_velocity) || !isfinite(def->density))
+        !rugo__v2_finite(def->linear_velocity) || !isfinite(def->angular_velocity) || !isfinite(def->density) ||
+        !isfinite(def->rolling_resistance))
         return RUGO_ERR_NOT_FINITE;
+    if (def->rolling_resistance < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if (!rot_ok(def->transform.q)) return RUGO_ERR_BAD_ARGUMENT;
     if (def->type == RUGO_BODY_DYNAMIC && !(def->density > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
     if (w->count >= MAX_BODIES) return RUGO_ERR_TOO_LARGE;
@@ -144,6 +146,7 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     b->root = *root;
     b->size = hypot(root->half[0], root->half[1]);
     b->restitution = rugo_shape_restitution(def->shape);
+    b->rolling_resistance = def->rolling_resistance;
     b->user_data = def->user_data;
     if (def->type == RUGO_BODY_DYNAMIC) {
         b->mass = mass;

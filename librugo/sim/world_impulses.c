@@ -42,6 +42,22 @@ static rugo_real contact_restitution(const rugo_world* w, const body* A, const b
     return eps > 1.0 ? 1.0 : eps;
 }
 
+/* Rolling resistance from roughness (rugo_body_def.rolling_resistance): the asperities of the bands
+ * resist the bodies' relative turning with an angular impulse of at most k J_n (λ_A + λ_B), the normal
+ * impulse times the bands at the contact, never more than stops the relative turning (so it never adds
+ * energy). A smooth contact (λ = 0) rolls freely. */
+static void resist_rolling(body* A, body* B, rugo_real impulse_normal, rugo_real lam) {
+    const rugo_real k = A->rolling_resistance > B->rolling_resistance ? A->rolling_resistance : B->rolling_resistance;
+    const rugo_real ii = A->inv_inertia + B->inv_inertia;
+    const rugo_real rel = B->w - A->w;
+    if (!(k > 0.0) || !(lam > 0.0) || !(ii > 0.0) || rel == 0.0) return;
+    rugo_real j = k * fabs(impulse_normal) * lam;
+    if (j > fabs(rel) / ii) j = fabs(rel) / ii;
+    if (rel < 0.0) j = -j;
+    A->w += A->inv_inertia * j;
+    B->w -= B->inv_inertia * j;
+}
+
 /* One impulse for the group led by contact g (see docs/simulator.md, "Contact groups"): at the centre
  * of the approaching points weighted by approach speed × depth in the band, so that a flat face
  * resting on a flat face gets its impulse in the middle rather than at one end first. Returns 1 if an
@@ -168,6 +184,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     A->w += A->inv_inertia * rugo_v2_cross(in.r_a, r.impulse);
     B->v = rugo_v2_sub(B->v, rugo_v2_scale(B->inv_mass, r.impulse));
     B->w -= B->inv_inertia * rugo_v2_cross(in.r_b, r.impulse);
+    resist_rolling(A, B, r.impulse_normal, lam);
     w->stats.impulses++;
     if (!rugo__world_reserve(w, &w->records, w->record_count + 1, sizeof(rugo_contact_record))) {
         *status = RUGO_ERR_OUT_OF_MEMORY;

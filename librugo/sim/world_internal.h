@@ -23,6 +23,7 @@ typedef struct body {
     rugo_obb root;     /* local */
     rugo_real size;    /* root half-diagonal */
     rugo_restitution restitution;
+    rugo_real rolling_resistance; /* rugo_body_def.rolling_resistance */
     void* user_data;
 } body;
 

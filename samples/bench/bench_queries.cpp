@@ -624,12 +624,16 @@ struct Pose {
 
 /* The resolution the "rugo L" methods run at (0: round-off; --resolution sets it). */
 double g_resolution = 0.0;
+/* Their contact rule: the thesis' minima of the distance, which the reference computes and the
+ * polygons (which have no band) compare with; --band-adjusted: the library's default rule. */
+rugo_contact_rule g_rule = RUGO_CONTACT_THESIS;
 
 rugo_contact_query make_query(int level, double margin) {
     rugo_contact_query q = rugo_default_contact_query();
     q.lod = level;
     q.margin = margin;
     q.resolution = g_resolution;
+    q.contact_rule = g_rule;
     return q;
 }
 
@@ -1491,10 +1495,118 @@ __attribute__((noinline)) double time_poses(rugo_collide_context* ctx, const std
     return now_ns() - t0;
 }
 
+/* The two subsets under their own names (noipa: not folded into one), so that a profiler can count either alone
+ * (valgrind --tool=callgrind --toggle-collect='*time_smooth_poses*'). */
+__attribute__((noipa)) double time_smooth_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
+                                                   const std::vector<Pose>& poses, const rugo_contact_query& q,
+                                                   rugo_contact* buf) {
+    return time_poses(ctx, bodies, poses, q, buf);
+}
+
+__attribute__((noipa)) double time_rough_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
+                                                  const std::vector<Pose>& poses, const rugo_contact_query& q,
+                                                  rugo_contact* buf) {
+    return time_poses(ctx, bodies, poses, q, buf);
+}
+
+/* Warm queries (rugo_contact_output.cache): each pose's cache filled at the pose, then B moved relative
+ * to A by one 1/60 s step of a speed v (size units per second, in a seeded direction) and a turn rate w;
+ * the queries at the moved poses timed with their caches (warm) and without (cold), alternating, median
+ * of the passes; the warm answers checked against the cold ones (state, separations within delta). */
+int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, const std::vector<Pose>& poses,
+                 bool quick) {
+    const rugo_contact_query q = make_query(0, kWindow);
+    const size_t P = poses.size();
+    std::vector<rugo_contact_cache*> caches(P, nullptr);
+    for (auto& c : caches) rugo_contact_cache_create(nullptr, kCap, &c);
+    static rugo_contact cbuf[kCap], wbuf[kCap];
+    std::printf("# warm queries at level 0, resolution %g (size 1), margin %g; %zu poses\n", g_resolution, kWindow,
+                P);
+    std::printf("%-14s %10s %10s %8s %8s %12s %s\n", "v, w (1/s)", "cold ns", "warm ns", "cold/warm", "reused",
+                "max |ds|", "state differs");
+    const double speeds[][2] = {{1.0, 1.0}, {0.1, 0.1}, {0.01, 0.01}, {0.001, 0.001}, {0.0, 0.0}};
+    for (const auto& vw : speeds) {
+        rugo_rng rng;
+        rugo_rng_seed(&rng, 20261128);
+        std::vector<Pose> moved = poses;
+        for (Pose& p : moved) {
+            const double th = rugo_rng_range(&rng, 0.0, 2.0 * kPi), dt = 1.0 / 60.0;
+            p.xb.p = rugo_v2(p.xb.p.x + vw[0] * dt * std::cos(th), p.xb.p.y + vw[0] * dt * std::sin(th));
+            p.xb.q = rugo_rot_from_angle(std::atan2(p.xb.q.s, p.xb.q.c) + vw[1] * dt);
+        }
+        std::vector<double> cold_t, warm_t;
+        long reused = 0, differs = 0;
+        double max_ds = 0.0;
+        const int reps = quick ? 1 : 7;
+        for (int rep = 0; rep < reps; ++rep) {
+            for (size_t i = 0; i < P; ++i) { /* the caches, at the step's start (not timed) */
+                rugo_contact_cache_clear(caches[i]);
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                out.cache = caches[i];
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                    poses[i].xb, &q, ctx, &out);
+            }
+            double t0 = now_ns();
+            for (size_t i = 0; i < P; ++i) {
+                rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                    moved[i].xb, &q, ctx, &out);
+            }
+            cold_t.push_back(now_ns() - t0);
+            t0 = now_ns();
+            for (size_t i = 0; i < P; ++i) {
+                rugo_contact_output out = rugo_contact_output_of(wbuf, kCap);
+                out.cache = caches[i];
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                    moved[i].xb, &q, ctx, &out);
+            }
+            warm_t.push_back(now_ns() - t0);
+        }
+        /* the answers: warm (the caches now hold the moved poses' searches where they searched, so
+         * refill them at the step's start first) against cold */
+        for (size_t i = 0; i < P; ++i) {
+            rugo_contact_cache_clear(caches[i]);
+            rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
+            out.cache = caches[i];
+            rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
+                                poses[i].xb, &q, ctx, &out);
+            rugo_contact_output w = rugo_contact_output_of(wbuf, kCap);
+            w.cache = caches[i];
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                moved[i].xb, &q, ctx, &w);
+            rugo_contact_output c = rugo_contact_output_of(cbuf, kCap);
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
+                                moved[i].xb, &q, ctx, &c);
+            reused += w.stats.reused;
+            differs += w.state != c.state;
+            for (int k = 0; k < c.count; ++k) { /* each cold contact against the warm one nearest its point */
+                double best = HUGE_VAL, bd = HUGE_VAL;
+                for (int j = 0; j < w.count; ++j) {
+                    const double d = std::hypot(cbuf[k].point_a.x - wbuf[j].point_a.x, cbuf[k].point_a.y - wbuf[j].point_a.y);
+                    if (d < bd) {
+                        bd = d;
+                        best = std::fabs(cbuf[k].separation - wbuf[j].separation);
+                    }
+                }
+                if (w.count > 0) max_ds = std::max(max_ds, best);
+            }
+        }
+        std::sort(cold_t.begin(), cold_t.end());
+        std::sort(warm_t.begin(), warm_t.end());
+        const double c = cold_t[cold_t.size() / 2] / (double)P, w = warm_t[warm_t.size() / 2] / (double)P;
+        std::printf("%5.3f, %5.3f   %10.0f %10.0f %8.2fx %7.1f%% %12.2e %ld\n", vw[0], vw[1], c, w, c / w,
+                    100.0 * (double)reused / (double)P, max_ds, differs);
+    }
+    for (auto& c : caches) rugo_contact_cache_destroy(c);
+    rugo_collide_context_destroy(ctx);
+    for (auto& b : bodies) rugo_shape_destroy(b.shape);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, strip = true, contacts_hash = false, ray_casts = false;
+    bool quick = false, strip = true, contacts_hash = false, ray_casts = false, warm = false;
     const char* dir = "out/bench_queries";
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0)
@@ -1503,8 +1615,12 @@ int main(int argc, char** argv) {
             contacts_hash = true;
         else if (std::strcmp(argv[i], "--ray-casts") == 0)
             ray_casts = true;
+        else if (std::strcmp(argv[i], "--warm") == 0)
+            warm = true;
         else if (std::strcmp(argv[i], "--resolution") == 0 && i + 1 < argc)
             g_resolution = std::atof(argv[++i]);
+        else if (std::strcmp(argv[i], "--band-adjusted") == 0)
+            g_rule = RUGO_CONTACT_BAND_ADJUSTED;
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
@@ -1512,6 +1628,7 @@ int main(int argc, char** argv) {
                          "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]; "
                          "[--resolution D] for the rugo methods (default 0)\n",
                          argv[0]);
+            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --warm; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
             return 2;
         } else
             dir = argv[i];
@@ -1558,18 +1675,34 @@ int main(int argc, char** argv) {
         }
     const size_t P = poses.size();
 
+    if (warm) return warm_queries(ctx, bodies, poses, quick);
+
     if (contacts_hash) {
+        for (const Body& b : bodies) { /* what a resolution may coarsen to: each level's certified error */
+            std::printf("# %s level errors:", b.name.c_str());
+            for (int j = rugo_shape_finest_level(b.shape); j >= rugo_shape_coarsest_level(b.shape); --j) {
+                double e = 0.0;
+                rugo_shape_level_error(b.shape, j, nullptr, &e);
+                std::printf(" %d:%.1e", j, e);
+            }
+            std::printf("\n");
+        }
         for (int L : levels) {
             const rugo_contact_query q = make_query(L, kWindow);
             static rugo_contact cbuf[kCap];
-            std::uint64_t h = SAMPLE_FNV_OFFSET;
+            std::uint64_t h = SAMPLE_FNV_OFFSET, hs = SAMPLE_FNV_OFFSET; /* all poses; the smooth ones */
+            long work[2][2] = {{0, 0}, {0, 0}}; /* [smooth, rough][box tests, segment pairs] */
             for (size_t i = 0; i < P; ++i) {
+                const bool smooth = !bodies[(size_t)poses[i].a].rough;
                 rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
                 rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
                                     poses[i].xb, &q, ctx, &out);
                 const int n = out.count;
+                work[smooth ? 0 : 1][0] += out.stats.box_tests;
+                work[smooth ? 0 : 1][1] += out.stats.segment_pairs;
                 const int head[2] = {(int)out.state, n};
                 h = sample_fnv1a(h, head, sizeof head);
+                if (smooth) hs = sample_fnv1a(hs, head, sizeof head);
                 for (int k = 0; k < n; ++k) { /* field by field: padding bytes are not part of the answer */
                     const rugo_contact& c = cbuf[k];
                     const double reals[] = {c.point_a.x, c.point_a.y, c.point_b.x, c.point_b.y, c.normal.x, c.normal.y,
@@ -1579,13 +1712,27 @@ int main(int argc, char** argv) {
                     h = sample_fnv1a(h, reals, sizeof reals);
                     h = sample_fnv1a(h, ints, sizeof ints);
                     h = sample_fnv1a(h, &c.id, sizeof c.id);
+                    if (smooth) {
+                        hs = sample_fnv1a(hs, reals, sizeof reals);
+                        hs = sample_fnv1a(hs, ints, sizeof ints);
+                        hs = sample_fnv1a(hs, &c.id, sizeof c.id);
+                    }
                 }
             }
             /* and the time per query (best of 5 passes over the poses; a quick look, not the benchmark) */
-            double best = HUGE_VAL;
-            for (int rep = 0; rep < 5; ++rep) best = std::min(best, time_poses(ctx, bodies, poses, q, cbuf));
-            std::printf("contacts_hash level %d: %016llx (%zu poses; %.0f ns per query)\n", L, (unsigned long long)h, P,
-                        best / (double)P);
+            std::vector<Pose> smooth_poses, rough_poses;
+            for (const Pose& p : poses) (bodies[(size_t)p.a].rough ? rough_poses : smooth_poses).push_back(p);
+            double best_s = HUGE_VAL, best_r = HUGE_VAL;
+            for (int rep = 0; rep < 5; ++rep) {
+                best_s = std::min(best_s, time_smooth_poses(ctx, bodies, smooth_poses, q, cbuf));
+                best_r = std::min(best_r, time_rough_poses(ctx, bodies, rough_poses, q, cbuf));
+            }
+            std::printf("contacts_hash level %d: %016llx (%zu poses; smooth ones %016llx; ns per query: %.0f, smooth %.0f, rough %.0f)\n",
+                        L, (unsigned long long)h, P, (unsigned long long)hs, (best_s + best_r) / (double)P,
+                        best_s / (double)smooth_poses.size(), best_r / (double)rough_poses.size());
+            std::printf("#   per query: box tests %.0f smooth, %.0f rough; segment pairs %.1f smooth, %.1f rough\n",
+                        (double)work[0][0] / (double)smooth_poses.size(), (double)work[1][0] / (double)rough_poses.size(),
+                        (double)work[0][1] / (double)smooth_poses.size(), (double)work[1][1] / (double)rough_poses.size());
         }
         rugo_collide_context_destroy(ctx);
         for (auto& b : bodies) rugo_shape_destroy(b.shape);

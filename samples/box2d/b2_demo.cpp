@@ -2,8 +2,9 @@
 // Box2D boxes and circles into a container with a chain floor, through the Box2D 2.4 bridge at 60 Hz.
 //
 //   b2_demo OUTDIR          runs the scene (the scene table's "demo": scenes.h, SCENE_DEMO) and writes
-//                           OUTDIR/results.json, trajectory.csv, frames/*.svg and final.svg; prints a
-//                           summary.
+//                           OUTDIR/results.json, trajectory.csv, frames/*.svg, final.svg and
+//                           animation.html (the run replayed in a canvas, offline: b2_animation.hpp);
+//                           prints a summary.
 //   b2_demo --hash-only     runs the scene twice in this process and checks that the FNV-1a hashes of
 //                           all body transforms over the whole run are identical (determinism).
 //   b2_demo --hash-only --expect-hash HEX
@@ -15,6 +16,7 @@
 // the initial by more than 1% (Box2D's position correction may push overlapping bodies up a little;
 // contacts never add energy); the pile comes to rest (kinetic energy < 1% of the energy released);
 // rough bodies actually made rough contacts.
+#include "b2_animation.hpp"
 #include "b2_sample.hpp"
 
 #include <algorithm>
@@ -148,6 +150,13 @@ bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
         std::snprintf(title, sizeof title, "b2_demo final state, t = %.2f s: %d bodies (%d rough, %d shapes)", run.time,
                       res.bodies, res.rough, res.shapes);
         sample_expect("final.svg", b2s::DrawFrame(run, dir + "/final.svg", title, true));
+        long rows = 0;
+        std::snprintf(title, sizeof title, "b2_demo: %d bodies (%d rough), %.1f s", res.bodies, res.rough, run.time);
+        sample_expect("animation.html written", b2s::WriteAnimation(run, dir, title, &rows));
+        // Every 6th step of every body: the whole trajectory is in the page.
+        std::printf("animation.html: %ld trajectory rows\n", rows);
+        sample_expect("animation.html holds the whole trajectory (rows = bodies x (steps / 6 + 1))",
+                      rows == static_cast<long>(run.bodies.size()) * (nsteps / 6 + 1));
     }
     res.ok = true;
     *out = res;

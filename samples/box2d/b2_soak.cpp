@@ -1,0 +1,178 @@
+// Soak test of the Box2D bridge: the README's demo world (scene table "demo") stepped 100,000 times
+// at 60 Hz while, every few steps, a rough body is detached, a detached one attached again, or a body
+// destroyed and a new rough body spawned above the container (seeded choices), so the population stays
+// the same and the bridge's bookkeeping churns the whole time. Public bridge API only.
+//
+//   b2_soak             100,000 steps; checks: resident memory after warm-up (the first 10 %) grows by
+//                       at most 1 %, 0 non-finite positions, angles or velocities, no body lost that was
+//                       not destroyed (the world holds exactly the bodies alive), worst step <= 20x the
+//                       median step.
+//   b2_soak --quick     3,000 steps (the test suite): only the finiteness and body checks; the memory
+//                       and time figures are printed, not checked (a loaded machine's timing is no
+//                       verdict).
+//   --steps N           another step count.
+#include "b2_stress.hpp"
+#include "scene_table.hpp"
+
+extern "C" {
+#include "sample_check.h"
+}
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace {
+
+struct Tracked {
+    b2Body* body;
+    const rugo_shape* shape; // the shape it had (rough or detached), null for an ordinary body
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false;
+    long steps = 100000;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) {
+            quick = true;
+            steps = 3000;
+        } else if (std::strcmp(argv[i], "--steps") == 0 && i + 1 < argc) {
+            steps = std::strtol(argv[++i], nullptr, 10);
+        } else {
+            std::fprintf(stderr, "usage: b2_soak [--quick] [--steps N]\n");
+            return 2;
+        }
+    }
+    if (steps < 100) steps = 100;
+
+    scene_table::World w;
+    if (!scene_table::Create("demo", 0, &w)) return 1;
+    const scene& sc = *w.sc;
+    std::vector<const rugo_shape*> shapes;
+    double density = 1.0;
+    int level = 0;
+    std::vector<Tracked> dynamic; // the dynamic bodies alive
+    std::set<const b2Body*> alive;
+    for (int i = 0; i < sc.body_count; ++i) {
+        alive.insert(w.bodies[static_cast<std::size_t>(i)]);
+        if (sc.bodies[i].kind == SCENE_ROUGH) {
+            shapes.push_back(sc.bodies[i].shape);
+            density = sc.bodies[i].density;
+            level = sc.bodies[i].level;
+        }
+        if (!sc.bodies[i].is_static)
+            dynamic.push_back({w.bodies[static_cast<std::size_t>(i)],
+                               sc.bodies[i].kind == SCENE_ROUGH ? sc.bodies[i].shape : nullptr});
+    }
+    std::vector<Tracked> detached;
+    const double x0 = sc.view_lo.x, x1 = sc.view_hi.x, top = sc.view_hi.y;
+    const double spawnLo = x0 + 0.3 * (x1 - x0), spawnHi = x0 + 0.7 * (x1 - x0);
+    const double lost = sc.ground_top - 20.0; // below: fallen out (a detached body falls through)
+    b2stress::Rng rng{25};
+    auto spawnPoint = [&]() {
+        return b2Vec2(static_cast<float>(rng.Uniform(spawnLo, spawnHi)), static_cast<float>(top - 1.0));
+    };
+
+    long detaches = 0, attaches = 0, destroys = 0, spawns = 0, recycled = 0, refused = 0;
+    long nonFinite = 0, amiss = 0;
+    const long warm = steps / 10;
+    double rssWarm = 0.0, rssMax = 0.0;
+    b2stress::StepTimes times;
+    for (long k = 0; k < steps; ++k) {
+        if (k % 4 == 3) {
+            const int what = static_cast<int>(rng.Below(3));
+            if (what == 0 && !dynamic.empty()) { // detach a rough body
+                const std::size_t i = rng.Below(dynamic.size());
+                if (w.bridge->IsRough(dynamic[i].body)) {
+                    if (w.bridge->Detach(dynamic[i].body) != RUGO_OK) sample_expect("Detach", 0);
+                    detached.push_back(dynamic[i]);
+                    dynamic.erase(dynamic.begin() + static_cast<std::ptrdiff_t>(i));
+                    ++detaches;
+                }
+            } else if (what == 1 && !detached.empty()) { // attach a detached body again, above the pile
+                const std::size_t i = rng.Below(detached.size());
+                Tracked t = detached[i];
+                detached.erase(detached.begin() + static_cast<std::ptrdiff_t>(i));
+                t.body->SetTransform(spawnPoint(), static_cast<float>(rng.Uniform(-3.0, 3.0)));
+                t.body->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
+                t.body->SetAngularVelocity(0.0f);
+                rugo::RoughBodyDef rd;
+                rd.shape = t.shape;
+                rd.density = density;
+                rd.lod = level;
+                if (w.bridge->Attach(t.body, rd) != RUGO_OK) sample_expect("Attach again", 0);
+                dynamic.push_back(t);
+                ++attaches;
+            } else if (what == 2 && !dynamic.empty()) { // destroy a body, spawn a new rough one
+                const std::size_t i = rng.Below(dynamic.size());
+                b2Body* victim = dynamic[i].body;
+                dynamic.erase(dynamic.begin() + static_cast<std::ptrdiff_t>(i));
+                alive.erase(victim);
+                w.world->DestroyBody(victim);
+                ++destroys;
+                b2BodyDef bd;
+                bd.type = b2_dynamicBody;
+                bd.position = spawnPoint();
+                bd.angle = static_cast<float>(rng.Uniform(-3.0, 3.0));
+                b2Body* body = w.world->CreateBody(&bd);
+                alive.insert(body);
+                rugo::RoughBodyDef rd;
+                rd.shape = shapes[rng.Below(shapes.size())];
+                rd.density = density;
+                rd.lod = level;
+                if (w.bridge->Attach(body, rd) == RUGO_OK) {
+                    dynamic.push_back({body, rd.shape});
+                    ++spawns;
+                } else {
+                    ++refused;
+                }
+            }
+        }
+        // Detached bodies fall through everything: put those that left the container back on top.
+        for (Tracked& t : detached)
+            if (t.body->GetPosition().y < lost) {
+                t.body->SetTransform(spawnPoint(), 0.0f);
+                t.body->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
+                ++recycled;
+            }
+        times.Time([&] { w.Step(); });
+        nonFinite += b2stress::NonFinite(*w.world);
+        amiss += b2stress::BodiesAmiss(*w.world, alive);
+        if (k + 1 == warm) rssWarm = b2stress::ResidentBytes();
+        if (k + 1 > warm && (k + 1) % 500 == 0) rssMax = std::max(rssMax, b2stress::ResidentBytes());
+        if ((k + 1) % 10000 == 0 && k + 1 < steps) // progress of a long run, in case it is cut short
+            std::printf("  at step %ld: resident %.2f MiB, %ld non-finite, %ld amiss, median step %.1f us, worst "
+                        "%.1f us, %.0f s stepped\n",
+                        k + 1, b2stress::ResidentBytes() / 1048576.0, nonFinite, amiss, 1e6 * times.Median(),
+                        1e6 * times.Worst(), times.Total());
+        if ((k + 1) % 10000 == 0) std::fflush(stdout);
+    }
+    const double rssEnd = b2stress::ResidentBytes();
+    rssMax = std::max(rssMax, rssEnd);
+    const double growth = rssWarm > 0.0 ? (rssMax - rssWarm) / rssWarm : 0.0;
+    const double median = times.Median(), worst = times.Worst();
+    const rugo::BridgeStats st = w.bridge->GetStats();
+
+    std::printf("b2_soak: %ld steps of the demo world (%d bodies at the start, %zu dynamic alive at the end, "
+                "%zu of them detached)\n",
+                steps, sc.body_count, dynamic.size() + detached.size(), detached.size());
+    std::printf("  churn: %ld detaches, %ld attaches, %ld destroys, %ld spawns (%ld refused), %ld detached "
+                "bodies recycled from below the container\n",
+                detaches, attaches, destroys, spawns, refused, recycled);
+    std::printf("  bridge: %ld queries, %ld pre-solves\n", st.queries, st.preSolves);
+    std::printf("  resident memory: %.1f MiB after warm-up (%ld steps), %.1f MiB largest after, %.1f MiB at "
+                "the end: growth %.3f %%\n",
+                rssWarm / 1048576.0, warm, rssMax / 1048576.0, rssEnd / 1048576.0, 100.0 * growth);
+    std::printf("  step time: median %.1f us, worst %.1f us (%.1fx the median), total %.1f s\n", 1e6 * median,
+                1e6 * worst, median > 0.0 ? worst / median : 0.0, times.Total());
+    sample_expect_le("non-finite positions, angles, velocities", static_cast<double>(nonFinite), 0.0);
+    sample_expect_le("bodies lost or added (step-body pairs)", static_cast<double>(amiss), 0.0);
+    sample_expect("some churn of every kind", detaches > 0 && attaches > 0 && destroys > 0 && spawns > 0);
+    if (!quick) {
+        sample_expect_le("resident memory growth after warm-up", growth, 0.01);
+        sample_expect_le("worst step / median step", median > 0.0 ? worst / median : 0.0, 20.0);
+    }
+    return sample_finish();
+}

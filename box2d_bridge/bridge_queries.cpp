@@ -87,12 +87,12 @@ bool Bridge::RayCast(const b2Vec2& p1, const b2Vec2& p2, RayHit* hit) const {
 bool Bridge::TestPoint(const b2Body* body, const b2Vec2& p) const {
     const BodyRec* r = m_impl->rec(body);
     if (r == nullptr) return false;
-    int inside = 0;
+    bool inside = false;
     if (rugo_shape_contains(r->shape, r->level,
                             rugo_inv_transform_point(toRugo(body->GetTransform()), toRv(p)),
                             &inside) != RUGO_OK)
         return false;
-    return inside != 0;
+    return inside;
 }
 
 void Bridge::QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& callback) const {

@@ -314,15 +314,17 @@ static rugo_status read_transform(const char* t, size_t n, int o, rugo_allocator
 }
 
 static rugo_status read_points(const char* t, size_t n, int o, rugo_allocator al, uint64_t* h) {
-    rugo_vec2* pts = NULL;
-    int count = -1;
+    rugo_point_list list;
     rugo_parse_error e;
-    rugo_status st = rugo_points_text_parse(t, n, &al, &pts, &count, &e);
+    rugo_status st = rugo_points_text_parse(t, n, &al, &list, &e);
     check_error(&e, st, t, n);
     if (st != RUGO_OK) {
-        FUZZ_CHECK(pts == NULL && count == 0);
+        FUZZ_CHECK(list.points == NULL && list.count == 0);
         return st;
     }
+    const rugo_vec2* pts = list.points;
+    const int count = list.count;
+    FUZZ_CHECK(list.allocator.alloc == al.alloc && list.allocator.ctx == al.ctx);
     FUZZ_CHECK(count >= 0 && count <= RUGO_MAX_CONTROL_POINTS);
     FUZZ_CHECK((count == 0) == (pts == NULL));
     for (int i = 0; i < count; ++i)
@@ -333,7 +335,7 @@ static rugo_status read_points(const char* t, size_t n, int o, rugo_allocator al
         st = rugo_path_from_points(pts, count, &al, &p);
         FUZZ_CHECK(st == RUGO_OK || st == RUGO_ERR_OUT_OF_MEMORY);
         if (st == RUGO_OK) {
-            FUZZ_CHECK(p.subpath_count == 1 && p.subpaths[0].closed == 1);
+            FUZZ_CHECK(p.subpath_count == 1 && p.subpaths[0].closed);
             FUZZ_CHECK(p.segment_count <= count);
             *h = check_path(&p, 0, *h);
             st = sample_path(&p, (o & 1) ? 0 : 64, kTransforms[(o >> 1) & 3], al, h);
@@ -341,21 +343,23 @@ static rugo_status read_points(const char* t, size_t n, int o, rugo_allocator al
         }
         rugo_path_free(&p);
     }
-    rugo_points_free(&al, pts);
+    rugo_point_list_free(&list);
     return st;
 }
 
 static rugo_status read_csv(const char* t, size_t n, int o, rugo_allocator al, uint64_t* h) {
     (void)o;
-    rugo_profile_sample* p = NULL;
-    int count = -1;
+    rugo_roughness_profile profile;
     rugo_parse_error e;
-    rugo_status st = rugo_roughness_profile_parse_csv(t, n, &al, &p, &count, &e);
+    rugo_status st = rugo_roughness_profile_parse_csv(t, n, &al, &profile, &e);
     check_error(&e, st, t, n);
     if (st != RUGO_OK) {
-        FUZZ_CHECK(p == NULL && count == 0);
+        FUZZ_CHECK(profile.samples == NULL && profile.count == 0);
         return st;
     }
+    rugo_profile_sample* p = profile.samples;
+    const int count = profile.count;
+    FUZZ_CHECK(profile.allocator.alloc == al.alloc && profile.allocator.ctx == al.ctx);
     FUZZ_CHECK(p != NULL && count >= 1 && count <= RUGO_MAX_PROFILE_SAMPLES);
     double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < count; ++i) {
@@ -382,7 +386,7 @@ static rugo_status read_csv(const char* t, size_t n, int o, rugo_allocator al, u
             FUZZ_CHECK(isfinite(lam[j]) && lam[j] >= lo && lam[j] <= hi);
         *h = mix(*h, lam, sizeof lam);
     }
-    rugo_roughness_profile_free(&al, p);
+    rugo_roughness_profile_free(&profile);
     return st;
 }
 

@@ -15,16 +15,15 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     FUZZ_CHECK(memchr(err.message, '\0', sizeof err.message) != NULL);
     if (st != RUGO_OK) return 0;
     /* Writing what was read and reading it back gives the same description. */
-    char* text = NULL;
-    size_t length = 0;
-    if (rugo_shape_desc_write(&desc, NULL, &text, &length) == RUGO_OK) {
+    rugo_text text;
+    if (rugo_shape_desc_write(&desc, NULL, &text) == RUGO_OK) {
         rugo_shape_desc again;
-        FUZZ_CHECK(rugo_shape_desc_parse(text, length, NULL, &again, &err) == RUGO_OK);
+        FUZZ_CHECK(rugo_shape_desc_parse(text.data, text.length, NULL, &again, &err) == RUGO_OK);
         FUZZ_CHECK(again.count == desc.count && again.filter == desc.filter);
         if (desc.count > 0)
             FUZZ_CHECK(memcmp(again.control_points, desc.control_points, (size_t)desc.count * sizeof(rugo_vec2)) == 0);
         rugo_shape_desc_free(&again);
-        rugo_text_free(NULL, text);
+        rugo_text_free(&text);
     }
     rugo_real* lambda = NULL;
     rugo_shape_def def = rugo_default_shape_def();

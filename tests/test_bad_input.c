@@ -121,15 +121,14 @@ END_TEST
 
 START_TEST(csv_rows) {
     for (size_t i = 0; i < sizeof CSV_ROWS / sizeof CSV_ROWS[0]; ++i) {
-        rugo_profile_sample* p = NULL;
-        int n = 0;
+        rugo_roughness_profile p;
         rugo_parse_error e;
         const char* t = CSV_ROWS[i].json;
-        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), NULL, &p, &n, &e);
+        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), NULL, &p, &e);
         ck_assert_msg(st == CSV_ROWS[i].expect, "csv %s: got %d (%s), expected %d (%s)", CSV_ROWS[i].what, st,
                       rugo_status_string(st), CSV_ROWS[i].expect, rugo_status_string(CSV_ROWS[i].expect));
         if (st != RUGO_OK) ck_assert(e.message[0] != '\0' && e.line >= 1);
-        rugo_roughness_profile_free(NULL, p);
+        rugo_roughness_profile_free(&p);
     }
 }
 END_TEST
@@ -228,25 +227,24 @@ static rugo_status path_to_samples(const char* d, rugo_parse_error* e) {
 
 /* A point list as `rugo import` reads it: parse, the closed polygon through the points, its samples. */
 static rugo_status points_to_samples(const char* text, rugo_parse_error* e) {
-    rugo_vec2* pts = NULL;
-    int n = 0;
-    rugo_status st = rugo_points_text_parse(text, strlen(text), NULL, &pts, &n, e);
+    rugo_point_list pts;
+    rugo_status st = rugo_points_text_parse(text, strlen(text), NULL, &pts, e);
     if (st != RUGO_OK) {
-        ck_assert(pts == NULL && n == 0);
+        ck_assert(pts.points == NULL && pts.count == 0);
         return st;
     }
     rugo_path p;
-    st = rugo_path_from_points(pts, n, NULL, &p);
+    st = rugo_path_from_points(pts.points, pts.count, NULL, &p);
     if (st == RUGO_OK) {
         rugo_outline_sample_def sd = rugo_default_outline_sample_def();
         sd.path = &p;
-        sd.sample_count = n;
+        sd.sample_count = pts.count;
         rugo_outline_samples s;
         st = rugo_outline_sample(&sd, &s, e);
         rugo_outline_samples_free(&s);
     }
     rugo_path_free(&p);
-    rugo_points_free(NULL, pts);
+    rugo_point_list_free(&pts);
     return st;
 }
 
@@ -374,12 +372,12 @@ START_TEST(import_limits) {
     rugo_path p;
     rugo_parse_error e;
     rugo_svg_path_element el;
-    rugo_vec2* pts = NULL;
-    int n = 0;
+    rugo_point_list pts;
     /* Text over 64 MiB is refused by its length, before anything is read. */
     ck_assert_int_eq(rugo_path_parse("M 0 0", RUGO_MAX_SVG_BYTES + 1, NULL, &p, &e), RUGO_ERR_TOO_LARGE);
     ck_assert_int_eq(rugo_svg_find_path("<svg/>", RUGO_MAX_SVG_BYTES + 1, NULL, NULL, &el, &e), RUGO_ERR_TOO_LARGE);
-    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &n, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &e),
+                     RUGO_ERR_TOO_LARGE);
     /* A number of more than 512 characters. */
     char longnum[600];
     memset(longnum, '1', sizeof longnum);
@@ -398,8 +396,8 @@ START_TEST(import_limits) {
     /* More than 2^20 points in a point list ("0 0" lines). */
     for (size_t i = 0; i < nsub; ++i)
         memcpy(big + 4 * i, "0 0\n", 4);
-    ck_assert_int_eq(rugo_points_text_parse(big, 4 * nsub, NULL, &pts, &n, &e), RUGO_ERR_TOO_MANY_POINTS);
-    ck_assert(pts == NULL && n == 0);
+    ck_assert_int_eq(rugo_points_text_parse(big, 4 * nsub, NULL, &pts, &e), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert(pts.points == NULL && pts.count == 0);
     free(big);
     /* Elements nested deeper than 256. */
     char deep[(RUGO_SVG_MAX_DEPTH + 1) * 3 + 64];

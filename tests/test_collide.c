@@ -1358,7 +1358,7 @@ START_TEST(test_coarse_levels_are_simple_curves) {
     rugo_shape_def d = rugo_default_shape_def();
     d.points = p;
     d.count = n;
-    d.check_self_intersection = 0;
+    d.check_self_intersection = false;
     rugo_shape* unchecked = NULL;
     ck_assert_int_eq(rugo_shape_create(&d, &unchecked, NULL), RUGO_OK);
     ck_assert_int_eq(rugo_shape_coarsest_level(unchecked), 2);
@@ -2898,8 +2898,8 @@ START_TEST(test_shape_defaults_and_accessors) {
     ck_assert_int_eq(rugo_shape_create(&d, &s, NULL), RUGO_OK);
     ck_assert_int_eq(rugo_shape_finest_level(s), 5);
     ck_assert_int_eq(rugo_shape_coarsest_level(s), 3);
-    ck_assert_int_eq(rugo_shape_is_rough(s), 0);
-    ck_assert_int_eq(rugo_shape_was_reversed(s), 0);
+    ck_assert(!rugo_shape_is_rough(s));
+    ck_assert(!rugo_shape_was_reversed(s));
     ck_assert_ptr_nonnull(rugo_shape_tree(s));
     ck_assert_ptr_nonnull(rugo_shape_pyramid(s));
     rugo_contour c;
@@ -2949,8 +2949,8 @@ START_TEST(test_shape_reversed_tolerances) {
     d.tolerances = tolq;
     rugo_shape* s = NULL;
     ck_assert_int_eq(rugo_shape_create(&d, &s, NULL), RUGO_OK);
-    ck_assert_int_eq(rugo_shape_was_reversed(s), 1);
-    ck_assert_int_eq(rugo_shape_is_rough(s), 1);
+    ck_assert(rugo_shape_was_reversed(s));
+    ck_assert(rugo_shape_is_rough(s));
     rugo_tolerance_level tl;
     rugo_shape_tolerance_level(s, 4, &tl);
     rugo_contour c;
@@ -3236,7 +3236,7 @@ static void contain_check(const rugo_shape* s, int level, rugo_contour c, rugo_v
     const int all = rugo_contour_contains(c, p);
     ck_assert_int_ge(visited, 0);
     ck_assert_int_le(visited, c.count);
-    int pub = -1;
+    bool pub = !all;
     ck_assert_int_eq(rugo_shape_contains(s, level, p, &pub), RUGO_OK);
     T->cases++;
     T->inside += all != 0;
@@ -3368,35 +3368,35 @@ START_TEST(test_point_queries_bad_input) {
     const rugo_shape* s = g_shapes[1].s;
     const int J = rugo_shape_finest_level(s), Jmin = rugo_shape_coarsest_level(s);
     rugo_curve_point cp;
-    int in = 7;
+    bool in = true;
     const rugo_vec2 p = rugo_v2(0.1, 0.2);
     ck_assert_int_eq(rugo_shape_closest_point(NULL, J, p, &cp), RUGO_ERR_NULL_ARGUMENT);
     ck_assert(cp.distance == HUGE_VAL && cp.point.x == p.x && cp.point.y == p.y && cp.segment == 0);
     ck_assert_int_eq(rugo_shape_closest_point(s, J, p, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_shape_contains(NULL, J, p, &in), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(in, 0);
+    ck_assert(!in);
     ck_assert_int_eq(rugo_shape_contains(s, J, p, NULL), RUGO_ERR_NULL_ARGUMENT);
     const int bad_levels[4] = {J + 1, Jmin - 1, 0, -1};
     for (int i = 0; i < 4; ++i) {
         cp.distance = 0.0;
-        in = 7;
+        in = true;
         ck_assert_int_eq(rugo_shape_closest_point(s, bad_levels[i], p, &cp), RUGO_ERR_BAD_LEVEL);
         ck_assert(cp.distance == HUGE_VAL);
         ck_assert_int_eq(rugo_shape_contains(s, bad_levels[i], p, &in), RUGO_ERR_BAD_LEVEL);
-        ck_assert_int_eq(in, 0);
+        ck_assert(!in);
     }
     const rugo_vec2 bad_points[3] = {{NAN, 0.0}, {0.0, INFINITY}, {-INFINITY, NAN}};
     for (int i = 0; i < 3; ++i) {
         ck_assert_int_eq(rugo_shape_closest_point(s, J, bad_points[i], &cp), RUGO_ERR_NOT_FINITE);
         ck_assert(cp.distance == HUGE_VAL);
         ck_assert_int_eq(rugo_shape_contains(s, J, bad_points[i], &in), RUGO_ERR_NOT_FINITE);
-        ck_assert_int_eq(in, 0);
+        ck_assert(!in);
     }
     /* and valid input still answers: a point far outside, the centroid inside */
     ck_assert_int_eq(rugo_shape_contains(s, J, rugo_v2(1e3, 0.0), &in), RUGO_OK);
-    ck_assert_int_eq(in, 0);
+    ck_assert(!in);
     ck_assert_int_eq(rugo_shape_contains(s, J, rugo_shape_mass(s).centroid, &in), RUGO_OK);
-    ck_assert_int_eq(in, 1);
+    ck_assert(in);
     ck_assert_int_eq(rugo_shape_closest_point(s, Jmin, rugo_v2(1e3, 0.0), &cp), RUGO_OK);
     ck_assert(cp.distance > 900.0 && cp.distance < 1e3 + 10.0);
     /* up to 1e150 a distance; beyond, squared distances overflow: NOT_FINITE (was OK with distance inf) */

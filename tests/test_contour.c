@@ -338,8 +338,8 @@ START_TEST(tangent_normal) {
             ck_assert_near(rugo_v2_dot(tg, nm), 0.0, 1e-15);
             /* outward for a counter-clockwise curve: a small step along the normal leaves the region */
             rugo_vec2 p = rugo_contour_point(c, j, t);
-            ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(p.x + 1e-6 * nm.x, p.y + 1e-6 * nm.y)), 0);
-            ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(p.x - 1e-6 * nm.x, p.y - 1e-6 * nm.y)), 1);
+            ck_assert(!rugo_contour_contains(c, rugo_v2(p.x + 1e-6 * nm.x, p.y + 1e-6 * nm.y)));
+            ck_assert(rugo_contour_contains(c, rugo_v2(p.x - 1e-6 * nm.x, p.y - 1e-6 * nm.y)));
         }
 }
 END_TEST
@@ -385,27 +385,27 @@ START_TEST(degenerate_segments_everywhere) {
     rugo_contour_bounds(c, &lo, &hi);
     ck_assert_near(lo.y, -1.0, 1e-15);
     ck_assert_near(hi.y, 3.0, 1e-15); /* the pointed corner */
-    ck_assert_int_eq(rugo_contour_contains(c, m.centroid), 1);
+    ck_assert(rugo_contour_contains(c, m.centroid));
     /* Containment on the line of the straight segment and through the corner. */
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(-5, -1)), 0);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(5, -1)), 0);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(-0.5, -1 + 1e-9)), 1);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(-5, 3)), 0);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(5, 3)), 0);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(0, 3 - 1e-6)), 1);
+    ck_assert(!rugo_contour_contains(c, rugo_v2(-5, -1)));
+    ck_assert(!rugo_contour_contains(c, rugo_v2(5, -1)));
+    ck_assert(rugo_contour_contains(c, rugo_v2(-0.5, -1 + 1e-9)));
+    ck_assert(!rugo_contour_contains(c, rugo_v2(-5, 3)));
+    ck_assert(!rugo_contour_contains(c, rugo_v2(5, 3)));
+    ck_assert(rugo_contour_contains(c, rugo_v2(0, 3 - 1e-6)));
     /* A ray along the straight segment's line first touches the curve at the start of that
      * segment (segment 0 arrives there tangentially). */
     double s;
     rugo_curve_point hit;
     rugo_vec2 nm;
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(-5, -1), rugo_v2(1, 0), 100.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, rugo_v2(-5, -1), rugo_v2(1, 0), 100.0, &s, &hit, &nm));
     ck_assert_near(s, 4.0, 1e-6);
     ck_assert_near(hit.point.y, -1.0, 1e-12);
     /* Rays at the point-like corner. */
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(0, 5), rugo_v2(0, -1), 100.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, rugo_v2(0, 5), rugo_v2(0, -1), 100.0, &s, &hit, &nm));
     ck_assert_near(s, 2.0, 1e-12);
     ck_assert(isfinite(nm.x) && isfinite(nm.y));
-    ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0, 1), 100.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0, 1), 100.0, &s, &hit, &nm));
 }
 END_TEST
 
@@ -718,9 +718,9 @@ START_TEST(mass_properties_triangle) {
     ck_assert_near(hi.x, 4.0, 1e-15);
     ck_assert_near(hi.y, 3.0, 1e-15);
     ck_assert_near(rugo_contour_closest_point(c, rugo_v2(1, 4)).distance, 1.0, 1e-14);
-    ck_assert_int_eq(rugo_contour_contains(c, m.centroid), 1);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(1, 3.0000001)), 0);
-    ck_assert_int_eq(rugo_contour_contains(c, rugo_v2(1, 2.9999)), 1);
+    ck_assert(rugo_contour_contains(c, m.centroid));
+    ck_assert(!rugo_contour_contains(c, rugo_v2(1, 3.0000001)));
+    ck_assert(rugo_contour_contains(c, rugo_v2(1, 2.9999)));
 }
 END_TEST
 
@@ -757,13 +757,13 @@ END_TEST
 START_TEST(orientation_reversal_mapping) {
     rugo_vec2 ccw[16], cw[16], fixed[16];
     star(500, 16, ccw, NULL, NULL);
-    ck_assert_int_eq(rugo_contour_orient_ccw(ccw, 16), 0); /* already counter-clockwise: untouched */
+    ck_assert(!rugo_contour_orient_ccw(ccw, 16)); /* already counter-clockwise: untouched */
     for (int i = 0; i < 16; ++i) cw[i] = ccw[(5 * 16 - 3 * i) % 16]; /* clockwise, another start */
     memcpy(fixed, cw, sizeof cw);
     ck_assert(rugo_contour_signed_area(contour_of(cw, 16)) < 0);
-    ck_assert_int_eq(rugo_contour_orient_ccw(fixed, 16), 1);
+    ck_assert(rugo_contour_orient_ccw(fixed, 16));
     ck_assert(rugo_contour_signed_area(contour_of(fixed, 16)) > 0);
-    ck_assert_int_eq(rugo_contour_orient_ccw(fixed, 16), 0);
+    ck_assert(!rugo_contour_orient_ccw(fixed, 16));
     /* Segment j of the clockwise input at t is segment n-2-j of the reversed one at 1-t. */
     rugo_contour a = contour_of(cw, 16), b = contour_of(fixed, 16);
     for (int j = 0; j < 16; ++j)
@@ -776,7 +776,7 @@ START_TEST(orientation_reversal_mapping) {
     for (int i = 0; i < 7; ++i) odd[i] = rugo_v2(cos(-2 * PI * i / 7), sin(-2 * PI * i / 7));
     rugo_vec2 odd_r[7];
     memcpy(odd_r, odd, sizeof odd);
-    ck_assert_int_eq(rugo_contour_orient_ccw(odd_r, 7), 1);
+    ck_assert(rugo_contour_orient_ccw(odd_r, 7));
     for (int j = 0; j < 7; ++j)
         ck_assert_near(v2_dist(rugo_contour_point(contour_of(odd, 7), j, 0.25),
                                rugo_contour_point(contour_of(odd_r, 7), rugo__wrap(7 - 2 - j, 7), 0.75)),
@@ -960,8 +960,8 @@ START_TEST(contains_tangent_and_joint_rays) {
         for (int k = 0; k <= 20; ++k) {
             double x = lo.x - 0.5 * w + 2.0 * w * k / 20.0;
             rugo_vec2 top = rugo_v2(x, hi.y), bot = rugo_v2(x, lo.y);
-            if (rugo_contour_closest_point(c, top).distance > 1e-6) ck_assert_int_eq(rugo_contour_contains(c, top), 0);
-            if (rugo_contour_closest_point(c, bot).distance > 1e-6) ck_assert_int_eq(rugo_contour_contains(c, bot), 0);
+            if (rugo_contour_closest_point(c, top).distance > 1e-6) ck_assert(!rugo_contour_contains(c, top));
+            if (rugo_contour_closest_point(c, bot).distance > 1e-6) ck_assert(!rugo_contour_contains(c, bot));
         }
         /* Horizontal tangents inside the bounds: local extrema of y along the curve. */
         rugo_vec2* poly = dense_polygon(c, 1000);
@@ -1047,9 +1047,9 @@ START_TEST(ray_cast_vs_brute_force) {
             double dn = rugo_v2_dot(nm, d) / dl;
             if (fabs(dn) > 1e-3) ck_assert_int_eq(dn > 0, from_inside);
             /* a little shorter: no hit */
-            if (sf > 1e-6) ck_assert_int_eq(rugo_contour_ray_cast(c, o, d, sf * (1 - 1e-9), NULL, NULL, NULL), 0);
+            if (sf > 1e-6) ck_assert(!rugo_contour_ray_cast(c, o, d, sf * (1 - 1e-9), NULL, NULL, NULL));
             double s2;
-            ck_assert_int_eq(rugo_contour_ray_cast(c, o, d, sf, &s2, NULL, NULL), 1);
+            ck_assert(rugo_contour_ray_cast(c, o, d, sf, &s2, NULL, NULL));
             ck_assert(s2 == sf);
         }
         ck_assert_int_gt(hits, 50);
@@ -1071,7 +1071,7 @@ START_TEST(ray_cast_special) {
     for (int k = 0; k < 64; ++k) {
         double a = 2 * PI * k / 64;
         rugo_vec2 d = rugo_v2(cos(a), sin(a));
-        ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, d, 100.0, &s, &hit, &nm), 1);
+        ck_assert(rugo_contour_ray_cast(c, m.centroid, d, 100.0, &s, &hit, &nm));
         ck_assert(rugo_v2_dot(nm, d) > 0);
         ck_assert_near(rugo_contour_closest_point(c, hit.point).distance, 0.0, 1e-12);
     }
@@ -1079,7 +1079,7 @@ START_TEST(ray_cast_special) {
     for (int j = 0; j < 16; ++j) {
         rugo_vec2 p = rugo_contour_point(c, j, 0.0), n0 = rugo_contour_normal(c, j, 0.0);
         rugo_vec2 o = rugo_v2(p.x + 3 * rad * n0.x, p.y + 3 * rad * n0.y);
-        ck_assert_int_eq(rugo_contour_ray_cast(c, o, rugo_v2(-n0.x, -n0.y), 10 * rad, &s, &hit, &nm), 1);
+        ck_assert(rugo_contour_ray_cast(c, o, rugo_v2(-n0.x, -n0.y), 10 * rad, &s, &hit, &nm));
         ck_assert_near(s, 3 * rad, 1e-12 * rad);
         ck_assert_near(v2_dist(hit.point, p), 0.0, 1e-12 * rad);
         ck_assert_near(v2_dist(nm, n0), 0.0, 1e-9);
@@ -1089,27 +1089,27 @@ START_TEST(ray_cast_special) {
     /* Tangent rays: along the top and bottom tangent lines, hitting the tangent points. */
     rugo_vec2 lo, hi;
     rugo_contour_bounds(c, &lo, &hi);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(lo.x - 1, hi.y), rugo_v2(1, 0), 100.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, rugo_v2(lo.x - 1, hi.y), rugo_v2(1, 0), 100.0, &s, &hit, &nm));
     ck_assert_near(hit.point.y, hi.y, 1e-12);
     ck_assert_near(nm.y, 1.0, 1e-6);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(hi.x + 1, lo.y), rugo_v2(-1, 0), 100.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, rugo_v2(hi.x + 1, lo.y), rugo_v2(-1, 0), 100.0, &s, &hit, &nm));
     ck_assert_near(hit.point.y, lo.y, 1e-12);
     /* Just outside the tangent: no hit. */
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(lo.x - 1, hi.y + 1e-9), rugo_v2(1, 0), 100.0, &s, &hit, &nm), 0);
+    ck_assert(!rugo_contour_ray_cast(c, rugo_v2(lo.x - 1, hi.y + 1e-9), rugo_v2(1, 0), 100.0, &s, &hit, &nm));
     /* Away from the body, zero direction, negative or NaN max fraction: no hit. */
-    ck_assert_int_eq(rugo_contour_ray_cast(c, rugo_v2(hi.x + 1, 0), rugo_v2(1, 0), 100.0, &s, &hit, &nm), 0);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0, 0), 100.0, &s, &hit, &nm), 0);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, rugo_v2(1, 0), -1.0, &s, &hit, &nm), 0);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, rugo_v2(1, 0), NAN, &s, &hit, &nm), 0);
+    ck_assert(!rugo_contour_ray_cast(c, rugo_v2(hi.x + 1, 0), rugo_v2(1, 0), 100.0, &s, &hit, &nm));
+    ck_assert(!rugo_contour_ray_cast(c, m.centroid, rugo_v2(0, 0), 100.0, &s, &hit, &nm));
+    ck_assert(!rugo_contour_ray_cast(c, m.centroid, rugo_v2(1, 0), -1.0, &s, &hit, &nm));
+    ck_assert(!rugo_contour_ray_cast(c, m.centroid, rugo_v2(1, 0), NAN, &s, &hit, &nm));
     /* Origin on the curve: s = 0. */
     rugo_vec2 on = rugo_contour_point(c, 3, 0.5);
-    ck_assert_int_eq(rugo_contour_ray_cast(c, on, rugo_contour_normal(c, 3, 0.5), 1.0, &s, &hit, &nm), 1);
+    ck_assert(rugo_contour_ray_cast(c, on, rugo_contour_normal(c, 3, 0.5), 1.0, &s, &hit, &nm));
     ck_assert_near(s, 0.0, 1e-12);
     /* Translated far away: same answers. */
     rugo_vec2 far[16];
     for (int i = 0; i < 16; ++i) far[i] = rugo_v2(pts[i].x + 1e6, pts[i].y - 1e6);
     double s0, s1;
-    ck_assert_int_eq(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0.3, 1), 100.0, &s0, NULL, NULL), 1);
+    ck_assert(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0.3, 1), 100.0, &s0, NULL, NULL));
     ck_assert_int_eq(rugo_contour_ray_cast(contour_of(far, 16), rugo_v2(m.centroid.x + 1e6, m.centroid.y - 1e6),
                                            rugo_v2(0.3, 1), 100.0, &s1, NULL, NULL),
                      1);

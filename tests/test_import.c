@@ -28,10 +28,11 @@ static void data_path(const char* name, char* out, size_t size) {
 static char* read_data(const char* name, size_t* length) {
     char path[1024];
     data_path(name, path, sizeof path);
-    char* text = NULL;
-    rugo_status st = rugo_read_file(path, NULL, &text, length);
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, NULL, &text);
     ck_assert_msg(st == RUGO_OK, "%s: %s", path, rugo_status_string(st));
-    return text;
+    *length = text.length;
+    return text.data; /* the default allocator's: free() */
 }
 
 static void parse_ok(const char* d, rugo_path* p) {
@@ -82,7 +83,7 @@ START_TEST(absolute_commands) {
     ck_assert_int_eq(p.subpath_count, 1);
     ck_assert_int_eq(p.subpaths[0].first, 0);
     ck_assert_int_eq(p.subpaths[0].count, 9);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     ck_assert_vec_near(p.subpaths[0].start, 10, 20, 0);
     ck_assert_int_eq(p.segment_count, 9);
     const rugo_path_segment* s = p.segments;
@@ -161,7 +162,7 @@ START_TEST(curve_points) {
     rugo_path p;
     parse_ok("M0 0 Q 1 2 2 0 M0 0 C 0 1 1 1 1 0", &p);
     ck_assert_int_eq(p.subpath_count, 2);
-    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    ck_assert(!p.subpaths[1].closed);
     /* Q: 1/4 (0,0) + 1/2 (1,2) + 1/4 (2,0) = (1, 1); derivative at 1/2 = (2 - 0, 0 - 0) = (2, 0). */
     ck_assert_vec_near(seg_point(&p, 0, 0.5), 1, 1, 1e-15);
     ck_assert_vec_near(rugo_path_segment_derivative(&p.segments[0], 0.5), 2, 0, 1e-15);
@@ -309,14 +310,14 @@ START_TEST(implicit_commands) {
     ck_assert_vec_near(p.subpaths[1].start, 0, 0, 0);
     ck_assert_int_eq(p.subpaths[1].count, 2);
     ck_assert_vec_near(p.segments[p.subpaths[1].first].p[0], 0, 0, 0);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
-    ck_assert_int_eq(p.subpaths[1].closed, 1);
+    ck_assert(p.subpaths[0].closed);
+    ck_assert(p.subpaths[1].closed);
     rugo_path_free(&p);
     /* A second moveto (relative to the end of the first subpath's closing point). */
     parse_ok("M 1 1 h 1 z m 2 0 h 1", &p);
     ck_assert_int_eq(p.subpath_count, 2);
     ck_assert_vec_near(p.subpaths[1].start, 3, 1, 0);
-    ck_assert_int_eq(p.subpaths[1].closed, 0);
+    ck_assert(!p.subpaths[1].closed);
     rugo_path_free(&p);
     /* Empty data: no subpaths, not an error. */
     parse_ok("", &p);
@@ -568,7 +569,7 @@ START_TEST(find_path_in_document) {
     ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "a&b", NULL, &el, &e), RUGO_OK);
     ck_assert_str_eq(el.d, "M 1 0 H 2 Z");
     ck_assert_uint_eq(el.d_length, 11);
-    ck_assert_int_eq(el.d_has_entities, 1);
+    ck_assert(el.d_has_entities);
     ck_assert_int_eq(el.line, 10);
     ck_assert_int_eq(el.column, 5);
     /* translate(10,20) scale(2) rotate(90): (1,0) -> (0,1) -> (0,2) -> (10,22). */
@@ -579,7 +580,7 @@ START_TEST(find_path_in_document) {
     /* The first real element with the id "r" is inside the closed translate(100) group. */
     ck_assert_int_eq(rugo_svg_find_path(doc, strlen(doc), "r", NULL, &el, &e), RUGO_OK);
     ck_assert_str_eq(el.d, "M 8 8");
-    ck_assert_int_eq(el.d_has_entities, 0);
+    ck_assert(!el.d_has_entities);
     ck_assert_vec_near(rugo_affine_apply(el.transform, rugo_v2(0, 0)), 100, 0, 0);
     rugo_svg_path_element_free(&el);
     /* An id that only occurs in comments or CDATA is not found. */
@@ -783,7 +784,7 @@ START_TEST(sample_square_by_hand) {
         ck_assert_vec_near(s.points[i], want[i][0], want[i][1], 1e-13);
     ck_assert_near(s.perimeter, 40, 1e-13);
     ck_assert_near(s.area, 100, 1e-12);
-    ck_assert_int_eq(s.reversed, 0);
+    ck_assert(!s.reversed);
     ck_assert_int_eq(s.segment_count, 4);
     ck_assert_int_eq(s.subpath, 0);
     rugo_outline_samples_free(&s);
@@ -793,7 +794,7 @@ START_TEST(sample_square_by_hand) {
     /* Under SVG's y flip the same drawing runs clockwise: the samples come out reversed, start kept. */
     rugo_affine flip = {1, 0, 0, -1, 0, 0};
     sample_ok(&p, -1, flip, 10, &s);
-    ck_assert_int_eq(s.reversed, 1);
+    ck_assert(s.reversed);
     ck_assert_vec_near(s.points[0], 0, 0, 0);
     ck_assert_vec_near(s.points[1], 0, -5, 1e-13);
     ck_assert_vec_near(s.points[9], 10.0 / 3, 0, 1e-13);
@@ -830,7 +831,7 @@ START_TEST(sample_circle_of_arcs) {
         ck_assert_vec_near(s.points[i], 10 * cos(ang), 10 * sin(ang), 1e-12);
     }
     ck_assert_near(step_max / step_min, 1, 1e-10);
-    ck_assert_int_eq(s.reversed, 0);
+    ck_assert(!s.reversed);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
 }
@@ -1061,48 +1062,51 @@ END_TEST
 
 START_TEST(points_text) {
     const char* t = "x,y\r\n# a comment\r\n1,2\r\n\r\n 3 4 \n5;6\n7\t8\n-1e1 , +.5\n";
-    rugo_vec2* pts = NULL;
-    int n = -1;
+    rugo_point_list pts;
     rugo_parse_error e;
-    ck_assert_int_eq(rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 5);
-    ck_assert_vec_near(pts[0], 1, 2, 0);
-    ck_assert_vec_near(pts[1], 3, 4, 0);
-    ck_assert_vec_near(pts[2], 5, 6, 0);
-    ck_assert_vec_near(pts[3], 7, 8, 0);
-    ck_assert_vec_near(pts[4], -10, 0.5, 0);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(t, strlen(t), NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 5);
+    ck_assert_vec_near(pts.points[0], 1, 2, 0);
+    ck_assert_vec_near(pts.points[1], 3, 4, 0);
+    ck_assert_vec_near(pts.points[2], 5, 6, 0);
+    ck_assert_vec_near(pts.points[3], 7, 8, 0);
+    ck_assert_vec_near(pts.points[4], -10, 0.5, 0);
+    rugo_point_list_free(&pts);
+    ck_assert(pts.points == NULL && pts.count == 0);
+    rugo_point_list_free(&pts); /* a zeroed list, and NULL, are fine */
+    rugo_point_list_free(NULL);
     /* JSON is told by its '{'. */
     const char* j = "  {\"points\": [[1, 2], [3, 4], [5, 7]]}";
-    ck_assert_int_eq(rugo_points_text_parse(j, strlen(j), NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 3);
-    ck_assert_vec_near(pts[2], 5, 7, 0);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(j, strlen(j), NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 3);
+    ck_assert_vec_near(pts.points[2], 5, 7, 0);
+    rugo_point_list_free(&pts);
     const char* jbad = "{\"points\": [[1, 2], [3]]}";
-    ck_assert_int_eq(rugo_points_text_parse(jbad, strlen(jbad), NULL, &pts, &n, &e), RUGO_ERR_BAD_FIELD);
-    ck_assert_ptr_null(pts);
+    ck_assert_int_eq(rugo_points_text_parse(jbad, strlen(jbad), NULL, &pts, &e), RUGO_ERR_BAD_FIELD);
+    ck_assert_ptr_null(pts.points);
     /* The data file rugo fit reads. */
     size_t len = 0;
     char* c64 = read_data("circle64_points.json", &len);
-    ck_assert_int_eq(rugo_points_text_parse(c64, len, NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 64);
-    rugo_points_free(NULL, pts);
+    ck_assert_int_eq(rugo_points_text_parse(c64, len, NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 64);
+    rugo_point_list_free(&pts);
     free(c64);
     /* Empty text: no points. */
-    ck_assert_int_eq(rugo_points_text_parse("", 0, NULL, &pts, &n, &e), RUGO_OK);
-    ck_assert_int_eq(n, 0);
-    ck_assert_ptr_null(pts);
+    ck_assert_int_eq(rugo_points_text_parse("", 0, NULL, &pts, &e), RUGO_OK);
+    ck_assert_int_eq(pts.count, 0);
+    ck_assert_ptr_null(pts.points);
 }
 END_TEST
 
 static void points_fail(const char* t, rugo_status status, int line, int column, const char* fragment) {
-    rugo_vec2* pts = (rugo_vec2*)&pts;
-    int n = -1;
+    rugo_point_list pts;
+    pts.points = (rugo_vec2*)&pts;
+    pts.count = -1;
     rugo_parse_error e;
-    rugo_status st = rugo_points_text_parse(t, strlen(t), NULL, &pts, &n, &e);
+    rugo_status st = rugo_points_text_parse(t, strlen(t), NULL, &pts, &e);
     ck_assert_msg(st == status, "<%s>: status %d, expected %d (%s)", t, st, status, e.message);
-    ck_assert_ptr_null(pts);
-    ck_assert_int_eq(n, 0);
+    ck_assert_ptr_null(pts.points);
+    ck_assert_int_eq(pts.count, 0);
     ck_assert_msg(e.line == line && e.column == column, "<%s>: at %d:%d, expected %d:%d", t, e.line, e.column,
                   line, column);
     if (fragment != NULL) ck_assert_msg(strstr(e.message, fragment) != NULL, "<%s>: \"%s\"", t, e.message);
@@ -1117,11 +1121,10 @@ START_TEST(bad_points_text) {
     points_fail("0x10,1\n", RUGO_ERR_PARSE, 1, 2, "separator");
     points_fail("1,2\n1e999,0\n", RUGO_ERR_NOT_FINITE, 2, 1, "beyond the range");
     points_fail("1,2\n3-4\n", RUGO_ERR_PARSE, 2, 2, "separator");
-    rugo_vec2* pts;
-    int n;
-    ck_assert_int_eq(rugo_points_text_parse(NULL, 0, NULL, &pts, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_points_text_parse("1 2", 3, NULL, NULL, &n, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &n, NULL),
+    rugo_point_list pts;
+    ck_assert_int_eq(rugo_points_text_parse(NULL, 0, NULL, &pts, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", 3, NULL, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, NULL),
                      RUGO_ERR_TOO_LARGE);
 }
 END_TEST
@@ -1131,7 +1134,7 @@ START_TEST(path_from_points) {
     rugo_path p;
     ck_assert_int_eq(rugo_path_from_points(pts, 6, NULL, &p), RUGO_OK);
     ck_assert_int_eq(p.subpath_count, 1);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     ck_assert_int_eq(p.segment_count, 4); /* the repeat and the closing repeat give no segment */
     ck_assert_vec_near(p.segments[3].p[1], 0, 0, 0);
     rugo_outline_samples s;
@@ -1190,7 +1193,7 @@ START_TEST(rock_samples) {
     rugo_path p;
     ck_assert_int_eq(rugo_path_parse(el.d, el.d_length, NULL, &p, &e), RUGO_OK);
     ck_assert_int_eq(p.subpath_count, 1);
-    ck_assert_int_eq(p.subpaths[0].closed, 1);
+    ck_assert(p.subpaths[0].closed);
     rugo_path_free(&p);
     rugo_svg_path_element_free(&el);
 
@@ -1199,8 +1202,8 @@ START_TEST(rock_samples) {
     ck_assert_int_eq(rugo_svg_import_outline(text, len, "rock", &sd, &s, &e), RUGO_OK);
     ck_assert_int_eq(s.count, 4096);
     ck_assert_int_eq(s.segment_count, 9);
-    ck_assert_int_eq(s.reversed, 1); /* drawn clockwise as seen on screen, which stays clockwise in the
-                                        y-up frame: the samples were reversed */
+    ck_assert(s.reversed); /* drawn clockwise as seen on screen, which stays clockwise in the
+                              y-up frame: the samples were reversed */
     /* Independent values (Python cross-check): perimeter 259.835191015432, area 5286.30072137481. */
     ck_assert_near(s.perimeter, 259.835191015432, 1e-9);
     ck_assert_near(s.area, 5286.30072137481, 1e-8);
@@ -1289,8 +1292,8 @@ START_TEST(rock_fit_error) {
     ck_assert_int_eq(f32.control_count, 32);
     ck_assert(f32.max_error <= f32.max_error_at_parameter);
     ck_assert(f32.rms_error <= f32.max_error);
-    ck_assert_int_eq(f32.tolerance_met, 1);
-    ck_assert_int_eq(f32.reversed, 0); /* the samples were counter-clockwise already */
+    ck_assert(f32.tolerance_met);
+    ck_assert(!f32.reversed); /* the samples were counter-clockwise already */
     rugo_contour c = {f64.control_points, 64};
     ck_assert(rugo_contour_signed_area(c) > 0);
     ck_assert_int_eq(rugo_contour_check(f64.control_points, 64, RUGO_CHECK_ALL, NULL, NULL), RUGO_OK);
@@ -1344,14 +1347,14 @@ START_TEST(automatic_control_count) {
     rugo_outline_fit f;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 32);
-    ck_assert_int_eq(f.tolerance_met, 1);
+    ck_assert(f.tolerance_met);
     ck_assert(f.max_error <= 1e-4);
     rugo_outline_fit_free(&f);
     fd.tolerance = 1e-30;
     fd.max_control_count = 64;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 64);
-    ck_assert_int_eq(f.tolerance_met, 0);
+    ck_assert(!f.tolerance_met);
     rugo_outline_fit_free(&f);
     /* The search also stops at sample_count / 4 (100 samples: 16). */
     rugo_outline_samples_free(&s);
@@ -1361,7 +1364,7 @@ START_TEST(automatic_control_count) {
     fd.max_control_count = 1 << 20;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
     ck_assert_int_eq(f.control_count, 16);
-    ck_assert_int_eq(f.tolerance_met, 0);
+    ck_assert(!f.tolerance_met);
     rugo_outline_fit_free(&f);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
@@ -1468,7 +1471,7 @@ START_TEST(fit_bad_input) {
         pts[i] = rugo_v2(cos(-2 * PI * i / 64), sin(-2 * PI * i / 64));
     fd.control_count = 8;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
-    ck_assert_int_eq(f.reversed, 1);
+    ck_assert(f.reversed);
     rugo_contour c = {f.control_points, 8};
     ck_assert(rugo_contour_signed_area(c) > 0);
     rugo_outline_fit_free(&f);
@@ -1480,16 +1483,17 @@ END_TEST
 START_TEST(points_pipeline_matches_fit_contour) {
     size_t len = 0;
     char* text = read_data("circle64_points.json", &len);
-    rugo_vec2* pts = NULL;
-    int n = 0;
-    ck_assert_int_eq(rugo_points_text_parse(text, len, NULL, &pts, &n, NULL), RUGO_OK);
+    rugo_point_list list;
+    ck_assert_int_eq(rugo_points_text_parse(text, len, NULL, &list, NULL), RUGO_OK);
     free(text);
+    const rugo_vec2* pts = list.points;
+    const int n = list.count;
     rugo_path p;
     ck_assert_int_eq(rugo_path_from_points(pts, n, NULL, &p), RUGO_OK);
     rugo_outline_samples s;
     sample_ok(&p, -1, rugo_affine_identity(), n, &s);
     ck_assert_int_eq(s.count, n);
-    const int flip = s.reversed;
+    const bool flip = s.reversed;
     for (int i = 0; i < n; ++i) {
         const rugo_vec2 q = pts[flip ? (n - i) % n : i];
         ck_assert(s.points[i].x == q.x && s.points[i].y == q.y);
@@ -1510,7 +1514,7 @@ START_TEST(points_pipeline_matches_fit_contour) {
     rugo_outline_fit_free(&f);
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
-    rugo_points_free(NULL, pts);
+    rugo_point_list_free(&list);
 }
 END_TEST
 
@@ -1525,7 +1529,7 @@ START_TEST(viewport_maps_user_units_to_px) {
     size_t len = 0;
     char* text = read_data("rock_inkscape.svg", &len);
     ck_assert_int_eq(rugo_svg_read_viewport(text, len, &vp, &e), RUGO_OK);
-    rugo_text_free(NULL, text);
+    free(text);
     ck_assert(vp.has_viewbox && vp.has_width && vp.has_height);
     ck_assert_near(vp.width, 210.0 * 96.0 / 25.4, 1e-9);
     ck_assert_near(vp.user_to_px.a, 96.0 / 25.4, 1e-12);
@@ -1657,7 +1661,7 @@ START_TEST(import_honours_viewbox) {
     rugo_import_result_free(&user);
     rugo_import_result_free(&vb);
     rugo_import_result_free(&mm);
-    rugo_text_free(NULL, text);
+    free(text);
 }
 END_TEST
 

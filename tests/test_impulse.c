@@ -28,7 +28,7 @@ START_TEST(test_random_collisions) {
     long guarded = 0; /* raw sticking impulse inside the cone but adding energy: must be rejected */
     const long cases = 200000;
     for (long it = 0; it < cases; ++it) {
-        rugo_impulse_input in;
+        rugo__impulse_input in;
         in.inv_mass_a = 1.0 / test_rng_uniform(&r, 0.1, 10.0);
         in.inv_inertia_a = 1.0 / test_rng_uniform(&r, 0.01, 10.0);
         int b_static = test_rng_uniform(&r, 0, 1) < 0.3;
@@ -52,8 +52,8 @@ START_TEST(test_random_collisions) {
             in.normal = rugo_v2_scale(-1.0, in.normal);
             vn = -vn;
         }
-        rugo_impulse_result res;
-        ck_assert_int_eq(rugo_collision_impulse(&in, &res), RUGO_OK);
+        rugo__impulse_result res;
+        ck_assert_int_eq(rugo__collision_impulse(&in, &res), RUGO_OK);
         ck_assert_int_ge(res.branch, 0);
         ck_assert_int_le(res.branch, 3);
         branches[res.branch]++;
@@ -127,7 +127,7 @@ END_TEST
 
 START_TEST(test_head_on) {
     /* equal discs head on, ε = 1, frictionless: velocities exchange */
-    rugo_impulse_input in;
+    rugo__impulse_input in;
     in.inv_mass_a = in.inv_mass_b = 1.0;
     in.inv_inertia_a = in.inv_inertia_b = 2.0;
     in.r_a = rugo_v2(-0.5, 0);
@@ -138,8 +138,8 @@ START_TEST(test_head_on) {
     in.normal = rugo_v2(1, 0); /* from B (left) to A (right) */
     in.friction = 0.0;
     in.restitution = 1.0;
-    rugo_impulse_result res;
-    ck_assert_int_eq(rugo_collision_impulse(&in, &res), RUGO_OK);
+    rugo__impulse_result res;
+    ck_assert_int_eq(rugo__collision_impulse(&in, &res), RUGO_OK);
     ck_assert_int_eq(res.branch, 3);
     ck_assert_near(res.impulse.x, 2.0, 1e-15);
     ck_assert_near(res.impulse.y, 0.0, 1e-15);
@@ -147,18 +147,18 @@ START_TEST(test_head_on) {
     /* separating: nothing */
     in.v_a = rugo_v2(1, 0);
     in.v_b = rugo_v2(-1, 0);
-    ck_assert_int_eq(rugo_collision_impulse(&in, &res), RUGO_OK);
+    ck_assert_int_eq(rugo__collision_impulse(&in, &res), RUGO_OK);
     ck_assert_int_eq(res.branch, 0);
     /* both static: nothing can move */
     in.v_a = rugo_v2(-1, 0);
     in.inv_mass_a = in.inv_mass_b = in.inv_inertia_a = in.inv_inertia_b = 0.0;
-    ck_assert_int_eq(rugo_collision_impulse(&in, &res), RUGO_OK);
+    ck_assert_int_eq(rugo__collision_impulse(&in, &res), RUGO_OK);
     ck_assert_int_eq(res.branch, 0);
 }
 END_TEST
 
 START_TEST(test_bad_input) {
-    rugo_impulse_input in;
+    rugo__impulse_input in;
     in.inv_mass_a = in.inv_mass_b = 1.0;
     in.inv_inertia_a = in.inv_inertia_b = 1.0;
     in.r_a = in.r_b = rugo_v2(0, 0);
@@ -168,28 +168,28 @@ START_TEST(test_bad_input) {
     in.normal = rugo_v2(0, 1);
     in.friction = 0.5;
     in.restitution = 0.5;
-    rugo_impulse_result res;
-    ck_assert_int_eq(rugo_collision_impulse(NULL, &res), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_collision_impulse(&in, NULL), RUGO_ERR_NULL_ARGUMENT);
-    rugo_impulse_input b = in;
+    rugo__impulse_result res;
+    ck_assert_int_eq(rugo__collision_impulse(NULL, &res), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__collision_impulse(&in, NULL), RUGO_ERR_NULL_ARGUMENT);
+    rugo__impulse_input b = in;
     b.v_a.x = NAN;
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_NOT_FINITE);
     b = in;
     b.inv_inertia_b = INFINITY;
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_NOT_FINITE);
     b = in;
     b.friction = -0.1;
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
     b = in;
     b.restitution = 1.5;
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
     b = in;
     b.normal = rugo_v2(0, 2);
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
     b = in;
     b.inv_mass_a = -1.0;
-    ck_assert_int_eq(rugo_collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_collision_impulse(&in, &res), RUGO_OK);
+    ck_assert_int_eq(rugo__collision_impulse(&b, &res), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__collision_impulse(&in, &res), RUGO_OK);
     ck_assert_int_ne(res.branch, 0);
 }
 END_TEST

@@ -298,7 +298,7 @@ START_TEST(pyramid_levels_consistent) {
             ck_assert_int_eq(rugo_pyramid_filter(p), ALL_FILTERS[k]);
             ck_assert_int_eq(rugo_pyramid_coarsest_level(p), 2);
             ck_assert_int_eq(1 << rugo_pyramid_finest_level(p), n);
-            ck_assert_int_eq(rugo_pyramid_was_reversed(p), 0);
+            ck_assert(!rugo_pyramid_was_reversed(p));
             rugo_contour fin = level_of(p, rugo_pyramid_finest_level(p));
             ck_assert_int_eq(memcmp(fin.points, pts, (size_t)n * sizeof *pts), 0); /* copied verbatim */
             check_consistent(p);
@@ -360,19 +360,19 @@ START_TEST(clockwise_input_reversed) {
     test_random_star(&r, 32, rugo_v2(5.0, 5.0), 3.0, 0.3, ccw);
     for (int i = 0; i < 32; ++i) cw[i] = ccw[31 - i];
     rugo_pyramid* p = make_pyramid(cw, 32, RUGO_FILTER_DEFAULT, 0);
-    ck_assert_int_eq(rugo_pyramid_was_reversed(p), 1);
+    ck_assert(rugo_pyramid_was_reversed(p));
     rugo_contour c = level_of(p, 5);
     ck_assert_int_eq(memcmp(c.points, ccw, sizeof ccw), 0);
     ck_assert_double_gt(rugo_contour_signed_area(c), 0.0);
     for (int j = 2; j <= 5; ++j) ck_assert_double_gt(rugo_contour_signed_area(level_of(p, j)), 0.0);
     /* set_finest normalises and flags the same way. */
     ck_assert_int_eq(rugo_pyramid_set_finest(p, ccw, 32), RUGO_OK);
-    ck_assert_int_eq(rugo_pyramid_was_reversed(p), 0);
+    ck_assert(!rugo_pyramid_was_reversed(p));
     ck_assert_int_eq(rugo_pyramid_set_finest(p, cw, 32), RUGO_OK);
-    ck_assert_int_eq(rugo_pyramid_was_reversed(p), 1);
+    ck_assert(rugo_pyramid_was_reversed(p));
     rugo_pyramid_destroy(p);
     p = make_pyramid(ccw, 32, RUGO_FILTER_DEFAULT, 0);
-    ck_assert_int_eq(rugo_pyramid_was_reversed(p), 0);
+    ck_assert(!rugo_pyramid_was_reversed(p));
     rugo_pyramid_destroy(p);
 }
 END_TEST
@@ -686,7 +686,7 @@ START_TEST(create_self_intersecting) {
     ck_assert_int_eq(rugo_pyramid_create(&def, &p, &prob), RUGO_ERR_SELF_INTERSECTING);
     ck_assert_ptr_null(p);
     ck_assert_int_ge(prob.segment_a, 0);
-    def.check_self_intersection = 0;
+    def.check_self_intersection = false;
     ck_assert_int_eq(rugo_pyramid_create(&def, &p, NULL), RUGO_OK);
     /* set_finest keeps the pyramid's own policy. */
     ck_assert_int_eq(rugo_pyramid_set_finest(p, eight, 16), RUGO_OK);
@@ -754,7 +754,7 @@ START_TEST(edit_bad_input) {
     ck_assert_int_eq(rugo_pyramid_details(NULL, 4, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_pyramid_finest_level(NULL), -1);
     ck_assert_int_eq(rugo_pyramid_coarsest_level(NULL), -1);
-    ck_assert_int_eq(rugo_pyramid_was_reversed(NULL), 0);
+    ck_assert(!rugo_pyramid_was_reversed(NULL));
     ck_assert_int_eq(rugo_pyramid_filter(NULL), RUGO_FILTER_COUNT);
     rugo_pyramid_destroy(NULL);
     /* None of the refused calls changed anything. The zero displacement above reproduces the finest

@@ -115,15 +115,14 @@ static rugo_shape_desc make_desc(rugo_vec2* pts, int n, rugo_filter filter) {
     return d;
 }
 
-static char* read_data(const char* name, size_t* length) {
+static rugo_text read_data(const char* name) {
     char path[1024];
     data_path(name, path, sizeof path);
-    char* text = NULL;
-    rugo_status st = rugo_read_file(path, NULL, &text, length);
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, NULL, &text);
     ck_assert_msg(st == RUGO_OK, "%s: %s", path, rugo_status_string(st));
     return text;
 }
-
 
 /* ------------------------------------------------------------------------------------------------ */
 /* JSON reader */
@@ -458,15 +457,14 @@ START_TEST(json_not_nul_terminated) {
 END_TEST
 
 START_TEST(json_out_of_memory) {
-    size_t length = 0;
-    char* text = read_data("star32.json", &length);
+    rugo_text text = read_data("star32.json");
     /* Every allocation failure is reported, leaves nothing allocated, and enough budget succeeds. */
     for (long budget = 0;; ++budget) {
         test_budget_ctx ctx = {budget, 0};
         rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo__json_doc doc;
         rugo__json_error err;
-        rugo_status st = rugo__json_parse(text, length, &a, NULL, &doc, &err);
+        rugo_status st = rugo__json_parse(text.data, text.length, &a, NULL, &doc, &err);
         if (st == RUGO_OK) {
             ck_assert_int_gt(ctx.live, 0);
             rugo__json_doc_free(&doc);
@@ -481,13 +479,12 @@ START_TEST(json_out_of_memory) {
         test_budget_ctx ctx = {budget, 0};
         rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
         rugo_shape_desc desc;
-        rugo_status st = rugo_shape_desc_parse(text, length, &a, &desc, NULL);
+        rugo_status st = rugo_shape_desc_parse(text.data, text.length, &a, &desc, NULL);
         if (st == RUGO_OK) {
             ck_assert_int_eq(desc.count, 32);
             rugo_shape_desc_free(&desc);
             ck_assert_int_eq(ctx.live, 0);
-            char* out = NULL;
-            size_t out_len = 0;
+            rugo_text out;
             /* The writer too. */
             for (long wb = 0;; ++wb) {
                 test_budget_ctx wctx = {wb, 0};
@@ -498,15 +495,15 @@ START_TEST(json_out_of_memory) {
                 test_random_star(&r, 32, rugo_v2(0, 0), 1.0, 0.3, pts);
                 d2.control_points = pts;
                 d2.count = 32;
-                st = rugo_shape_desc_write(&d2, &wa, &out, &out_len);
+                st = rugo_shape_desc_write(&d2, &wa, &out);
                 if (st == RUGO_OK) {
                     ck_assert_int_eq(wctx.live, 1);
-                    rugo_text_free(&wa, out);
+                    rugo_text_free(&out);
                     ck_assert_int_eq(wctx.live, 0);
                     break;
                 }
                 ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
-                ck_assert_ptr_null(out);
+                ck_assert_ptr_null(out.data);
                 ck_assert_int_eq(wctx.live, 0);
                 ck_assert_int_lt(wb, 100);
             }
@@ -517,7 +514,7 @@ START_TEST(json_out_of_memory) {
         ck_assert_int_eq(ctx.live, 0);
         ck_assert_int_lt(budget, 100);
     }
-    rugo_text_free(NULL, text);
+    rugo_text_free(&text);
 }
 END_TEST
 
@@ -549,6 +546,7 @@ END_TEST
 /* ------------------------------------------------------------------------------------------------ */
 /* JSON writer */
 
+/* The writer's text (the default allocator's: free() it). */
 static char* finish_ok(rugo__json_writer* w) {
     char* text = NULL;
     size_t n = 0;
@@ -608,14 +606,14 @@ START_TEST(json_writer_layout) {
             bits_of(rugo__json_object_get(doc.root, "a", NULL)->u.first->next->next->u.first->u.number) ==
             bits_of(-0.0));
         rugo__json_doc_free(&doc);
-        rugo_text_free(NULL, text);
+        free(text);
     }
     /* An empty text is an empty string, not NULL. */
     rugo__json_writer w;
     rugo__json_writer_init(&w, NULL, 0);
     char* text = finish_ok(&w);
     ck_assert_str_eq(text, "");
-    rugo_text_free(NULL, text);
+    free(text);
 }
 END_TEST
 
@@ -642,7 +640,7 @@ START_TEST(json_writer_strings_round_trip) {
     ck_assert(memcmp(doc.root->u.first->u.string, all, n) == 0);
     ck_assert_str_eq(doc.root->u.first->next->u.string, "\"\\/");
     rugo__json_doc_free(&doc);
-    rugo_text_free(NULL, text);
+    free(text);
 }
 END_TEST
 
@@ -782,7 +780,7 @@ START_TEST(shape_parse_valid) {
     ck_assert(desc.control_points[2].x == -1e-3);
     ck_assert(desc.control_points[2].y == 200.0);
     ck_assert(desc.allocator.alloc != NULL);
-    ck_assert_int_eq(desc.has_roughness, 1);
+    ck_assert(desc.has_roughness);
     ck_assert_int_eq(desc.roughness.kind, RUGO_ROUGHNESS_CONSTANT);
     ck_assert(desc.roughness.constant == 0.5);
     rugo_shape_desc_free(&desc);
@@ -806,20 +804,19 @@ START_TEST(shape_parse_valid) {
     rugo_shape_desc_free(&desc);
 
     /* The sample files */
-    size_t length = 0;
-    char* text = read_data("square4.json", &length);
-    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &desc, &err), RUGO_OK);
+    rugo_text text = read_data("square4.json");
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &desc, &err), RUGO_OK);
     ck_assert_int_eq(desc.count, 4);
     ck_assert(desc.control_points[0].x == -1.0 && desc.control_points[2].y == 1.0);
     rugo_shape_desc_free(&desc);
-    rugo_text_free(NULL, text);
-    text = read_data("star32.json", &length);
-    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &desc, &err), RUGO_OK);
+    rugo_text_free(&text);
+    text = read_data("star32.json");
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &desc, &err), RUGO_OK);
     ck_assert_int_eq(desc.count, 32);
     ck_assert_int_eq(desc.filter, RUGO_FILTER_CDF4_8);
     ck_assert(desc.control_points[0].x == 1.3);
     rugo_shape_desc_free(&desc);
-    rugo_text_free(NULL, text);
+    rugo_text_free(&text);
 
     /* A custom allocator is recorded and used to free. */
     test_budget_ctx ctx = {1000, 0};
@@ -902,12 +899,13 @@ START_TEST(shape_parse_errors) {
     ck_assert_int_eq(rugo_shape_desc_parse(NULL, 0, NULL, &desc, &err), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_shape_desc_parse("{}", 2, NULL, NULL, &err), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_shape_desc_parse("{}", 2, NULL, &desc, NULL), RUGO_ERR_BAD_FIELD);
-    rugo_vec2* pts = (rugo_vec2*)1;
-    int count = 7;
-    ck_assert_int_eq(rugo_points_parse("{}", 2, NULL, NULL, &pts, &count, &err), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_ptr_null(pts);
-    ck_assert_int_eq(count, 0);
-    ck_assert_int_eq(rugo_points_parse("{}", 2, "points", NULL, NULL, &count, &err), RUGO_ERR_NULL_ARGUMENT);
+    rugo_point_list pts;
+    pts.points = (rugo_vec2*)1;
+    pts.count = 7;
+    ck_assert_int_eq(rugo_points_parse("{}", 2, NULL, NULL, &pts, &err), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_ptr_null(pts.points);
+    ck_assert_int_eq(pts.count, 0);
+    ck_assert_int_eq(rugo_points_parse("{}", 2, "points", NULL, NULL, &err), RUGO_ERR_NULL_ARGUMENT);
 }
 END_TEST
 
@@ -978,10 +976,8 @@ START_TEST(shape_too_many_points) {
     ck_assert_str_eq(err.path, "control_points");
     ck_assert_ptr_nonnull(strstr(err.message, "1048577 points"));
     ck_assert_int_eq(err.column, 19);
-    rugo_vec2* pts = NULL;
-    int count = 0;
-    ck_assert_int_eq(rugo_points_parse(t, n, "control_points", NULL, &pts, &count, &err),
-                     RUGO_ERR_TOO_MANY_POINTS);
+    rugo_point_list pts;
+    ck_assert_int_eq(rugo_points_parse(t, n, "control_points", NULL, &pts, &err), RUGO_ERR_TOO_MANY_POINTS);
     free(t);
     t = points_text(RUGO_MAX_CONTROL_POINTS, &n);
     ck_assert_int_eq(rugo_shape_desc_parse(t, n, NULL, &desc, &err), RUGO_OK);
@@ -992,11 +988,10 @@ START_TEST(shape_too_many_points) {
 
     /* The writer refuses what the reader would. */
     rugo_shape_desc big = make_desc(NULL, RUGO_MAX_CONTROL_POINTS + 1, RUGO_FILTER_DEFAULT);
-    char* text = NULL;
-    size_t len = 0;
+    rugo_text text;
     rugo_vec2 dummy = {0, 0};
     big.control_points = &dummy;
-    ck_assert_int_eq(rugo_shape_desc_write(&big, NULL, &text, &len), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(rugo_shape_desc_write(&big, NULL, &text), RUGO_ERR_TOO_MANY_POINTS);
 }
 END_TEST
 
@@ -1008,17 +1003,16 @@ START_TEST(shape_max_size_file_fits) {
     for (int i = 0; i < n; ++i)
         pts[i] = rugo_v2(-2.2250738585072014e-308, -1.2345678901234567e-300);
     rugo_shape_desc desc = make_desc(pts, n, RUGO_FILTER_CDF4_12);
-    char* text = NULL;
-    size_t len = 0;
-    ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
-    ck_assert_uint_le(len, RUGO_MAX_JSON_BYTES);
+    rugo_text text;
+    ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
+    ck_assert_uint_le(text.length, RUGO_MAX_JSON_BYTES);
     rugo_shape_desc back;
     rugo_parse_error err;
-    ck_assert_int_eq(rugo_shape_desc_parse(text, len, NULL, &back, &err), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err), RUGO_OK);
     ck_assert_int_eq(back.count, n);
     ck_assert(memcmp(back.control_points, pts, sizeof *pts * (size_t)n) == 0);
     rugo_shape_desc_free(&back);
-    rugo_text_free(NULL, text);
+    rugo_text_free(&text);
     free(pts);
 }
 END_TEST
@@ -1033,15 +1027,14 @@ START_TEST(shape_round_trip_bits) {
             pts[i].y = random_double(&r);
         }
         rugo_shape_desc desc = make_desc(pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT));
-        char* text = NULL;
-        size_t len = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
-        ck_assert_int_eq((int)strlen(text), (int)len);
-        ck_assert_int_eq(text[len - 1], '\n');
+        rugo_text text;
+        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
+        ck_assert_int_eq((int)strlen(text.data), (int)text.length);
+        ck_assert_int_eq(text.data[text.length - 1], '\n');
         rugo_shape_desc back;
         rugo_parse_error err;
-        ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s at %d:%d",
-                      err.message, err.line, err.column);
+        ck_assert_msg(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err) == RUGO_OK,
+                      "%s at %d:%d", err.message, err.line, err.column);
         ck_assert_int_eq(back.count, n);
         ck_assert_int_eq(back.filter, desc.filter);
         for (int i = 0; i < n; ++i) {
@@ -1049,60 +1042,61 @@ START_TEST(shape_round_trip_bits) {
             ck_assert(bits_of(back.control_points[i].y) == bits_of(pts[i].y));
         }
         /* Writing again gives the same text. */
-        char* text2 = NULL;
-        size_t len2 = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2, &len2), RUGO_OK);
-        ck_assert_int_eq((int)len2, (int)len);
-        ck_assert(memcmp(text, text2, len) == 0);
-        rugo_text_free(NULL, text2);
+        rugo_text text2;
+        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2), RUGO_OK);
+        ck_assert_int_eq((int)text2.length, (int)text.length);
+        ck_assert(memcmp(text.data, text2.data, text.length) == 0);
+        rugo_text_free(&text2);
         rugo_shape_desc_free(&back);
-        rugo_text_free(NULL, text);
+        rugo_text_free(&text);
     }
     /* The layout, once */
     rugo_vec2 two[2] = {{0.5, -0.0}, {1e300, 5e-324}};
     rugo_shape_desc d = make_desc(two, 2, RUGO_FILTER_CDF4_4);
-    char* text = NULL;
-    size_t len = 0;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_str_eq(text, "{\n  \"control_points\": [\n    [0.5, -0],\n    [1.0000000000000001e+300, "
-                           "4.9406564584124654e-324]\n  ],\n  \"filter\": \"cdf4.4\"\n}\n");
-    rugo_text_free(NULL, text);
+    rugo_text text;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_str_eq(text.data, "{\n  \"control_points\": [\n    [0.5, -0],\n    [1.0000000000000001e+300, "
+                                "4.9406564584124654e-324]\n  ],\n  \"filter\": \"cdf4.4\"\n}\n");
+    rugo_text_free(&text);
     d.count = 0;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_str_eq(text, "{\n  \"control_points\": [],\n  \"filter\": \"cdf4.4\"\n}\n");
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_str_eq(text.data, "{\n  \"control_points\": [],\n  \"filter\": \"cdf4.4\"\n}\n");
+    rugo_text_free(&text);
 }
 END_TEST
 
 START_TEST(shape_write_errors) {
     rugo_vec2 pts[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     rugo_shape_desc d = make_desc(pts, 4, RUGO_FILTER_DEFAULT);
-    char* text = (char*)1;
-    size_t len = 5;
+    rugo_text text;
+    text.data = (char*)1;
+    text.length = 5;
     pts[2].y = NAN;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_NOT_FINITE);
-    ck_assert_ptr_null(text);
-    ck_assert_int_eq((int)len, 0);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_NOT_FINITE);
+    ck_assert_ptr_null(text.data);
+    ck_assert_int_eq((int)text.length, 0);
     pts[2].y = -INFINITY;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_NOT_FINITE);
     pts[2].y = 1.0;
     d.filter = RUGO_FILTER_COUNT;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_BAD_FILTER);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_BAD_FILTER);
     d.filter = (rugo_filter)-1;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_BAD_FILTER);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_BAD_FILTER);
     d.filter = RUGO_FILTER_DEFAULT;
     d.count = -1;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_BAD_ARGUMENT);
     d.count = 4;
     d.control_points = NULL;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_NULL_ARGUMENT);
     d.control_points = pts;
-    ck_assert_int_eq(rugo_shape_desc_write(NULL, NULL, &text, &len), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, NULL, &len), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    rugo_text_free(NULL, text);
-    rugo_text_free(NULL, NULL);
+    ck_assert_int_eq(rugo_shape_desc_write(NULL, NULL, &text), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert(text.allocator.alloc != NULL); /* the default allocator, recorded */
+    rugo_text_free(&text);
+    ck_assert(text.data == NULL && text.length == 0);
+    rugo_text_free(&text); /* a zeroed text, and NULL, are fine */
+    rugo_text_free(NULL);
 }
 END_TEST
 
@@ -1131,7 +1125,7 @@ static rugo_shape_desc parse_rough_ok(const char* body) {
     ck_assert_msg(st == RUGO_OK, "input <%s>: status %d (%s) at %s: %s", buf, (int)st, rugo_status_string(st),
                   err.path, err.message);
     ck_assert_int_eq(desc.count, 4);
-    ck_assert_int_eq(desc.has_roughness, 1);
+    ck_assert(desc.has_roughness);
     return desc;
 }
 
@@ -1205,13 +1199,13 @@ START_TEST(roughness_defaults) {
     ck_assert(d.friction.alpha == fm.alpha && d.friction.lambda_min == fm.lambda_min);
     ck_assert(d.restitution.epsilon == rs.epsilon && d.restitution.epsilon_max == rs.epsilon_max);
     ck_assert_ptr_null(d.tolerances);
-    ck_assert_int_eq(d.has_perturbation, 0);
+    ck_assert(!d.has_perturbation);
     /* A shape without roughness says so. */
     rugo_shape_desc desc;
     rugo_parse_error err;
     const char* t = "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]]}";
     ck_assert_int_eq(shape_parse_n(t, strlen(t), &desc, &err), RUGO_OK);
-    ck_assert_int_eq(desc.has_roughness, 0);
+    ck_assert(!desc.has_roughness);
     rugo_shape_desc_free(&desc);
 }
 END_TEST
@@ -1227,7 +1221,7 @@ START_TEST(roughness_parse_valid) {
         ck_assert_ptr_null(d.roughness.tolerances);
         assert_default_settings(&d.roughness);
         rugo_shape_desc_free(&d);
-        ck_assert_int_eq(d.has_roughness, 0);
+        ck_assert(!d.has_roughness);
     }
     /* Per-segment values (zero and negative zero are tolerances too). */
     rugo_shape_desc d = parse_rough_ok("\"tolerances\": [0.25, 0, -0, 1e-300]");
@@ -1289,7 +1283,7 @@ START_TEST(roughness_parse_valid) {
     rugo_parse_error err;
     const char* e = "{\"control_points\": [], \"roughness\": {\"tolerances\": []}}";
     ck_assert_int_eq(shape_parse_n(e, strlen(e), &d, &err), RUGO_OK);
-    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert(d.has_roughness);
     ck_assert_int_eq(d.roughness.tolerance_count, 0);
     rugo_shape_desc_free(&d);
 
@@ -1306,23 +1300,22 @@ START_TEST(roughness_parse_valid) {
     ck_assert_int_eq(ctx.live, 0);
 
     /* The sample files */
-    size_t length = 0;
-    char* text = read_data("star32_tipo5.json", &length);
-    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &d, &err), RUGO_OK);
+    rugo_text text = read_data("star32_tipo5.json");
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &d, &err), RUGO_OK);
     ck_assert_int_eq(d.count, 32);
-    ck_assert_int_eq(d.has_roughness, 1);
+    ck_assert(d.has_roughness);
     ck_assert_int_eq(d.roughness.preset, RUGO_PRESET_TIPO_5);
     ck_assert(d.roughness.seed == 7 && d.roughness.friction.alpha == 1.5 &&
               d.roughness.restitution.epsilon == 0.4);
     rugo_shape_desc_free(&d);
-    rugo_text_free(NULL, text);
-    text = read_data("square8_cw_tolerances.json", &length);
-    ck_assert_int_eq(rugo_shape_desc_parse(text, length, NULL, &d, &err), RUGO_OK);
+    rugo_text_free(&text);
+    text = read_data("square8_cw_tolerances.json");
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &d, &err), RUGO_OK);
     ck_assert_int_eq(d.count, 8);
     ck_assert_int_eq(d.roughness.kind, RUGO_ROUGHNESS_TOLERANCES);
     ck_assert(d.roughness.tolerances[7] == 0.8 && d.roughness.seed == 42);
     rugo_shape_desc_free(&d);
-    rugo_text_free(NULL, text);
+    rugo_text_free(&text);
 }
 END_TEST
 
@@ -1511,7 +1504,7 @@ START_TEST(roughness_parse_errors) {
     /* error may be NULL; nothing leaks on any error (the sanitizer build checks). */
     rough_text("\"tolerances\": [1, 2, 3, 4], \"q\": 0", buf, sizeof buf);
     ck_assert_int_eq(rugo_shape_desc_parse(buf, strlen(buf), NULL, &desc, NULL), RUGO_ERR_BAD_QUANTILE);
-    ck_assert_int_eq(desc.has_roughness, 0);
+    ck_assert(!desc.has_roughness);
     ck_assert_ptr_null(desc.roughness.tolerances);
 }
 END_TEST
@@ -1572,7 +1565,7 @@ static rugo_roughness_desc random_roughness(test_rng* r, int n) {
     d.restitution.epsilon = e1 < e2 ? e1 : e2;
     d.restitution.epsilon_max = e1 < e2 ? e2 : e1;
     if (test_rng_next(r) % 2 && n <= 16) {
-        d.has_perturbation = 1;
+        d.has_perturbation = true;
         d.perturbation_method = (rugo_roughen_method)(test_rng_next(r) % 2);
         d.perturbation_levels = 1 + (int)(test_rng_next(r) % 3);
         d.perturbation_count = n << d.perturbation_levels;
@@ -1598,31 +1591,29 @@ START_TEST(roughness_round_trip_bits) {
         for (int i = 0; i < n; ++i)
             pts[i] = rugo_v2(random_double(&r), random_double(&r));
         rugo_shape_desc desc = make_desc(pts, n, (rugo_filter)(test_rng_next(&r) % RUGO_FILTER_COUNT));
-        desc.has_roughness = 1;
+        desc.has_roughness = true;
         desc.roughness = random_roughness(&r, n);
-        char* text = NULL;
-        size_t len = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
-        ck_assert_int_eq((int)strlen(text), (int)len);
+        rugo_text text;
+        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
+        ck_assert_int_eq((int)strlen(text.data), (int)text.length);
         rugo_shape_desc back;
         rugo_parse_error err;
-        ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s: %s at %d:%d\n%s",
-                      err.path, err.message, err.line, err.column, text);
+        ck_assert_msg(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err) == RUGO_OK,
+                      "%s: %s at %d:%d\n%s", err.path, err.message, err.line, err.column, text.data);
         ck_assert_int_eq(back.count, n);
-        ck_assert_int_eq(back.has_roughness, 1);
+        ck_assert(back.has_roughness);
         for (int i = 0; i < n; ++i) {
             ck_assert(bits_of(back.control_points[i].x) == bits_of(pts[i].x));
             ck_assert(bits_of(back.control_points[i].y) == bits_of(pts[i].y));
         }
         assert_same_roughness(&desc.roughness, &back.roughness);
-        char* text2 = NULL;
-        size_t len2 = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2, &len2), RUGO_OK);
-        ck_assert_int_eq((int)len2, (int)len);
-        ck_assert(memcmp(text, text2, len) == 0);
-        rugo_text_free(NULL, text2);
+        rugo_text text2;
+        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2), RUGO_OK);
+        ck_assert_int_eq((int)text2.length, (int)text.length);
+        ck_assert(memcmp(text.data, text2.data, text.length) == 0);
+        rugo_text_free(&text2);
         rugo_shape_desc_free(&back);
-        rugo_text_free(NULL, text);
+        rugo_text_free(&text);
         free_random_roughness(&desc.roughness);
     }
     /* The layout, once */
@@ -1630,21 +1621,20 @@ START_TEST(roughness_round_trip_bits) {
     rugo_real tol[4] = {0.25, 0.5, 0, 1};
     rugo_vec2 pert[8] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5}, {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
     rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-    d.has_roughness = 1;
+    d.has_roughness = true;
     d.roughness = rugo_default_roughness_desc();
     d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
     d.roughness.tolerances = tol;
     d.roughness.tolerance_count = 4;
     d.roughness.seed = 42;
-    d.roughness.has_perturbation = 1;
+    d.roughness.has_perturbation = true;
     d.roughness.perturbation_method = RUGO_ROUGHEN_LOCAL;
     d.roughness.perturbation_levels = 1;
     d.roughness.perturbation_points = pert;
     d.roughness.perturbation_count = 8;
-    char* text = NULL;
-    size_t len = 0;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_str_eq(text,
+    rugo_text text;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_str_eq(text.data,
                      "{\n  \"control_points\": [\n    [0, 0],\n    [1, 0],\n    [1, 1],\n    [0, 1]\n  ],\n"
                      "  \"filter\": \"cdf4.8\",\n  \"roughness\": {\n    \"tolerances\": [\n      0.25,\n"
                      "      0.5,\n      0,\n      1\n    ],\n    \"seed\": 42,\n"
@@ -1656,33 +1646,32 @@ START_TEST(roughness_round_trip_bits) {
                      "      \"control_points\": [\n        [0, 0],\n        [0.5, 0],\n        [1, 0],\n"
                      "        [1, 0.5],\n        [1, 1],\n        [0.5, 1],\n        [0, 1],\n"
                      "        [0, 0.5]\n      ]\n    }\n  }\n}\n");
-    rugo_text_free(NULL, text);
-    d.roughness.has_perturbation = 0;
+    rugo_text_free(&text);
+    d.roughness.has_perturbation = false;
     d.roughness.kind = RUGO_ROUGHNESS_PRESET;
     d.roughness.preset = RUGO_PRESET_TIPO_5;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
     ck_assert_ptr_nonnull(
-        strstr(text, "  \"roughness\": {\n    \"preset\": \"tipo_5\",\n    \"seed\": 42,\n"));
-    ck_assert_ptr_null(strstr(text, "perturbation"));
-    rugo_text_free(NULL, text);
+        strstr(text.data, "  \"roughness\": {\n    \"preset\": \"tipo_5\",\n    \"seed\": 42,\n"));
+    ck_assert_ptr_null(strstr(text.data, "perturbation"));
+    rugo_text_free(&text);
     d.roughness.kind = RUGO_ROUGHNESS_CONSTANT;
     d.roughness.constant = 0.125;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"constant\": 0.125,\n"));
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text.data, "  \"roughness\": {\n    \"constant\": 0.125,\n"));
+    rugo_text_free(&text);
     /* The sample file: read, write, read gives the same description. */
-    size_t length = 0;
-    char* sample = read_data("star32_tipo5.json", &length);
+    rugo_text sample = read_data("star32_tipo5.json");
     rugo_shape_desc a, b;
     rugo_parse_error err;
-    ck_assert_int_eq(rugo_shape_desc_parse(sample, length, NULL, &a, &err), RUGO_OK);
-    ck_assert_int_eq(rugo_shape_desc_write(&a, NULL, &text, &len), RUGO_OK);
-    ck_assert_int_eq(rugo_shape_desc_parse(text, len, NULL, &b, &err), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_parse(sample.data, sample.length, NULL, &a, &err), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_write(&a, NULL, &text), RUGO_OK);
+    ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &b, &err), RUGO_OK);
     assert_same_roughness(&a.roughness, &b.roughness);
     rugo_shape_desc_free(&a);
     rugo_shape_desc_free(&b);
-    rugo_text_free(NULL, text);
-    rugo_text_free(NULL, sample);
+    rugo_text_free(&text);
+    rugo_text_free(&sample);
 }
 END_TEST
 
@@ -1691,9 +1680,10 @@ START_TEST(roughness_write_errors) {
     rugo_real tol[4] = {1, 1, 1, 1};
     rugo_vec2 pert[8] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}};
     rugo_shape_desc d = make_desc(pts, 4, RUGO_FILTER_DEFAULT);
-    d.has_roughness = 1;
-    char* text = (char*)1;
-    size_t len = 5;
+    d.has_roughness = true;
+    rugo_text text;
+    text.data = (char*)1;
+    text.length = 5;
     /* Each case: break one member of a valid description, expect the status, restore. */
     struct {
         rugo_status status;
@@ -1714,15 +1704,15 @@ START_TEST(roughness_write_errors) {
         r->kind = RUGO_ROUGHNESS_TOLERANCES;
         r->tolerances = tol;
         r->tolerance_count = 4;
-        r->has_perturbation = 1;
+        r->has_perturbation = true;
         r->perturbation_levels = 1;
         r->perturbation_count = 8;
         r->perturbation_points = pert;
         for (int i = 0; i < 4; ++i)
             tol[i] = 1.0;
         pert[7] = rugo_v2(0, 0);
-        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-        rugo_text_free(NULL, text);
+        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+        rugo_text_free(&text);
         switch (cases[c].which) {
         case 0:
             r->kind = RUGO_ROUGHNESS_KIND_COUNT;
@@ -1800,19 +1790,19 @@ START_TEST(roughness_write_errors) {
             pert[7].y = -INFINITY;
             break;
         }
-        text = (char*)1;
-        len = 5;
-        rugo_status st = rugo_shape_desc_write(&d, NULL, &text, &len);
+        text.data = (char*)1;
+        text.length = 5;
+        rugo_status st = rugo_shape_desc_write(&d, NULL, &text);
         ck_assert_msg(st == cases[c].status, "case %d: status %d (%s), expected %d", cases[c].which, (int)st,
                       rugo_status_string(st), (int)cases[c].status);
-        ck_assert_ptr_null(text);
-        ck_assert_int_eq((int)len, 0);
+        ck_assert_ptr_null(text.data);
+        ck_assert_int_eq((int)text.length, 0);
         /* Without has_roughness the roughness is not looked at. */
-        d.has_roughness = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-        ck_assert_ptr_null(strstr(text, "roughness"));
-        rugo_text_free(NULL, text);
-        d.has_roughness = 1;
+        d.has_roughness = false;
+        ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+        ck_assert_ptr_null(strstr(text.data, "roughness"));
+        rugo_text_free(&text);
+        d.has_roughness = true;
     }
 }
 END_TEST
@@ -1830,21 +1820,22 @@ START_TEST(roughness_write_size_limit) {
         tol[i] = 1.2345678901234567e-300;
     }
     rugo_shape_desc d = make_desc(pts, n, RUGO_FILTER_DEFAULT);
-    d.has_roughness = 1;
+    d.has_roughness = true;
     d.roughness = rugo_default_roughness_desc();
     d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
     d.roughness.tolerances = tol;
     d.roughness.tolerance_count = n;
-    char* text = (char*)1;
-    size_t len = 5;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_ERR_TOO_MANY_POINTS);
-    ck_assert_ptr_null(text);
-    ck_assert_int_eq((int)len, 0);
+    rugo_text text;
+    text.data = (char*)1;
+    text.length = 5;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_ptr_null(text.data);
+    ck_assert_int_eq((int)text.length, 0);
     /* A preset instead of the list fits. */
     d.roughness.kind = RUGO_ROUGHNESS_PRESET;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_uint_le(len, RUGO_MAX_JSON_BYTES);
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_uint_le(text.length, RUGO_MAX_JSON_BYTES);
+    rugo_text_free(&text);
     free(tol);
     free(pts);
 }
@@ -1925,7 +1916,7 @@ START_TEST(roughness_out_of_memory) {
             break;
         }
         ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
-        ck_assert_int_eq(desc.has_roughness, 0);
+        ck_assert(!desc.has_roughness);
         ck_assert_ptr_null(desc.roughness.tolerances);
         ck_assert_int_eq(ctx.live, 0);
         ck_assert_int_lt(budget, 100);
@@ -1934,68 +1925,80 @@ START_TEST(roughness_out_of_memory) {
 END_TEST
 
 START_TEST(points_parse_keys) {
-    rugo_vec2* pts = NULL;
-    int count = 0;
+    rugo_point_list pts;
     rugo_parse_error err;
-    size_t length = 0;
-    char* text = read_data("circle64_points.json", &length);
-    ck_assert_int_eq(rugo_points_parse(text, length, "points", NULL, &pts, &count, &err), RUGO_OK);
-    ck_assert_int_eq(count, 64);
-    ck_assert(pts[0].x == 2.0 && pts[0].y == 0.0);
-    rugo_points_free(NULL, pts);
-    ck_assert_int_eq(rugo_points_parse(text, length, "control_points", NULL, &pts, &count, &err),
+    rugo_text text = read_data("circle64_points.json");
+    ck_assert_int_eq(rugo_points_parse(text.data, text.length, "points", NULL, &pts, &err), RUGO_OK);
+    ck_assert_int_eq(pts.count, 64);
+    ck_assert(pts.points[0].x == 2.0 && pts.points[0].y == 0.0);
+    ck_assert(pts.allocator.alloc != NULL); /* the default allocator, recorded */
+    rugo_point_list_free(&pts);
+    ck_assert(pts.points == NULL && pts.count == 0);
+    ck_assert_int_eq(rugo_points_parse(text.data, text.length, "control_points", NULL, &pts, &err),
                      RUGO_ERR_BAD_FIELD);
     ck_assert_str_eq(err.path, "control_points");
-    ck_assert_ptr_null(pts);
-    rugo_text_free(NULL, text);
-    text = read_data("star32.json", &length);
-    ck_assert_int_eq(rugo_points_parse(text, length, "control_points", NULL, &pts, &count, &err), RUGO_OK);
-    ck_assert_int_eq(count, 32);
-    rugo_points_free(NULL, pts);
-    rugo_text_free(NULL, text);
+    ck_assert_ptr_null(pts.points);
+    rugo_text_free(&text);
+    text = read_data("star32.json");
+    ck_assert_int_eq(rugo_points_parse(text.data, text.length, "control_points", NULL, &pts, &err), RUGO_OK);
+    ck_assert_int_eq(pts.count, 32);
+    rugo_point_list_free(&pts);
+    rugo_text_free(&text);
     const char* bad = "{\"points\": [[1, 2], [3, \"4\"]]}";
     char* buf = exact_copy(bad, strlen(bad));
-    ck_assert_int_eq(rugo_points_parse(buf, strlen(bad), "points", NULL, &pts, &count, &err),
-                     RUGO_ERR_BAD_FIELD);
+    ck_assert_int_eq(rugo_points_parse(buf, strlen(bad), "points", NULL, &pts, &err), RUGO_ERR_BAD_FIELD);
     ck_assert_str_eq(err.path, "points[1][1]");
-    ck_assert_ptr_null(pts);
-    ck_assert_int_eq(count, 0);
+    ck_assert_ptr_null(pts.points);
+    ck_assert_int_eq(pts.count, 0);
     free(buf);
-    ck_assert_int_eq(rugo_points_parse("{\"points\": [[1e999, 0]]}", 24, "points", NULL, &pts, &count, &err),
+    ck_assert_int_eq(rugo_points_parse("{\"points\": [[1e999, 0]]}", 24, "points", NULL, &pts, &err),
                      RUGO_ERR_NOT_FINITE);
     ck_assert_str_eq(err.path, "points[0][0]");
-    rugo_points_free(NULL, NULL);
+    rugo_point_list_free(&pts); /* a zeroed list, and NULL, are fine */
+    rugo_point_list_free(NULL);
+    /* A custom allocator is recorded and frees the points. */
+    test_budget_ctx ctx = {1000, 0};
+    rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
+    const char* two = "{\"points\": [[1, 2], [3, 4]]}";
+    ck_assert_int_eq(rugo_points_parse(two, strlen(two), "points", &a, &pts, &err), RUGO_OK);
+    ck_assert(pts.allocator.ctx == &ctx);
+    ck_assert_int_eq(ctx.live, 1);
+    rugo_point_list_free(&pts);
+    ck_assert_int_eq(ctx.live, 0);
 }
 END_TEST
 
 START_TEST(read_file_cases) {
     char path[1024];
-    char* text = (char*)1;
-    size_t len = 9;
+    rugo_text text;
+    text.data = (char*)1;
+    text.length = 9;
     data_path("square4.json", path, sizeof path);
-    ck_assert_int_eq(rugo_read_file(path, NULL, &text, &len), RUGO_OK);
-    ck_assert_int_eq((int)strlen(text), (int)len);
-    ck_assert_int_eq(strncmp(text, "{\n  \"control_points\"", 20), 0);
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_read_file(path, NULL, &text), RUGO_OK);
+    ck_assert_int_eq((int)strlen(text.data), (int)text.length);
+    ck_assert_int_eq(strncmp(text.data, "{\n  \"control_points\"", 20), 0);
+    rugo_text_free(&text);
 
     data_path("no_such_file.json", path, sizeof path);
-    ck_assert_int_eq(rugo_read_file(path, NULL, &text, &len), RUGO_ERR_IO);
-    ck_assert_ptr_null(text);
-    ck_assert_int_eq((int)len, 0);
+    text.data = (char*)1;
+    text.length = 9;
+    ck_assert_int_eq(rugo_read_file(path, NULL, &text), RUGO_ERR_IO);
+    ck_assert_ptr_null(text.data);
+    ck_assert_int_eq((int)text.length, 0);
     data_path("", path, sizeof path); /* the directory itself */
-    ck_assert_int_eq(rugo_read_file(path, NULL, &text, &len), RUGO_ERR_IO);
-    ck_assert_ptr_null(text);
-    ck_assert_int_eq(rugo_read_file(NULL, NULL, &text, &len), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_read_file("x", NULL, NULL, &len), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_read_file(path, NULL, &text), RUGO_ERR_IO);
+    ck_assert_ptr_null(text.data);
+    ck_assert_int_eq(rugo_read_file(NULL, NULL, &text), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_read_file("x", NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
 
     /* Files that cannot tell their size are read in growing chunks. */
     FILE* probe = fopen("/proc/self/status", "rb");
     if (probe != NULL) {
         fclose(probe);
-        ck_assert_int_eq(rugo_read_file("/proc/self/status", NULL, &text, &len), RUGO_OK);
-        ck_assert_int_gt((int)len, 0);
-        ck_assert_int_eq((int)strlen(text), (int)len);
-        rugo_text_free(NULL, text);
+        ck_assert_int_eq(rugo_read_file("/proc/self/status", NULL, &text), RUGO_OK);
+        ck_assert_int_gt((int)text.length, 0);
+        ck_assert_int_eq((int)strlen(text.data), (int)text.length);
+        rugo_text_free(&text);
     }
 
     /* Size limit: a sparse file of exactly the limit reads; one byte more is refused. */
@@ -2005,25 +2008,26 @@ START_TEST(read_file_cases) {
     ck_assert_int_eq(fseek(f, (long)RUGO_MAX_JSON_BYTES - 1, SEEK_SET), 0);
     fputc(' ', f);
     fclose(f);
-    ck_assert_int_eq(rugo_read_file(big, NULL, &text, &len), RUGO_OK);
-    ck_assert(len == RUGO_MAX_JSON_BYTES);
-    ck_assert_int_eq(text[len], '\0');
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_read_file(big, NULL, &text), RUGO_OK);
+    ck_assert(text.length == RUGO_MAX_JSON_BYTES);
+    ck_assert_int_eq(text.data[text.length], '\0');
+    rugo_text_free(&text);
     f = fopen(big, "ab");
     fputc(' ', f);
     fclose(f);
-    ck_assert_int_eq(rugo_read_file(big, NULL, &text, &len), RUGO_ERR_PARSE);
-    ck_assert_ptr_null(text);
+    ck_assert_int_eq(rugo_read_file(big, NULL, &text), RUGO_ERR_PARSE);
+    ck_assert_ptr_null(text.data);
     remove(big);
 
-    /* Allocation failures while reading */
+    /* Allocation failures while reading; the text records the allocator and frees through it. */
     data_path("star32.json", path, sizeof path);
     for (long budget = 0;; ++budget) {
         test_budget_ctx ctx = {budget, 0};
         rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
-        rugo_status st = rugo_read_file(path, &a, &text, &len);
+        rugo_status st = rugo_read_file(path, &a, &text);
         if (st == RUGO_OK) {
-            rugo_text_free(&a, text);
+            ck_assert(text.allocator.ctx == &ctx);
+            rugo_text_free(&text);
             ck_assert_int_eq(ctx.live, 0);
             break;
         }
@@ -2177,18 +2181,16 @@ static void check_shape_result(rugo_status st, const rugo_shape_desc* desc, cons
 }
 
 START_TEST(fuzz_mutations) {
-    size_t len_star = 0;
-    char* star = read_data("star32.json", &len_star);
-    size_t len_rough = 0;
-    char* rough = read_data("star32_tipo5.json", &len_rough);
+    rugo_text star = read_data("star32.json");
+    rugo_text rough = read_data("star32_tipo5.json");
     const char* seeds[] = {
-        star,
+        star.data,
         "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]], \"filter\": \"cdf4.2\"}",
         "{\"name\": \"x\\u00e9\\ud83d\\ude00\", \"control_points\": [[-1.5e-3, 2E+2], [0.25, -0]], \"r\": "
         "{\"a\": [true, "
         "false, null]}}",
         "{\"points\": [[1, 2], [3, 4]], \"control_points\": [], \"filter\": \"cdf4.12\"}",
-        rough,
+        rough.data,
         "{\"control_points\": [[0, 0], [1, 0], [1, 1], [0, 1]], \"roughness\": {\"tolerances\": [0.1, 0.2, "
         "0, 1e-3], "
         "\"seed\": 7, \"q\": 1.96, \"estimator\": \"coefficients\", \"friction\": {\"alpha\": 2, "
@@ -2221,18 +2223,17 @@ START_TEST(fuzz_mutations) {
         ++counts[st];
         if (st == RUGO_OK) {
             /* Whatever reads also writes and reads back to the same bits. */
-            char* text = NULL;
-            size_t len = 0;
-            ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
+            rugo_text text;
+            ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
             rugo_shape_desc back;
-            ck_assert_int_eq(rugo_shape_desc_parse(text, len, NULL, &back, &err), RUGO_OK);
+            ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err), RUGO_OK);
             ck_assert_int_eq(back.count, desc.count);
             ck_assert(desc.count == 0 || memcmp(back.control_points, desc.control_points,
                                                 sizeof(rugo_vec2) * (size_t)desc.count) == 0);
             ck_assert_int_eq(back.has_roughness, desc.has_roughness);
             if (desc.has_roughness) assert_same_roughness(&desc.roughness, &back.roughness);
             rugo_shape_desc_free(&back);
-            rugo_text_free(NULL, text);
+            rugo_text_free(&text);
         } else if (iter % 16 == 0) {
             /* Deterministic: the same input gives the same error, byte for byte. */
             rugo_parse_error err2;
@@ -2242,12 +2243,11 @@ START_TEST(fuzz_mutations) {
         }
         rugo_shape_desc_free(&desc);
         /* The other entry points on the same bytes */
-        rugo_vec2* pts = NULL;
-        int count = 0;
-        st = rugo_points_parse(input, n, "points", NULL, &pts, &count, &err);
+        rugo_point_list pts;
+        st = rugo_points_parse(input, n, "points", NULL, &pts, &err);
         ck_assert(st == RUGO_OK || st == RUGO_ERR_PARSE || st == RUGO_ERR_BAD_FIELD ||
                   st == RUGO_ERR_NOT_FINITE);
-        rugo_points_free(NULL, pts);
+        rugo_point_list_free(&pts);
         free(input);
     }
     /* The mutations reach every kind of outcome. */
@@ -2256,8 +2256,8 @@ START_TEST(fuzz_mutations) {
     ck_assert_int_gt(counts[RUGO_ERR_BAD_FIELD], 100);
     ck_assert_int_gt(counts[RUGO_ERR_NOT_FINITE], 10);
     ck_assert_int_gt(counts[RUGO_ERR_BAD_FILTER], 10);
-    rugo_text_free(NULL, star);
-    rugo_text_free(NULL, rough);
+    rugo_text_free(&star);
+    rugo_text_free(&rough);
 }
 END_TEST
 
@@ -2336,15 +2336,14 @@ START_TEST(fuzz_roughness_members) {
         check_shape_result(st, &desc, &err, input, len);
         ++counts[st];
         if (st == RUGO_OK) {
-            char* text = NULL;
-            size_t tl = 0;
-            ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &tl), RUGO_OK);
+            rugo_text text;
+            ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
             rugo_shape_desc back;
-            ck_assert_int_eq(rugo_shape_desc_parse(text, tl, NULL, &back, &err), RUGO_OK);
+            ck_assert_int_eq(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err), RUGO_OK);
             ck_assert_int_eq(back.has_roughness, desc.has_roughness);
             if (desc.has_roughness) assert_same_roughness(&desc.roughness, &back.roughness);
             rugo_shape_desc_free(&back);
-            rugo_text_free(NULL, text);
+            rugo_text_free(&text);
         } else if (iter % 8 == 0) {
             rugo_parse_error err2;
             rugo_shape_desc d2;
@@ -2691,15 +2690,15 @@ START_TEST(arc_parse_and_write) {
     ck_assert(r->ranges[1].from == 0.0 && r->ranges[1].to == 1.0 && r->ranges[1].tolerance == 0.0);
     ck_assert(r->background == 0.01 && r->seed == 3);
     ck_assert_ptr_null(r->profile);
-    char* text = NULL;
-    size_t len = 0;
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"ranges\": [\n"
-                                       "      {\"from\": 0.90000000000000002, \"to\": 0.10000000000000001, "
-                                       "\"tolerance\": 0.5},\n"
-                                       "      {\"from\": 0, \"to\": 1, \"tolerance\": 0}\n    ],\n"
-                                       "    \"background\": 0.01,\n    \"seed\": 3,\n"));
-    rugo_text_free(NULL, text);
+    rugo_text text;
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text.data,
+                                 "  \"roughness\": {\n    \"ranges\": [\n"
+                                 "      {\"from\": 0.90000000000000002, \"to\": 0.10000000000000001, "
+                                 "\"tolerance\": 0.5},\n"
+                                 "      {\"from\": 0, \"to\": 1, \"tolerance\": 0}\n    ],\n"
+                                 "    \"background\": 0.01,\n    \"seed\": 3,\n"));
+    rugo_text_free(&text);
     rugo_shape_desc_free(&d);
     ck_assert_ptr_null(d.roughness.ranges);
     /* An empty list is the background alone; the background defaults to 0. */
@@ -2717,11 +2716,11 @@ START_TEST(arc_parse_and_write) {
     ck_assert_int_eq(d.roughness.profile_count, 3);
     ck_assert(d.roughness.profile[1].s == 0.25 && d.roughness.profile[1].tolerance == 1e-300);
     ck_assert(bits_of(d.roughness.profile[2].tolerance) == bits_of(-0.0));
-    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text, &len), RUGO_OK);
-    ck_assert_ptr_nonnull(strstr(text, "  \"roughness\": {\n    \"profile\": [\n      [0, 0.5],\n"
-                                       "      [0.25, 1e-300],\n      [1, -0]\n    ],\n"
-                                       "    \"seed\": 0,\n"));
-    rugo_text_free(NULL, text);
+    ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
+    ck_assert_ptr_nonnull(strstr(text.data, "  \"roughness\": {\n    \"profile\": [\n      [0, 0.5],\n"
+                                            "      [0.25, 1e-300],\n      [1, -0]\n    ],\n"
+                                            "    \"seed\": 0,\n"));
+    rugo_text_free(&text);
     rugo_shape_desc_free(&d);
     /* A custom allocator holds the arrays and frees them. */
     test_budget_ctx ctx = {1000, 0};
@@ -2754,7 +2753,7 @@ START_TEST(arc_round_trip_bits) {
     rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (int iter = 0; iter < 400; ++iter) {
         rugo_shape_desc desc = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-        desc.has_roughness = 1;
+        desc.has_roughness = true;
         rugo_roughness_range g[12];
         rugo_profile_sample p[12];
         int m = (int)(test_rng_next(&r) % 12);
@@ -2779,27 +2778,25 @@ START_TEST(arc_round_trip_bits) {
             desc.roughness = profile_desc(p, k);
         }
         desc.roughness.seed = test_rng_next(&r) % (RUGO_MAX_FILE_SEED + 1);
-        char* text = NULL;
-        size_t len = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text, &len), RUGO_OK);
+        rugo_text text;
+        ck_assert_int_eq(rugo_shape_desc_write(&desc, NULL, &text), RUGO_OK);
         rugo_shape_desc back;
         rugo_parse_error err;
-        ck_assert_msg(rugo_shape_desc_parse(text, len, NULL, &back, &err) == RUGO_OK, "%s: %s\n%s", err.path,
-                      err.message, text);
+        ck_assert_msg(rugo_shape_desc_parse(text.data, text.length, NULL, &back, &err) == RUGO_OK,
+                      "%s: %s\n%s", err.path, err.message, text.data);
         const rugo_roughness_desc *a = &desc.roughness, *b = &back.roughness;
         assert_same_roughness(a, b); /* every member, the ranges or samples included, bit for bit */
-        char* text2 = NULL;
-        size_t len2 = 0;
-        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2, &len2), RUGO_OK);
-        ck_assert(len2 == len && memcmp(text, text2, len) == 0);
+        rugo_text text2;
+        ck_assert_int_eq(rugo_shape_desc_write(&back, NULL, &text2), RUGO_OK);
+        ck_assert(text2.length == text.length && memcmp(text.data, text2.data, text.length) == 0);
         /* The resolved tolerances agree too. */
         rugo_real t1[4], t2[4];
         rugo_contour c = {four, 4};
         ck_assert_int_eq(rugo_roughness_tolerances_on_contour(a, c, NULL, t1), RUGO_OK);
         ck_assert_int_eq(rugo_roughness_tolerances_on_contour(b, c, NULL, t2), RUGO_OK);
         ck_assert(memcmp(t1, t2, sizeof t1) == 0);
-        rugo_text_free(NULL, text2);
-        rugo_text_free(NULL, text);
+        rugo_text_free(&text2);
+        rugo_text_free(&text);
         rugo_shape_desc_free(&back);
     }
 }
@@ -2969,13 +2966,12 @@ START_TEST(arc_resolve_errors) {
         if (cases[i].c.points == SQ4 && cases[i].c.count == 4) {
             rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
             rugo_shape_desc d = make_desc(four, 4, RUGO_FILTER_CDF4_8);
-            d.has_roughness = 1;
+            d.has_roughness = true;
             d.roughness = cases[i].d;
-            char* text = NULL;
-            size_t len = 0;
-            ck_assert_msg(rugo_shape_desc_write(&d, NULL, &text, &len) == cases[i].expect, "write: %s",
+            rugo_text text;
+            ck_assert_msg(rugo_shape_desc_write(&d, NULL, &text) == cases[i].expect, "write: %s",
                           cases[i].what);
-            ck_assert_ptr_null(text);
+            ck_assert_ptr_null(text.data);
         }
     }
     ck_assert_int_eq(rugo_roughness_tolerances_on_contour(NULL, c, NULL, out), RUGO_ERR_NULL_ARGUMENT);
@@ -3049,24 +3045,24 @@ END_TEST
 
 /* ---- profiles from CSV ---- */
 
-static rugo_status csv_parse_n(const char* s, size_t n, rugo_profile_sample** p, int* count,
-                               rugo_parse_error* e) {
+static rugo_status csv_parse_n(const char* s, size_t n, rugo_roughness_profile* p, rugo_parse_error* e) {
     char* buf = exact_copy(s, n);
-    rugo_status st = rugo_roughness_profile_parse_csv(buf, n, NULL, p, count, e);
+    rugo_status st = rugo_roughness_profile_parse_csv(buf, n, NULL, p, e);
     free(buf);
     return st;
 }
 
 static void expect_csv_fail(const char* s, rugo_status status, const char* path, int line,
                             const char* fragment) {
-    rugo_profile_sample* p = (rugo_profile_sample*)&p; /* must come back NULL */
-    int count = -1;
+    rugo_roughness_profile p;
+    p.samples = (rugo_profile_sample*)&p; /* must come back NULL */
+    p.count = -1;
     rugo_parse_error e;
-    rugo_status st = csv_parse_n(s, strlen(s), &p, &count, &e);
+    rugo_status st = csv_parse_n(s, strlen(s), &p, &e);
     ck_assert_msg(st == status, "csv <%s>: status %d (%s), expected %d; %s", s, (int)st,
                   rugo_status_string(st), (int)status, e.message);
-    ck_assert_ptr_null(p);
-    ck_assert_int_eq(count, 0);
+    ck_assert_ptr_null(p.samples);
+    ck_assert_int_eq(p.count, 0);
     ck_assert(e.message[0] != '\0' && str_nul_terminated(e.message, sizeof e.message));
     if (path != NULL)
         ck_assert_msg(strcmp(e.path, path) == 0, "csv <%s>: path \"%s\", expected \"%s\"", s, e.path, path);
@@ -3094,17 +3090,16 @@ START_TEST(profile_csv_good) {
         {"0.1,0.30000000000000004\n", 1, 0.1, 0.30000000000000004},
     };
     for (size_t i = 0; i < sizeof good / sizeof good[0]; ++i) {
-        rugo_profile_sample* p = NULL;
-        int count = 0;
+        rugo_roughness_profile p;
         rugo_parse_error e;
-        rugo_status st = csv_parse_n(good[i].text, strlen(good[i].text), &p, &count, &e);
+        rugo_status st = csv_parse_n(good[i].text, strlen(good[i].text), &p, &e);
         ck_assert_msg(st == RUGO_OK, "csv %d: %s at %d:%d %s", (int)i, rugo_status_string(st), e.line,
                       e.column, e.message);
-        ck_assert_int_eq(count, good[i].count);
-        const rugo_profile_sample* x = &p[count > 1 ? 1 : 0];
+        ck_assert_int_eq(p.count, good[i].count);
+        const rugo_profile_sample* x = &p.samples[p.count > 1 ? 1 : 0];
         ck_assert(bits_of(x->s) == bits_of(good[i].s1));
         ck_assert(bits_of(x->tolerance) == bits_of(good[i].lam1));
-        rugo_roughness_profile_free(NULL, p);
+        rugo_roughness_profile_free(&p);
     }
     /* The same bits as the JSON reader for every number it writes. */
     test_rng r = test_rng_seed(0xc5f);
@@ -3113,22 +3108,22 @@ START_TEST(profile_csv_good) {
         double s = test_rng_uniform(&r, 0.0, 1.0),
                lam = test_rng_uniform(&r, 0.0, 1e3) * pow(10.0, -(i % 300));
         snprintf(text, sizeof text, "%.17g,%.17g\n", s, lam);
-        rugo_profile_sample* p = NULL;
-        int count = 0;
-        ck_assert_int_eq(csv_parse_n(text, strlen(text), &p, &count, NULL), RUGO_OK);
-        ck_assert(bits_of(p[0].s) == bits_of(s) && bits_of(p[0].tolerance) == bits_of(lam));
-        rugo_roughness_profile_free(NULL, p);
+        rugo_roughness_profile p;
+        ck_assert_int_eq(csv_parse_n(text, strlen(text), &p, NULL), RUGO_OK);
+        ck_assert(bits_of(p.samples[0].s) == bits_of(s) && bits_of(p.samples[0].tolerance) == bits_of(lam));
+        rugo_roughness_profile_free(&p);
     }
     /* A profile read from CSV resolves like the same profile inline. */
     const char* csv = "s,lambda\n0.1,0\n0.125,1\n0.15,0\n";
-    rugo_profile_sample* p = NULL;
-    int count = 0;
-    ck_assert_int_eq(csv_parse_n(csv, strlen(csv), &p, &count, NULL), RUGO_OK);
-    rugo_roughness_desc d = profile_desc(p, count);
+    rugo_roughness_profile p;
+    ck_assert_int_eq(csv_parse_n(csv, strlen(csv), &p, NULL), RUGO_OK);
+    rugo_roughness_desc d = profile_desc(p.samples, p.count);
     static const double expect[4] = {1.0, 0.0, 0.0, 0.0};
     expect_on_square("csv", &d, expect, 0.0);
-    rugo_roughness_profile_free(NULL, p);
-    rugo_roughness_profile_free(NULL, NULL);
+    rugo_roughness_profile_free(&p);
+    ck_assert(p.samples == NULL && p.count == 0);
+    rugo_roughness_profile_free(&p); /* a zeroed profile, and NULL, are fine */
+    rugo_roughness_profile_free(NULL);
 }
 END_TEST
 
@@ -3160,31 +3155,26 @@ START_TEST(profile_csv_bad) {
                     "0.40000000000000002 follows 0.5");
     expect_csv_fail("0.1,-0.2\n", RUGO_ERR_NEGATIVE_TOLERANCE, "profile[0][1]", 1, NULL);
     /* The column of the offending field. */
-    rugo_profile_sample* p = NULL;
-    int count = 0;
+    rugo_roughness_profile p;
     rugo_parse_error e;
     const char* t = "s,lambda\n0.1, 0.2\n0.3,  -4\n";
-    ck_assert_int_eq(csv_parse_n(t, strlen(t), &p, &count, &e), RUGO_ERR_NEGATIVE_TOLERANCE);
+    ck_assert_int_eq(csv_parse_n(t, strlen(t), &p, &e), RUGO_ERR_NEGATIVE_TOLERANCE);
     ck_assert_int_eq(e.line, 3);
     ck_assert_int_eq(e.column, 7);
     /* Arguments; error may be NULL. */
-    ck_assert_int_eq(rugo_roughness_profile_parse_csv(NULL, 0, NULL, &p, &count, &e), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", 3, NULL, NULL, &count, &e),
-                     RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", 3, NULL, &p, NULL, NULL),
-                     RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,-1", 4, NULL, &p, &count, NULL),
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv(NULL, 0, NULL, &p, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", 3, NULL, NULL, &e), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,-1", 4, NULL, &p, NULL),
                      RUGO_ERR_NEGATIVE_TOLERANCE);
-    ck_assert_ptr_null(p);
+    ck_assert_ptr_null(p.samples);
 }
 END_TEST
 
 START_TEST(profile_csv_limits_and_memory) {
     /* Larger than the text limit: refused before reading. */
-    rugo_profile_sample* p = NULL;
-    int count = 0;
+    rugo_roughness_profile p;
     rugo_parse_error e;
-    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", RUGO_MAX_JSON_BYTES + 1, NULL, &p, &count, &e),
+    ck_assert_int_eq(rugo_roughness_profile_parse_csv("0,0", RUGO_MAX_JSON_BYTES + 1, NULL, &p, &e),
                      RUGO_ERR_PARSE);
     /* RUGO_MAX_PROFILE_SAMPLES rows are read; one more is too many. */
     size_t cap = (size_t)(RUGO_MAX_PROFILE_SAMPLES + 1) * 12 + 64;
@@ -3193,30 +3183,31 @@ START_TEST(profile_csv_limits_and_memory) {
     size_t n = 0;
     for (int i = 0; i < RUGO_MAX_PROFILE_SAMPLES; ++i)
         n += (size_t)snprintf(big + n, cap - n, "%d.%07d,0\n", 0, i); /* strictly increasing below 0.105 */
-    ck_assert_int_eq(csv_parse_n(big, n, &p, &count, &e), RUGO_OK);
-    ck_assert_int_eq(count, RUGO_MAX_PROFILE_SAMPLES);
-    ck_assert(p[count - 1].s == 0.1048575);
-    rugo_roughness_profile_free(NULL, p);
+    ck_assert_int_eq(csv_parse_n(big, n, &p, &e), RUGO_OK);
+    ck_assert_int_eq(p.count, RUGO_MAX_PROFILE_SAMPLES);
+    ck_assert(p.samples[p.count - 1].s == 0.1048575);
+    rugo_roughness_profile_free(&p);
     n += (size_t)snprintf(big + n, cap - n, "0.5,0\n");
-    ck_assert_int_eq(csv_parse_n(big, n, &p, &count, &e), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(csv_parse_n(big, n, &p, &e), RUGO_ERR_TOO_MANY_POINTS);
     ck_assert_int_eq(e.line, RUGO_MAX_PROFILE_SAMPLES + 1);
-    ck_assert_ptr_null(p);
+    ck_assert_ptr_null(p.samples);
     free(big);
     /* Out of memory at every allocation, nothing leaks. */
     const char* t = "s,lambda\n0,0.1\n0.25,0.2\n0.5,0.3\n";
     for (long budget = 0;; ++budget) {
         test_budget_ctx ctx = {budget, 0};
         rugo_allocator a = {test_budget_alloc, test_budget_free, &ctx};
-        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), &a, &p, &count, &e);
+        rugo_status st = rugo_roughness_profile_parse_csv(t, strlen(t), &a, &p, &e);
         if (st == RUGO_OK) {
-            ck_assert_int_eq(count, 3);
+            ck_assert_int_eq(p.count, 3);
             ck_assert_int_eq(ctx.live, 1);
-            rugo_roughness_profile_free(&a, p);
+            ck_assert(p.allocator.ctx == &ctx); /* recorded, and freed through */
+            rugo_roughness_profile_free(&p);
             ck_assert_int_eq(ctx.live, 0);
             break;
         }
         ck_assert_int_eq(st, RUGO_ERR_OUT_OF_MEMORY);
-        ck_assert_ptr_null(p);
+        ck_assert_ptr_null(p.samples);
         ck_assert_int_eq(ctx.live, 0);
         ck_assert_int_lt(budget, 50);
     }

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int brute(const rugo_aabb* b, int n, rugo_pair* out) {
+static int brute(const rugo_aabb* b, int n, rugo__pair* out) {
     int c = 0;
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j)
@@ -20,10 +20,10 @@ static int brute(const rugo_aabb* b, int n, rugo_pair* out) {
     return c;
 }
 
-static void check_against_brute(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n, rugo_pair* ref) {
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, boxes, n), RUGO_OK);
+static void check_against_brute(rugo__sweep_prune* sap, const rugo_aabb* boxes, int n, rugo__pair* ref) {
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, boxes, n), RUGO_OK);
     int count = -1;
-    const rugo_pair* pairs = rugo_sweep_prune_pairs(sap, &count);
+    const rugo__pair* pairs = rugo__sweep_prune_pairs(sap, &count);
     int rc = brute(boxes, n, ref);
     ck_assert_int_eq(count, rc);
     if (rc > 0) ck_assert_int_eq(memcmp(pairs, ref, (size_t)rc * sizeof *ref), 0); /* same pairs, same order */
@@ -39,12 +39,12 @@ static void random_box(test_rng* r, rugo_aabb* b, double world, double max_half)
 START_TEST(test_random_moving_scenes) {
     const int max_n = 400;
     rugo_aabb* boxes = malloc((size_t)max_n * sizeof *boxes);
-    rugo_pair* ref = malloc((size_t)max_n * max_n / 2 * sizeof *ref);
+    rugo__pair* ref = malloc((size_t)max_n * max_n / 2 * sizeof *ref);
     long total_pairs = 0, total_swaps = 0;
     for (uint64_t seed = 1; seed <= 5; ++seed) {
         test_rng r = test_rng_seed(seed);
-        rugo_sweep_prune* sap = NULL;
-        ck_assert_int_eq(rugo_sweep_prune_create(NULL, &sap), RUGO_OK);
+        rugo__sweep_prune* sap = NULL;
+        ck_assert_int_eq(rugo__sweep_prune_create(NULL, &sap), RUGO_OK);
         int n = 150 + (int)(seed * 50);
         for (int i = 0; i < n; ++i) random_box(&r, &boxes[i], 100.0, 3.0);
         for (int step = 0; step < 120; ++step) {
@@ -77,11 +77,11 @@ START_TEST(test_random_moving_scenes) {
             }
             check_against_brute(sap, boxes, n, ref);
             int c = 0;
-            rugo_sweep_prune_pairs(sap, &c);
+            rugo__sweep_prune_pairs(sap, &c);
             total_pairs += c;
-            total_swaps += rugo_sweep_prune_swaps(sap);
+            total_swaps += rugo__sweep_prune_swaps(sap);
         }
-        rugo_sweep_prune_destroy(sap);
+        rugo__sweep_prune_destroy(sap);
     }
     ck_assert_int_gt(total_pairs, 1000); /* the scenes do have many overlaps */
     ck_assert_int_gt(total_swaps, 1000); /* and the coherence algorithm did the work */
@@ -91,8 +91,8 @@ START_TEST(test_random_moving_scenes) {
 END_TEST
 
 START_TEST(test_first_update_is_general) {
-    rugo_sweep_prune* sap = NULL;
-    ck_assert_int_eq(rugo_sweep_prune_create(NULL, &sap), RUGO_OK);
+    rugo__sweep_prune* sap = NULL;
+    ck_assert_int_eq(rugo__sweep_prune_create(NULL, &sap), RUGO_OK);
     rugo_aabb b[3];
     b[0].lower = rugo_v2(0, 0);
     b[0].upper = rugo_v2(1, 1);
@@ -100,53 +100,53 @@ START_TEST(test_first_update_is_general) {
     b[1].upper = rugo_v2(2, 2);
     b[2].lower = rugo_v2(5, 5);
     b[2].upper = rugo_v2(5, 5); /* a point box */
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, 3), RUGO_OK);
-    ck_assert_int_eq(rugo_sweep_prune_swaps(sap), 0);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, 3), RUGO_OK);
+    ck_assert_int_eq(rugo__sweep_prune_swaps(sap), 0);
     int c = 0;
-    const rugo_pair* p = rugo_sweep_prune_pairs(sap, &c);
+    const rugo__pair* p = rugo__sweep_prune_pairs(sap, &c);
     ck_assert_int_eq(c, 1);
     ck_assert_int_eq(p[0].a, 0);
     ck_assert_int_eq(p[0].b, 1);
     /* move box 2 onto box 0: the coherence algorithm swaps end points */
     b[2].lower = rugo_v2(0.5, 0.5);
     b[2].upper = rugo_v2(0.5, 0.5);
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, 3), RUGO_OK);
-    ck_assert_int_gt(rugo_sweep_prune_swaps(sap), 0);
-    p = rugo_sweep_prune_pairs(sap, &c);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, 3), RUGO_OK);
+    ck_assert_int_gt(rugo__sweep_prune_swaps(sap), 0);
+    p = rugo__sweep_prune_pairs(sap, &c);
     ck_assert_int_eq(c, 2);
     ck_assert_int_eq(p[1].a, 0);
     ck_assert_int_eq(p[1].b, 2);
     /* empty scene */
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, NULL, 0), RUGO_OK);
-    rugo_sweep_prune_pairs(sap, &c);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, NULL, 0), RUGO_OK);
+    rugo__sweep_prune_pairs(sap, &c);
     ck_assert_int_eq(c, 0);
-    rugo_sweep_prune_destroy(sap);
+    rugo__sweep_prune_destroy(sap);
 }
 END_TEST
 
 START_TEST(test_bad_input) {
-    rugo_sweep_prune* sap = NULL;
-    ck_assert_int_eq(rugo_sweep_prune_create(NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_sweep_prune_create(NULL, &sap), RUGO_OK);
+    rugo__sweep_prune* sap = NULL;
+    ck_assert_int_eq(rugo__sweep_prune_create(NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__sweep_prune_create(NULL, &sap), RUGO_OK);
     rugo_aabb b[2];
     b[0].lower = rugo_v2(0, 0);
     b[0].upper = rugo_v2(1, 1);
     b[1] = b[0];
-    ck_assert_int_eq(rugo_sweep_prune_update(NULL, b, 2), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, NULL, 2), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, -1), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__sweep_prune_update(NULL, b, 2), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, NULL, 2), RUGO_ERR_NULL_ARGUMENT);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, -1), RUGO_ERR_BAD_ARGUMENT);
     b[1].lower.x = NAN;
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, 2), RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, 2), RUGO_ERR_NOT_FINITE);
     b[1].lower.x = 2.0; /* lower > upper */
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, 2), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, 2), RUGO_ERR_BAD_ARGUMENT);
     b[1].lower.x = 0.0;
-    ck_assert_int_eq(rugo_sweep_prune_update(sap, b, 2), RUGO_OK);
+    ck_assert_int_eq(rugo__sweep_prune_update(sap, b, 2), RUGO_OK);
     int c = -1;
-    ck_assert_ptr_null(rugo_sweep_prune_pairs(NULL, &c));
+    ck_assert_ptr_null(rugo__sweep_prune_pairs(NULL, &c));
     ck_assert_int_eq(c, 0);
-    ck_assert_int_eq(rugo_sweep_prune_swaps(NULL), 0);
-    rugo_sweep_prune_destroy(NULL);
-    rugo_sweep_prune_destroy(sap);
+    ck_assert_int_eq(rugo__sweep_prune_swaps(NULL), 0);
+    rugo__sweep_prune_destroy(NULL);
+    rugo__sweep_prune_destroy(sap);
 }
 END_TEST
 

@@ -39,9 +39,9 @@ typedef struct rugo_baked_error {
     char message[160]; /**< what is wrong, in English */
 } rugo_baked_error;
 
-/** 1 if the buffer starts with the magic bytes of a baked shape (use it to tell a baked file from a
- * JSON one: a JSON text cannot start with them). 0 for NULL or a shorter buffer. */
-RUGO_API int rugo_is_baked(const void* buffer, size_t size);
+/** true if the buffer starts with the magic bytes of a baked shape (use it to tell a baked file from a
+ * JSON one: a JSON text cannot start with them). false for NULL or a shorter buffer. */
+RUGO_API bool rugo_is_baked(const void* buffer, size_t size);
 
 /** Bytes rugo_shape_bake writes for this shape, into *size. Errors: NULL_ARGUMENT, TOO_LARGE (beyond
  * RUGO_MAX_BAKED_BYTES). */

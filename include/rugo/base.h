@@ -38,9 +38,12 @@
  *
  * Conventions: the prefix rugo_ / RUGO_; objects are created from a def filled by
  * rugo_default_xxx_def(); every function that takes outside input returns a rugo_status and never
- * aborts, prints or exits; memory goes through a rugo_allocator; doubles; deterministic results. */
+ * aborts, prints or exits; memory goes through a rugo_allocator; doubles; deterministic results;
+ * yes/no answers, flag out-parameters and flag fields are C99 `bool` (stdbool.h, which base.h
+ * includes); counts, indices, levels and kinds are int. */
 
 #include <math.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 /** Marks the public API: every function declared in include/rugo/ and the Box2D bridge's class
@@ -63,16 +66,16 @@ extern "C" {
  * against the CMake project version at configure time, so they cannot drift from the package's. */
 #define RUGO_VERSION_MAJOR 0
 /** Minor version of these headers (compatible additions). */
-#define RUGO_VERSION_MINOR 1
+#define RUGO_VERSION_MINOR 2
 /** Patch version of these headers (fixes). */
 #define RUGO_VERSION_PATCH 0
 /** The version of these headers as text, "MAJOR.MINOR.PATCH". */
-#define RUGO_VERSION_STRING "0.1.0"
-/** The version of these headers as one integer, MAJOR * 10000 + MINOR * 100 + PATCH (0.1.0 is 100),
+#define RUGO_VERSION_STRING "0.2.0"
+/** The version of these headers as one integer, MAJOR * 10000 + MINOR * 100 + PATCH (0.2.0 is 200),
  * for comparisons in the preprocessor; components stay below 100. */
 #define RUGO_VERSION_NUMBER (RUGO_VERSION_MAJOR * 10000 + RUGO_VERSION_MINOR * 100 + RUGO_VERSION_PATCH)
 /** 1 if these headers are version major.minor.patch or newer, else 0; usable in `#if`, e.g.
- * `#if RUGO_VERSION_AT_LEAST(0, 1, 0)`. Compares the components in order, so it holds for any
+ * `#if RUGO_VERSION_AT_LEAST(0, 2, 0)`. Compares the components in order, so it holds for any
  * component values. For the library actually linked, compare rugo_version_string(). */
 #define RUGO_VERSION_AT_LEAST(major, minor, patch) \
     (RUGO_VERSION_MAJOR > (major) || \

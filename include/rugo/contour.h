@@ -63,9 +63,9 @@ RUGO_API rugo_status rugo_contour_check(const rugo_vec2* points, int count, int 
 RUGO_API rugo_real rugo_contour_signed_area(rugo_contour c);
 
 /** Reverses points in place if the curve is clockwise, so it becomes counter-clockwise.
- * Returns 1 if it reversed, 0 if not (also for NULL or count < 2). Reversal maps segment j to segment
- * n-2-j, t to 1-t. The caller owns points. */
-RUGO_API int rugo_contour_orient_ccw(rugo_vec2* points, int count);
+ * Returns true if it reversed, false if not (also for NULL or count < 2). Reversal maps segment j to
+ * segment n-2-j, t to 1-t. The caller owns points. */
+RUGO_API bool rugo_contour_orient_ccw(rugo_vec2* points, int count);
 
 /** The point f_segment(t) in the matrix form (2.4), in length units. The segment index wraps
  * cyclically; t in [0, 1] (other values extrapolate the segment's cubic). Zeros for count < 1. */
@@ -136,18 +136,18 @@ typedef struct rugo_curve_point {
  * squared distances overflow (distance inf; rugo_shape_closest_point says NOT_FINITE). */
 RUGO_API rugo_curve_point rugo_contour_closest_point(rugo_contour c, rugo_vec2 p);
 
-/** 1 if p is inside the region bounded by the curve (non-zero winding), 0 if outside. Points on the
- * curve itself (within round-off) may go either way. */
-RUGO_API int rugo_contour_contains(rugo_contour c, rugo_vec2 p);
+/** true if p is inside the region bounded by the curve (non-zero winding), false if outside. Points on
+ * the curve itself (within round-off) may go either way. */
+RUGO_API bool rugo_contour_contains(rugo_contour c, rugo_vec2 p);
 
 /** First intersection of the ray origin + s * direction, s in [0, max_fraction], with the curve.
- * Returns 1 and fills hit (s in *fraction, unit outward normal in *normal, hit->distance = s |d|) or
- * 0 for no hit. direction must be non-zero; fraction, hit and normal may be NULL. An origin on the
+ * Returns true and fills hit (s in *fraction, unit outward normal in *normal, hit->distance = s |d|)
+ * or false for no hit. direction must be non-zero; fraction, hit and normal may be NULL. An origin on the
  * curve hits at s = 0; a ray along a straight segment hits its first point; a hit at a joint is
  * reported as t = 0 of the next segment. */
-RUGO_API int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
-                                   rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
-                                   rugo_vec2* normal);
+RUGO_API bool rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction,
+                                    rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
+                                    rugo_vec2* normal);
 
 /** Unit tangent at f_j(t), in the direction of increasing t. Degenerate (zero-speed) points take the
  * direction of the second, then third derivative. The segment index wraps. */

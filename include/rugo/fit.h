@@ -113,16 +113,16 @@ typedef struct rugo_outline_fit {
     rugo_real rms_error;       /**< root mean square of those distances */
     rugo_real max_error_at_parameter; /**< rugo_fit_contour's error: distance to the curve point at the
                                            sample's own parameter (>= max_error) */
-    int tolerance_met;         /**< 1 if tolerance <= 0 or max_error <= tolerance; 0 when the automatic
-                                    search stopped at its largest count without reaching it */
-    int reversed;              /**< 1 if the fit ran clockwise and the control points were reversed */
+    bool tolerance_met;        /**< true if tolerance <= 0 or max_error <= tolerance; false when the
+                                    automatic search stopped at its largest count without reaching it */
+    bool reversed;             /**< true if the fit ran clockwise and the control points were reversed */
     rugo_allocator allocator;  /**< the allocator of control_points */
 } rugo_outline_fit;
 
 /** Fits a closed cubic B-spline to outline samples: rugo_fit_contour with def->control_count control
  * points, or, for control_count 0, with 4, 8, 16, ... until max_error <= tolerance or the largest
  * count allowed (min(max_control_count, sample_count / 4), rounded down to a power of two) has been
- * tried (then tolerance_met is 0 and out holds that largest fit: not an error). The result is turned
+ * tried (then tolerance_met is false and out holds that largest fit: not an error). The result is turned
  * counter-clockwise; its errors are measured as distances from every sample to the closest point of
  * the fitted curve, not only at the sample's parameter. Cost: O(sample_count x control_count) per
  * count tried, for the closest points. Deterministic.

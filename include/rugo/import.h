@@ -124,7 +124,7 @@ typedef struct rugo_subpath {
     int first;       /**< index of its first segment */
     int count;       /**< number of segments (0 for a lone moveto) */
     rugo_vec2 start; /**< its initial point (the moveto's) */
-    int closed;      /**< 1 if ended by Z/z */
+    bool closed;     /**< true if ended by Z/z */
 } rugo_subpath;
 
 /** A parsed path; owns its arrays (allocated with `allocator`, freed by rugo_path_free). */
@@ -199,7 +199,7 @@ typedef struct rugo_outline_samples {
     rugo_real area;      /**< area of the sample polygon (> 0), squared length units */
     int subpath;         /**< index of the subpath sampled */
     int segment_count;   /**< its segments S (segments shorter than 1e-12 of the perimeter not counted) */
-    int reversed;        /**< 1 if the transformed subpath ran clockwise and the samples were reversed */
+    bool reversed;       /**< true if the transformed subpath ran clockwise and the samples were reversed */
     rugo_allocator allocator; /**< the allocator of points */
 } rugo_outline_samples;
 
@@ -233,7 +233,8 @@ typedef struct rugo_svg_path_element {
     char* d;               /**< the decoded `d` attribute (entities replaced), NUL-terminated */
     size_t d_length;       /**< bytes of d, without the NUL */
     size_t d_offset;       /**< byte offset of the raw attribute value in the document */
-    int d_has_entities;    /**< 1 if decoding changed the value (positions inside d are then approximate) */
+    bool d_has_entities;   /**< true if decoding changed the value (positions inside d are then
+                                approximate) */
     rugo_affine transform; /**< the element's transform composed with those of all its ancestors (root
                                 first): path coordinates to the root's user units, y down */
     int line;              /**< 1-based line of the element's '<' in the document */
@@ -324,14 +325,14 @@ RUGO_API int rugo_path_find_crossing(const rugo_path* path, int subpath, rugo_af
  * "x,y", "x y", "x;y" or "x<TAB>y" (blanks around the separator allowed, CR LF line ends fine); lines
  * that are blank or start with '#' are skipped, and so is a first line without any digit (a CSV
  * header such as "x,y"). Numbers use the SVG decimal syntax (sign, fraction, exponent; no hex, inf
- * or nan). *points is allocated with `allocator` (may be NULL; free with rugo_points_free); an empty
- * list gives count 0 and NULL.
- * Errors (*points NULL and *count 0; error gets line, column and a message): NULL_ARGUMENT,
+ * or nan). out->points is allocated with `allocator` (may be NULL: malloc/free; free the list with
+ * rugo_point_list_free); an empty list gives count 0 and NULL.
+ * Errors (*out zeroed; error gets line, column and a message): NULL_ARGUMENT,
  * TOO_LARGE (beyond RUGO_MAX_JSON_BYTES), PARSE (a line that is not two numbers), NOT_FINITE (a number
  * that overflows, e.g. 1e999), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY, and
  * the errors of rugo_points_parse for JSON. */
 RUGO_API rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                                            rugo_vec2** points, int* count, rugo_parse_error* error);
+                                            rugo_point_list* out, rugo_parse_error* error);
 
 #ifdef __cplusplus
 }

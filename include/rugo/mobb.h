@@ -17,7 +17,7 @@
  *
  * Ownership: boxes are plain values; a tree is created by rugo_mobb_tree_create, owned by the caller
  * (or by a rugo_shape) and freed by rugo_mobb_tree_destroy; it does not keep the pyramid or the
- * tolerances. Box functions take non-NULL box pointers; given NULL they return zeros, 0 or NULL. */
+ * tolerances. Box functions take non-NULL box pointers; given NULL they return zeros, false or NULL. */
 #ifndef RUGO_MOBB_H
 #define RUGO_MOBB_H
 
@@ -55,12 +55,12 @@ RUGO_API rugo_obb rugo_segment_box(rugo_contour c, int segment, rugo_real band, 
 RUGO_API rugo_obb rugo_obb_enclose(rugo_obb box_with_axes, const rugo_obb* b);
 /** The box moved by a rigid transform (a zeroed box for NULL). */
 RUGO_API rugo_obb rugo_obb_transform(rugo_transform t, const rugo_obb* b);
-/** Separating-axis test on the four box axes (SPEC 7, 6.7-6.8): 1 if the boxes overlap (touching
- * counts as overlap), 0 if an axis separates them. Both boxes in the same frame. */
-RUGO_API int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b);
-/** 1 if p lies in the box grown by `slack` (length units) on every side (a negative slack shrinks
+/** Separating-axis test on the four box axes (SPEC 7, 6.7-6.8): true if the boxes overlap (touching
+ * counts as overlap), false if an axis separates them. Both boxes in the same frame. */
+RUGO_API bool rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b);
+/** true if p lies in the box grown by `slack` (length units) on every side (a negative slack shrinks
  * it). */
-RUGO_API int rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack);
+RUGO_API bool rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack);
 /** Area 4 half[0] half[1] (squared length units); 0 for NULL. */
 RUGO_API rugo_real rugo_obb_area(const rugo_obb* b);
 /** The four corners into out (caller-owned), counter-clockwise; nothing for NULL. */

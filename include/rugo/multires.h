@@ -41,7 +41,7 @@ typedef struct rugo_pyramid_def {
     int count;               /**< a power of two, >= 4 */
     rugo_filter filter;      /**< default RUGO_FILTER_DEFAULT */
     int coarsest_level;      /**< J_min >= 2 (4 points); 0 means "as coarse as possible" = 2 */
-    int check_self_intersection; /**< 1 (default) to reject crossing outlines */
+    bool check_self_intersection; /**< true (default) to reject crossing outlines */
     rugo_allocator allocator;    /**< zeroed = malloc/free */
     int cookie;                  /**< set by rugo_default_pyramid_def; catches uninitialised defs */
 } rugo_pyramid_def;
@@ -66,8 +66,8 @@ RUGO_API int rugo_pyramid_finest_level(const rugo_pyramid* p);
 RUGO_API int rugo_pyramid_coarsest_level(const rugo_pyramid* p);
 /** The wavelet filter of the pyramid; RUGO_FILTER_COUNT for NULL. */
 RUGO_API rugo_filter rugo_pyramid_filter(const rugo_pyramid* p);
-/** 1 if the input was clockwise and was reversed (0 for NULL). */
-RUGO_API int rugo_pyramid_was_reversed(const rugo_pyramid* p);
+/** true if the input was clockwise and was reversed (false for NULL). */
+RUGO_API bool rugo_pyramid_was_reversed(const rugo_pyramid* p);
 /** The allocator the pyramid was created with (so helpers can allocate scratch from the same heap);
  * the default allocator for NULL. */
 RUGO_API rugo_allocator rugo_pyramid_allocator(const rugo_pyramid* p);

@@ -25,7 +25,7 @@ extern "C" {
 typedef struct rugo_rng {
     uint64_t state[4]; /**< xoshiro256** state, never all zero once seeded */
     rugo_real spare;   /**< the polar method's second sample */
-    int has_spare;     /**< 1 if spare holds an unused sample */
+    bool has_spare;    /**< true if spare holds an unused sample */
 } rugo_rng;
 
 /** Seeds the generator (any seed, including 0, is valid); does nothing for NULL. */

@@ -11,7 +11,7 @@
  * Ownership: rugo_shape_create (or rugo_shape_load_baked, baked.h) returns a shape owned by the caller,
  * freed by rugo_shape_destroy after every body, world or bridge that uses it. It copies its inputs;
  * all views and pointers it returns stay valid for its lifetime. Accessors given NULL return -1, 0,
- * NULL or NaN values (they have no status). */
+ * NULL, false or NaN values (they have no status). */
 #ifndef RUGO_SHAPE_H
 #define RUGO_SHAPE_H
 
@@ -52,7 +52,7 @@ typedef struct rugo_shape_def {
     rugo_friction_map friction;         /**< default rugo_default_friction_map() */
     rugo_restitution restitution;       /**< default rugo_default_restitution() */
     rugo_box_method box_method;         /**< default RUGO_BOXES_MULTIRES */
-    int check_self_intersection; /**< default 1: reject a crossing outline, drop looping coarse levels */
+    bool check_self_intersection; /**< default true: reject a crossing outline, drop looping coarse levels */
     rugo_allocator allocator;           /**< used for the shape's lifetime; zeroed = malloc/free */
     int cookie;                         /**< set by rugo_default_shape_def; catches uninitialised defs */
 } rugo_shape_def;
@@ -103,9 +103,23 @@ RUGO_API rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, ru
                                               rugo_curve_point* out);
 /** *inside = rugo_contour_contains on the curve of `level` (J_min..J) at p (shape's local frame): the
  * same answer on every input, computed through the MOBBtree (the boxes along the ray from p towards
- * +x and the segments under them). Re-entrant, no allocation. On error *inside (if not NULL) is 0.
- * Errors: NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
-RUGO_API rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside);
+ * +x and the segments under them). Re-entrant, no allocation. On error *inside (if not NULL) is
+ * false. Errors: NULL_ARGUMENT, BAD_LEVEL, NOT_FINITE (p). */
+RUGO_API rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, bool* inside);
+/** The first hit of the ray origin + s * direction, s in [0, max_fraction], on the curve of `level`
+ * (J_min..J; shape's local frame): the same answer, bit for bit, as rugo_contour_ray_cast on that
+ * level's curve, computed through the MOBBtree (only the segments under the boxes the ray segment
+ * meets, taken in the same order, and none beyond the best hit so far). *found says whether it hit;
+ * on a hit *fraction = s, *hit (segment, t, point, distance = s |direction|) and *normal (unit,
+ * outward) are filled as there; fraction, hit and normal may be NULL, and are left untouched without
+ * a hit or on error. An origin on the curve hits at s = 0; a hit at a joint is t = 0 of the next
+ * segment. Re-entrant, no allocation. Errors (then *found, if not NULL, is false): NULL_ARGUMENT (s
+ * or found), BAD_LEVEL, NOT_FINITE (origin, direction or max_fraction not finite, or a coordinate of
+ * origin or direction beyond 1e150, where squared lengths overflow), BAD_ARGUMENT (max_fraction < 0,
+ * or a direction of zero length or too short to square). */
+RUGO_API rugo_status rugo_shape_ray_cast(const rugo_shape* s, int level, rugo_vec2 origin,
+                                         rugo_vec2 direction, rugo_real max_fraction, rugo_real* fraction,
+                                         rugo_curve_point* hit, rugo_vec2* normal, bool* found);
 /** The shape's MOBBtree (owned by the shape); NULL for NULL. */
 RUGO_API const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s);
 /** The shape's wavelet pyramid (owned by the shape; read only); NULL for NULL. */
@@ -117,10 +131,11 @@ RUGO_API rugo_mass_properties rugo_shape_mass(const rugo_shape* s);
 RUGO_API rugo_friction_map rugo_shape_friction_map(const rugo_shape* s);
 /** The surface's restitution (NaN values for NULL). */
 RUGO_API rugo_restitution rugo_shape_restitution(const rugo_shape* s);
-/** 1 if any finest tolerance is > 0 (0 for NULL). */
-RUGO_API int rugo_shape_is_rough(const rugo_shape* s);
-/** 1 if the input was clockwise and was reversed (segment j of the input is segment n-2-j here). */
-RUGO_API int rugo_shape_was_reversed(const rugo_shape* s);
+/** true if any finest tolerance is > 0 (false for NULL). */
+RUGO_API bool rugo_shape_is_rough(const rugo_shape* s);
+/** true if the input was clockwise and was reversed (segment j of the input is segment n-2-j here;
+ * false for NULL). */
+RUGO_API bool rugo_shape_was_reversed(const rugo_shape* s);
 
 #ifdef __cplusplus
 }

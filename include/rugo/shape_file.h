@@ -27,9 +27,10 @@
  * An empty control_points list parses (count 0, NULL points); geometry checks reject it later.
  *
  * Units: coordinates and tolerances λ in the shape's length units; positions s, from and to are
- * dimensionless fractions of the perimeter. Ownership: every array a parser returns is allocated
- * with the allocator given (NULL or a zeroed one: malloc/free) and freed by the matching _free
- * function; input text is only read and need not be NUL-terminated. */
+ * dimensionless fractions of the perimeter. Ownership: every array a parser or writer returns sits in
+ * a struct that records the allocator it came from (the one given; NULL or a zeroed one:
+ * malloc/free), so the matching _free function takes just that struct; input text is only read and
+ * need not be NUL-terminated. */
 #ifndef RUGO_SHAPE_FILE_H
 #define RUGO_SHAPE_FILE_H
 
@@ -82,6 +83,14 @@ typedef struct rugo_profile_sample {
     rugo_real tolerance; /**< λ(s) >= 0 (length) */
 } rugo_profile_sample;
 
+/** A profile λ(s) read from CSV text (rugo_roughness_profile_parse_csv); owns `samples` (allocated with
+ * `allocator`, freed by rugo_roughness_profile_free). */
+typedef struct rugo_roughness_profile {
+    rugo_profile_sample* samples; /**< count samples, s strictly increasing */
+    int count;                    /**< number of samples, 1..RUGO_MAX_PROFILE_SAMPLES (0 only when zeroed) */
+    rugo_allocator allocator;     /**< the allocator of samples */
+} rugo_roughness_profile;
+
 /** Most ranges one roughness object may hold (2^16; more is TOO_MANY_POINTS). */
 #define RUGO_MAX_ROUGHNESS_RANGES (1 << 16)
 /** Most profile samples one roughness object or CSV profile may hold (2^20; more is TOO_MANY_POINTS). */
@@ -116,7 +125,7 @@ typedef struct rugo_roughness_desc {
     rugo_restitution restitution; /**< "restitution": {"epsilon", "epsilon_max"} (rugo_default_restitution) */
     /* Optional display geometry (written by `rugo roughen`): "perturbation": {"method": "wavelet" |
      * "local", "levels": m, "control_points": [...]}, with exactly count << m control points. */
-    int has_perturbation;           /**< 1 if the "perturbation" members below are set */
+    bool has_perturbation;          /**< true if the "perturbation" members below are set */
     rugo_roughen_method perturbation_method; /**< "method": how the perturbed points were made */
     int perturbation_levels;        /**< "levels" m, 1..RUGO_MAX_PERTURBATION_LEVELS */
     rugo_vec2* perturbation_points; /**< the perturbed outline's control points, owned like tolerances */
@@ -142,7 +151,7 @@ typedef struct rugo_shape_desc {
     rugo_filter filter;        /**< "filter" (default RUGO_FILTER_DEFAULT) */
     rugo_allocator allocator;  /**< the allocator of every array of the desc */
     /* Added with roughness; zero (no roughness) when a caller leaves them out of an initializer. */
-    int has_roughness;             /**< 1 if the file has a "roughness" object */
+    bool has_roughness;            /**< true if the file has a "roughness" object */
     rugo_roughness_desc roughness; /**< meaningful when has_roughness; its arrays are owned like
                                       control_points and freed by rugo_shape_desc_free */
 } rugo_shape_desc;
@@ -174,8 +183,8 @@ typedef struct rugo_shape_desc {
  * "roughness.profile[5][0]". */
 RUGO_API rugo_status rugo_shape_desc_parse(const char* text, size_t length, const rugo_allocator* allocator,
                                            rugo_shape_desc* out, rugo_parse_error* error);
-/** Frees the control points and the roughness arrays; leaves count 0 and has_roughness 0 (NULL is
- * fine; a zeroed desc is fine). */
+/** Frees the control points and the roughness arrays; leaves count 0 and has_roughness false (NULL
+ * is fine; a zeroed desc is fine). */
 RUGO_API void rugo_shape_desc_free(rugo_shape_desc* desc);
 
 /** The tolerance of every finest segment, out[0..n) (caller-owned, n entries, length units; n = the
@@ -222,49 +231,68 @@ RUGO_API rugo_status rugo_roughness_tolerances_on_contour(const rugo_roughness_d
  * and is not nan or inf. Numbers are decimal (an optional sign,
  * digits with an optional '.', an optional exponent; ".5" and "5." are accepted) and read exactly as
  * JSON numbers are, whatever the locale. No quoting. The samples are checked as the JSON "profile"
- * (s in [0, 1], strictly increasing, λ >= 0). On success *samples (allocated with `allocator`, NULL:
- * malloc/free; free with rugo_roughness_profile_free) holds *count >= 1 samples.
+ * (s in [0, 1], strictly increasing, λ >= 0). On success out->samples (allocated with `allocator`,
+ * NULL: malloc/free; free the profile with rugo_roughness_profile_free) holds out->count >= 1
+ * samples.
  * Errors (error may be NULL; it gets the 1-based line and column, the path "profile[i][0]" for s or
  * "profile[i][1]" for λ of sample i, and a message): NULL_ARGUMENT; PARSE (text over
  * RUGO_MAX_JSON_BYTES, a line without exactly two fields, an empty field, a field that is not a
  * number, a header with other than two fields); NOT_FINITE (nan, inf, infinity in any case, or a
  * number overflowing to infinity); BAD_FIELD (no samples; s outside [0, 1] or not strictly
  * increasing); NEGATIVE_TOLERANCE (λ < 0); TOO_MANY_POINTS (more than RUGO_MAX_PROFILE_SAMPLES
- * rows); OUT_OF_MEMORY. On error *samples is NULL and *count 0. */
+ * rows); OUT_OF_MEMORY. On error *out is zeroed. */
 RUGO_API rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length,
                                                       const rugo_allocator* allocator,
-                                                      rugo_profile_sample** samples, int* count,
-                                                      rugo_parse_error* error);
-/** Frees samples from rugo_roughness_profile_parse_csv (allocator as given there; NULL is fine). */
-RUGO_API void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples);
+                                                      rugo_roughness_profile* out, rugo_parse_error* error);
+/** Frees the samples and zeroes the profile (NULL and a zeroed profile are fine). */
+RUGO_API void rugo_roughness_profile_free(rugo_roughness_profile* profile);
+
+/** A list of points read from text; owns `points` (allocated with `allocator`, freed by
+ * rugo_point_list_free). */
+typedef struct rugo_point_list {
+    rugo_vec2* points;        /**< count points in the text's order (length units); NULL when count is 0 */
+    int count;                /**< number of points, 0..RUGO_MAX_CONTROL_POINTS */
+    rugo_allocator allocator; /**< the allocator of points */
+} rugo_point_list;
 
 /** Parses the array under `key` (NUL-terminated, e.g. "points" or "control_points") of a JSON object
- * of `length` bytes into an owned point array: *points (allocated with `allocator`, NULL: malloc/free;
- * free with rugo_points_free; NULL for an empty list) and *count. Errors (*points NULL and *count 0;
- * error may be NULL): NULL_ARGUMENT, PARSE (JSON syntax, depth, size), BAD_FIELD (not an object,
- * the key missing or repeated, not an array of [x, y] pairs of numbers), NOT_FINITE (a number that
+ * of `length` bytes into *out: its points (allocated with `allocator`, NULL: malloc/free; NULL for
+ * an empty list) and their count; free it with rugo_point_list_free. Errors (*out zeroed; error may
+ * be NULL): NULL_ARGUMENT, PARSE (JSON syntax, depth, size), BAD_FIELD (not an object, the key
+ * missing or repeated, not an array of [x, y] pairs of numbers), NOT_FINITE (a number that
  * overflows), TOO_MANY_POINTS (beyond RUGO_MAX_CONTROL_POINTS), OUT_OF_MEMORY. */
 RUGO_API rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
-                                       const rugo_allocator* allocator, rugo_vec2** points, int* count,
+                                       const rugo_allocator* allocator, rugo_point_list* out,
                                        rugo_parse_error* error);
-/** Frees points from rugo_points_parse or rugo_points_text_parse (allocator as given there; NULL is
- * fine). */
-RUGO_API void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points);
+/** Frees the points of a list from rugo_points_parse or rugo_points_text_parse and zeroes the list
+ * (NULL and a zeroed list are fine). */
+RUGO_API void rugo_point_list_free(rugo_point_list* list);
 
-/** Writes a shape description as JSON into a newly allocated NUL-terminated string (*text, *length
- * without the NUL; both required; allocated with `allocator`, free with rugo_text_free). One point
- * (or tolerance) per line; numbers with 17 significant digits so that reading back gives the same
- * bits. With has_roughness, every roughness member is written (defaults included), so that
- * parse(write(d)) gives d back bit for bit and write(parse(write(d))) the same text.
- * The writer refuses what the reader would (*text NULL and *length 0 then): NULL_ARGUMENT,
- * BAD_ARGUMENT (count < 0), NOT_FINITE, BAD_FILTER, TOO_MANY_POINTS, and for the
- * roughness BAD_ARGUMENT (kind, preset, estimator, method, levels, a count mismatch, a seed beyond
- * RUGO_MAX_FILE_SEED, a range or profile sample out of its range, an empty profile) and the value
- * checks listed for parsing (NULL_ARGUMENT for a missing ranges or profile array); TOO_MANY_POINTS also when
- * the text would exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object);
- * OUT_OF_MEMORY. */
+/** A text librugo allocated (a JSON document written, a file read); owns `data` (allocated with
+ * `allocator`, freed by rugo_text_free). */
+typedef struct rugo_text {
+    char* data;               /**< length bytes followed by a NUL */
+    size_t length;            /**< bytes of data, without the NUL */
+    rugo_allocator allocator; /**< the allocator of data */
+} rugo_text;
+
+/** Frees the data of a text from rugo_shape_desc_write or rugo_read_file and zeroes the text (NULL and
+ * a zeroed text are fine). */
+RUGO_API void rugo_text_free(rugo_text* text);
+
+/** Writes a shape description as JSON into *out, a newly allocated NUL-terminated string (allocated
+ * with `allocator`, NULL: malloc/free; free with rugo_text_free). One point (or tolerance) per line;
+ * numbers with 17 significant digits so that reading back gives the same bits. With has_roughness,
+ * every roughness member is written (defaults included), so that parse(write(d)) gives d back bit
+ * for bit and write(parse(write(d))) the same text.
+ * The writer refuses what the reader would (*out is zeroed then): NULL_ARGUMENT, BAD_ARGUMENT
+ * (count < 0), NOT_FINITE, BAD_FILTER, TOO_MANY_POINTS, and for the roughness BAD_ARGUMENT (kind,
+ * preset, estimator, method, levels, a count mismatch, a seed beyond RUGO_MAX_FILE_SEED, a range or
+ * profile sample out of its range, an empty profile) and the value checks listed for parsing
+ * (NULL_ARGUMENT for a missing ranges or profile array); TOO_MANY_POINTS also when the text would
+ * exceed RUGO_MAX_JSON_BYTES (possible only with a large roughness object); OUT_OF_MEMORY. */
 RUGO_API rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator,
-                                           char** text, size_t* length);
+                                           rugo_text* out);
 /** One call from an asset to a shape: loads a shape file — a JSON shape file (with its roughness, if
  * any) or a baked file (rugo bake), told apart by content, never by name — and builds the rugo_shape
  * (for JSON: the roughness resolved on the outline as rugo_roughness_tolerances_on_contour does, then
@@ -279,15 +307,12 @@ RUGO_API rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const ru
 RUGO_API rugo_status rugo_shape_load_file(const char* path, const rugo_allocator* allocator, rugo_shape** out,
                                           rugo_parse_error* error);
 
-/** Frees text from rugo_shape_desc_write or rugo_read_file (allocator as given there; NULL is fine). */
-RUGO_API void rugo_text_free(const rugo_allocator* allocator, char* text);
 
-/** Reads a whole file into a newly allocated NUL-terminated buffer (at most RUGO_MAX_JSON_BYTES):
- * *text (allocated with `allocator`, NULL: malloc/free; free with rugo_text_free) and *length
- * (bytes, without the NUL). Errors (*text NULL and *length 0): NULL_ARGUMENT, IO if it cannot be
- * opened or read, PARSE if it is too large, OUT_OF_MEMORY. */
-RUGO_API rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, char** text,
-                                    size_t* length);
+/** Reads a whole file (at most RUGO_MAX_JSON_BYTES) into *out, a newly allocated NUL-terminated
+ * buffer (allocated with `allocator`, NULL: malloc/free; free with rugo_text_free). Errors (*out
+ * zeroed): NULL_ARGUMENT, IO if it cannot be opened or read, PARSE if it is too large,
+ * OUT_OF_MEMORY. */
+RUGO_API rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, rugo_text* out);
 
 #ifdef __cplusplus
 }

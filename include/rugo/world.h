@@ -56,8 +56,8 @@ typedef struct rugo_world_def {
     /** Penetration beyond the bands that triggers bisection, as a fraction of the smaller body's size
      * (root box half-diagonal); default 0.01. */
     rugo_real penetration_tolerance;
-    int micro_collisions;     /**< 1 (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
-    int friction;             /**< 1 (default): per-point μ; 0: frictionless */
+    bool micro_collisions;    /**< true (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
+    bool friction;            /**< true (default): per-point μ; false: frictionless */
     int max_contacts_per_pair; /**< contacts kept per body pair and step; 1..64, default 8 */
     rugo_allocator allocator;  /**< used for the world's lifetime; zeroed = malloc/free */
     int cookie;                /**< set by rugo_default_world_def; catches uninitialised defs */
@@ -131,7 +131,7 @@ typedef struct rugo_step_stats {
     int contacts;          /**< contact points handled */
     int impulses;          /**< impulses applied (collisions + micro-collisions) */
     int bisections;        /**< step halvings toward a time of contact */
-    int unresolved;        /**< 1 if the bisection limit was reached with penetration left (see docs) */
+    bool unresolved;       /**< true if the bisection limit was reached with penetration left (see docs) */
     rugo_real kinetic_energy; /**< after the step, J */
 } rugo_step_stats;
 
@@ -152,8 +152,8 @@ typedef struct rugo_contact_record {
     /** Normal and tangential impulse, N s: J_n >= 0 and |J_t| <= μ J_n. @{ */
     rugo_real impulse_normal, impulse_tangent;
     /** @} */
-    int sticking;              /**< 1 sticking branch, 0 sliding/frictionless */
-    int micro;                 /**< 1 if a micro-collision (resting contact) */
+    bool sticking;             /**< true: the sticking branch; false: sliding or frictionless */
+    bool micro;                /**< true if a micro-collision (resting contact) */
 } rugo_contact_record;
 
 /** Advances one time step. stats may be NULL. Errors (the world is then left as before the step):

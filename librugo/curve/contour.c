@@ -187,18 +187,18 @@ rugo_real rugo_contour_signed_area(rugo_contour c) {
     return 0.5 * ksum_value(&sum);
 }
 
-int rugo_contour_orient_ccw(rugo_vec2* points, int count) {
-    if (points == NULL || count < 2) return 0;
+bool rugo_contour_orient_ccw(rugo_vec2* points, int count) {
+    if (points == NULL || count < 2) return false;
     rugo_contour c;
     c.points = points;
     c.count = count;
-    if (!(rugo_contour_signed_area(c) < 0.0)) return 0;
+    if (!(rugo_contour_signed_area(c) < 0.0)) return false;
     for (int i = 0, k = count - 1; i < k; ++i, --k) {
         rugo_vec2 tmp = points[i];
         points[i] = points[k];
         points[k] = tmp;
     }
-    return 1;
+    return true;
 }
 
 /* Power form of segment j about its own control point c_j: derivatives are translation invariant,
@@ -509,8 +509,8 @@ int rugo__contour_winding_segment(rugo_contour c, int j, rugo_vec2 p) {
     return winding;
 }
 
-int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
-    if (c.points == NULL || c.count < 1) return 0;
+bool rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
+    if (c.points == NULL || c.count < 1) return false;
     int winding = 0;
     for (int j = 0; j < c.count; ++j)
         winding += rugo__contour_winding_segment(c, j, p);
@@ -522,88 +522,117 @@ int rugo_contour_contains(rugo_contour c, rugo_vec2 p) {
 
 #define RAY_JOINT_SLACK 1e-12
 
-int rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction,
-                          rugo_real* fraction, rugo_curve_point* hit, rugo_vec2* normal) {
-    rugo_vec2 d = direction;
-    rugo_real dd = rugo_v2_dot(d, d);
-    if (c.points == NULL || c.count < 1 || !(dd > 0.0) || !isfinite(dd) || !(max_fraction >= 0.0)) return 0;
-    rugo_real dmax = fmax(fabs(d.x), fabs(d.y));
-    int found = 0, best_j = 0;
-    rugo_real best_s = max_fraction, best_t = 0.0;
-    for (int j = 0; j < c.count; ++j) {
-        rugo_vec2 q[4], b[4], k[4];
-        segment_points_rel(c, j, origin, q);
-        bezier_from_points(q, b);
-        /* Prune: hull strictly on one side of the ray's line, behind the origin, or beyond the
-         * best hit so far (s * |d|^2 = (f - origin)·d). */
-        int pos = 0, neg = 0, behind = 0, beyond = 0;
-        rugo_real smax = best_s * dd;
-        for (int i = 0; i < 4; ++i) {
-            rugo_real h = rugo_v2_cross(d, b[i]), s = rugo_v2_dot(b[i], d);
-            pos += h > 0.0;
-            neg += h < 0.0;
-            behind += s < 0.0;
-            beyond += s > smax;
-        }
-        if (pos == 4 || neg == 4 || behind == 4 || beyond == 4) continue;
-        power_from_points(q, k);
-        rugo_real h[4], sp[4];
-        for (int i = 0; i < 4; ++i) {
-            h[i] = rugo_v2_cross(d, k[i]);
-            sp[i] = rugo_v2_dot(k[i], d);
-        }
-        /* Values of d x (f - origin) are uncertain by round-off of the products and of the shifted
-         * coefficients; that tolerance lets a ray grazing the curve (a double root) hit, and makes
-         * a straight segment lying on the ray's line report "every t". */
-        rugo_real kmax = 0.0;
-        for (int i = 0; i < 4; ++i) kmax = fmax(kmax, fmax(fabs(k[i].x), fabs(k[i].y)));
-        rugo_real tol = 32.0 * DBL_EPSILON * dmax * kmax;
-        rugo_real cand[2 * RUGO__POLY_MAX_ROOTS + 2];
-        int nc = 0;
-        rugo_real roots[RUGO__POLY_MAX_ROOTS];
-        /* A crossing at a joint can land a hair outside [0, 1] in both segments that share it; the
-         * slightly widened interval catches it. Outside [0, 1] the polynomial continues the
-         * neighbouring segment to O(t^3) (the curve is C2), so s is still evaluated exactly there;
-         * only the reported parameter is clamped. */
-        int nr = rugo__poly_roots(h, 3, -RAY_JOINT_SLACK, 1.0 + RAY_JOINT_SLACK, tol, roots);
-        if (nr == RUGO__POLY_ALL) {
-            /* The segment lies on the ray's line: the first point with s >= 0 is an end, a point
-             * where s = 0 (the origin), or a turning point of s. */
-            cand[nc++] = 0.0;
-            cand[nc++] = 1.0;
-            nr = rugo__poly_roots(sp, 3, 0.0, 1.0, 0.0, roots);
-            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
-            rugo_real ds[3] = {sp[1], 2.0 * sp[2], 3.0 * sp[3]};
-            nr = rugo__poly_roots(ds, 2, 0.0, 1.0, 0.0, roots);
-            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
-        } else {
-            for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
-        }
-        /* An origin on the curve (within round-off) hits at s = 0 rather than at -1e-17 or never. */
-        rugo_real s_slack = 32.0 * DBL_EPSILON * kmax / sqrt(dd);
-        for (int i = 0; i < nc; ++i) {
-            rugo_real s = rugo_v2_dot(power_point(k, cand[i]), d) / dd;
-            if (s < 0.0 && s >= -s_slack) s = 0.0;
-            if (s >= 0.0 && s <= max_fraction && (!found || s < best_s)) {
-                found = 1;
-                best_s = s;
-                best_j = j;
-                best_t = fmin(1.0, fmax(0.0, cand[i]));
-            }
+bool rugo__ray_begin(rugo__ray* r, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction) {
+    r->origin = origin;
+    r->d = direction;
+    r->dd = rugo_v2_dot(direction, direction);
+    r->dmax = fmax(fabs(direction.x), fabs(direction.y));
+    r->max_fraction = max_fraction;
+    r->found = false;
+    r->best_j = 0;
+    r->best_s = max_fraction;
+    r->best_t = 0.0;
+    return r->dd > 0.0 && isfinite(r->dd) && max_fraction >= 0.0;
+}
+
+/* Inlined into the loop of rugo_contour_ray_cast: most segments are pruned after a few operations,
+ * so a call and the state in memory for each would cost about a tenth of a ray cast. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void ray_segment(rugo__ray* r, rugo_contour c, int j) {
+    const rugo_vec2 origin = r->origin, d = r->d;
+    const rugo_real dd = r->dd, dmax = r->dmax, max_fraction = r->max_fraction;
+    rugo_vec2 q[4], b[4], k[4];
+    segment_points_rel(c, j, origin, q);
+    bezier_from_points(q, b);
+    /* Prune: hull strictly on one side of the ray's line, behind the origin, or beyond the
+     * best hit so far (s * |d|^2 = (f - origin)·d). */
+    int pos = 0, neg = 0, behind = 0, beyond = 0;
+    rugo_real smax = r->best_s * dd;
+    for (int i = 0; i < 4; ++i) {
+        rugo_real h = rugo_v2_cross(d, b[i]), s = rugo_v2_dot(b[i], d);
+        pos += h > 0.0;
+        neg += h < 0.0;
+        behind += s < 0.0;
+        beyond += s > smax;
+    }
+    if (pos == 4 || neg == 4 || behind == 4 || beyond == 4) return;
+    power_from_points(q, k);
+    rugo_real h[4], sp[4];
+    for (int i = 0; i < 4; ++i) {
+        h[i] = rugo_v2_cross(d, k[i]);
+        sp[i] = rugo_v2_dot(k[i], d);
+    }
+    /* Values of d x (f - origin) are uncertain by round-off of the products and of the shifted
+     * coefficients; that tolerance lets a ray grazing the curve (a double root) hit, and makes
+     * a straight segment lying on the ray's line report "every t". */
+    rugo_real kmax = 0.0;
+    for (int i = 0; i < 4; ++i) kmax = fmax(kmax, fmax(fabs(k[i].x), fabs(k[i].y)));
+    rugo_real tol = 32.0 * DBL_EPSILON * dmax * kmax;
+    rugo_real cand[2 * RUGO__POLY_MAX_ROOTS + 2];
+    int nc = 0;
+    rugo_real roots[RUGO__POLY_MAX_ROOTS];
+    /* A crossing at a joint can land a hair outside [0, 1] in both segments that share it; the
+     * slightly widened interval catches it. Outside [0, 1] the polynomial continues the
+     * neighbouring segment to O(t^3) (the curve is C2), so s is still evaluated exactly there;
+     * only the reported parameter is clamped. */
+    int nr = rugo__poly_roots(h, 3, -RAY_JOINT_SLACK, 1.0 + RAY_JOINT_SLACK, tol, roots);
+    if (nr == RUGO__POLY_ALL) {
+        /* The segment lies on the ray's line: the first point with s >= 0 is an end, a point
+         * where s = 0 (the origin), or a turning point of s. */
+        cand[nc++] = 0.0;
+        cand[nc++] = 1.0;
+        nr = rugo__poly_roots(sp, 3, 0.0, 1.0, 0.0, roots);
+        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        rugo_real ds[3] = {sp[1], 2.0 * sp[2], 3.0 * sp[3]};
+        nr = rugo__poly_roots(ds, 2, 0.0, 1.0, 0.0, roots);
+        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+    } else {
+        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+    }
+    /* An origin on the curve (within round-off) hits at s = 0 rather than at -1e-17 or never. */
+    rugo_real s_slack = 32.0 * DBL_EPSILON * kmax / sqrt(dd);
+    for (int i = 0; i < nc; ++i) {
+        rugo_real s = rugo_v2_dot(power_point(k, cand[i]), d) / dd;
+        if (s < 0.0 && s >= -s_slack) s = 0.0;
+        if (s >= 0.0 && s <= max_fraction && (!r->found || s < r->best_s)) {
+            r->found = true;
+            r->best_s = s;
+            r->best_j = j;
+            r->best_t = fmin(1.0, fmax(0.0, cand[i]));
         }
     }
-    if (!found) return 0;
+}
+
+void rugo__ray_segment(rugo__ray* r, rugo_contour c, int j) { ray_segment(r, c, j); }
+
+bool rugo__ray_finish(const rugo__ray* r, rugo_contour c, rugo_real* fraction, rugo_curve_point* hit,
+                      rugo_vec2* normal) {
+    if (!r->found) return false;
+    int best_j = r->best_j;
+    rugo_real best_t = r->best_t;
     if (best_t >= 1.0) { /* t = 1 belongs to the next segment */
         best_j = rugo__wrap(best_j + 1, c.count);
         best_t = 0.0;
     }
-    if (fraction) *fraction = best_s;
+    if (fraction) *fraction = r->best_s;
     if (hit) {
         hit->segment = best_j;
         hit->t = best_t;
         hit->point = rugo_contour_point(c, best_j, best_t);
-        hit->distance = best_s * sqrt(dd);
+        hit->distance = r->best_s * sqrt(r->dd);
     }
     if (normal) *normal = rugo_contour_normal(c, best_j, best_t);
-    return 1;
+    return true;
+}
+
+bool rugo_contour_ray_cast(rugo_contour c, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction,
+                           rugo_real* fraction, rugo_curve_point* hit, rugo_vec2* normal) {
+    rugo__ray r;
+    if (c.points == NULL || c.count < 1 || !rugo__ray_begin(&r, origin, direction, max_fraction))
+        return false;
+    for (int j = 0; j < c.count; ++j)
+        ray_segment(&r, c, j);
+    return rugo__ray_finish(&r, c, fraction, hit, normal);
 }

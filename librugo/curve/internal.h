@@ -29,6 +29,26 @@ void rugo__contour_bezier_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 out[
  * bit for bit, as over all segments: the others can neither lower the bound nor win (point_query.c). */
 rugo_curve_point rugo__contour_closest_among(rugo_contour c, rugo_vec2 p, const int* segs, int count);
 
+/* rugo_contour_ray_cast in steps (contour.c), so that the shape's tree walk (shape/point_query.c) can
+ * run it over some of the segments: rugo__ray_begin sets up a ray (false where rugo_contour_ray_cast
+ * answers "no hit" for its arguments alone), rugo__ray_segment takes segment j into the running best
+ * hit, rugo__ray_finish reports it as rugo_contour_ray_cast does. rugo_contour_ray_cast is begin, every
+ * segment in increasing order, finish. A segment can only change the state through a candidate point
+ * on the ray's line (within round-off relative to its control points' distances from the origin) with
+ * s in [0, max_fraction] and below the best s so far; leaving out segments that have none, the others
+ * taken in the same order, gives the same answer bit for bit. */
+typedef struct rugo__ray {
+    rugo_vec2 origin, d;
+    rugo_real dd, dmax, max_fraction;
+    bool found;
+    int best_j;
+    rugo_real best_s, best_t; /* best_s is max_fraction until found */
+} rugo__ray;
+bool rugo__ray_begin(rugo__ray* r, rugo_vec2 origin, rugo_vec2 direction, rugo_real max_fraction);
+void rugo__ray_segment(rugo__ray* r, rugo_contour c, int j);
+bool rugo__ray_finish(const rugo__ray* r, rugo_contour c, rugo_real* fraction, rugo_curve_point* hit,
+                      rugo_vec2* normal);
+
 /* For the baked-shape loader (shape/baked.c, through rugo__shape_create_from_parts): a pyramid holding the stored levels (points: levels J_min..J; world, local: levels J_min..J-1; both
  * encoded as in rugo__shape_parts), without the analysis. Validates the decoded finest level with an
  * O(n) outline check: exact signed area of the closed B-spline in closed form, finite (NOT_FINITE),
@@ -36,7 +56,7 @@ rugo_curve_point rugo__contour_closest_among(rugo_contour c, rugo_vec2 p, const 
  * bounds (ZERO_AREA; rugo_contour_check demands 1e-12 of the curve's bounds, which contain the
  * joints, so every outline a build accepts passes). No crossing test. `reversed` is what
  * rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL, OUT_OF_MEMORY. */
-rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
+rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, bool reversed,
                                       const unsigned char* points, const unsigned char* world,
                                       const unsigned char* local, const rugo_allocator* allocator,
                                       rugo_pyramid** out);

@@ -26,7 +26,7 @@ struct rugo_pyramid {
     int finest;      /* J */
     int coarsest;    /* J_min */
     int count;       /* 2^J */
-    int reversed;    /* the last input was clockwise and was reversed */
+    bool reversed;   /* the last input was clockwise and was reversed */
     int check_flags; /* rugo_contour_check flags used on input */
     rugo_vec2* block;  /* one allocation holding everything below */
     rugo_vec2* points; /* C^j at LEVEL_OFFSET(j), J_min <= j <= J */
@@ -45,7 +45,7 @@ rugo_pyramid_def rugo_default_pyramid_def(void) {
     d.count = 0;
     d.filter = RUGO_FILTER_DEFAULT;
     d.coarsest_level = 0;
-    d.check_self_intersection = 1;
+    d.check_self_intersection = true;
     d.cookie = PYRAMID_DEF_COOKIE;
     return d;
 }
@@ -252,7 +252,7 @@ void rugo_pyramid_destroy(rugo_pyramid* p) {
 int rugo_pyramid_finest_level(const rugo_pyramid* p) { return p ? p->finest : -1; }
 int rugo_pyramid_coarsest_level(const rugo_pyramid* p) { return p ? p->coarsest : -1; }
 rugo_filter rugo_pyramid_filter(const rugo_pyramid* p) { return p ? p->filter : RUGO_FILTER_COUNT; }
-int rugo_pyramid_was_reversed(const rugo_pyramid* p) { return p ? p->reversed : 0; }
+bool rugo_pyramid_was_reversed(const rugo_pyramid* p) { return p != NULL && p->reversed; }
 rugo_allocator rugo_pyramid_allocator(const rugo_pyramid* p) {
     return p ? p->allocator : rugo_default_allocator();
 }
@@ -391,7 +391,7 @@ rugo_status rugo_pyramid_set_finest(rugo_pyramid* p, const rugo_vec2* points, in
     rugo_status st = rugo_contour_check(points, count, p->check_flags, NULL, &p->allocator);
     if (st != RUGO_OK) return st;
     memcpy(p->buf_a, points, (size_t)count * sizeof(rugo_vec2));
-    int reversed = rugo_contour_orient_ccw(p->buf_a, count);
+    bool reversed = rugo_contour_orient_ccw(p->buf_a, count);
     st = commit_finest(p, p->buf_a, p->buf_b);
     if (st == RUGO_OK) p->reversed = reversed;
     return st;
@@ -437,7 +437,7 @@ static rugo_status outline_check(const rugo_vec2* p, size_t n) {
     return area > 0.0 ? RUGO_OK : RUGO_ERR_BAD_ARGUMENT; /* clockwise */
 }
 
-rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, int reversed,
+rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, bool reversed,
                                       const unsigned char* points, const unsigned char* world,
                                       const unsigned char* local, const rugo_allocator* allocator,
                                       rugo_pyramid** out) {
@@ -464,7 +464,7 @@ rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarse
     p->finest = finest;
     p->coarsest = coarsest;
     p->count = (int)n;
-    p->reversed = reversed != 0;
+    p->reversed = reversed;
     p->check_flags = RUGO_CHECK_POWER_OF_TWO | RUGO_CHECK_SELF_INTERSECTION; /* edits: as a default build */
     p->points = p->block;
     p->world = p->points + 2 * n;

@@ -416,14 +416,14 @@ rugo_status rugo_outline_sample(const rugo_outline_sample_def* def, rugo_outline
                          chosen);
         goto done;
     }
-    int reversed = 0;
+    bool reversed = false;
     if (area2 < 0.0) {
         for (int i = 1, k = w - 1; i < k; ++i, --k) {
             rugo_vec2 t = pts[i];
             pts[i] = pts[k];
             pts[k] = t;
         }
-        reversed = 1;
+        reversed = true;
     }
     out->points = pts;
     pts = NULL;

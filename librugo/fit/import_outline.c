@@ -96,14 +96,14 @@ static rugo_status sample_outline(const rugo_import_def* def, int svg, rugo_outl
         sd.sample_count = def->sample_count;
         return rugo_svg_import_outline(def->text, def->length, def->path_id, &sd, s, error);
     }
-    rugo_vec2* pts = NULL;
-    int count = 0;
-    st = rugo_points_text_parse(def->text, def->length, &def->allocator, &pts, &count, error);
+    rugo_point_list list;
+    st = rugo_points_text_parse(def->text, def->length, &def->allocator, &list, error);
     if (st != RUGO_OK) return st;
+    const int count = list.count;
     rugo_path poly;
     memset(&poly, 0, sizeof poly);
-    st = rugo_path_from_points(pts, count, &def->allocator, &poly);
-    rugo_points_free(&def->allocator, pts);
+    st = rugo_path_from_points(list.points, count, &def->allocator, &poly);
+    rugo_point_list_free(&list);
     if (st != RUGO_OK)
         return import_fail(error, st, "points",
                            "%d points do not make an outline: %s; give at least 3 distinct points", count,

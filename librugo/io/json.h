@@ -160,7 +160,7 @@ void rugo__json_null(rugo__json_writer* w);
 /* Appends bytes as they are (e.g. a final newline); no comma or indentation is added. */
 void rugo__json_raw(rugo__json_writer* w, const char* s, size_t n);
 /* Hands over the text: *text is NUL-terminated, *length excludes the NUL; free it with the writer's
- * allocator (rugo_text_free). On a sticky error, or if containers are still open (BAD_ARGUMENT), frees
+ * allocator (rugo__free). On a sticky error, or if containers are still open (BAD_ARGUMENT), frees
  * the buffer, sets *text = NULL, *length = 0 and returns the error. The writer is empty afterwards. */
 rugo_status rugo__json_writer_finish(rugo__json_writer* w, char** text, size_t* length);
 /* Frees the buffer without handing it over. */

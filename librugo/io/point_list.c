@@ -10,11 +10,10 @@
 #include <string.h>
 
 rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                                   rugo_vec2** points, int* count, rugo_parse_error* error) {
+                                   rugo_point_list* out, rugo_parse_error* error) {
     rugo__svg_clear_error(error);
-    if (points != NULL) *points = NULL;
-    if (count != NULL) *count = 0;
-    if (text == NULL || points == NULL || count == NULL) {
+    if (out != NULL) memset(out, 0, sizeof *out);
+    if (text == NULL || out == NULL) {
         if (error != NULL) snprintf(error->message, sizeof error->message, "a required argument is NULL");
         return RUGO_ERR_NULL_ARGUMENT;
     }
@@ -32,7 +31,7 @@ rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_a
     while (first < length && rugo__svg_is_wsp(text[first]))
         ++first;
     if (first < length && text[first] == '{')
-        return rugo_points_parse(text, length, "points", allocator, points, count, error);
+        return rugo_points_parse(text, length, "points", allocator, out, error);
 
     const rugo_allocator al = rugo__allocator_or_default(allocator);
     rugo__array pts = {NULL, 0}; /* rugo_vec2 */
@@ -106,7 +105,8 @@ rugo_status rugo_points_text_parse(const char* text, size_t length, const rugo_a
         rugo__array_free(&pts, &al);
         return st;
     }
-    *points = (rugo_vec2*)pts.data;
-    *count = n;
+    out->points = (rugo_vec2*)pts.data;
+    out->count = n;
+    out->allocator = al;
     return RUGO_OK;
 }

@@ -145,12 +145,10 @@ csv_error(rugo_parse_error* e, rugo_status status, const char* text, size_t leng
 }
 
 rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, const rugo_allocator* allocator,
-                                             rugo_profile_sample** samples, int* count,
-                                             rugo_parse_error* error) {
+                                             rugo_roughness_profile* out, rugo_parse_error* error) {
     if (error != NULL) memset(error, 0, sizeof *error);
-    if (samples != NULL) *samples = NULL;
-    if (count != NULL) *count = 0;
-    if (text == NULL || samples == NULL || count == NULL) {
+    if (out != NULL) memset(out, 0, sizeof *out);
+    if (text == NULL || out == NULL) {
         if (error != NULL) snprintf(error->message, sizeof error->message, "a required argument is NULL");
         return RUGO_ERR_NULL_ARGUMENT;
     }
@@ -261,11 +259,14 @@ rugo_status rugo_roughness_profile_parse_csv(const char* text, size_t length, co
         rugo__array_free(&room, &al);
         return s;
     }
-    *samples = p;
-    *count = m;
+    out->samples = p;
+    out->count = m;
+    out->allocator = al;
     return RUGO_OK;
 }
 
-void rugo_roughness_profile_free(const rugo_allocator* allocator, rugo_profile_sample* samples) {
-    rugo__free(allocator, samples);
+void rugo_roughness_profile_free(rugo_roughness_profile* profile) {
+    if (profile == NULL) return;
+    rugo__free(&profile->allocator, profile->samples);
+    memset(profile, 0, sizeof *profile);
 }

@@ -5,13 +5,17 @@
 #include "core/internal.h"
 
 #include <stdio.h>
+#include <string.h>
 
-void rugo_text_free(const rugo_allocator* allocator, char* text) { rugo__free(allocator, text); }
+void rugo_text_free(rugo_text* text) {
+    if (text == NULL) return;
+    rugo__free(&text->allocator, text->data);
+    memset(text, 0, sizeof *text);
+}
 
-rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, char** text, size_t* length) {
-    if (text != NULL) *text = NULL;
-    if (length != NULL) *length = 0;
-    if (path == NULL || text == NULL || length == NULL) return RUGO_ERR_NULL_ARGUMENT;
+rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, rugo_text* out) {
+    if (out != NULL) memset(out, 0, sizeof *out);
+    if (path == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     FILE* f = fopen(path, "rb");
     if (f == NULL) return RUGO_ERR_IO;
 
@@ -81,7 +85,8 @@ rugo_status rugo_read_file(const char* path, const rugo_allocator* allocator, ch
         return s;
     }
     buf[len] = '\0';
-    *text = buf;
-    *length = len;
+    out->data = buf;
+    out->length = len;
+    out->allocator = rugo__allocator_or_default(allocator);
     return RUGO_OK;
 }

@@ -168,12 +168,11 @@ static rugo_status parse_doc(const char* text, size_t length, const rugo_allocat
 }
 
 rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
-                              const rugo_allocator* allocator, rugo_vec2** points, int* count,
+                              const rugo_allocator* allocator, rugo_point_list* out,
                               rugo_parse_error* error) {
     clear_error(error);
-    if (points != NULL) *points = NULL;
-    if (count != NULL) *count = 0;
-    if (text == NULL || key == NULL || points == NULL || count == NULL) {
+    if (out != NULL) memset(out, 0, sizeof *out);
+    if (text == NULL || key == NULL || out == NULL) {
         if (error != NULL) snprintf(error->message, sizeof error->message, "a required argument is NULL");
         return RUGO_ERR_NULL_ARGUMENT;
     }
@@ -181,13 +180,24 @@ rugo_status rugo_points_parse(const char* text, size_t length, const char* key,
     rugo_status s = parse_doc(text, length, allocator, &doc, error);
     if (s != RUGO_OK) return s;
     const rugo__json_value* arr = NULL;
+    rugo_vec2* points = NULL;
+    int count = 0;
     s = find_member(&doc, text, length, key, 0, &arr, error);
-    if (s == RUGO_OK) s = read_points(arr, key, text, length, allocator, points, count, error);
+    if (s == RUGO_OK) s = read_points(arr, key, text, length, allocator, &points, &count, error);
     rugo__json_doc_free(&doc);
+    if (s == RUGO_OK) {
+        out->points = points;
+        out->count = count;
+        out->allocator = rugo__allocator_or_default(allocator);
+    }
     return s;
 }
 
-void rugo_points_free(const rugo_allocator* allocator, rugo_vec2* points) { rugo__free(allocator, points); }
+void rugo_point_list_free(rugo_point_list* list) {
+    if (list == NULL) return;
+    rugo__free(&list->allocator, list->points);
+    memset(list, 0, sizeof *list);
+}
 
 static void filter_list(char* out, size_t size) {
     size_t len = 0;
@@ -213,7 +223,7 @@ rugo_roughness_desc rugo_default_roughness_desc(void) {
     r.estimator = RUGO_ESTIMATOR_DETAIL;
     r.friction = rugo_default_friction_map();
     r.restitution = rugo_default_restitution();
-    r.has_perturbation = 0;
+    r.has_perturbation = false;
     r.perturbation_method = RUGO_ROUGHEN_WAVELET;
     return r;
 }
@@ -659,7 +669,7 @@ static rugo_status read_perturbation(const rctx* c, const rugo__json_value* obj,
                            "%d control points; %d levels above %d control points need %lld", count, levels, n,
                            (long long)n << levels);
     }
-    r->has_perturbation = 1;
+    r->has_perturbation = true;
     r->perturbation_method = (rugo_roughen_method)index;
     r->perturbation_levels = levels;
     r->perturbation_points = pts;
@@ -777,6 +787,6 @@ void rugo_shape_desc_free(rugo_shape_desc* desc) {
     desc->control_points = NULL;
     desc->count = 0;
     free_roughness(&desc->allocator, &desc->roughness);
-    desc->has_roughness = 0;
-    desc->roughness.has_perturbation = 0;
+    desc->has_roughness = false;
+    desc->roughness.has_perturbation = false;
 }

@@ -160,11 +160,10 @@ static void write_roughness(rugo__json_writer* w, const rugo_roughness_desc* r) 
     rugo__json_end_object(w);
 }
 
-rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator, char** text,
-                                  size_t* length) {
-    if (text != NULL) *text = NULL;
-    if (length != NULL) *length = 0;
-    if (desc == NULL || text == NULL || length == NULL) return RUGO_ERR_NULL_ARGUMENT;
+rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_allocator* allocator,
+                                  rugo_text* out) {
+    if (out != NULL) memset(out, 0, sizeof *out);
+    if (desc == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (desc->count < 0) return RUGO_ERR_BAD_ARGUMENT;
     if (desc->count > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_TOO_MANY_POINTS;
     if (desc->count > 0 && desc->control_points == NULL) return RUGO_ERR_NULL_ARGUMENT;
@@ -197,12 +196,11 @@ rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const rugo_alloca
     if (desc->has_roughness) write_roughness(&w, &desc->roughness);
     rugo__json_end_object(&w);
     rugo__json_raw(&w, "\n", 1);
-    rugo_status s = rugo__json_writer_finish(&w, text, length);
-    if (s == RUGO_OK && *length > RUGO_MAX_JSON_BYTES) {
+    rugo_status s = rugo__json_writer_finish(&w, &out->data, &out->length);
+    if (s == RUGO_OK) out->allocator = rugo__allocator_or_default(allocator);
+    if (s == RUGO_OK && out->length > RUGO_MAX_JSON_BYTES) {
         /* Only a large roughness object gets here: the reader would refuse the text. */
-        rugo_text_free(allocator, *text);
-        *text = NULL;
-        *length = 0;
+        rugo_text_free(out);
         s = RUGO_ERR_TOO_MANY_POINTS;
     }
     return s;

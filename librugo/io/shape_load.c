@@ -89,13 +89,12 @@ rugo_status rugo_shape_load_file(const char* path, const rugo_allocator* allocat
         return RUGO_OK;
     }
     const rugo_allocator al = rugo__allocator_or_default(allocator);
-    char* text = NULL;
-    size_t length = 0;
-    rugo_status st = rugo_read_file(path, &al, &text, &length);
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, &al, &text);
     if (st != RUGO_OK) return load_fail(error, st, "", "cannot read the file: %s", rugo_status_string(st));
     rugo_shape_desc d;
-    st = rugo_shape_desc_parse(text, length, &al, &d, error);
-    rugo_text_free(&al, text);
+    st = rugo_shape_desc_parse(text.data, text.length, &al, &d, error);
+    rugo_text_free(&text);
     if (st != RUGO_OK) return st;
     rugo_real* tol = NULL;
     if (d.has_roughness) {

@@ -143,7 +143,7 @@ static rugo_status begin_subpath(path_state* ps, rugo__svg_scanner* sc, size_t a
     s->first = ps->b.nseg;
     s->count = 0;
     s->start = start;
-    s->closed = 0;
+    s->closed = false;
     ps->in_subpath = 1;
     return RUGO_OK;
 }
@@ -292,7 +292,7 @@ static rugo_status close_subpath(path_state* ps, rugo__svg_scanner* sc, size_t a
         rugo_status st = add_segment(ps, sc, at, &s);
         if (st != RUGO_OK) return st;
     }
-    builder_subpaths(&ps->b)[ps->b.nsub - 1].closed = 1;
+    builder_subpaths(&ps->b)[ps->b.nsub - 1].closed = true;
     ps->cur = ps->start;
     ps->in_subpath = 0;
     ps->prev = 0;
@@ -468,7 +468,7 @@ rugo_status rugo_path_from_points(const rugo_vec2* points, int count, const rugo
     sub->first = 0;
     sub->count = n;
     sub->start = n > 0 ? seg[0].p[0] : points[0];
-    sub->closed = 1;
+    sub->closed = true;
     out->segments = seg;
     out->segment_count = n;
     out->subpaths = sub;

@@ -300,9 +300,9 @@ typedef struct regions {
 static inline int rugo__next_along_a(const regions* r, int i) { return (i + 1) % r->m; }
 static inline int rugo__next_along_b(const regions* r, int i) { return r->order_b[(r->pos_b[i] + 1) % r->m]; }
 
-/* Length of the arc from parameter `from` to `to` along a curve of the given period (a single crossing:
+/* Parameter span of the arc from `from` to `to` along a curve of the given period (a single crossing:
  * the whole curve). */
-static inline rugo_real rugo__arc_length(rugo_real from, rugo_real to, rugo_real period, int single) {
+static inline rugo_real rugo__param_arc(rugo_real from, rugo_real to, rugo_real period, int single) {
     rugo_real d = to - from;
     while (d < 0.0)
         d += period;

@@ -283,7 +283,7 @@ static rugo_status primitive_region_contact(primitive_query* s, const regions* r
             const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub;
             const rugo_real u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
             const rugo_real period = which == 0 ? (rugo_real)A->n : P->period;
-            const rugo_real len = rugo__arc_length(u0, u1, period, r->m == 1);
+            const rugo_real len = rugo__param_arc(u0, u1, period, r->m == 1);
             const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
             for (int k = 1; k < samples; ++k) {
                 const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)k / (rugo_real)samples, period);

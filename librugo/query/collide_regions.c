@@ -88,11 +88,11 @@ void rugo__build_regions(regions* r, const hit* x, int m, int* ints, const regio
          * duplicate): decide each arc by a containment test of its midpoint. */
         for (int i = 0; i < m; ++i) {
             const int j = rugo__next_along_a(r, i);
-            const rugo_real la = rugo__arc_length(x[i].ua, x[j].ua, io->period_a, m == 1);
+            const rugo_real la = rugo__param_arc(x[i].ua, x[j].ua, io->period_a, m == 1);
             const rugo_real mid_a = rugo__wrap_param(x[i].ua + 0.5 * la, io->period_a);
             r->a_in[i] = io->inside_b(io->user, io->point_a(io->user, mid_a));
             const int k = rugo__next_along_b(r, i);
-            const rugo_real lb = rugo__arc_length(x[i].ub, x[k].ub, io->period_b, m == 1);
+            const rugo_real lb = rugo__param_arc(x[i].ub, x[k].ub, io->period_b, m == 1);
             const rugo_real mid_b = rugo__wrap_param(x[i].ub + 0.5 * lb, io->period_b);
             r->b_in[i] = io->inside_a(io->user, io->point_b(io->user, mid_b));
         }

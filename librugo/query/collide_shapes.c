@@ -417,7 +417,7 @@ static int collect_segments(rugo_collide_context* ctx, const shape_pair* g, cons
         if ((which == 0 ? r->reg_a[i] : r->reg_b[i]) != reg) continue;
         const int j = which == 0 ? rugo__next_along_a(r, i) : rugo__next_along_b(r, i);
         const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub, u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
-        const rugo_real len = rugo__arc_length(u0, u1, (rugo_real)s->n, r->m == 1);
+        const rugo_real len = rugo__param_arc(u0, u1, (rugo_real)s->n, r->m == 1);
         const int k0 = (int)floor(u0);
         const int k1 = (int)floor(u0 + len);
         for (int k = k0; k <= k1 && k - k0 < s->n; ++k) {
@@ -524,7 +524,7 @@ static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g,
             const rugo_real u0 = which == 0 ? r->x[i].ua : r->x[i].ub,
                             u1 = which == 0 ? r->x[j].ua : r->x[j].ub;
             const rugo_real period = (rugo_real)(which == 0 ? g->A->n : g->B->n);
-            const rugo_real len = rugo__arc_length(u0, u1, period, r->m == 1);
+            const rugo_real len = rugo__param_arc(u0, u1, period, r->m == 1);
             const int samples = FALLBACK_SAMPLES * (1 + (int)ceil(len));
             for (int s = 1; s < samples; ++s) {
                 const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);

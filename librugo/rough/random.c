@@ -17,7 +17,7 @@ void rugo_rng_seed(rugo_rng* rng, uint64_t seed) {
     uint64_t x = seed;
     for (int i = 0; i < 4; ++i) rng->state[i] = splitmix64(&x);
     rng->spare = 0.0;
-    rng->has_spare = 0;
+    rng->has_spare = false;
 }
 
 uint64_t rugo_rng_next(rugo_rng* rng) {
@@ -54,7 +54,7 @@ uint32_t rugo_rng_below(rugo_rng* rng, uint32_t n) {
 
 rugo_real rugo_rng_gaussian(rugo_rng* rng) {
     if (rng->has_spare) {
-        rng->has_spare = 0;
+        rng->has_spare = false;
         return rng->spare;
     }
     rugo_real u, v, s;
@@ -65,6 +65,6 @@ rugo_real rugo_rng_gaussian(rugo_rng* rng) {
     } while (s >= 1.0 || s == 0.0);
     rugo_real m = sqrt(-2.0 * log(s) / s);
     rng->spare = v * m;
-    rng->has_spare = 1;
+    rng->has_spare = true;
     return u * m;
 }

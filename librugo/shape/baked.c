@@ -185,7 +185,7 @@ static layout make_layout(int J, int Jmin) {
 /* Levels a shape can have: 2^J <= RUGO_MAX_CONTROL_POINTS = 2^20. */
 static int levels_ok(int J, int Jmin) { return Jmin >= 2 && J >= Jmin && J <= 20; }
 
-int rugo_is_baked(const void* buffer, size_t size) {
+bool rugo_is_baked(const void* buffer, size_t size) {
     return buffer != NULL && size >= RUGO_BAKED_MAGIC_SIZE && memcmp(buffer, MAGIC, RUGO_BAKED_MAGIC_SIZE) == 0;
 }
 
@@ -593,7 +593,7 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     check_arrays(&r, &L);
     if (!failed(&r)) {
         /* The rough flag must say what the finest λ says: is_rough would lie otherwise. */
-        int rough = 0;
+        bool rough = false;
         const size_t fine = L.per - ((size_t)1 << J);
         for (size_t k = 0; k < ((size_t)1 << J); ++k)
             rough |= get_f64(r.file + L.tol + 8 * (L.per + fine + k)) > 0.0;

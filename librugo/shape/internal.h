@@ -6,6 +6,8 @@
 #include "rugo/baked.h" /* rugo_baked_error */
 #include "rugo/shape.h"
 
+#include "curve/internal.h" /* rugo__ray */
+
 /* Per segment of `level`: a certified upper bound of λ(t) over the segment. */
 const rugo_real* rugo__shape_band_bounds(const rugo_shape* s, int level);
 /* How far those bounds exceed the level's λ at most: coarse-level queries grow boxes by it so that no
@@ -20,7 +22,7 @@ typedef struct rugo__shape_parts {
     int finest, coarsest;
     rugo_filter filter;
     rugo_box_method box_method;
-    int rough, reversed;
+    bool rough, reversed;
     rugo_mass_properties mass;
     rugo_friction_map friction;
     rugo_restitution restitution;
@@ -64,6 +66,12 @@ rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method
  * (point_query.c): only segments under boxes that the ray from p towards +x may meet are evaluated.
  * *visited (may be NULL) gets their number. */
 int rugo__level_contains(const rugo_shape* shape, int level, rugo_vec2 p, int* visited);
+
+/* Runs the ray r (from rugo__ray_begin, curve/internal.h) over the shape's curve of absolute `level`
+ * (J_min..J, already resolved) through its MOBBtree (point_query.c): rugo__ray_segment on the segments
+ * under the boxes the ray segment up to the running best hit may meet, in increasing order, which leaves
+ * r as the pass over all segments would. *visited (may be NULL) gets their number. */
+void rugo__level_ray_cast(const rugo_shape* shape, int level, rugo__ray* r, int* visited);
 
 /* ---- error detail of the baked format (baked.c), also for its files (baked_file.c) ---------------- */
 

@@ -261,8 +261,8 @@ static rugo_real projected_radius(const rugo_obb* b, rugo_vec2 l) {
     return b->half[0] * fabs(rugo_v2_dot(b->axis[0], l)) + b->half[1] * fabs(rugo_v2_dot(b->axis[1], l));
 }
 
-int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b) {
-    if (a == NULL || b == NULL) return 0;
+bool rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b) {
+    if (a == NULL || b == NULL) return false;
     rugo_vec2 t = rugo_v2_sub(b->center, a->center);
     rugo_real position = fmax(fmax(fabs(a->center.x), fabs(a->center.y)), fmax(fabs(b->center.x), fabs(b->center.y)));
     const rugo_vec2 axes[4] = {a->axis[0], a->axis[1], b->axis[0], b->axis[1]};
@@ -271,15 +271,15 @@ int rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b) {
         rugo_real reach = projected_radius(a, axes[i]) + projected_radius(b, axes[i]);
         /* Disjoint iff |T·L| > r_A + r_B (6.7); the slack keeps exact touching (and touching up to
          * round-off) an overlap. Written so that NaN never separates. */
-        if (dist - reach > SAT_SLACK * (dist + reach + position)) return 0;
+        if (dist - reach > SAT_SLACK * (dist + reach + position)) return false;
     }
     /* The four axes are the edge normals of both rectangles (also when a side has zero length, as
      * for a straight segment's box or a point's box), which suffices for convex polygons. */
-    return 1;
+    return true;
 }
 
-int rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack) {
-    if (b == NULL) return 0;
+bool rugo_obb_contains(const rugo_obb* b, rugo_vec2 p, rugo_real slack) {
+    if (b == NULL) return false;
     rugo_vec2 d = rugo_v2_sub(p, b->center);
     return fabs(rugo_v2_dot(d, b->axis[0])) <= b->half[0] + slack &&
            fabs(rugo_v2_dot(d, b->axis[1])) <= b->half[1] + slack;

@@ -1,17 +1,17 @@
-/* Point queries on a shape's level through its MOBBtree: containment and closest point, with the
- * same answers, bit for bit, as the contour's passes over all segments (contour.c), at the cost of
- * the boxes near the point (or along its ray) and the few segments under them.
+/* Point queries on a shape's level through its MOBBtree: containment, closest point and ray cast,
+ * with the same answers, bit for bit, as the contour's passes over all segments (contour.c), at the
+ * cost of the boxes near the point (or along its ray) and the few segments under them.
  *
- * Both rely on the tree holding the query level's segments: node (j, k) contains its descendants'
- * boxes down to that level, and each of those its own segment (mobb.h), with round-off pads of their
- * own. A box is skipped only when it keeps more than POINT_PAD (relative to the shape's size and p's
- * distance from it) clear of what the query needs; the contour's per-segment computations are
- * relative to p with errors of a few ulps of the control points' distances from p, far below the
- * pad. */
+ * All three rely on the tree holding the query level's segments: node (j, k) contains its
+ * descendants' boxes down to that level, and each of those its own segment (mobb.h), with round-off
+ * pads of their own. A box is skipped only when it keeps more than POINT_PAD (relative to the shape's
+ * size and the distance of p, or of the ray's origin, from it) clear of what the query needs; the
+ * contour's per-segment computations are relative to p with errors of a few ulps of the control
+ * points' distances from p, far below the pad. */
 #include "rugo/shape.h"
 
 #include "core/internal.h"
-#include "curve/internal.h" /* rugo__contour_closest_among, rugo__contour_winding_segment */
+#include "curve/internal.h" /* rugo__contour_closest_among, rugo__contour_winding_segment, rugo__ray */
 #include "shape/internal.h"
 
 #define POINT_PAD 1e-8
@@ -184,9 +184,77 @@ static rugo_curve_point level_closest_point(const rugo_shape* shape, int level, 
 }
 
 /* ---------------------------------------------------------------------------------------------------
+ * Ray cast.
+ *
+ * rugo_contour_ray_cast takes the segments in increasing order, each either pruned or solved for its
+ * crossings with the ray's line, and keeps the first hit (rugo__ray_segment). This takes the same steps
+ * over the segments under the tree boxes that the ray segment s in [0, s1] meets, in the same order,
+ * with s1 the best s so far (max_fraction before a hit). A segment left out lies in a box that keeps
+ * more than the pad clear of that ray segment; each of its candidate points (on the curve, found
+ * within 1e-12 of the segment's parameter range, within round-off of the ray's line) is then off the
+ * line, behind the origin or beyond s1, so it could not have changed the running hit. Each visited
+ * segment therefore starts from the state the pass over all segments has there, and the answer is
+ * the same. */
+
+/* true if box b grown by m (a length) misses the ray segment origin + s d, s in [0, s1], of r
+ * (len = |d|). Computed relative to the origin, so that a shape far from (0, 0) keeps its digits;
+ * infinite products (a huge s1) only make the box look nearer. */
+static bool clear_of_ray_segment(const rugo_obb* b, const rugo__ray* r, rugo_real len, rugo_real s1,
+                                 rugo_real m) {
+    const rugo_vec2 c = rugo_v2_sub(b->center, r->origin), d = r->d;
+    /* Along d, in units of s |d|^2: the box's extent against [0, s1]. */
+    const rugo_real cd = rugo_v2_dot(c, d);
+    const rugo_real rd =
+        b->half[0] * fabs(rugo_v2_dot(b->axis[0], d)) + b->half[1] * fabs(rugo_v2_dot(b->axis[1], d));
+    if (cd + rd < -m * len || cd - rd > s1 * r->dd + m * len) return true;
+    /* Across d: the distance from the ray's line. */
+    const rugo_vec2 n = rugo_v2_scale(1.0 / len, rugo_v2_perp(d));
+    const rugo_real rn =
+        b->half[0] * fabs(rugo_v2_dot(b->axis[0], n)) + b->half[1] * fabs(rugo_v2_dot(b->axis[1], n));
+    if (fabs(rugo_v2_dot(c, n)) - rn > m) return true;
+    /* The box's own axes. */
+    for (int i = 0; i < 2; ++i) {
+        const rugo_real e = s1 * rugo_v2_dot(d, b->axis[i]);
+        const rugo_real ca = rugo_v2_dot(c, b->axis[i]);
+        if (ca - b->half[i] > fmax(0.0, e) + m || ca + b->half[i] < fmin(0.0, e) - m) return true;
+    }
+    return false;
+}
+
+void rugo__level_ray_cast(const rugo_shape* shape, int level, rugo__ray* r, int* visited) {
+    if (visited != NULL) *visited = 0;
+    rugo_contour curve;
+    if (shape == NULL || rugo_shape_level(shape, level, &curve) != RUGO_OK) return;
+    const rugo_mobb_tree* tree = rugo_shape_tree(shape);
+    const int jmin = rugo_shape_coarsest_level(shape);
+    const rugo_obb* root = rugo_mobb_tree_root(tree);
+    const rugo_real m = point_pad(root, r->origin), len = sqrt(r->dd);
+    if (!(m < HUGE_VAL) || !(len > 0.0) || level - jmin > 60) {
+        for (int j = 0; j < curve.count; ++j)
+            rugo__ray_segment(r, curve, j);
+        if (visited != NULL) *visited = curve.count;
+        return;
+    }
+    if (clear_of_ray_segment(root, r, len, r->best_s, m)) return;
+    int seen = 0, l, k;
+    node_walk w;
+    walk_start(&w, jmin);
+    while (walk_next(&w, &l, &k)) {
+        if (clear_of_ray_segment(rugo_mobb_tree_node(tree, l, k), r, len, r->best_s, m)) continue;
+        if (l == level) {
+            rugo__ray_segment(r, curve, k);
+            ++seen;
+        } else {
+            walk_descend(&w, l, k);
+        }
+    }
+    if (visited != NULL) *visited = seen;
+}
+
+/* ---------------------------------------------------------------------------------------------------
  * Public API. */
 
-/* The checks both entry points make: a shape, a level it has (its curve into *curve), a finite point. */
+/* The checks every entry point makes: a shape, a level it has (its curve into *curve), a finite point. */
 static rugo_status check_query(const rugo_shape* s, int level, rugo_vec2 p, rugo_contour* curve) {
     if (s == NULL) return RUGO_ERR_NULL_ARGUMENT;
     const rugo_status st = rugo_shape_level(s, level, curve);
@@ -194,13 +262,13 @@ static rugo_status check_query(const rugo_shape* s, int level, rugo_vec2 p, rugo
     return rugo__v2_finite(p) ? RUGO_OK : RUGO_ERR_NOT_FINITE;
 }
 
-rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, int* inside) {
+rugo_status rugo_shape_contains(const rugo_shape* s, int level, rugo_vec2 p, bool* inside) {
     if (inside == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    *inside = 0;
+    *inside = false;
     rugo_contour curve;
     const rugo_status st = check_query(s, level, p, &curve);
     if (st != RUGO_OK) return st;
-    *inside = rugo__level_contains(s, level, p, NULL);
+    *inside = rugo__level_contains(s, level, p, NULL) != 0;
     return RUGO_OK;
 }
 
@@ -217,5 +285,26 @@ rugo_status rugo_shape_closest_point(const rugo_shape* s, int level, rugo_vec2 p
      * most RUGO_SHAPE_MAX_SIZE across). */
     if (fabs(p.x) > 1e150 || fabs(p.y) > 1e150) return RUGO_ERR_NOT_FINITE;
     *out = level_closest_point(s, level, curve, p);
+    return RUGO_OK;
+}
+
+rugo_status rugo_shape_ray_cast(const rugo_shape* s, int level, rugo_vec2 origin, rugo_vec2 direction,
+                                rugo_real max_fraction, rugo_real* fraction, rugo_curve_point* hit,
+                                rugo_vec2* normal, bool* found) {
+    if (found == NULL) return RUGO_ERR_NULL_ARGUMENT;
+    *found = false;
+    rugo_contour curve;
+    const rugo_status st = check_query(s, level, origin, &curve);
+    if (st != RUGO_OK) return st;
+    if (!rugo__v2_finite(direction) || !isfinite(max_fraction)) return RUGO_ERR_NOT_FINITE;
+    /* Beyond, squared lengths overflow (shapes are at most RUGO_SHAPE_MAX_SIZE across). */
+    if (fabs(origin.x) > 1e150 || fabs(origin.y) > 1e150 || fabs(direction.x) > 1e150 ||
+        fabs(direction.y) > 1e150)
+        return RUGO_ERR_NOT_FINITE;
+    if (!(max_fraction >= 0.0)) return RUGO_ERR_BAD_ARGUMENT;
+    rugo__ray r;
+    if (!rugo__ray_begin(&r, origin, direction, max_fraction)) return RUGO_ERR_BAD_ARGUMENT; /* |d|^2 = 0 */
+    rugo__level_ray_cast(s, level, &r, NULL);
+    *found = rugo__ray_finish(&r, curve, fraction, hit, normal);
     return RUGO_OK;
 }

@@ -27,8 +27,8 @@ struct rugo_shape {
     rugo_friction_map friction;
     rugo_restitution restitution;
     int finest, coarsest;
-    int rough;
-    int reversed;
+    bool rough;
+    bool reversed;
     rugo_real* band_bound; /* level j at offset 2^j - 2^J_min, 2^j values */
     rugo_real band_excess[31];
     rugo_real level_error[31]; /* rugo_shape_level_error's bound per level (+inf where it fails) */
@@ -52,7 +52,7 @@ rugo_shape_def rugo_default_shape_def(void) {
     d.friction = rugo_default_friction_map();
     d.restitution = rugo_default_restitution();
     d.box_method = RUGO_BOXES_MULTIRES;
-    d.check_self_intersection = 1;
+    d.check_self_intersection = true;
     d.cookie = SHAPE_DEF_COOKIE;
     return d;
 }
@@ -349,8 +349,8 @@ rugo_restitution rugo_shape_restitution(const rugo_shape* s) {
     return s->restitution;
 }
 
-int rugo_shape_is_rough(const rugo_shape* s) { return s ? s->rough : 0; }
-int rugo_shape_was_reversed(const rugo_shape* s) { return s ? s->reversed : 0; }
+bool rugo_shape_is_rough(const rugo_shape* s) { return s != NULL && s->rough; }
+bool rugo_shape_was_reversed(const rugo_shape* s) { return s != NULL && s->reversed; }
 
 const rugo_real* rugo__shape_band_bounds(const rugo_shape* s, int level) {
     if (s == NULL || level < s->coarsest || level > s->finest) return NULL;
@@ -391,8 +391,8 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
     s->mass = parts->mass;
     s->finest = J;
     s->coarsest = Jmin;
-    s->rough = parts->rough != 0;
-    s->reversed = parts->reversed != 0;
+    s->rough = parts->rough;
+    s->reversed = parts->reversed;
 
     const size_t per = ((size_t)1 << (J + 1)) - ((size_t)1 << Jmin); /* entries of levels Jmin..J */
     st = rugo__pyramid_from_levels(parts->filter, J, Jmin, parts->reversed, parts->points, parts->world,

@@ -24,7 +24,7 @@ typedef struct mat2 {
 
 static rugo_vec2 mat2_mul(mat2 m, rugo_vec2 v) { return rugo_v2(m.xx * v.x + m.xy * v.y, m.xy * v.x + m.yy * v.y); }
 
-static int input_finite(const rugo_impulse_input* in) {
+static int input_finite(const rugo__impulse_input* in) {
     return isfinite(in->inv_mass_a) && isfinite(in->inv_inertia_a) && isfinite(in->inv_mass_b) &&
            isfinite(in->inv_inertia_b) && rugo__v2_finite(in->r_a) && rugo__v2_finite(in->r_b) &&
            rugo__v2_finite(in->v_a) && rugo__v2_finite(in->v_b) && isfinite(in->w_a) && isfinite(in->w_b) &&
@@ -37,8 +37,8 @@ static rugo_real energy_change(mat2 k, rugo_vec2 v, rugo_vec2 j) {
     return rugo_v2_dot(j, rugo_v2_add(v, rugo_v2_scale(0.5, kj)));
 }
 
-static void set_result(rugo_impulse_result* out, rugo_vec2 j, rugo_vec2 n, rugo_vec2 tangent, int branch, mat2 k,
-                       rugo_vec2 v) {
+static void set_result(rugo__impulse_result* out, rugo_vec2 j, rugo_vec2 n, rugo_vec2 tangent, int branch,
+                       mat2 k, rugo_vec2 v) {
     out->impulse = j;
     out->impulse_normal = rugo_v2_dot(j, n);
     out->impulse_tangent = -rugo_v2_dot(j, tangent); /* J = J_n n - J_t t̂ */
@@ -46,7 +46,7 @@ static void set_result(rugo_impulse_result* out, rugo_vec2 j, rugo_vec2 n, rugo_
     out->energy_change = energy_change(k, v, j);
 }
 
-rugo_status rugo_collision_impulse(const rugo_impulse_input* in, rugo_impulse_result* out) {
+rugo_status rugo__collision_impulse(const rugo__impulse_input* in, rugo__impulse_result* out) {
     if (in == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (!input_finite(in)) return RUGO_ERR_NOT_FINITE;
     if (in->friction < 0.0 || in->restitution < 0.0 || in->restitution > 1.0) return RUGO_ERR_BAD_ARGUMENT;

@@ -31,7 +31,7 @@ typedef struct pair_entry {
     int next; /* next in the bucket's chain or the free list; -1 ends */
 } pair_entry;
 
-struct rugo_sweep_prune {
+struct rugo__sweep_prune {
     rugo_allocator allocator;
     int n;     /* boxes of the last successful update */
     int valid; /* 0: the next update runs the general algorithm */
@@ -42,7 +42,7 @@ struct rugo_sweep_prune {
     rugo__array buckets; /* int: h = 2 n + 1 */
     rugo__array pool;    /* pair_entry */
     int pool_used, free_head, live;
-    rugo__array out; /* rugo_pair */
+    rugo__array out; /* rugo__pair */
     int out_count;
     long swaps;
 };
@@ -68,8 +68,8 @@ static int endpoint_cmp(const void* p, const void* q) {
 }
 
 static int pair_cmp(const void* p, const void* q) {
-    const rugo_pair* x = (const rugo_pair*)p;
-    const rugo_pair* y = (const rugo_pair*)q;
+    const rugo__pair* x = (const rugo__pair*)p;
+    const rugo__pair* y = (const rugo__pair*)q;
     if (x->a != y->a) return x->a < y->a ? -1 : 1;
     if (x->b != y->b) return x->b < y->b ? -1 : 1;
     return 0;
@@ -80,11 +80,11 @@ static int overlap_axis(const rugo_aabb* p, const rugo_aabb* q, int axis) {
     return p->lower.y <= q->upper.y && q->lower.y <= p->upper.y;
 }
 
-rugo_status rugo_sweep_prune_create(const rugo_allocator* allocator, rugo_sweep_prune** out) {
+rugo_status rugo__sweep_prune_create(const rugo_allocator* allocator, rugo__sweep_prune** out) {
     if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     *out = NULL;
     rugo_allocator a = rugo__allocator_or_default(allocator);
-    rugo_sweep_prune* sap = (rugo_sweep_prune*)rugo__alloc_array(&a, 1, sizeof *sap);
+    rugo__sweep_prune* sap = (rugo__sweep_prune*)rugo__alloc_array(&a, 1, sizeof *sap);
     if (sap == NULL) return RUGO_ERR_OUT_OF_MEMORY;
     memset(sap, 0, sizeof *sap);
     sap->allocator = a;
@@ -93,7 +93,7 @@ rugo_status rugo_sweep_prune_create(const rugo_allocator* allocator, rugo_sweep_
     return RUGO_OK;
 }
 
-void rugo_sweep_prune_destroy(rugo_sweep_prune* sap) {
+void rugo__sweep_prune_destroy(rugo__sweep_prune* sap) {
     if (sap == NULL) return;
     rugo_allocator a = sap->allocator;
     rugo__array* all[] = {&sap->axis[0], &sap->axis[1], &sap->active, &sap->active_pos,
@@ -103,7 +103,7 @@ void rugo_sweep_prune_destroy(rugo_sweep_prune* sap) {
     rugo__free(&a, sap);
 }
 
-static void table_clear(rugo_sweep_prune* sap) {
+static void table_clear(rugo__sweep_prune* sap) {
     int* buckets = (int*)sap->buckets.data;
     for (int i = 0; i < sap->h; ++i) buckets[i] = -1;
     sap->pool_used = 0;
@@ -111,12 +111,12 @@ static void table_clear(rugo_sweep_prune* sap) {
     sap->live = 0;
 }
 
-static int bucket_of(const rugo_sweep_prune* sap, int a, int b) {
+static int bucket_of(const rugo__sweep_prune* sap, int a, int b) {
     return (int)(((unsigned)a + (unsigned)b) % (unsigned)sap->h);
 }
 
 /* Adds (a, b), a < b, if absent. 0 on out of memory. */
-static int table_add(rugo_sweep_prune* sap, int a, int b) {
+static int table_add(rugo__sweep_prune* sap, int a, int b) {
     int bk = bucket_of(sap, a, b);
     int* buckets = (int*)sap->buckets.data;
     pair_entry* pool = (pair_entry*)sap->pool.data;
@@ -142,7 +142,7 @@ static int table_add(rugo_sweep_prune* sap, int a, int b) {
     return 1;
 }
 
-static void table_remove(rugo_sweep_prune* sap, int a, int b) {
+static void table_remove(rugo__sweep_prune* sap, int a, int b) {
     int bk = bucket_of(sap, a, b);
     pair_entry* pool = (pair_entry*)sap->pool.data;
     int* link = (int*)sap->buckets.data + bk;
@@ -162,7 +162,7 @@ static void table_remove(rugo_sweep_prune* sap, int a, int b) {
 /* Room for n boxes: their end points on both axes, the sweep's active list and the hash table's
  * 2 n + 1 buckets (the bucket array must exist even for no boxes). Sized to n the first time; the
  * contents are rebuilt by the general algorithm whenever n changes. */
-static rugo_status reserve_boxes(rugo_sweep_prune* sap, int n) {
+static rugo_status reserve_boxes(rugo__sweep_prune* sap, int n) {
     if (n < 1) n = 1;
     const size_t m = (size_t)n;
     const rugo_allocator* a = &sap->allocator;
@@ -175,7 +175,7 @@ static rugo_status reserve_boxes(rugo_sweep_prune* sap, int n) {
     return RUGO_OK;
 }
 
-static rugo_status general(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n) {
+static rugo_status general(rugo__sweep_prune* sap, const rugo_aabb* boxes, int n) {
     sap->h = 2 * n + 1;
     table_clear(sap);
     for (int ax = 0; ax < 2; ++ax) {
@@ -214,7 +214,7 @@ static rugo_status general(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n)
     return RUGO_OK;
 }
 
-static rugo_status coherent(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n) {
+static rugo_status coherent(rugo__sweep_prune* sap, const rugo_aabb* boxes, int n) {
     long swaps = 0;
     for (int ax = 0; ax < 2; ++ax) {
         endpoint* e = (endpoint*)sap->axis[ax].data;
@@ -252,7 +252,7 @@ static rugo_status coherent(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n
     return RUGO_OK;
 }
 
-rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxes, int n) {
+rugo_status rugo__sweep_prune_update(rugo__sweep_prune* sap, const rugo_aabb* boxes, int n) {
     if (sap == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (n < 0 || n > (1 << 26)) return RUGO_ERR_BAD_ARGUMENT;
     if (n > 0 && boxes == NULL) return RUGO_ERR_NULL_ARGUMENT;
@@ -274,12 +274,12 @@ rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxe
         sap->valid = 0;
         return st;
     }
-    if (rugo__array_reserve(&sap->out, &sap->allocator, (size_t)sap->live, sizeof(rugo_pair), OUT_FIRST) !=
+    if (rugo__array_reserve(&sap->out, &sap->allocator, (size_t)sap->live, sizeof(rugo__pair), OUT_FIRST) !=
         RUGO_OK) {
         sap->valid = 0;
         return RUGO_ERR_OUT_OF_MEMORY;
     }
-    rugo_pair* out = (rugo_pair*)sap->out.data;
+    rugo__pair* out = (rugo__pair*)sap->out.data;
     const int* buckets = (const int*)sap->buckets.data;
     const pair_entry* pool = (const pair_entry*)sap->pool.data;
     int c = 0;
@@ -297,10 +297,10 @@ rugo_status rugo_sweep_prune_update(rugo_sweep_prune* sap, const rugo_aabb* boxe
     return RUGO_OK;
 }
 
-const rugo_pair* rugo_sweep_prune_pairs(const rugo_sweep_prune* sap, int* count) {
+const rugo__pair* rugo__sweep_prune_pairs(const rugo__sweep_prune* sap, int* count) {
     if (count != NULL) *count = sap != NULL ? sap->out_count : 0;
     if (sap == NULL) return NULL;
-    return (const rugo_pair*)sap->out.data;
+    return (const rugo__pair*)sap->out.data;
 }
 
-long rugo_sweep_prune_swaps(const rugo_sweep_prune* sap) { return sap != NULL ? sap->swaps : 0; }
+long rugo__sweep_prune_swaps(const rugo__sweep_prune* sap) { return sap != NULL ? sap->swaps : 0; }

@@ -27,8 +27,8 @@ rugo_world_def rugo_default_world_def(void) {
     d.contact_rule = RUGO_CONTACT_THESIS;
     d.max_bisections = 8;
     d.penetration_tolerance = 0.01;
-    d.micro_collisions = 1;
-    d.friction = 1;
+    d.micro_collisions = true;
+    d.friction = true;
     d.max_contacts_per_pair = 8;
     d.cookie = WORLD_DEF_COOKIE;
     return d;
@@ -57,8 +57,6 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     if (def->integrator != RUGO_INTEGRATE_SYMPLECTIC_EULER && def->integrator != RUGO_INTEGRATE_EXPLICIT_EULER)
         return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_bisections < 0 || def->max_bisections > 30) return RUGO_ERR_BAD_ARGUMENT;
-    if ((def->micro_collisions != 0 && def->micro_collisions != 1) || (def->friction != 0 && def->friction != 1))
-        return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS) return RUGO_ERR_BAD_ARGUMENT;
     if (!isfinite(def->resolution)) return RUGO_ERR_NOT_FINITE;
     if (def->lod > 0 || (def->resolution < 0.0 && def->resolution != RUGO_RESOLUTION_AUTO) ||
@@ -76,7 +74,8 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     w->query.lod = def->lod;
     w->query.resolution = def->resolution;
     w->query.contact_rule = def->contact_rule;
-    if (rugo_sweep_prune_create(&a, &w->sap) != RUGO_OK || rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
+    if (rugo__sweep_prune_create(&a, &w->sap) != RUGO_OK ||
+        rugo_collide_context_create(&a, &w->ctx) != RUGO_OK) {
         rugo_world_destroy(w);
         return RUGO_ERR_OUT_OF_MEMORY;
     }
@@ -87,7 +86,7 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
 void rugo_world_destroy(rugo_world* w) {
     if (w == NULL) return;
     rugo_allocator a = w->allocator;
-    rugo_sweep_prune_destroy(w->sap);
+    rugo__sweep_prune_destroy(w->sap);
     rugo_collide_context_destroy(w->ctx);
     rugo__array* all[] = {&w->bodies,      &w->start,   &w->boxes,    &w->saved,
                           &w->pair_depth0, &w->scratch, &w->contacts, &w->records};

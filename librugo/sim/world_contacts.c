@@ -90,10 +90,10 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
 /* Broad phase and contacts at the current poses into w->contacts. */
 rugo_status rugo__gather_contacts(rugo_world* w) {
     for (int i = 0; i < w->count; ++i) rugo__world_boxes(w)[i] = body_aabb(&rugo__world_bodies(w)[i]);
-    rugo_status st = rugo_sweep_prune_update(w->sap, rugo__world_boxes(w), w->count);
+    rugo_status st = rugo__sweep_prune_update(w->sap, rugo__world_boxes(w), w->count);
     if (st != RUGO_OK) return st;
     int npairs = 0;
-    const rugo_pair* pairs = rugo_sweep_prune_pairs(w->sap, &npairs);
+    const rugo__pair* pairs = rugo__sweep_prune_pairs(w->sap, &npairs);
     w->stats.candidate_pairs = npairs;
     w->contact_count = 0;
     if (w->scratch.capacity == 0 && !rugo__world_reserve(w, &w->scratch, 32, sizeof(rugo_contact)))

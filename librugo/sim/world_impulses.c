@@ -25,8 +25,9 @@ static rugo_real band_of(const rugo_contact* c) {
 /* ε of a contact approaching at vn (< 0): the surfaces' ε, or for a micro-collision (7.3) ε_c(δ)
  * applied to an incoming speed of at most sqrt(2 g δ), the speed of a fall through the depth reached
  * (7.21-7.22): dissipative, so resting bodies settle. Never above 1 (no energy added). */
-static rugo_real contact_restitution(const rugo_world* w, const body* A, const body* B, rugo_real vn, rugo_real lam,
-                                     rugo_real la, rugo_real lb, rugo_real delta, rugo_real base_eps, int* micro) {
+static rugo_real contact_restitution(const rugo_world* w, const body* A, const body* B, rugo_real vn,
+                                     rugo_real lam, rugo_real la, rugo_real lb, rugo_real delta,
+                                     rugo_real base_eps, bool* micro) {
     rugo_real eps = base_eps;
     *micro = w->def.micro_collisions && w->g > 0.0 && lam > 0.0 && vn < 0.0 && -vn < sqrt(2.0 * w->g * lam);
     if (*micro) {
@@ -133,7 +134,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
         arm_b[i] = rugo_v2_dot(rugo_v2_perp(rb), nba);
     }
     rugo_real vref = vns[0] < vns[1] ? vns[0] : vns[1];
-    int micro = 0;
+    bool micro = false;
     rugo_real eps = contact_restitution(w, A, B, vref, lam, la, lb, delta, base_eps, &micro);
     rugo_real im = A->inv_mass + B->inv_mass;
     rugo_real m11 = im + A->inv_inertia * arm_a[0] * arm_a[0] + B->inv_inertia * arm_b[0] * arm_b[0];
@@ -160,7 +161,7 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
         point = pts[i];
     }
 
-    rugo_impulse_input in;
+    rugo__impulse_input in;
     in.inv_mass_a = A->inv_mass;
     in.inv_inertia_a = A->inv_inertia;
     in.inv_mass_b = B->inv_mass;
@@ -177,8 +178,8 @@ static int resolve_group(rugo_world* w, int g, rugo_status* status) {
     eps = contact_restitution(w, A, B, vn, lam, la, lb, delta, base_eps, &micro);
     in.restitution = eps;
     in.friction = w->def.friction && mu >= 0.0 && isfinite(mu) ? mu : 0.0;
-    rugo_impulse_result r;
-    if (rugo_collision_impulse(&in, &r) != RUGO_OK || r.branch == 0) return 0;
+    rugo__impulse_result r;
+    if (rugo__collision_impulse(&in, &r) != RUGO_OK || r.branch == 0) return 0;
     A->v = rugo_v2_add(A->v, rugo_v2_scale(A->inv_mass, r.impulse));
     A->w += A->inv_inertia * rugo_v2_cross(in.r_a, r.impulse);
     B->v = rugo_v2_sub(B->v, rugo_v2_scale(B->inv_mass, r.impulse));

@@ -70,7 +70,7 @@ struct rugo_world {
     /* pair_depth: deepest overlap of each pair at the start of the step, by (a, b) */
     rugo__array pair_depth0;
     int pair_depth_count;
-    rugo_sweep_prune* sap;
+    rugo__sweep_prune* sap;
     rugo_collide_context* ctx;
     rugo_contact_query query;
     rugo__array scratch;  /* rugo_contact: one query's contacts (its capacity is the query's room) */

@@ -177,7 +177,7 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
                 st = rugo__gather_contacts(w);
                 if (st != RUGO_OK) return st;
             }
-            w->stats.unresolved = 1;
+            w->stats.unresolved = true;
             break;
         }
         if (lo > 0.0) { /* the last sample may be safe for the trigger but not for the stop */
@@ -209,7 +209,7 @@ static rugo_status step_contacts_and_move(rugo_world* w) {
             move_from_start(w, left);
             st = rugo__gather_contacts(w);
             if (st != RUGO_OK) return st;
-            w->stats.unresolved = 1;
+            w->stats.unresolved = true;
             break;
         }
     }

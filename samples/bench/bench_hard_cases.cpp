@@ -171,7 +171,7 @@ struct Result {
     rugo_contact_state state = RUGO_STATE_APART;
     int count = 0;
     double min_sep = 0, min_band = 0, max_abs_sep = 0, max_flat_err = 0;
-    rugo_query_stats stats = {0, 0, 0, 0, 0};
+    rugo_query_stats stats = {};
 };
 
 std::vector<rugo_contact> g_buf(4096);

@@ -73,15 +73,15 @@ int main(int argc, char** argv) {
         d.control_points = pts;
         d.count = n;
         d.filter = RUGO_FILTER_DEFAULT;
-        d.has_roughness = 1;
+        d.has_roughness = true;
         d.roughness = rugo_default_roughness_desc();
         d.roughness.kind = RUGO_ROUGHNESS_TOLERANCES;
         d.roughness.tolerances = tol;
         d.roughness.tolerance_count = n;
-        char* text = NULL;
-        size_t length = 0;
+        rugo_text json;
         rugo_shape* built = NULL;
-        if (rugo_shape_desc_write(&d, NULL, &text, &length) != RUGO_OK || build_from_json(text, length, &built) != RUGO_OK) {
+        if (rugo_shape_desc_write(&d, NULL, &json) != RUGO_OK ||
+            build_from_json(json.data, json.length, &built) != RUGO_OK) {
             fprintf(stderr, "bench_load: cannot build the %d-point shape\n", n);
             return 1;
         }
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
             double t0 = now_us();
             for (int r = 0; r < reps_build; ++r) {
                 rugo_shape* s = NULL;
-                if (build_from_json(text, length, &s) != RUGO_OK) return 1;
+                if (build_from_json(json.data, json.length, &s) != RUGO_OK) return 1;
                 rugo_shape_destroy(s);
             }
             double t1 = now_us();
@@ -123,9 +123,9 @@ int main(int argc, char** argv) {
         const double ratio = med_build / med_load;
         if (ratio < ratio_min) ratio_min = ratio;
         if (ratio > ratio_max) ratio_max = ratio;
-        printf("%d,%lu,%lu,%.1f,%.1f,%.1f\n", n, (unsigned long)length, (unsigned long)size, med_build, med_load,
-               ratio);
-        rugo_text_free(NULL, text);
+        printf("%d,%lu,%lu,%.1f,%.1f,%.1f\n", n, (unsigned long)json.length, (unsigned long)size, med_build,
+               med_load, ratio);
+        rugo_text_free(&json);
         rugo_shape_destroy(built);
         free(baked);
         free(again);

@@ -3,10 +3,17 @@
  *
  * Usage: bench_queries [--quick] [--hm] [OUTDIR]      (default OUTDIR out/bench_queries)
  *        bench_queries --contacts-hash [--quick]
+ *        bench_queries --ray-casts [--quick]
  *
  * --contacts-hash prints, per level 0 .. -3, an FNV-1a hash of every byte of every contact (and the
  * state and count) that rugo_collide_shapes reports on the benchmark's poses, then exits: a change that
  * must not change behaviour keeps these hashes.
+ *
+ * --ray-casts times ray casts on the bean of 4096 segments (size 1) at its finest level and three
+ * levels coarser: rugo_shape_ray_cast (through the MOBBtree) against rugo_contour_ray_cast (a pass over
+ * all segments) on the same seeded rays, from a circle of radius 1.5 about the centroid towards random
+ * points of the shape's bounds, each with max_fraction 2, checks that both give the same fractions, and
+ * prints ns per ray for each, then exits.
  *
  * Shapes (body size 1: the diameter of the smallest circle about the centroid that holds the finest
  * curve; Box2D sees them as 1 m bodies): an ellipse (convex, axes 1 : 0.7) and a bean (the samples'
@@ -1006,6 +1013,60 @@ HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body
     return h;
 }
 
+/* --ray-casts: see the top of the file. Returns the exit status. */
+int bench_ray_casts(bool quick) {
+    const int n = 4096, rays = quick ? 200 : 4000, batches = quick ? 1 : 5;
+    rugo_shape* s = make_shape(bean_points(n), nullptr);
+    if (s == nullptr) return 1;
+    rugo_rng rng;
+    rugo_rng_seed(&rng, 20261130);
+    std::vector<rugo_vec2> o((size_t)rays), d((size_t)rays);
+    for (int i = 0; i < rays; ++i) {
+        const double th = rugo_rng_range(&rng, 0.0, 2.0 * kPi);
+        o[(size_t)i] = rugo_v2(1.5 * std::cos(th), 1.5 * std::sin(th));
+        const rugo_vec2 target = rugo_v2(rugo_rng_range(&rng, -0.5, 0.5), rugo_rng_range(&rng, -0.5, 0.5));
+        d[(size_t)i] = rugo_v2_sub(target, o[(size_t)i]);
+    }
+    std::printf("method,segments,level,rays,hits,ns_per_ray\n");
+    int bad = 0;
+    const int finest = rugo_shape_finest_level(s);
+    for (int level = finest; level >= finest - 3; level -= 3) {
+        rugo_contour c;
+        rugo_shape_level(s, level, &c);
+        std::vector<double> f_tree((size_t)rays, -1.0), f_all((size_t)rays, -1.0);
+        int hits = 0;
+        double best_tree = 1e300, best_all = 1e300; /* best of the batches: the least disturbed */
+        for (int b = 0; b < batches; ++b) {
+            double t0 = now_ns();
+            hits = 0;
+            for (int i = 0; i < rays; ++i) {
+                bool found = false;
+                rugo_shape_ray_cast(s, level, o[(size_t)i], d[(size_t)i], 2.0, &f_tree[(size_t)i], nullptr,
+                                    nullptr, &found);
+                hits += found;
+            }
+            double t1 = now_ns();
+            for (int i = 0; i < rays; ++i)
+                rugo_contour_ray_cast(c, o[(size_t)i], d[(size_t)i], 2.0, &f_all[(size_t)i], nullptr,
+                                      nullptr);
+            double t2 = now_ns();
+            best_tree = std::min(best_tree, (t1 - t0) / rays);
+            best_all = std::min(best_all, (t2 - t1) / rays);
+        }
+        for (int i = 0; i < rays; ++i)
+            bad += std::memcmp(&f_tree[(size_t)i], &f_all[(size_t)i], sizeof(double)) != 0;
+        std::printf("rugo_shape_ray_cast,%d,%d,%d,%d,%.0f\n", c.count, level, rays, hits, best_tree);
+        std::printf("rugo_contour_ray_cast,%d,%d,%d,%d,%.0f\n", c.count, level, rays, hits, best_all);
+        std::printf(
+            "# ray casts on %d segments: %.0f ns through the tree, %.0f ns over all segments (%.0fx)\n",
+            c.count, best_tree, best_all, best_all / best_tree);
+    }
+    rugo_shape_destroy(s);
+    if (bad != 0)
+        std::printf("FAIL: %d fractions differ between the tree and the pass over all segments\n", bad);
+    return bad != 0 ? 1 : 0;
+}
+
 /* One pass of queries over the poses, in ns (its own function: a profiler can count it alone). */
 __attribute__((noinline)) double time_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
                                             const std::vector<Pose>& poses, const rugo_contact_query& q,
@@ -1129,13 +1190,15 @@ int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, con
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, strip = true, contacts_hash = false, warm = false;
+    bool quick = false, strip = true, contacts_hash = false, ray_casts = false, warm = false;
     const char* dir = "out/bench_queries";
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--quick") == 0)
             quick = true;
         else if (std::strcmp(argv[i], "--contacts-hash") == 0)
             contacts_hash = true;
+        else if (std::strcmp(argv[i], "--ray-casts") == 0)
+            ray_casts = true;
         else if (std::strcmp(argv[i], "--warm") == 0)
             warm = true;
         else if (std::strcmp(argv[i], "--resolution") == 0 && i + 1 < argc)
@@ -1145,11 +1208,16 @@ int main(int argc, char** argv) {
         else if (std::strcmp(argv[i], "--hm") == 0)
             strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
+            std::fprintf(stderr,
+                         "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]; "
+                         "[--resolution D] for the rugo methods (default 0)\n",
+                         argv[0]);
             std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --warm; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
             return 2;
         } else
             dir = argv[i];
     }
+    if (ray_casts) return bench_ray_casts(quick);
     if (sample_mkdir(dir) != 0) {
         std::fprintf(stderr, "cannot create %s\n", dir);
         return 1;

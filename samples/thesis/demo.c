@@ -42,11 +42,10 @@ int main(int argc, char** argv) {
     desc.control_points = pts;
     desc.count = N;
     desc.filter = RUGO_FILTER_DEFAULT;
-    char* text = NULL;
-    size_t len = 0;
-    if (rugo_shape_desc_write(&desc, NULL, &text, &len) != RUGO_OK) return 1;
-    sample_expect("wrote object.json", write_text(dir, "object.json", text) == 0);
-    rugo_text_free(NULL, text);
+    rugo_text text;
+    if (rugo_shape_desc_write(&desc, NULL, &text) != RUGO_OK) return 1;
+    sample_expect("wrote object.json", write_text(dir, "object.json", text.data) == 0);
+    rugo_text_free(&text);
 
     /* 2. Levels of detail. */
     rugo_pyramid_def def = rugo_default_pyramid_def();

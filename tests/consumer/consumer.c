@@ -15,7 +15,7 @@
 #error "build with -DRUGO_EXPECTED_VERSION=\"x.y.z\" (the installed package's version)"
 #endif
 /* The macros work in the preprocessor. */
-#if !RUGO_VERSION_AT_LEAST(0, 1, 0) || RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR + 1, 0, 0)
+#if !RUGO_VERSION_AT_LEAST(0, 2, 0) || RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR + 1, 0, 0)
 #error "RUGO_VERSION_AT_LEAST is wrong"
 #endif
 

@@ -191,7 +191,7 @@ int cmd_deform(int argc, char** argv) {
     shape_out.filter = desc.filter;
     rugo_real* carried = NULL;
     if (desc.has_roughness) {
-        shape_out.has_roughness = 1;
+        shape_out.has_roughness = true;
         rc = carried_roughness(a.positional[0], &desc, rugo_pyramid_was_reversed(p), c.points,
                                &shape_out.roughness, &carried);
     }
@@ -207,14 +207,13 @@ done:
 #ifdef RUGO_HAVE_FIT
 /* Reads a points file for `fit` (the point lists `import` also reads): JSON {"points": [...]} or plain text, one "x,y" or "x y"
  * per line (rugo_points_text_parse). Returns 0, or EXIT_INPUT after a message. */
-static int load_points(const char* path, rugo_vec2** pts, int* count) {
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(path, NULL, &text, &len);
+static int load_points(const char* path, rugo_point_list* pts) {
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, NULL, &text);
     if (st != RUGO_OK) return fail(path, st);
     rugo_parse_error err;
-    st = rugo_points_text_parse(text, len, NULL, pts, count, &err);
-    rugo_text_free(NULL, text);
+    st = rugo_points_text_parse(text.data, text.length, NULL, pts, &err);
+    rugo_text_free(&text);
     if (st != RUGO_OK) {
         report_parse_error(path, st, &err);
         return EXIT_INPUT;
@@ -239,17 +238,17 @@ int cmd_fit(int argc, char** argv) {
         param = RUGO_PARAM_UNIFORM;
     else if (pv && strcmp(pv, "chord") != 0)
         return usage_error("--param must be chord or uniform, got '%s'", pv);
-    rugo_vec2* pts = NULL;
-    int count = 0;
-    if ((rc = load_points(a.positional[0], &pts, &count))) return rc;
+    rugo_point_list pts;
+    if ((rc = load_points(a.positional[0], &pts))) return rc;
+    const int count = pts.count;
     rugo_status st;
     rugo_vec2* ctrl = malloc(sizeof *ctrl * (size_t)n);
     if (ctrl == NULL) {
-        rugo_points_free(NULL, pts);
+        rugo_point_list_free(&pts);
         return fail("fit", RUGO_ERR_OUT_OF_MEMORY);
     }
     rugo_fit_def def = rugo_default_fit_def();
-    def.samples = pts;
+    def.samples = pts.points;
     def.sample_count = count;
     def.control_count = n;
     def.parameterization = param;
@@ -266,7 +265,7 @@ int cmd_fit(int argc, char** argv) {
         rc = fail("fit", st);
     }
     free(ctrl);
-    rugo_points_free(NULL, pts);
+    rugo_point_list_free(&pts);
     return rc;
 #else
     (void)argc;

@@ -84,13 +84,12 @@ int cmd_import(int argc, char** argv) {
     if (xv && (parse_real(xv, &max_size) != 0 || !(max_size > 0.0)))
         return usage_error("--max-size must be a number > 0 (output units), got '%s'", xv);
     const char* file = a.positional[0];
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+    rugo_text text;
+    rugo_status st = rugo_read_file(file, NULL, &text);
     if (st != RUGO_OK) return fail(file, st);
     rugo_import_def def = rugo_default_import_def();
-    def.text = text;
-    def.length = len;
+    def.text = text.data;
+    def.length = text.length;
     def.path_id = id;
     def.use_viewbox = viewbox;
     def.scale = scale;
@@ -106,7 +105,7 @@ int cmd_import(int argc, char** argv) {
     rugo_import_result r;
     rugo_parse_error err;
     st = rugo_import_outline(&def, &r, &err);
-    rugo_text_free(NULL, text);
+    rugo_text_free(&text);
     if (st == RUGO_ERR_BAD_ARGUMENT &&
         (strcmp(err.path, "path_id") == 0 || strcmp(err.path, "use_viewbox") == 0))
         return usage_error("--path-id and --viewbox apply to SVG input; %s is a points file", file);

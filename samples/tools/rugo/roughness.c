@@ -58,7 +58,7 @@ int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed,
                       const rugo_vec2* points, rugo_roughness_desc* out, rugo_real** tol) {
     *tol = NULL;
     *out = in->roughness;
-    out->has_perturbation = 0;
+    out->has_perturbation = false;
     out->perturbation_points = NULL;
     out->perturbation_count = 0;
     out->perturbation_levels = 0;
@@ -80,18 +80,17 @@ static void print_reals(FILE* f, const rugo_real* v, int n) {
 
 /* Reads a CSV roughness profile (docs/roughness.md); 0, or EXIT_INPUT after a message naming the file,
  * line, column and sample. */
-static int load_profile_csv(const char* file, rugo_profile_sample** samples, int* count) {
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(file, NULL, &text, &len);
+static int load_profile_csv(const char* file, rugo_roughness_profile* profile) {
+    rugo_text text;
+    rugo_status st = rugo_read_file(file, NULL, &text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, file, rugo_status_string(st),
                 (int)st);
         return EXIT_INPUT;
     }
     rugo_parse_error err;
-    st = rugo_roughness_profile_parse_csv(text, len, NULL, samples, count, &err);
-    rugo_text_free(NULL, text);
+    st = rugo_roughness_profile_parse_csv(text.data, text.length, NULL, profile, &err);
+    rugo_text_free(&text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s:%d:%d: %s%s%s (status %d: %s)\n", g_command, file, err.line, err.column,
                 err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
@@ -171,9 +170,9 @@ int cmd_roughen(int argc, char** argv) {
         rugo_shape_desc_free(&desc);
         return EXIT_INPUT;
     }
-    rugo_profile_sample* profile = NULL;
-    int profile_count = 0;
-    if (fv && (rc = load_profile_csv(fv, &profile, &profile_count))) {
+    rugo_roughness_profile profile;
+    memset(&profile, 0, sizeof profile);
+    if (fv && (rc = load_profile_csv(fv, &profile))) {
         rugo_shape_desc_free(&desc);
         return rc;
     }
@@ -186,8 +185,8 @@ int cmd_roughen(int argc, char** argv) {
     }
     if (fv) { /* resolved on the input's points, in its own order, below */
         r.kind = RUGO_ROUGHNESS_PROFILE;
-        r.profile = profile;
-        r.profile_count = profile_count;
+        r.profile = profile.samples;
+        r.profile_count = profile.count;
     }
     if (cv) {
         r.kind = RUGO_ROUGHNESS_CONSTANT;
@@ -244,7 +243,7 @@ int cmd_roughen(int argc, char** argv) {
     out.kind = RUGO_ROUGHNESS_TOLERANCES;
     out.tolerances = tol;
     out.tolerance_count = n;
-    out.has_perturbation = 0;
+    out.has_perturbation = false;
     out.perturbation_points = NULL;
     out.perturbation_count = 0;
     out.perturbation_levels = 0;
@@ -269,7 +268,7 @@ int cmd_roughen(int argc, char** argv) {
             rc = fail("roughen", st);
             goto done;
         }
-        out.has_perturbation = 1;
+        out.has_perturbation = true;
         out.perturbation_method = (rugo_roughen_method)method;
         out.perturbation_levels = levels;
         out.perturbation_points = pert;
@@ -280,13 +279,13 @@ int cmd_roughen(int argc, char** argv) {
     w.control_points = desc.control_points;
     w.count = n;
     w.filter = desc.filter;
-    w.has_roughness = 1;
+    w.has_roughness = true;
     w.roughness = out;
     rc = write_desc(opt(&a, "-o", NULL), &w, NULL);
 done:
     free(pert);
     free(tol);
-    rugo_roughness_profile_free(NULL, profile);
+    rugo_roughness_profile_free(&profile);
     rugo_shape_desc_free(&desc);
     return rc;
 }

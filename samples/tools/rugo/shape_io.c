@@ -50,7 +50,7 @@ static int desc_of_baked(const char* path, const rugo_shape* s, rugo_shape_desc*
     memcpy(desc->control_points, c.points, sizeof(rugo_vec2) * (size_t)c.count);
     memcpy(desc->roughness.tolerances, t.total, sizeof(rugo_real) * (size_t)c.count);
     desc->count = c.count;
-    desc->has_roughness = 1;
+    desc->has_roughness = true;
     desc->roughness.tolerance_count = c.count;
     desc->roughness.friction = rugo_shape_friction_map(s);
     desc->roughness.restitution = rugo_shape_restitution(s);
@@ -72,16 +72,15 @@ int load_shape_any(const char* path, rugo_shape_desc* desc, rugo_shape** baked) 
             rugo_shape_destroy(s);
         return rc;
     }
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_read_file(path, NULL, &text, &len);
+    rugo_text text;
+    rugo_status st = rugo_read_file(path, NULL, &text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, path, rugo_status_string(st), (int)st);
         return EXIT_INPUT;
     }
     rugo_parse_error err;
-    st = rugo_shape_desc_parse(text, len, NULL, desc, &err);
-    rugo_text_free(NULL, text);
+    st = rugo_shape_desc_parse(text.data, text.length, NULL, desc, &err);
+    rugo_text_free(&text);
     if (st != RUGO_OK) {
         fprintf(stderr, "rugo %s: %s:%d:%d: %s%s%s (status %d: %s)\n", g_command, path, err.line, err.column,
                 err.path, err.path[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
@@ -161,17 +160,18 @@ int build_pyramid(const char* path, const rugo_shape_desc* desc, rugo_filter fil
 /* Writes a shape description (the library's writer) to `path` or stdout, with an optional extra member
  * (`"name": {...}`) spliced in before the closing brace. Returns 0 or EXIT_INPUT. */
 int write_desc(const char* path, const rugo_shape_desc* d, const char* extra) {
-    char* text = NULL;
-    size_t len = 0;
-    rugo_status st = rugo_shape_desc_write(d, NULL, &text, &len);
+    rugo_text written;
+    rugo_status st = rugo_shape_desc_write(d, NULL, &written);
     if (st != RUGO_OK) return fail("writing the shape", st);
+    const char* text = written.data;
+    const size_t len = written.length;
     FILE* f = path ? fopen(path, "w") : stdout;
     if (f == NULL) {
-        rugo_text_free(NULL, text);
+        rugo_text_free(&written);
         fprintf(stderr, "rugo %s: %s: cannot open for writing\n", g_command, path);
         return EXIT_INPUT;
     }
-    char* close = strrchr(text, '}');
+    const char* close = strrchr(text, '}');
     if (extra && close) {
         fwrite(text, 1, (size_t)(close - text), f);
         fprintf(f, ", %s}\n", extra);
@@ -179,7 +179,7 @@ int write_desc(const char* path, const rugo_shape_desc* d, const char* extra) {
         fputs(text, f);
         if (len == 0 || text[len - 1] != '\n') fputc('\n', f);
     }
-    rugo_text_free(NULL, text);
+    rugo_text_free(&written);
     int bad = ferror(f);
     if (path) bad |= fclose(f) != 0;
     if (bad) {

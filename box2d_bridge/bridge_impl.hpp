@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -282,6 +283,7 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
                                          public b2DestructionListener {
     b2World* world = nullptr;
     BridgeDef def;
+    std::string lastError; // Bridge::LastError
     b2ContactListener* prevListener = nullptr;
     b2ContactFilter* prevFilter = nullptr;
     b2DestructionListener* userDestruction = nullptr;

@@ -483,10 +483,24 @@ START_TEST(test_lifetime) {
         ck_assert_int_eq(bridge.Attach(nullptr, roughDef(disc)), RUGO_ERR_NULL_ARGUMENT);
         ck_assert_int_eq(bridge.Attach(b, roughDef(nullptr)), RUGO_ERR_NULL_ARGUMENT);
         ck_assert_int_eq(bridge.Attach(b, roughDef(disc, 0.0)), RUGO_ERR_BAD_ARGUMENT);
+        // the message names the field, the value and a way out
+        ck_assert_msg(std::strstr(bridge.LastError(), "RoughBodyDef::density: is 0;") != nullptr &&
+                          std::strstr(bridge.LastError(), "kg/m^2") != nullptr,
+                      "%s", bridge.LastError());
         rugo::RoughBodyDef bad = roughDef(disc);
         bad.maxProxies = 99;
         ck_assert_int_eq(bridge.Attach(b, bad), RUGO_ERR_BAD_ARGUMENT);
+        ck_assert_msg(std::strstr(bridge.LastError(), "RoughBodyDef::maxProxies: is 99;") != nullptr, "%s",
+                      bridge.LastError());
+        // a 100 km rough body is refused, naming its size
+        rugo_shape* huge = makeDisc(32, 5e4, 0.5, 0.0);
+        ck_assert_int_eq(bridge.Attach(b, roughDef(huge)), RUGO_ERR_BAD_SIZE);
+        ck_assert_msg(std::strstr(bridge.LastError(), "RoughBodyDef::shape: is 1") != nullptr &&
+                          std::strstr(bridge.LastError(), "kMaxBodySize") != nullptr,
+                      "%s", bridge.LastError());
+        rugo_shape_destroy(huge);
         ck_assert_int_eq(bridge.Attach(b, roughDef(disc)), RUGO_OK);
+        ck_assert_str_eq(bridge.LastError(), "");
         ck_assert_int_eq(bridge.Detach(b), RUGO_OK);
         ck_assert(!bridge.IsRough(b));
         ck_assert(b->GetFixtureList() == nullptr);

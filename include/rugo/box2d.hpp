@@ -174,14 +174,21 @@ public:
     /// Not assignable.
     Bridge& operator=(const Bridge&) = delete;
 
+    /// The largest rough body Attach accepts, in metres across (the diagonal of the shape's bounds).
+    static constexpr double kMaxBodySize = 1000.0;
     /// Makes `body` rough: adds density-0 proxy fixtures (owned by the body, removed by Detach or by
     /// destroying the body) and applies the exact mass. The shape is borrowed (see RoughBodyDef).
     /// Errors: RUGO_ERR_NULL_ARGUMENT (body or def.shape), RUGO_ERR_BAD_ARGUMENT (body of another world,
     /// density not finite or < 0, or 0 on a dynamic body, or so large or small that the shape's mass or
     /// inertia leaves [1e6 FLT_MIN, 1e-6 FLT_MAX] (Box2D's floats need room for products and inverses),
-    /// maxProxies < 0 or > 8), RUGO_ERR_ALREADY_ATTACHED, RUGO_ERR_WORLD_LOCKED (inside Step or a
+    /// maxProxies < 0 or > 8, lod > 0), RUGO_ERR_BAD_SIZE (more than kMaxBodySize across),
+    /// RUGO_ERR_ALREADY_ATTACHED, RUGO_ERR_WORLD_LOCKED (inside Step or a
     /// callback, or an EndContact that Box2D raises outside Step), RUGO_ERR_OUT_OF_MEMORY.
     rugo_status Attach(b2Body* body, const RoughBodyDef& def);
+    /// Why the last Attach failed, for people: the field, its value and a way out (e.g. "density: is 0;
+    /// a dynamic body needs a density > 0 in kg/m^2 ..."); "" after a successful Attach. Bodies more
+    /// than kMaxBodySize across are refused (RUGO_ERR_BAD_SIZE): Box2D is tuned for 0.1-10 m.
+    const char* LastError() const;
     /// Removes the proxies and the rough mass (Box2D recomputes the mass from the remaining fixtures).
     /// Errors: RUGO_ERR_NULL_ARGUMENT, RUGO_ERR_NOT_ATTACHED, RUGO_ERR_WORLD_LOCKED.
     rugo_status Detach(b2Body* body);

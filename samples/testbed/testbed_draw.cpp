@@ -71,10 +71,18 @@ void Testbed::Draw(b2Draw* draw) const {
     if (settings.drawOrdinary) DrawOrdinary(draw);
     const rugo::Bridge* br = m_scene->w->bridge.get();
     if (br) {
+        // Proxies first and wider, the true curves and bands over them: a proxy hugs its curve within the
+        // band, so both stay visible, and the curve is what the collision answers to.
+        if (settings.drawProxies) {
+            ImDebugDraw* im = dynamic_cast<ImDebugDraw*>(draw);
+            const float width = im ? im->lineWidth : 0.0f;
+            if (im) im->lineWidth = 3.0f * width;
+            br->Draw(draw, rugo::kDrawProxies);
+            if (im) im->lineWidth = width;
+        }
         unsigned flags = 0;
         if (settings.drawCurves) flags |= rugo::kDrawCurve;
         if (settings.drawBands && settings.bandExaggeration <= 1.0f) flags |= rugo::kDrawBand;
-        if (settings.drawProxies) flags |= rugo::kDrawProxies;
         if (settings.drawBridgeContacts) flags |= rugo::kDrawContacts;
         if (flags != 0) br->Draw(draw, flags);
     }

@@ -68,7 +68,8 @@ executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/run.log" | 
 [ -n "$executions" ] || executions=$(sed -n 's/^#\([0-9][0-9]*\).*/\1/p' "$work/run.log" | tail -n 1)
 [ -n "$executions" ] || executions=0
 
-nice -n 19 "$build/$target" -merge=1 "$root/fuzz/corpus/$target" "$work/run" >"$work/merge.log" 2>&1 || {
+nice -n 19 "$build/$target" -merge=1 -max_len=16384 -timeout=20 -rss_limit_mb=2048 "$root/fuzz/corpus/$target" "$work/run" \
+    >"$work/merge.log" 2>&1 || {
     echo "fuzz_ledger: merge failed; see $work/merge.log" >&2
     exit 1
 }

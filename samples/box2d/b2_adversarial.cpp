@@ -6,7 +6,8 @@
 //              to 0.6 m apart at 0.5 m/s and then hold
 //
 //   b2_adversarial            600 steps per scene; checks per scene: no non-finite position, angle or
-//                             velocity, no body lost or added, worst step <= 20x the median step
+//                             velocity, no body lost or added, worst step <= 20x the median step (the
+//                             thread's CPU time per step; the wall time is printed too)
 //   b2_adversarial --quick    120 steps per scene (the test suite): the finiteness and body checks
 //                             only; the step times are printed, not checked
 #include "b2_stress.hpp"
@@ -72,7 +73,7 @@ struct Scene {
 
 struct Figures {
     long steps = 0, nonFinite = 0, amiss = 0;
-    double median = 0.0, worst = 0.0, maxSpeed = 0.0;
+    double median = 0.0, worst = 0.0, wallMedian = 0.0, wallWorst = 0.0, maxSpeed = 0.0;
     rugo::BridgeStats stats;
 };
 
@@ -90,21 +91,23 @@ Figures Run(Scene& s, long steps) {
         }
     }
     f.steps = steps;
-    f.median = times.Median();
-    f.worst = times.Worst();
+    f.median = b2stress::StepTimes::Median(times.cpu);
+    f.worst = b2stress::StepTimes::Worst(times.cpu);
+    f.wallMedian = b2stress::StepTimes::Median(times.wall);
+    f.wallWorst = b2stress::StepTimes::Worst(times.wall);
     f.stats = s.bridge->GetStats();
     return f;
 }
 
 void Report(const char* name, const char* what, const Figures& f, bool quick) {
-    std::printf("%-8s %s\n         %ld steps: median step %.1f us, worst %.1f us (%.1fx), %ld queries, "
-                "fastest body %.2f m/s\n",
+    std::printf("%-8s %s\n         %ld steps: step CPU time median %.1f us, worst %.1f us (%.1fx); wall median "
+                "%.1f us, worst %.1f us; %ld queries, fastest body %.2f m/s\n",
                 name, what, f.steps, 1e6 * f.median, 1e6 * f.worst, f.median > 0 ? f.worst / f.median : 0.0,
-                f.stats.queries, f.maxSpeed);
+                1e6 * f.wallMedian, 1e6 * f.wallWorst, f.stats.queries, f.maxSpeed);
     const std::string n(name);
     sample_expect_le((n + ": non-finite positions, angles, velocities").c_str(), static_cast<double>(f.nonFinite), 0.0);
     sample_expect_le((n + ": bodies lost or added (step-body pairs)").c_str(), static_cast<double>(f.amiss), 0.0);
-    if (!quick) sample_expect_le((n + ": worst step / median step").c_str(), f.median > 0 ? f.worst / f.median : 0.0, 20.0);
+    if (!quick) sample_expect_le((n + ": worst step / median step (CPU time)").c_str(), f.median > 0 ? f.worst / f.median : 0.0, 20.0);
 }
 
 } // namespace

@@ -143,18 +143,21 @@ int main(int argc, char** argv) {
         if (k + 1 == warm) rssWarm = b2stress::ResidentBytes();
         if (k + 1 > warm && (k + 1) % 500 == 0) rssMax = std::max(rssMax, b2stress::ResidentBytes());
         if ((k + 1) % 10000 == 0 && k + 1 < steps) // progress of a long run, in case it is cut short
-            std::printf("  at step %ld: resident %.2f MiB, %ld non-finite, %ld amiss, step CPU median %.1f us, "
-                        "worst %.1f us, wall worst %.1f us, %.0f s CPU\n",
-                        k + 1, b2stress::ResidentBytes() / 1048576.0, nonFinite, amiss,
-                        1e6 * b2stress::StepTimes::Median(times.cpu), 1e6 * b2stress::StepTimes::Worst(times.cpu),
-                        1e6 * b2stress::StepTimes::Worst(times.wall), b2stress::StepTimes::Total(times.cpu));
+            std::printf(
+                "  at step %ld: resident %.2f MiB, %ld non-finite, %ld amiss, step CPU median %.1f us, "
+                "worst %.1f us, wall worst %.1f us, %.0f s CPU\n",
+                k + 1, b2stress::ResidentBytes() / 1048576.0, nonFinite, amiss,
+                1e6 * b2stress::StepTimes::Median(times.cpu), 1e6 * b2stress::StepTimes::Worst(times.cpu),
+                1e6 * b2stress::StepTimes::Worst(times.wall), b2stress::StepTimes::Total(times.cpu));
         if ((k + 1) % 10000 == 0) std::fflush(stdout);
     }
     const double rssEnd = b2stress::ResidentBytes();
     rssMax = std::max(rssMax, rssEnd);
     const double growth = rssWarm > 0.0 ? (rssMax - rssWarm) / rssWarm : 0.0;
-    const double median = b2stress::StepTimes::Median(times.cpu), worst = b2stress::StepTimes::Worst(times.cpu);
-    const double wallMedian = b2stress::StepTimes::Median(times.wall), wallWorst = b2stress::StepTimes::Worst(times.wall);
+    const double median = b2stress::StepTimes::Median(times.cpu),
+                 worst = b2stress::StepTimes::Worst(times.cpu);
+    const double wallMedian = b2stress::StepTimes::Median(times.wall),
+                 wallWorst = b2stress::StepTimes::Worst(times.wall);
     const rugo::BridgeStats st = w.bridge->GetStats();
 
     std::printf("b2_soak: %ld steps of the demo world (%d bodies at the start, %zu dynamic alive at the end, "
@@ -167,11 +170,11 @@ int main(int argc, char** argv) {
     std::printf("  resident memory: %.1f MiB after warm-up (%ld steps), %.1f MiB largest after, %.1f MiB at "
                 "the end: growth %.3f %%\n",
                 rssWarm / 1048576.0, warm, rssMax / 1048576.0, rssEnd / 1048576.0, 100.0 * growth);
-    std::printf("  step CPU time: median %.1f us, worst %.1f us (%.1fx the median), total %.1f s; wall time: median "
-                "%.1f us, worst %.1f us (%.1fx)\n",
-                1e6 * median, 1e6 * worst, median > 0.0 ? worst / median : 0.0,
-                b2stress::StepTimes::Total(times.cpu), 1e6 * wallMedian, 1e6 * wallWorst,
-                wallMedian > 0.0 ? wallWorst / wallMedian : 0.0);
+    std::printf(
+        "  step CPU time: median %.1f us, worst %.1f us (%.1fx the median), total %.1f s; wall time: median "
+        "%.1f us, worst %.1f us (%.1fx)\n",
+        1e6 * median, 1e6 * worst, median > 0.0 ? worst / median : 0.0, b2stress::StepTimes::Total(times.cpu),
+        1e6 * wallMedian, 1e6 * wallWorst, wallMedian > 0.0 ? wallWorst / wallMedian : 0.0);
     sample_expect_le("non-finite positions, angles, velocities", static_cast<double>(nonFinite), 0.0);
     sample_expect_le("bodies lost or added (step-body pairs)", static_cast<double>(amiss), 0.0);
     sample_expect("some churn of every kind", detaches > 0 && attaches > 0 && destroys > 0 && spawns > 0);

@@ -49,10 +49,13 @@ struct StepTimes {
         std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
         return s[s.size() / 2];
     }
-    static double Worst(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
+    static double Worst(const std::vector<double>& v) {
+        return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    }
     static double Total(const std::vector<double>& v) {
         double t = 0.0;
-        for (double x : v) t += x;
+        for (double x : v)
+            t += x;
         return t;
     }
 };
@@ -73,7 +76,8 @@ inline long NonFinite(const b2World& world) {
     for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
         const b2Vec2 p = b->GetPosition(), v = b->GetLinearVelocity();
         const float vals[6] = {p.x, p.y, b->GetAngle(), v.x, v.y, b->GetAngularVelocity()};
-        for (float x : vals) n += !std::isfinite(x);
+        for (float x : vals)
+            n += !std::isfinite(x);
     }
     return n;
 }
@@ -108,7 +112,8 @@ inline ShapePtr RoughShape(int n, double radius, double lambda) {
     def.tolerances = lam.data();
     rugo_shape* s = nullptr;
     const rugo_status st = rugo_shape_create(&def, &s, nullptr);
-    if (st != RUGO_OK) std::fprintf(stderr, "shape of %d points, radius %g: %s\n", n, radius, rugo_status_string(st));
+    if (st != RUGO_OK)
+        std::fprintf(stderr, "shape of %d points, radius %g: %s\n", n, radius, rugo_status_string(st));
     return ShapePtr(s);
 }
 
@@ -121,7 +126,9 @@ struct Rng {
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
         return z ^ (z >> 31);
     }
-    double Uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(Next() >> 11) * 0x1p-53; }
+    double Uniform(double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(Next() >> 11) * 0x1p-53;
+    }
     std::size_t Below(std::size_t n) { return static_cast<std::size_t>(Next() % n); }
 };
 

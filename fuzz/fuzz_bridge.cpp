@@ -23,12 +23,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
 namespace {
 
-#define FUZZ_CHECK(cond)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            std::fprintf(stderr, "%s:%d: FUZZ_CHECK(%s) failed\n", __FILE__, __LINE__, #cond);     \
-            std::abort();                                                                          \
-        }                                                                                          \
+#define FUZZ_CHECK(cond)                                                                                     \
+    do {                                                                                                     \
+        if (!(cond)) {                                                                                       \
+            std::fprintf(stderr, "%s:%d: FUZZ_CHECK(%s) failed\n", __FILE__, __LINE__, #cond);               \
+            std::abort();                                                                                    \
+        }                                                                                                    \
     } while (0)
 
 struct Bytes {
@@ -97,7 +97,8 @@ struct Scene {
 
     void Check() const {
         std::set<const b2Body*> inWorld;
-        for (const b2Body* x = world->GetBodyList(); x; x = x->GetNext()) inWorld.insert(x);
+        for (const b2Body* x = world->GetBodyList(); x; x = x->GetNext())
+            inWorld.insert(x);
         FUZZ_CHECK(inWorld.size() == live.size());
         FUZZ_CHECK(static_cast<std::size_t>(world->GetBodyCount()) == live.size());
         for (const b2Body* x : live) {
@@ -189,9 +190,9 @@ struct Scene {
             break;
         case 6:
             if (body != nullptr)
-                body->SetTransform(b2Vec2(static_cast<float>(b->Range(-6.0, 6.0)),
-                                          static_cast<float>(b->Range(-2.0, 10.0))),
-                                   static_cast<float>(b->Range(-3.2, 3.2)));
+                body->SetTransform(
+                    b2Vec2(static_cast<float>(b->Range(-6.0, 6.0)), static_cast<float>(b->Range(-2.0, 10.0))),
+                    static_cast<float>(b->Range(-3.2, 3.2)));
             break;
         case 7:
             if (body != nullptr) {
@@ -230,7 +231,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     floor.SetAsBox(20.0f, 0.5f, b2Vec2(0.0f, -3.0f), 0.0f);
     ground->CreateFixture(&floor, 0.0f);
     s.live.push_back(ground);
-    for (int op = 0; op < 48 && b.n > 0; ++op) s.Op(&b);
+    for (int op = 0; op < 48 && b.n > 0; ++op)
+        s.Op(&b);
     // A few steps at the end so that every scene is stepped at least once.
     for (int i = 0; i < 2; ++i) {
         s.bridge->Step(1.0f / 60.0f, 8, 3);

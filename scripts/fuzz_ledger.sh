@@ -8,7 +8,8 @@
 #   scripts/fuzz_ledger.sh --summary            only rewrite the summary table
 # Run one at a time on a shared machine. A finding (crash, leak, sanitizer report, timeout, broken
 # property) is counted in the row, its input kept in build-fuzz/artifacts/, and the script exits 1.
-# Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), CXX (default clang++).
+# Environment: RUGO_FUZZ_BUILD (default build-fuzz), CC (default clang), CXX (default clang++),
+# RUGO_FUZZ_MERGE (default 1; 0: copy the run's new inputs instead of merging, see below).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 ledger=$root/fuzz/ledger.csv
@@ -68,10 +69,21 @@ executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/run.log" | 
 [ -n "$executions" ] || executions=$(sed -n 's/^#\([0-9][0-9]*\).*/\1/p' "$work/run.log" | tail -n 1)
 [ -n "$executions" ] || executions=0
 
-nice -n 19 "$build/$target" -merge=1 "$root/fuzz/corpus/$target" "$work/run" >"$work/merge.log" 2>&1 || {
-    echo "fuzz_ledger: merge failed; see $work/merge.log" >&2
-    exit 1
-}
+if [ "${RUGO_FUZZ_MERGE:-1}" = 1 ]; then
+    nice -n 19 "$build/$target" -merge=1 -max_len=16384 -timeout=20 -rss_limit_mb=2048 "$root/fuzz/corpus/$target" \
+        "$work/run" >"$work/merge.log" 2>&1 || {
+        echo "fuzz_ledger: merge failed; see $work/merge.log" >&2
+        exit 1
+    }
+else
+    # The merge re-runs every input: on a machine so loaded that nice 19 gets ~1 % of a core it takes
+    # longer than the run. Then keep what the run added (libFuzzer saves only inputs that add coverage),
+    # under their SHA-1 names, and minimise with a later merge.
+    for f in "$work/run/"*; do
+        [ -e "$root/fuzz/corpus/$target/$(basename "$f")" ] || cmp -s "$f" /dev/null ||
+            cp "$f" "$root/fuzz/corpus/$target/$(sha1sum "$f" | cut -c1-40)"
+    done
+fi
 corpus_size=$(ls "$root/fuzz/corpus/$target" | wc -l)
 [ -f "$ledger" ] || echo "date,target,executions,corpus_size,findings" >"$ledger"
 echo "$(date -u +%Y-%m-%d),$target,$executions,$corpus_size,$findings" >>"$ledger"

@@ -519,7 +519,8 @@ static double reference_length(rugo_contour c, int j, long double rel_tol) {
     long double total = 0.0L;
     for (int p = 0; p < 8; ++p) {
         const long double a = p / 8.0L, e = (p + 1) / 8.0L, m = 0.5L * (a + e);
-        const long double fa = bezier_speed_at(&b, a), fm = bezier_speed_at(&b, m), fe = bezier_speed_at(&b, e);
+        const long double fa = bezier_speed_at(&b, a), fm = bezier_speed_at(&b, m);
+        const long double fe = bezier_speed_at(&b, e);
         const long double whole = (e - a) / 6.0L * (fa + 4.0L * fm + fe);
         total += simpson_adapt(&b, a, fa, m, fm, e, fe, whole, rel_tol * poly / 8.0L, 0);
     }
@@ -539,8 +540,10 @@ START_TEST(arc_length_to_round_off) {
         const double th = two_pi * i / N_ROUGH, rad = 1.0 + test_rng_uniform(&r, -0.3, 0.3);
         rough[i] = rugo_v2(rad * cos(th), rad * sin(th));
     }
-    for (int i = 0; i < N_SMOOTH; ++i) smooth[i] = rugo_v2(cos(two_pi * i / N_SMOOTH), sin(two_pi * i / N_SMOOTH));
-    const rugo_vec2 deg_pts[N_DEG] = {{0, 0}, {2, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 1}, {3, 2}, {1, 3}, {-1, 2}, {-1, 1}};
+    for (int i = 0; i < N_SMOOTH; ++i)
+        smooth[i] = rugo_v2(cos(two_pi * i / N_SMOOTH), sin(two_pi * i / N_SMOOTH));
+    const rugo_vec2 deg_pts[N_DEG] = {{0, 0}, {2, 0}, {3, 0}, {3, 0}, {3, 0},
+                                      {3, 1}, {3, 2}, {1, 3}, {-1, 2}, {-1, 1}};
     memcpy(deg, deg_pts, sizeof deg);
     const struct {
         const rugo_vec2* p;
@@ -554,15 +557,17 @@ START_TEST(arc_length_to_round_off) {
             /* The reference against itself at a looser tolerance: it resolves these segments. */
             ck_assert_near(reference_length(c, j, 1e-14L), ref, 1e-13 * ref + 1e-300);
             const double len = rugo_contour_segment_length(c, j);
-            ck_assert_msg(fabs(len - ref) <= 1e-12 * ref, "case %d segment %d: %.17g vs %.17g (%.3g relative)", k,
-                          j, len, ref, fabs(len - ref) / ref);
+            ck_assert_msg(fabs(len - ref) <= 1e-12 * ref, "case %d segment %d: %.17g vs %.17g (%.3g relative)",
+                          k, j, len, ref, fabs(len - ref) / ref);
             double ad, err;
-            ck_assert_int_eq(rugo_contour_segment_length_adaptive(c, j, 1e-13 * ref + 1e-300, &ad, &err), RUGO_OK);
+            const double tol = 1e-13 * ref + 1e-300;
+            ck_assert_int_eq(rugo_contour_segment_length_adaptive(c, j, tol, &ad, &err), RUGO_OK);
             ck_assert(fabs(ad - ref) <= err + 1e-15 * ref); /* the bound is honest */
             total += ref;
         }
         const double per = rugo_contour_perimeter(c);
-        ck_assert_msg(fabsl(per - total) <= 1e-12L * total, "case %d: perimeter %.17g vs %.17Lg", k, per, total);
+        ck_assert_msg(fabsl(per - total) <= 1e-12L * total, "case %d: perimeter %.17g vs %.17Lg", k, per,
+                      total);
     }
     /* The tripled point: the speed vanishes at a joint. */
     rugo_contour c = contour_of(deg, N_DEG);
@@ -1397,7 +1402,8 @@ int main(void) {
         {"poly", {poly_simple_roots, poly_degenerate, poly_random, poly_scaled}},
         {"evaluation", {basis_partition_of_unity, evaluation_continuity_and_forms, tangent_normal,
                         degenerate_segments_everywhere, orientation_reversal_mapping, deterministic_outputs}},
-        {"arc_length", {arc_length_quadrature, arc_length_straight_and_cusp, arc_length_arguments, arc_length_to_round_off}},
+        {"arc_length",
+         {arc_length_quadrature, arc_length_straight_and_cusp, arc_length_arguments, arc_length_to_round_off}},
         {"mass", {mass_properties_vs_polygon, mass_properties_exact, mass_properties_triangle, mass_properties_invariance}},
         {"queries", {bounds_tight, closest_point_vs_brute_force, contains_vs_polygon, contains_tangent_and_joint_rays,
                      ray_cast_vs_brute_force, ray_cast_special}},

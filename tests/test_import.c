@@ -707,7 +707,8 @@ static long double cusp_speed(long double t) {
 static long double cusp_simpson(long double a, long double fa, long double m, long double fm, long double b,
                                 long double fb, long double whole, long double tol, int depth) {
     const long double lm = 0.5L * (a + m), rm = 0.5L * (m + b), flm = cusp_speed(lm), frm = cusp_speed(rm);
-    const long double left = (m - a) / 6.0L * (fa + 4.0L * flm + fm), right = (b - m) / 6.0L * (fm + 4.0L * frm + fb);
+    const long double left = (m - a) / 6.0L * (fa + 4.0L * flm + fm);
+    const long double right = (b - m) / 6.0L * (fm + 4.0L * frm + fb);
     const long double delta = left + right - whole;
     if (depth >= 60 || fabsl(delta) <= 15.0L * tol) return left + right + delta / 15.0L;
     return cusp_simpson(a, fa, lm, flm, m, fm, left, 0.5L * tol, depth + 1) +
@@ -736,8 +737,8 @@ START_TEST(sample_cusp_arc_length) {
     rugo_outline_samples s;
     sample_ok(&p, -1, rugo_affine_identity(), 41, &s);
     const long double L = cusp_length(1.0L);
-    ck_assert_msg(fabsl(s.perimeter - (L + 1.0L)) <= 1e-12L * (L + 1.0L), "perimeter %.17g vs %.17Lg", s.perimeter,
-                  L + 1.0L);
+    ck_assert_msg(fabsl(s.perimeter - (L + 1.0L)) <= 1e-12L * (L + 1.0L), "perimeter %.17g vs %.17Lg",
+                  s.perimeter, L + 1.0L);
     double pos[64];
     int e = 0;
     for (int i = 0; i < s.count; ++i) {
@@ -756,8 +757,8 @@ START_TEST(sample_cusp_arc_length) {
                 pos[j] = tmp;
             }
     for (int j = 0; j < e; ++j)
-        ck_assert_msg(fabsl(pos[j] - L * (j + 1) / (e + 1)) <= 1e-12L * L, "sample %d of %d: %.17g vs %.17Lg", j + 1,
-                      e, pos[j], L * (j + 1) / (e + 1));
+        ck_assert_msg(fabsl(pos[j] - L * (j + 1) / (e + 1)) <= 1e-12L * L, "sample %d of %d: %.17g vs %.17Lg",
+                      j + 1, e, pos[j], L * (j + 1) / (e + 1));
     rugo_outline_samples_free(&s);
     rugo_path_free(&p);
 }

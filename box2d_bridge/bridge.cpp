@@ -167,7 +167,8 @@ Bridge::~Bridge() {
 const char* Bridge::LastError() const { return m_impl->lastError.c_str(); }
 
 // Attach's refusals, each with the field, its value and a way out in LastError.
-static rugo_status refuse(std::string& out, rugo_status st, const char* field, const char* fmt, double value) {
+static rugo_status refuse(std::string& out, rugo_status st, const char* field, const char* fmt,
+                          double value) {
     char msg[320];
     std::snprintf(msg, sizeof msg, fmt, value);
     out = std::string(field) + ": " + msg;
@@ -180,28 +181,40 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     e.clear();
     if (body == nullptr) return refuse(e, RUGO_ERR_NULL_ARGUMENT, "body", "is null%.0s", 0.0);
     if (def.shape == nullptr)
-        return refuse(e, RUGO_ERR_NULL_ARGUMENT, "RoughBodyDef::shape", "is null; build one with rugo_shape_create "
-                      "or load one with rugo_shape_load_file%.0s", 0.0);
+        return refuse(e, RUGO_ERR_NULL_ARGUMENT, "RoughBodyDef::shape",
+                      "is null; build one with rugo_shape_create "
+                      "or load one with rugo_shape_load_file%.0s",
+                      0.0);
     if (I.world == nullptr || body->GetWorld() != I.world)
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "body", "belongs to another b2World than this bridge's%.0s", 0.0);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "body", "belongs to another b2World than this bridge's%.0s",
+                      0.0);
     if (I.world->IsLocked() || I.removingProxies)
-        return refuse(e, RUGO_ERR_WORLD_LOCKED, "body", "the world is inside Step or a callback; attach after "
-                      "the step%.0s", 0.0);
+        return refuse(e, RUGO_ERR_WORLD_LOCKED, "body",
+                      "the world is inside Step or a callback; attach after "
+                      "the step%.0s",
+                      0.0);
     if (I.bodies.count(body))
-        return refuse(e, RUGO_ERR_ALREADY_ATTACHED, "body", "already has a rough shape; Detach it first%.0s", 0.0);
+        return refuse(e, RUGO_ERR_ALREADY_ATTACHED, "body", "already has a rough shape; Detach it first%.0s",
+                      0.0);
     if (!std::isfinite(def.density) || def.density < 0.0)
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density", "is %.17g; give a finite density >= 0 "
-                      "in kg/m^2 (e.g. 2500 for rock)", def.density);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density",
+                      "is %.17g; give a finite density >= 0 "
+                      "in kg/m^2 (e.g. 2500 for rock)",
+                      def.density);
     if (def.density == 0.0 && body->GetType() == b2_dynamicBody)
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density", "is %g; a dynamic body needs a density "
-                      "> 0 in kg/m^2 (e.g. 2500 for rock, 1 for a toy)", def.density);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density",
+                      "is %g; a dynamic body needs a density "
+                      "> 0 in kg/m^2 (e.g. 2500 for rock, 1 for a toy)",
+                      def.density);
     {
         const rugo_obb* root = rugo_mobb_tree_root(rugo_shape_tree(def.shape));
         const double size = root != nullptr ? 2.0 * std::hypot(root->half[0], root->half[1]) : 0.0;
         if (!(size <= kMaxBodySize))
-            return refuse(e, RUGO_ERR_BAD_SIZE, "RoughBodyDef::shape", "is %.6g m across, more than "
+            return refuse(e, RUGO_ERR_BAD_SIZE, "RoughBodyDef::shape",
+                          "is %.6g m across, more than "
                           "Bridge::kMaxBodySize (1000 m); Box2D works in metres (0.1-10 m bodies): scale the "
-                          "outline (rugo import --px-per-metre) or split the terrain", size);
+                          "outline (rugo import --px-per-metre) or split the terrain",
+                          size);
     }
     if (def.density > 0.0) {
         // Box2D keeps mass and inertia in floats and asserts a positive inertia (b2Assert is on in
@@ -212,13 +225,17 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
         const double lo = 1e6 * static_cast<double>(FLT_MIN), hi = 1e-6 * static_cast<double>(FLT_MAX);
         if (!(rm.mass >= lo && rm.mass <= hi && rm.inertiaCentre >= lo && rm.inertiaCentre <= hi &&
               rm.inertiaOrigin <= hi))
-            return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density", "is %.17g, which puts the body's "
-                          "mass or inertia beyond Box2D's floats; use kg/m^2 and a shape in metres", def.density);
+            return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density",
+                          "is %.17g, which puts the body's "
+                          "mass or inertia beyond Box2D's floats; use kg/m^2 and a shape in metres",
+                          def.density);
     }
     if (I.query == nullptr) return RUGO_ERR_OUT_OF_MEMORY;
     if (def.maxProxies < 0 || def.maxProxies > b2_maxPolygonVertices)
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::maxProxies", "is %g; give 0 (the bridge's) or "
-                      "1..8", def.maxProxies);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::maxProxies",
+                      "is %g; give 0 (the bridge's) or "
+                      "1..8",
+                      def.maxProxies);
     const int cap = def.maxProxies > 0
                         ? def.maxProxies
                         : (I.def.maxProxies >= 1 && I.def.maxProxies <= 8 ? I.def.maxProxies : 8);
@@ -229,8 +246,10 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     if (def.lod == RUGO_LOD_AUTO) {
         level = rugo_shape_level_for_error(s, budget);
     } else if (def.lod > 0) {
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::lod", "is %g; give 0 (finest), a negative "
-                      "level of detail or RUGO_LOD_AUTO", def.lod);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::lod",
+                      "is %g; give 0 (finest), a negative "
+                      "level of detail or RUGO_LOD_AUTO",
+                      def.lod);
     } else {
         level = std::max(Jmin, J + std::max(def.lod, Jmin - J));
     }

@@ -28,7 +28,8 @@ static uint64_t baked_checksum(const uint8_t* p, size_t n) {
         lane[i % 4] = ck_round(lane[i % 4], w);
     }
     uint64_t h = (uint64_t)n;
-    for (int l = 0; l < 4; ++l) h = ck_round(h, lane[l]);
+    for (int l = 0; l < 4; ++l)
+        h = ck_round(h, lane[l]);
     h ^= h >> 33;
     h *= UINT64_C(0xC2B2AE3D27D4EB4F);
     h ^= h >> 29;
@@ -46,7 +47,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (fixed == NULL) return 0;
         memcpy(fixed, data, size);
         const uint64_t ck = baked_checksum(fixed, size);
-        for (int i = 0; i < 8; ++i) fixed[24 + i] = (uint8_t)(ck >> (8 * i));
+        for (int i = 0; i < 8; ++i)
+            fixed[24 + i] = (uint8_t)(ck >> (8 * i));
         load_one(fixed, size);
         free(fixed);
     }

@@ -93,14 +93,15 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         FUZZ_CHECK(st == RUGO_OK);
         fuzz_check_contacts(st, c, o.count, 32, o.state);
         if (q.margin == 0.0) FUZZ_CHECK(state == o.state); /* what touches does not depend on the order */
-        const rugo_vec2 centre = rugo_v2(offset + scale * 2.0 * (unit(&b) - 0.5), offset + scale * 2.0 * (unit(&b) - 0.5));
+        const rugo_vec2 centre =
+            rugo_v2(offset + scale * 2.0 * (unit(&b) - 0.5), offset + scale * 2.0 * (unit(&b) - 0.5));
         const double r = scale * unit(&b);
         const rugo_transform id = rugo_identity_transform();
         const rugo_primitive circle = rugo_make_circle(centre, r);
         st = rugo_collide_primitive(A, xa, &circle, id, &q, ctx, &o);
         fuzz_check_contacts(st, c, o.count, 32, o.state);
-        const rugo_primitive capsule =
-            rugo_make_capsule(centre, rugo_v2(centre.x + scale * unit(&b), centre.y - scale * unit(&b)), 0.1 * r);
+        const rugo_primitive capsule = rugo_make_capsule(
+            centre, rugo_v2(centre.x + scale * unit(&b), centre.y - scale * unit(&b)), 0.1 * r);
         st = rugo_collide_primitive(A, xa, &capsule, id, &q, ctx, &o);
         fuzz_check_contacts(st, c, o.count, 32, o.state);
         const rugo_vec2 tri[3] = {centre, rugo_v2(centre.x + r + scale * 1e-3, centre.y),

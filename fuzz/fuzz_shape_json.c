@@ -21,7 +21,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         FUZZ_CHECK(rugo_shape_desc_parse(text.data, text.length, NULL, &again, &err) == RUGO_OK);
         FUZZ_CHECK(again.count == desc.count && again.filter == desc.filter);
         if (desc.count > 0)
-            FUZZ_CHECK(memcmp(again.control_points, desc.control_points, (size_t)desc.count * sizeof(rugo_vec2)) == 0);
+            FUZZ_CHECK(memcmp(again.control_points, desc.control_points,
+                              (size_t)desc.count * sizeof(rugo_vec2)) == 0);
         rugo_shape_desc_free(&again);
         rugo_text_free(&text);
     }
@@ -60,7 +61,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             rugo_shape* loaded = NULL;
             rugo_baked_error be;
             st = rugo_shape_load_baked(bytes, written, NULL, &loaded, &be);
-            if (st != RUGO_OK) fprintf(stderr, "load: %s: %s %s\n", rugo_status_string(st), be.field, be.message);
+            if (st != RUGO_OK)
+                fprintf(stderr, "load: %s: %s %s\n", rugo_status_string(st), be.field, be.message);
             FUZZ_CHECK(st == RUGO_OK);
             unsigned char* again = (unsigned char*)malloc(need);
             if (again != NULL) {
@@ -71,7 +73,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             rugo_shape_destroy(loaded);
             free(bytes);
         }
-        if (desc.count <= 256) fuzz_query_shape(shape, shape, rugo_identity_transform(), rugo_make_transform(0.1, 0.0, 0.3));
+        if (desc.count <= 256)
+            fuzz_query_shape(shape, shape, rugo_identity_transform(), rugo_make_transform(0.1, 0.0, 0.3));
         rugo_shape_destroy(shape);
     }
     free(lambda);

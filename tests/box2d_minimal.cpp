@@ -45,7 +45,8 @@ int main() {
         for (int i = 0; i < 180; ++i)
             bridge.Step(1.0f / 60.0f, 8, 3);
         const b2Vec2 p = pebble->GetPosition();
-        std::printf("pebble at (%.3f, %.3f), mass %.4f kg, awake %d\n", p.x, p.y, pebble->GetMass(), pebble->IsAwake());
+        std::printf("pebble at (%.3f, %.3f), mass %.4f kg, awake %d\n", p.x, p.y, pebble->GetMass(),
+                    pebble->IsAwake());
         // It rests on the ground: its centre a little above its lowest radius (0.25 m).
         if (!(p.y > 0.15f && p.y < 0.35f)) status = 1;
     } // 5. The bridge goes before the world and the shape after both.

@@ -56,41 +56,85 @@ static const row ROWS[] = {
     {"point with three numbers", "{\"control_points\": [[0,0,0],[1,0],[1,1],[0,1]]}", RUGO_ERR_BAD_FIELD},
     {"duplicate member", "{\"control_points\": " SQ ", \"control_points\": " SQ "}", RUGO_ERR_BAD_FIELD},
     {"NaN literal", "{\"control_points\": [[0,0],[NaN,0],[1,1],[0,1]]}", RUGO_ERR_PARSE},
-    {"number overflowing to infinity", "{\"control_points\": [[0,0],[1e999,0],[1,1],[0,1]]}", RUGO_ERR_NOT_FINITE},
-    {"coordinates whose area overflows", "{\"control_points\": [[0,0],[1e300,0],[1e300,1e300],[0,1e300]]}", RUGO_ERR_NOT_FINITE},
+    {"number overflowing to infinity", "{\"control_points\": [[0,0],[1e999,0],[1,1],[0,1]]}",
+     RUGO_ERR_NOT_FINITE},
+    {"coordinates whose area overflows", "{\"control_points\": [[0,0],[1e300,0],[1e300,1e300],[0,1e300]]}",
+     RUGO_ERR_NOT_FINITE},
     {"unknown filter", "{\"control_points\": " SQ ", \"filter\": \"haar\"}", RUGO_ERR_BAD_FILTER},
     {"too few points", "{\"control_points\": [[0,0],[1,0],[0,1]]}", RUGO_ERR_TOO_FEW_POINTS},
     {"empty point list (parses as NULL, 0)", "{\"control_points\": []}", RUGO_ERR_NULL_ARGUMENT},
-    {"count not a power of two", "{\"control_points\": [[0,0],[1,0],[2,1],[1,2],[0,1],[-1,1]]}", RUGO_ERR_NOT_POWER_OF_TWO},
+    {"count not a power of two", "{\"control_points\": [[0,0],[1,0],[2,1],[1,2],[0,1],[-1,1]]}",
+     RUGO_ERR_NOT_POWER_OF_TWO},
     {"zero area (collinear)", "{\"control_points\": [[0,0],[1,1],[2,2],[3,3]]}", RUGO_ERR_ZERO_AREA},
     {"zero area (coincident)", "{\"control_points\": [[1,1],[1,1],[1,1],[1,1]]}", RUGO_ERR_ZERO_AREA},
     {"self-intersecting outline",
-     "{\"control_points\": [[1,0],[0.92388,0.353553],[0.707107,0.5],[0.382683,0.353553],[0,0],[-0.191342,-0.176777],"
-     "[-0.353553,-0.25],[-0.46194,-0.176777],[-0.5,0],[-0.46194,0.176777],[-0.353553,0.25],[-0.191342,0.176777],"
+     "{\"control_points\": "
+     "[[1,0],[0.92388,0.353553],[0.707107,0.5],[0.382683,0.353553],[0,0],[-0.191342,-0.176777],"
+     "[-0.353553,-0.25],[-0.46194,-0.176777],[-0.5,0],[-0.46194,0.176777],[-0.353553,0.25],[-0.191342,0."
+     "176777],"
      "[0,0],[0.382683,-0.353553],[0.707107,-0.5],[0.92388,-0.353553]]}",
      RUGO_ERR_SELF_INTERSECTING},
-    {"negative tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": -0.1}}", RUGO_ERR_NEGATIVE_TOLERANCE},
-    {"tolerance list of wrong length", "{\"control_points\": " SQ ", \"roughness\": {\"tolerances\": [0.1]}}", RUGO_ERR_BAD_FIELD},
-    {"q not positive", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"q\": 0}}", RUGO_ERR_BAD_QUANTILE},
-    {"friction alpha negative", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"friction\": {\"alpha\": -1}}}", RUGO_ERR_BAD_ARGUMENT},
-    {"restitution above 1", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 2}}}", RUGO_ERR_BAD_ARGUMENT},
-    {"restitution range empty", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 0.9, \"epsilon_max\": 0.5}}}", RUGO_ERR_EMPTY_RANGE},
-    {"seed beyond 2^53", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_2\", \"seed\": 9007199254740993}}", RUGO_ERR_BAD_FIELD},
-    {"unknown preset", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_9\"}}", RUGO_ERR_BAD_FIELD},
-    {"range from outside [0, 1]", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": -0.1, \"to\": 0.5, \"tolerance\": 0.1}]}}", RUGO_ERR_BAD_FIELD},
-    {"empty range", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.5, \"to\": 0.5, \"tolerance\": 0.1}]}}", RUGO_ERR_BAD_FIELD},
-    {"range without tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5}]}}", RUGO_ERR_BAD_FIELD},
-    {"negative range tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5, \"tolerance\": -0.1}]}}", RUGO_ERR_NEGATIVE_TOLERANCE},
-    {"negative background", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"background\": -1}}", RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"negative tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": -0.1}}",
+     RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"tolerance list of wrong length", "{\"control_points\": " SQ ", \"roughness\": {\"tolerances\": [0.1]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"q not positive", "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"q\": 0}}",
+     RUGO_ERR_BAD_QUANTILE},
+    {"friction alpha negative",
+     "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"friction\": {\"alpha\": -1}}}",
+     RUGO_ERR_BAD_ARGUMENT},
+    {"restitution above 1",
+     "{\"control_points\": " SQ ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 2}}}",
+     RUGO_ERR_BAD_ARGUMENT},
+    {"restitution range empty",
+     "{\"control_points\": " SQ
+     ", \"roughness\": {\"constant\": 0.1, \"restitution\": {\"epsilon\": 0.9, \"epsilon_max\": 0.5}}}",
+     RUGO_ERR_EMPTY_RANGE},
+    {"seed beyond 2^53",
+     "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_2\", \"seed\": 9007199254740993}}",
+     RUGO_ERR_BAD_FIELD},
+    {"unknown preset", "{\"control_points\": " SQ ", \"roughness\": {\"preset\": \"tipo_9\"}}",
+     RUGO_ERR_BAD_FIELD},
+    {"range from outside [0, 1]",
+     "{\"control_points\": " SQ
+     ", \"roughness\": {\"ranges\": [{\"from\": -0.1, \"to\": 0.5, \"tolerance\": 0.1}]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"empty range",
+     "{\"control_points\": " SQ
+     ", \"roughness\": {\"ranges\": [{\"from\": 0.5, \"to\": 0.5, \"tolerance\": 0.1}]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"range without tolerance",
+     "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5}]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"negative range tolerance",
+     "{\"control_points\": " SQ
+     ", \"roughness\": {\"ranges\": [{\"from\": 0.1, \"to\": 0.5, \"tolerance\": -0.1}]}}",
+     RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"negative background",
+     "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"background\": -1}}",
+     RUGO_ERR_NEGATIVE_TOLERANCE},
     {"empty profile", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": []}}", RUGO_ERR_BAD_FIELD},
-    {"profile s outside [0, 1]", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0.1], [2, 0.1]]}}", RUGO_ERR_BAD_FIELD},
-    {"profile s not increasing", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, 0.1], [0.5, 0.2]]}}", RUGO_ERR_BAD_FIELD},
-    {"negative profile tolerance", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, -0.1]]}}", RUGO_ERR_NEGATIVE_TOLERANCE},
-    {"ranges and profile both", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"profile\": [[0, 0]]}}", RUGO_ERR_BAD_FIELD},
-    {"ranges on too few points", "{\"control_points\": [[0,0],[1,0],[0,1]], \"roughness\": {\"ranges\": []}}", RUGO_ERR_TOO_FEW_POINTS},
-    {"ranges on a curve of no length", "{\"control_points\": [[1,1],[1,1],[1,1],[1,1]], \"roughness\": {\"ranges\": []}}", RUGO_ERR_ZERO_AREA},
-    {"valid ranges (control row: builds)", "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [{\"from\": 0.9, \"to\": 0.1, \"tolerance\": 0.1}]}}", RUGO_OK},
-    {"valid profile (control row: builds)", "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0], [0.5, 0.1]]}}", RUGO_OK},
+    {"profile s outside [0, 1]",
+     "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0.1], [2, 0.1]]}}", RUGO_ERR_BAD_FIELD},
+    {"profile s not increasing",
+     "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, 0.1], [0.5, 0.2]]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"negative profile tolerance",
+     "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0.5, -0.1]]}}",
+     RUGO_ERR_NEGATIVE_TOLERANCE},
+    {"ranges and profile both",
+     "{\"control_points\": " SQ ", \"roughness\": {\"ranges\": [], \"profile\": [[0, 0]]}}",
+     RUGO_ERR_BAD_FIELD},
+    {"ranges on too few points", "{\"control_points\": [[0,0],[1,0],[0,1]], \"roughness\": {\"ranges\": []}}",
+     RUGO_ERR_TOO_FEW_POINTS},
+    {"ranges on a curve of no length",
+     "{\"control_points\": [[1,1],[1,1],[1,1],[1,1]], \"roughness\": {\"ranges\": []}}", RUGO_ERR_ZERO_AREA},
+    {"valid ranges (control row: builds)",
+     "{\"control_points\": " SQ
+     ", \"roughness\": {\"ranges\": [{\"from\": 0.9, \"to\": 0.1, \"tolerance\": 0.1}]}}",
+     RUGO_OK},
+    {"valid profile (control row: builds)",
+     "{\"control_points\": " SQ ", \"roughness\": {\"profile\": [[0, 0], [0.5, 0.1]]}}", RUGO_OK},
 };
 
 /* CSV roughness profiles (rugo_roughness_profile_parse_csv). */
@@ -156,7 +200,8 @@ START_TEST(huge_counts) {
     ck_assert_ptr_nonnull(big);
     len += (size_t)snprintf(big, cap, "{\"control_points\": %s, \"roughness\": {\"ranges\": [", SQ);
     for (int i = 0; i <= RUGO_MAX_ROUGHNESS_RANGES; ++i)
-        len += (size_t)snprintf(big + len, cap - len, "%s{\"from\":0,\"to\":1,\"tolerance\":0}", i ? "," : "");
+        len +=
+            (size_t)snprintf(big + len, cap - len, "%s{\"from\":0,\"to\":1,\"tolerance\":0}", i ? "," : "");
     len += (size_t)snprintf(big + len, cap - len, "]}}");
     ck_assert_int_eq(rugo_shape_desc_parse(big, len, NULL, &d, NULL), RUGO_ERR_TOO_MANY_POINTS);
     free(big);
@@ -192,17 +237,19 @@ START_TEST(parameters_out_of_range) {
     int n = 0;
     rugo_contact_state state;
     rugo_transform bad = rugo_make_transform(NAN, 0, 0);
-    ck_assert_int_eq(test_collide_shapes(ctx, s, bad, s, rugo_identity_transform(), NULL, c, 4, &n, &state, NULL),
-                     RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), NULL, c, -1,
-                                         &n, &state, NULL),
+    ck_assert_int_eq(
+        test_collide_shapes(ctx, s, bad, s, rugo_identity_transform(), NULL, c, 4, &n, &state, NULL),
+        RUGO_ERR_NOT_FINITE);
+    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(),
+                                         NULL, c, -1, &n, &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(test_collide_circle(ctx, s, rugo_identity_transform(), rugo_v2(0, 0), -1.0, NULL, c, 4, &n, &state, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, s, rugo_identity_transform(), rugo_v2(0, 0), -1.0, NULL, c, 4,
+                                         &n, &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     rugo_contact_query q = test_exact_query();
     q.margin = -1.0;
-    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), &q, c, 4, &n,
-                                         &state, NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, s, rugo_identity_transform(), s, rugo_identity_transform(), &q,
+                                         c, 4, &n, &state, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     rugo_collide_context_destroy(ctx);
     rugo_shape_destroy(s);
@@ -289,23 +336,25 @@ static const import_row IMPORT_ROWS[] = {
     {"id of an element that is not a <path>", 's', "r", DOC("<rect id='r'/>"), RUGO_ERR_BAD_FIELD, 1},
     {"<path> without d", 's', "p", DOC("<path id='p'/>"), RUGO_ERR_BAD_FIELD, 1},
     {"malformed d in a document", 's', "p", DOC("<path id='p' d='M 0 0 L 1 x'/>"), RUGO_ERR_PARSE, 1},
-    {"no closed subpath in a document", 's', "p", DOC("<path id='p' d='M 0 0 L 1 1'/>"), RUGO_ERR_BAD_FIELD, 1},
+    {"no closed subpath in a document", 's', "p", DOC("<path id='p' d='M 0 0 L 1 1'/>"), RUGO_ERR_BAD_FIELD,
+     1},
     {"unterminated comment", 's', "p", DOC("<!-- <path id='p' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
     {"mismatched end tag", 's', "p", DOC("<g></a><path id='p' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
     {"unknown entity", 's', "p", DOC("<path id='p' d='M 0 0 &nbsp; H 1 V 1 Z'/>"), RUGO_ERR_PARSE, 1},
-    {"attribute given twice", 's', "p", DOC("<path id='p' d='" SQUARE_D "' d='" SQUARE_D "'/>"), RUGO_ERR_PARSE, 1},
-    {"unterminated attribute value", 's', "p", DOC("<path id='p' d='" SQUARE_D "/>"), RUGO_ERR_PARSE, 1},
-    {"bad transform of an ancestor", 's', "p", DOC("<g transform='rotate(1,2)'><path id='p' d='" SQUARE_D "'/></g>"),
+    {"attribute given twice", 's', "p", DOC("<path id='p' d='" SQUARE_D "' d='" SQUARE_D "'/>"),
      RUGO_ERR_PARSE, 1},
+    {"unterminated attribute value", 's', "p", DOC("<path id='p' d='" SQUARE_D "/>"), RUGO_ERR_PARSE, 1},
+    {"bad transform of an ancestor", 's', "p",
+     DOC("<g transform='rotate(1,2)'><path id='p' d='" SQUARE_D "'/></g>"), RUGO_ERR_PARSE, 1},
     {"unknown transform function", 's', "p", DOC("<path id='p' transform='spin(3)' d='" SQUARE_D "'/>"),
      RUGO_ERR_PARSE, 1},
     {"composed transforms overflowing", 's', "p",
      DOC("<g transform='scale(1e200)'><path id='p' transform='scale(1e200)' d='" SQUARE_D "'/></g>"),
      RUGO_ERR_NOT_FINITE, 1},
-    {"degenerate transform (scale(1, 0))", 's', "p", DOC("<path id='p' transform='scale(1,0)' d='" SQUARE_D "'/>"),
-     RUGO_ERR_ZERO_AREA, 1},
-    {"valid document (control row)", 's', "p", DOC("<g transform='translate(5 5)'><path id='p' d='" SQUARE_D "'/></g>"),
-     RUGO_OK, 0},
+    {"degenerate transform (scale(1, 0))", 's', "p",
+     DOC("<path id='p' transform='scale(1,0)' d='" SQUARE_D "'/>"), RUGO_ERR_ZERO_AREA, 1},
+    {"valid document (control row)", 's', "p",
+     DOC("<g transform='translate(5 5)'><path id='p' d='" SQUARE_D "'/></g>"), RUGO_OK, 0},
     /* transform lists */
     {"unknown transform", 't', NULL, "foo(1)", RUGO_ERR_PARSE, 1},
     {"wrong argument count", 't', NULL, "rotate(1,2)", RUGO_ERR_PARSE, 1},
@@ -325,7 +374,8 @@ static const import_row IMPORT_ROWS[] = {
     {"JSON points file: syntax error", 'p', NULL, "{\"points\": [[0, 0] [1, 0]]}", RUGO_ERR_PARSE, 1},
     {"JSON points file: NaN literal", 'p', NULL, "{\"points\": [[0, NaN]]}", RUGO_ERR_PARSE, 1},
     {"JSON points file: number overflowing", 'p', NULL, "{\"points\": [[0, 1e999]]}", RUGO_ERR_NOT_FINITE, 1},
-    {"JSON points file: no points member", 'p', NULL, "{\"control_points\": [[0, 0]]}", RUGO_ERR_BAD_FIELD, 1},
+    {"JSON points file: no points member", 'p', NULL, "{\"control_points\": [[0, 0]]}", RUGO_ERR_BAD_FIELD,
+     1},
     {"JSON points file: point not a pair", 'p', NULL, "{\"points\": [[0, 0], [1]]}", RUGO_ERR_BAD_FIELD, 1},
     {"two points", 'p', NULL, "0,0\n1,1\n", RUGO_ERR_TOO_FEW_POINTS, 0},
     {"empty point list (parses as NULL, 0)", 'p', NULL, "x,y\n", RUGO_ERR_NULL_ARGUMENT, 0},
@@ -351,18 +401,21 @@ START_TEST(import_rows) {
         } else if (r->kind == 't') {
             rugo_affine m;
             st = rugo_svg_transform_parse(r->text, strlen(r->text), &m, &e);
-            if (st != RUGO_OK) ck_assert(m.a == 1 && m.b == 0 && m.c == 0 && m.d == 1 && m.e == 0 && m.f == 0);
+            if (st != RUGO_OK)
+                ck_assert(m.a == 1 && m.b == 0 && m.c == 0 && m.d == 1 && m.e == 0 && m.f == 0);
         } else {
             st = points_to_samples(r->text, &e);
         }
-        ck_assert_msg(st == r->expect, "%s: got %d (%s: %s), expected %d (%s)", r->what, st, rugo_status_string(st),
-                      e.message, r->expect, rugo_status_string(r->expect));
-        ck_assert(memchr(e.message, '\0', sizeof e.message) != NULL && memchr(e.path, '\0', sizeof e.path) != NULL);
+        ck_assert_msg(st == r->expect, "%s: got %d (%s: %s), expected %d (%s)", r->what, st,
+                      rugo_status_string(st), e.message, r->expect, rugo_status_string(r->expect));
+        ck_assert(memchr(e.message, '\0', sizeof e.message) != NULL &&
+                  memchr(e.path, '\0', sizeof e.path) != NULL);
         if (st == RUGO_OK) continue;
         /* every failure says why, and a failure at a place in the text says where */
         if (r->kind != 'p' || r->located) ck_assert_msg(e.message[0] != '\0', "%s: no message", r->what);
         if (r->located)
-            ck_assert_msg(e.line >= 1 && e.column >= 1, "%s: at %d:%d (%s)", r->what, e.line, e.column, e.message);
+            ck_assert_msg(e.line >= 1 && e.column >= 1, "%s: at %d:%d (%s)", r->what, e.line, e.column,
+                          e.message);
     }
 }
 END_TEST
@@ -375,7 +428,8 @@ START_TEST(import_limits) {
     rugo_point_list pts;
     /* Text over 64 MiB is refused by its length, before anything is read. */
     ck_assert_int_eq(rugo_path_parse("M 0 0", RUGO_MAX_SVG_BYTES + 1, NULL, &p, &e), RUGO_ERR_TOO_LARGE);
-    ck_assert_int_eq(rugo_svg_find_path("<svg/>", RUGO_MAX_SVG_BYTES + 1, NULL, NULL, &el, &e), RUGO_ERR_TOO_LARGE);
+    ck_assert_int_eq(rugo_svg_find_path("<svg/>", RUGO_MAX_SVG_BYTES + 1, NULL, NULL, &el, &e),
+                     RUGO_ERR_TOO_LARGE);
     ck_assert_int_eq(rugo_points_text_parse("1 2", RUGO_MAX_JSON_BYTES + 1, NULL, &pts, &e),
                      RUGO_ERR_TOO_LARGE);
     /* A number of more than 512 characters. */

@@ -35,7 +35,8 @@ static uint64_t ref_checksum(const unsigned char* p, size_t n) {
         lane[i % 4] = ref_round(lane[i % 4], w);
     }
     uint64_t h = (uint64_t)n;
-    for (int l = 0; l < 4; ++l) h = ref_round(h, lane[l]);
+    for (int l = 0; l < 4; ++l)
+        h = ref_round(h, lane[l]);
     h ^= h >> 33;
     h *= UINT64_C(0xC2B2AE3D27D4EB4F);
     h ^= h >> 29;
@@ -49,10 +50,12 @@ static uint32_t le32(const unsigned char* p) {
 }
 static uint64_t le64(const unsigned char* p) { return (uint64_t)le32(p) | ((uint64_t)le32(p + 4) << 32); }
 static void put32(unsigned char* p, uint32_t v) {
-    for (int i = 0; i < 4; ++i) p[i] = (unsigned char)(v >> (8 * i));
+    for (int i = 0; i < 4; ++i)
+        p[i] = (unsigned char)(v >> (8 * i));
 }
 static void put64(unsigned char* p, uint64_t v) {
-    for (int i = 0; i < 8; ++i) p[i] = (unsigned char)(v >> (8 * i));
+    for (int i = 0; i < 8; ++i)
+        p[i] = (unsigned char)(v >> (8 * i));
 }
 static void putf64(unsigned char* p, double x) {
     uint64_t b;
@@ -70,13 +73,14 @@ static double getf64(const unsigned char* p) {
 static void refresh_checksum(unsigned char* f, size_t size) { put64(f + 24, ref_checksum(f, size)); }
 
 /* A random rough (or smooth) star with n points; CW if asked. */
-static rugo_shape* make_shape(uint64_t seed, int n, int rough, int cw, rugo_filter filter, rugo_box_method method,
-                              int coarsest) {
+static rugo_shape* make_shape(uint64_t seed, int n, int rough, int cw, rugo_filter filter,
+                              rugo_box_method method, int coarsest) {
     test_rng r = test_rng_seed(seed);
     rugo_vec2* p = (rugo_vec2*)malloc(sizeof *p * (size_t)n);
     rugo_real* lam = (rugo_real*)malloc(sizeof *lam * (size_t)n);
     test_random_star(&r, n, rugo_v2(test_rng_uniform(&r, -3, 3), test_rng_uniform(&r, -3, 3)), 1.0, 0.3, p);
-    for (int i = 0; i < n; ++i) lam[i] = rough ? test_rng_uniform(&r, 0.0, 0.02) : 0.0;
+    for (int i = 0; i < n; ++i)
+        lam[i] = rough ? test_rng_uniform(&r, 0.0, 0.02) : 0.0;
     if (cw)
         for (int i = 0; i < n / 2; ++i) {
             rugo_vec2 t = p[i];
@@ -130,7 +134,8 @@ static void assert_same_contacts(const rugo_contact* a, const rugo_contact* b, i
         ck_assert(a[i].segment_a == b[i].segment_a && a[i].segment_b == b[i].segment_b);
         ck_assert(same_bits(a[i].t_a, b[i].t_a) && same_bits(a[i].t_b, b[i].t_b));
         ck_assert(a[i].level_a == b[i].level_a && a[i].level_b == b[i].level_b);
-        ck_assert(same_bits(a[i].tolerance_a, b[i].tolerance_a) && same_bits(a[i].tolerance_b, b[i].tolerance_b));
+        ck_assert(same_bits(a[i].tolerance_a, b[i].tolerance_a) &&
+                  same_bits(a[i].tolerance_b, b[i].tolerance_b));
         ck_assert(same_bits(a[i].friction, b[i].friction) && same_bits(a[i].restitution, b[i].restitution));
         ck_assert(a[i].region == b[i].region && a[i].id == b[i].id);
     }
@@ -143,7 +148,8 @@ START_TEST(checksum_reference) {
     ck_assert(ref_checksum((const unsigned char*)"123456789", 9) == UINT64_C(0x9E8530C65D0C8881));
     ck_assert(ref_checksum((const unsigned char*)"", 0) == UINT64_C(0x0E41CE6A01433AAB));
     unsigned char bytes[64];
-    for (int i = 0; i < 64; ++i) bytes[i] = (unsigned char)i;
+    for (int i = 0; i < 64; ++i)
+        bytes[i] = (unsigned char)i;
     ck_assert(ref_checksum(bytes, 64) == UINT64_C(0x017C827F175649C9));
 }
 END_TEST
@@ -156,7 +162,8 @@ START_TEST(header_layout) {
     ck_assert_uint_eq(le32(b + 8), RUGO_BAKED_VERSION);
     ck_assert_uint_eq(le32(b + 12), 64);
     ck_assert_uint_eq(le64(b + 16), size - 64);
-    for (int i = 32; i < 64; ++i) ck_assert_uint_eq(b[i], 0);
+    for (int i = 32; i < 64; ++i)
+        ck_assert_uint_eq(b[i], 0);
     /* Checksum: the whole file with its own field taken as zero (so setting it changes nothing). */
     unsigned char* c = (unsigned char*)malloc(size);
     memcpy(c, b, size);
@@ -210,7 +217,8 @@ static void check_round_trip(rugo_shape* s, uint64_t seed) {
     ck_assert(same_bits(ms.area, mt.area) && same_bits(ms.inertia, mt.inertia));
     ck_assert(same_bits(ms.centroid.x, mt.centroid.x) && same_bits(ms.centroid.y, mt.centroid.y));
     rugo_friction_map fs = rugo_shape_friction_map(s), ft = rugo_shape_friction_map(t);
-    ck_assert(same_bits(fs.alpha, ft.alpha) && same_bits(fs.lambda_min, ft.lambda_min) && same_bits(fs.base, ft.base));
+    ck_assert(same_bits(fs.alpha, ft.alpha) && same_bits(fs.lambda_min, ft.lambda_min) &&
+              same_bits(fs.base, ft.base));
     rugo_restitution rs = rugo_shape_restitution(s), rt = rugo_shape_restitution(t);
     ck_assert(same_bits(rs.epsilon, rt.epsilon) && same_bits(rs.epsilon_max, rt.epsilon_max));
     ck_assert_int_eq(rugo_pyramid_filter(rugo_shape_pyramid(s)), rugo_pyramid_filter(rugo_shape_pyramid(t)));
@@ -228,7 +236,8 @@ static void check_round_trip(rugo_shape* s, uint64_t seed) {
         ck_assert_int_eq(memcmp(ls.own, lt.own, sizeof(rugo_real) * (size_t)ls.count), 0);
         ck_assert_int_eq(memcmp(ls.total, lt.total, sizeof(rugo_real) * (size_t)ls.count), 0);
         ck_assert_int_eq(memcmp(ls.bound, lt.bound, sizeof(rugo_real) * (size_t)ls.count), 0);
-        ck_assert(same_bits(rugo_mobb_tree_level_area(rugo_shape_tree(s), j), rugo_mobb_tree_level_area(rugo_shape_tree(t), j)));
+        ck_assert(same_bits(rugo_mobb_tree_level_area(rugo_shape_tree(s), j),
+                            rugo_mobb_tree_level_area(rugo_shape_tree(t), j)));
     }
     ck_assert_int_eq(rugo_shape_tolerance_level(t, 1, &(rugo_tolerance_level){0}), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_shape_tolerance_level(t, 31, &(rugo_tolerance_level){0}), RUGO_ERR_BAD_LEVEL);
@@ -243,7 +252,8 @@ static void check_round_trip(rugo_shape* s, uint64_t seed) {
     for (int trial = 0; trial < 24; ++trial) {
         const double d = test_rng_uniform(&r, 0.8, 2.4), a = test_rng_uniform(&r, 0, 6.3);
         rugo_transform xa = rugo_make_transform(-c0.x, -c0.y, 0.0);
-        rugo_transform xb = rugo_make_transform(d * cos(a) - c1.x, d * sin(a) - c1.y, test_rng_uniform(&r, 0, 6.3));
+        rugo_transform xb =
+            rugo_make_transform(d * cos(a) - c1.x, d * sin(a) - c1.y, test_rng_uniform(&r, 0, 6.3));
         rugo_contact_query q = test_exact_query();
         q.lod = (trial % 3 == 2) ? -1 : 0;
         rugo_contact ca[16], cb[16];
@@ -258,8 +268,12 @@ static void check_round_trip(rugo_shape* s, uint64_t seed) {
         ck_assert_int_eq(qa.newton_iterations, qb.newton_iterations);
         assert_same_contacts(ca, cb, na);
         touching += sa != RUGO_STATE_APART;
-        ck_assert_int_eq(test_collide_circle(ctx, s, xa, rugo_v2(d * cos(a), d * sin(a)), 0.5, &q, ca, 16, &na, &sa, NULL), RUGO_OK);
-        ck_assert_int_eq(test_collide_circle(ctx, t, xa, rugo_v2(d * cos(a), d * sin(a)), 0.5, &q, cb, 16, &nb, &sb, NULL), RUGO_OK);
+        ck_assert_int_eq(
+            test_collide_circle(ctx, s, xa, rugo_v2(d * cos(a), d * sin(a)), 0.5, &q, ca, 16, &na, &sa, NULL),
+            RUGO_OK);
+        ck_assert_int_eq(
+            test_collide_circle(ctx, t, xa, rugo_v2(d * cos(a), d * sin(a)), 0.5, &q, cb, 16, &nb, &sb, NULL),
+            RUGO_OK);
         ck_assert_int_eq(sa, sb);
         ck_assert_int_eq(na, nb);
         assert_same_contacts(ca, cb, na);
@@ -463,7 +477,8 @@ START_TEST(load_field_errors) {
     unsigned char* b = bake(s, &size);
     /* Layout for J = 3, J_min = 2: per = 12, det = 4 (docs/baked.md). */
     const size_t P = 64, per = 12, det = 4;
-    const size_t points = P + 160, world = points + 16 * per, local = world + 16 * det, tol = local + 16 * det;
+    const size_t points = P + 160, world = points + 16 * per, local = world + 16 * det,
+                 tol = local + 16 * det;
     const size_t band = tol + 24 * per, excess = band + 8 * per, nodes = excess + 16;
     ck_assert_uint_eq(nodes + 64 * per, size);
     const field_case cases[] = {
@@ -516,13 +531,15 @@ START_TEST(load_field_errors) {
         refresh_checksum(c, size);
         rugo_status st = load(c, size, &e);
         ck_assert_msg(st == RUGO_ERR_BAD_FORMAT, "%s: %s", k->name, rugo_status_string(st));
-        ck_assert_msg(strncmp(e.field, k->field, strlen(k->field)) == 0, "%s: field '%s', expected '%s'", k->name,
-                      e.field, k->field);
+        ck_assert_msg(strncmp(e.field, k->field, strlen(k->field)) == 0, "%s: field '%s', expected '%s'",
+                      k->name, e.field, k->field);
         ck_assert_msg(e.message[0] != '\0', "%s: no message", k->name);
-        if (!k->is_u32 && strcmp(k->name, "area zero") != 0 && strcmp(k->name, "epsilon > epsilon_max") != 0 &&
-            strcmp(k->name, "epsilon > 1") != 0 && strstr(k->name, "axis") == NULL && strstr(k->name, "perp") == NULL &&
+        if (!k->is_u32 && strcmp(k->name, "area zero") != 0 &&
+            strcmp(k->name, "epsilon > epsilon_max") != 0 && strcmp(k->name, "epsilon > 1") != 0 &&
+            strstr(k->name, "axis") == NULL && strstr(k->name, "perp") == NULL &&
             strcmp(k->name, "finest band excess") != 0)
-            ck_assert_msg(e.offset == k->offset, "%s: offset %zu, expected %zu", k->name, e.offset, k->offset);
+            ck_assert_msg(e.offset == k->offset, "%s: offset %zu, expected %zu", k->name, e.offset,
+                          k->offset);
     }
     /* A clockwise finest level (reversed in place, coarse levels left) and a collinear one: both are
      * caught by the outline check of the loader. */

@@ -11,7 +11,8 @@ START_TEST(status_strings_distinct) {
         ck_assert_ptr_nonnull(sa);
         ck_assert_int_gt((int)strlen(sa), 0);
         ck_assert_str_ne(sa, "unknown status");
-        for (int b = a + 1; b < RUGO_STATUS_COUNT; ++b) ck_assert_str_ne(sa, rugo_status_string((rugo_status)b));
+        for (int b = a + 1; b < RUGO_STATUS_COUNT; ++b)
+            ck_assert_str_ne(sa, rugo_status_string((rugo_status)b));
     }
     ck_assert_str_eq(rugo_status_string((rugo_status)9999), "unknown status");
 }

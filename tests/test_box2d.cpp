@@ -18,7 +18,8 @@ const double kPi = 3.14159265358979323846;
 
 // Shapes ------------------------------------------------------------------------------------------
 
-rugo_shape* makeShape(const std::vector<rugo_vec2>& pts, const std::vector<double>* tol, double mu, double eps) {
+rugo_shape* makeShape(const std::vector<rugo_vec2>& pts, const std::vector<double>* tol, double mu,
+                      double eps) {
     rugo_shape_def d = rugo_default_shape_def();
     d.points = pts.data();
     d.count = static_cast<int>(pts.size());
@@ -37,7 +38,8 @@ rugo_shape* makeDisc(int n, double R, double mu, double eps) {
     const double joint = (4.0 + 2.0 * std::cos(2.0 * kPi / n)) / 6.0;
     std::vector<rugo_vec2> p(static_cast<size_t>(n));
     for (int k = 0; k < n; ++k)
-        p[static_cast<size_t>(k)] = rugo_v2(R / joint * std::cos(2.0 * kPi * k / n), R / joint * std::sin(2.0 * kPi * k / n));
+        p[static_cast<size_t>(k)] =
+            rugo_v2(R / joint * std::cos(2.0 * kPi * k / n), R / joint * std::sin(2.0 * kPi * k / n));
     return makeShape(p, nullptr, mu, eps);
 }
 
@@ -165,8 +167,9 @@ START_TEST(test_block_stops) {
     for (; steps < 600; ++steps) {
         bridge.Step(1.0f / 60.0f, 8, 3);
         if (getenv("DBG_BLOCK") && steps % 5 == 0)
-            std::printf("t %.3f x %.4f vx %.4f vy %.4f w %.4f y %.4f ang %.4f dis %ld pts %ld\n", steps / 60.0, b->GetPosition().x - x0,
-                        b->GetLinearVelocity().x, b->GetLinearVelocity().y, b->GetAngularVelocity(), b->GetPosition().y, b->GetAngle(),
+            std::printf("t %.3f x %.4f vx %.4f vy %.4f w %.4f y %.4f ang %.4f dis %ld pts %ld\n",
+                        steps / 60.0, b->GetPosition().x - x0, b->GetLinearVelocity().x,
+                        b->GetLinearVelocity().y, b->GetAngularVelocity(), b->GetPosition().y, b->GetAngle(),
                         bridge.GetStats().emptyEvaluations, bridge.GetStats().pointsSubmitted);
         if (b->GetLinearVelocity().Length() < 1e-3f) break;
     }
@@ -215,7 +218,9 @@ START_TEST(test_stack_rests) {
             const b2Transform& xb = bodies[i + 1]->GetTransform();
             rugo_transform ta = rugo_make_transform(xa.p.x, xa.p.y, xa.q.GetAngle());
             rugo_transform tb = rugo_make_transform(xb.p.x, xb.p.y, xb.q.GetAngle());
-            ck_assert_int_eq(test_collide_shapes(ctx, shapes[i], ta, shapes[i + 1], tb, nullptr, c, 64, &n, &st, nullptr), RUGO_OK);
+            ck_assert_int_eq(
+                test_collide_shapes(ctx, shapes[i], ta, shapes[i + 1], tb, nullptr, c, 64, &n, &st, nullptr),
+                RUGO_OK);
             for (int k = 0; k < n; ++k) {
                 maxPen = std::max(maxPen, -c[k].separation - (c[k].tolerance_a + c[k].tolerance_b));
                 maxPenBand = std::max(maxPenBand, -c[k].separation);
@@ -225,9 +230,10 @@ START_TEST(test_stack_rests) {
     double maxMove = 0.0;
     for (size_t i = 0; i < bodies.size(); ++i)
         maxMove = std::max(maxMove, static_cast<double>((bodies[i]->GetPosition() - settled[i]).Length()));
-    std::printf("stack: max movement 1..10 s %.3g m; max band-adjusted penetration %.3g m, max curve penetration "
-                "%.3g m (band %.3g, slop %.3g)\n",
-                maxMove, maxPen, maxPenBand, 2 * band, static_cast<double>(b2_linearSlop));
+    std::printf(
+        "stack: max movement 1..10 s %.3g m; max band-adjusted penetration %.3g m, max curve penetration "
+        "%.3g m (band %.3g, slop %.3g)\n",
+        maxMove, maxPen, maxPenBand, 2 * band, static_cast<double>(b2_linearSlop));
     ck_assert(maxMove <= 0.01); // 1 cm: the acceptance bound
     // Curve penetration at most the two bands plus 2 linear slop (Box2D's position solver target).
     ck_assert(maxPenBand <= 2 * band + 2.0 * static_cast<double>(b2_linearSlop));
@@ -249,65 +255,73 @@ START_TEST(test_fast_body_no_tunnel) {
         for (int wall = 0; wall < 2; ++wall)
             for (int a = 0; a < 4; ++a)
                 for (int spinIndex = 0; spinIndex < 3; ++spinIndex) {
-                test_rng rng = test_rng_seed(static_cast<uint64_t>(seed));
-                std::vector<rugo_vec2> pts(32);
-                if (seed <= 3)
-                    test_random_star(&rng, 32, rugo_v2(0, 0), 0.3, 0.3, pts.data());
-                else
-                    for (int k = 0; k < 32; ++k)
-                        pts[static_cast<size_t>(k)] = rugo_v2(0.4 * std::cos(2 * kPi * k / 32), 0.12 * std::sin(2 * kPi * k / 32));
-                std::vector<double> tol(32);
-                for (double& t : tol)
-                    t = test_rng_uniform(&rng, 0.0, 0.004);
-                rugo_shape* s = makeShape(pts, &tol, 0.4, 0.0);
-                b2World w(b2Vec2(0.0f, 0.0f));
-                rugo::Bridge bridge(&w);
-                b2BodyDef bd;
-                bd.position = b2Vec2(5.0f, 0.0f);
-                b2Body* g = w.CreateBody(&bd);
-                if (wall == 0) {
-                    b2PolygonShape box; // 1 cm thick
-                    box.SetAsBox(0.005f, 50.0f);
-                    g->CreateFixture(&box, 0.0f);
-                } else {
-                    b2EdgeShape e;
-                    e.SetTwoSided(b2Vec2(0.0f, -50.0f), b2Vec2(0.0f, 50.0f));
-                    g->CreateFixture(&e, 0.0f);
-                }
-                const float angle = 0.7f * static_cast<float>(a);
-                b2Body* b = dynamicBody(w, b2Vec2(0.0f, 0.1f * static_cast<float>(a)), angle);
-                ck_assert_int_eq(bridge.Attach(b, roughDef(s)), RUGO_OK);
-                b->SetLinearVelocity(b2Vec2(100.0f, 0.0f));
-                b->SetAngularVelocity(spinIndex == 0 ? 0.0f : (spinIndex == 1 ? 9.0f : -9.0f));
-                rugo_contour curve;
-                rugo_shape_level(s, bridge.GetLevel(b), &curve);
-                double gapAtStop = 1e9;
-                for (int i = 0; i < 40; ++i) {
-                    bridge.Step(1.0f / 60.0f, 8, 3);
-                    // Rightmost point of the true curve (dense samples) against the wall's left face.
-                    double xmax = -1e9;
-                    const b2Transform& x = b->GetTransform();
-                    for (int k = 0; k < curve.count * 16; ++k) {
-                        rugo_vec2 p = rugo_contour_point_at(curve, k / 16.0);
-                        xmax = std::max(xmax, static_cast<double>(b2Mul(x, b2Vec2(static_cast<float>(p.x), static_cast<float>(p.y))).x));
+                    test_rng rng = test_rng_seed(static_cast<uint64_t>(seed));
+                    std::vector<rugo_vec2> pts(32);
+                    if (seed <= 3)
+                        test_random_star(&rng, 32, rugo_v2(0, 0), 0.3, 0.3, pts.data());
+                    else
+                        for (int k = 0; k < 32; ++k)
+                            pts[static_cast<size_t>(k)] =
+                                rugo_v2(0.4 * std::cos(2 * kPi * k / 32), 0.12 * std::sin(2 * kPi * k / 32));
+                    std::vector<double> tol(32);
+                    for (double& t : tol)
+                        t = test_rng_uniform(&rng, 0.0, 0.004);
+                    rugo_shape* s = makeShape(pts, &tol, 0.4, 0.0);
+                    b2World w(b2Vec2(0.0f, 0.0f));
+                    rugo::Bridge bridge(&w);
+                    b2BodyDef bd;
+                    bd.position = b2Vec2(5.0f, 0.0f);
+                    b2Body* g = w.CreateBody(&bd);
+                    if (wall == 0) {
+                        b2PolygonShape box; // 1 cm thick
+                        box.SetAsBox(0.005f, 50.0f);
+                        g->CreateFixture(&box, 0.0f);
+                    } else {
+                        b2EdgeShape e;
+                        e.SetTwoSided(b2Vec2(0.0f, -50.0f), b2Vec2(0.0f, 50.0f));
+                        g->CreateFixture(&e, 0.0f);
                     }
-                    const double face = wall == 0 ? 4.995 : 5.0;
-                    ck_assert_msg(b->GetPosition().x < 5.0f, "tunnelled: seed %d wall %d angle %d spin %d", seed, wall, a, spinIndex);
-                    if (getenv("DBG_CCD") && xmax > face)
-                        std::printf("seed %d wall %d angle %d spin %d step %d: past the face by %.3g, v %.3g\n", seed, wall, a,
-                                    spinIndex, i, xmax - face, b->GetLinearVelocity().x);
-                    ck_assert_msg(xmax <= face + 0.01 + 0.008, "through the wall by %.3g", xmax - face);
-                    minGap = std::min(minGap, face - xmax);
-                    if (i == 0) gapAtStop = face - xmax;
+                    const float angle = 0.7f * static_cast<float>(a);
+                    b2Body* b = dynamicBody(w, b2Vec2(0.0f, 0.1f * static_cast<float>(a)), angle);
+                    ck_assert_int_eq(bridge.Attach(b, roughDef(s)), RUGO_OK);
+                    b->SetLinearVelocity(b2Vec2(100.0f, 0.0f));
+                    b->SetAngularVelocity(spinIndex == 0 ? 0.0f : (spinIndex == 1 ? 9.0f : -9.0f));
+                    rugo_contour curve;
+                    rugo_shape_level(s, bridge.GetLevel(b), &curve);
+                    double gapAtStop = 1e9;
+                    for (int i = 0; i < 40; ++i) {
+                        bridge.Step(1.0f / 60.0f, 8, 3);
+                        // Rightmost point of the true curve (dense samples) against the wall's left face.
+                        double xmax = -1e9;
+                        const b2Transform& x = b->GetTransform();
+                        for (int k = 0; k < curve.count * 16; ++k) {
+                            rugo_vec2 p = rugo_contour_point_at(curve, k / 16.0);
+                            xmax = std::max(
+                                xmax,
+                                static_cast<double>(
+                                    b2Mul(x, b2Vec2(static_cast<float>(p.x), static_cast<float>(p.y))).x));
+                        }
+                        const double face = wall == 0 ? 4.995 : 5.0;
+                        ck_assert_msg(b->GetPosition().x < 5.0f,
+                                      "tunnelled: seed %d wall %d angle %d spin %d", seed, wall, a,
+                                      spinIndex);
+                        if (getenv("DBG_CCD") && xmax > face)
+                            std::printf(
+                                "seed %d wall %d angle %d spin %d step %d: past the face by %.3g, v %.3g\n",
+                                seed, wall, a, spinIndex, i, xmax - face, b->GetLinearVelocity().x);
+                        ck_assert_msg(xmax <= face + 0.01 + 0.008, "through the wall by %.3g", xmax - face);
+                        minGap = std::min(minGap, face - xmax);
+                        if (i == 0) gapAtStop = face - xmax;
+                    }
+                    maxShort = std::max(maxShort, gapAtStop);
+                    speculative += bridge.GetStats().speculativePoints > 0;
+                    ++runs;
+                    rugo_shape_destroy(s);
                 }
-                maxShort = std::max(maxShort, gapAtStop);
-                speculative += bridge.GetStats().speculativePoints > 0;
-                ++runs;
-                rugo_shape_destroy(s);
-            }
-    std::printf("ccd: %d runs at 100 m/s, none through; %d used speculative points; deepest reach past the face "
-                "%.3g m; largest gap left after the impact step %.3g m\n",
-                runs, speculative, -minGap, maxShort);
+    std::printf(
+        "ccd: %d runs at 100 m/s, none through; %d used speculative points; deepest reach past the face "
+        "%.3g m; largest gap left after the impact step %.3g m\n",
+        runs, speculative, -minGap, maxShort);
 }
 END_TEST
 
@@ -315,7 +329,8 @@ END_TEST
 namespace {
 struct CountingListener : public b2ContactListener {
     const rugo::Bridge* bridge = nullptr;
-    int begin = 0, end = 0, pre = 0, post = 0, preRough = 0, preRoughDisabled = 0, preOrdinary = 0, badManifold = 0;
+    int begin = 0, end = 0, pre = 0, post = 0, preRough = 0, preRoughDisabled = 0, preOrdinary = 0,
+        badManifold = 0;
     void BeginContact(b2Contact*) override { ++begin; }
     void EndContact(b2Contact*) override { ++end; }
     void PreSolve(b2Contact* c, const b2Manifold*) override {
@@ -364,8 +379,9 @@ START_TEST(test_listeners_chain) {
     box->CreateFixture(&p, 1.0f);
     for (int i = 0; i < 60; ++i)
         bridge.Step(1.0f / 60.0f, 8, 3);
-    std::printf("listeners: begin %d pre %d (rough %d, of them disabled %d; ordinary %d) post %d filter %d\n", user.begin,
-                user.pre, user.preRough, user.preRoughDisabled, user.preOrdinary, user.post, filter.calls);
+    std::printf("listeners: begin %d pre %d (rough %d, of them disabled %d; ordinary %d) post %d filter %d\n",
+                user.begin, user.pre, user.preRough, user.preRoughDisabled, user.preOrdinary, user.post,
+                filter.calls);
     ck_assert_int_gt(user.begin, 0);
     ck_assert_int_gt(user.preRough, 0);
     ck_assert_int_gt(user.preOrdinary, 0);
@@ -390,13 +406,14 @@ END_TEST
 // ---- mass --------------------------------------------------------------------------------------
 static void checkMass(const b2Body* b, double m, rugo_vec2 c, double iOrigin, bool fixedRotation) {
     // 1e-6 relative: Box2D stores float (6e-8) and SetMassData subtracts m|c|^2 and adds it back.
-    ck_assert_msg(std::fabs(static_cast<double>(b->GetMass()) - m) <= 1e-6 * m, "mass %.9g vs %.9g", static_cast<double>(b->GetMass()), m);
+    ck_assert_msg(std::fabs(static_cast<double>(b->GetMass()) - m) <= 1e-6 * m, "mass %.9g vs %.9g",
+                  static_cast<double>(b->GetMass()), m);
     const double scale = std::sqrt(iOrigin / m);
     ck_assert(std::fabs(static_cast<double>(b->GetLocalCenter().x) - c.x) <= 1e-6 * scale);
     ck_assert(std::fabs(static_cast<double>(b->GetLocalCenter().y) - c.y) <= 1e-6 * scale);
     if (!fixedRotation)
-        ck_assert_msg(std::fabs(static_cast<double>(b->GetInertia()) - iOrigin) <= 1e-6 * iOrigin, "I %.9g vs %.9g",
-                      static_cast<double>(b->GetInertia()), iOrigin);
+        ck_assert_msg(std::fabs(static_cast<double>(b->GetInertia()) - iOrigin) <= 1e-6 * iOrigin,
+                      "I %.9g vs %.9g", static_cast<double>(b->GetInertia()), iOrigin);
 }
 
 START_TEST(test_mass_repaired) {
@@ -458,7 +475,7 @@ struct LockedAttach : public b2ContactListener {
         if (attachStatus >= 0) return;
         attachStatus = bridge->Attach(other, roughDef(shape));
         detachStatus = bridge->Detach(bridge->IsProxy(c->GetFixtureA()) ? c->GetFixtureA()->GetBody()
-                                                                          : c->GetFixtureB()->GetBody());
+                                                                        : c->GetFixtureB()->GetBody());
     }
 };
 struct Goodbyes : public b2DestructionListener {
@@ -470,7 +487,7 @@ struct Goodbyes : public b2DestructionListener {
 
 START_TEST(test_lifetime) {
     rugo_shape* disc = makeDisc(32, 0.3, 0.5, 0.0);
-    {   // Detach, DestroyBody, attach twice, bad arguments.
+    { // Detach, DestroyBody, attach twice, bad arguments.
         b2World w(b2Vec2(0.0f, -9.8f));
         Goodbyes bye;
         rugo::BridgeDef bdef;
@@ -513,7 +530,7 @@ START_TEST(test_lifetime) {
         for (int i = 0; i < 5; ++i)
             bridge.Step(1.0f / 60.0f, 8, 3);
     }
-    {   // Bridge destroyed before the world: proxies removed, callbacks restored.
+    { // Bridge destroyed before the world: proxies removed, callbacks restored.
         b2World w(b2Vec2(0.0f, -9.8f));
         CountingListener user;
         w.SetContactListener(&user);
@@ -527,7 +544,7 @@ START_TEST(test_lifetime) {
         ck_assert(w.GetContactManager().m_contactListener == &user);
         w.Step(1.0f / 60.0f, 8, 3);
     }
-    {   // World destroyed first, then ReleaseWorld.
+    { // World destroyed first, then ReleaseWorld.
         b2World* w = new b2World(b2Vec2(0.0f, -9.8f));
         rugo::Bridge bridge(w);
         groundBox(*w, 5.0f, 1.0f, b2Vec2(0.0f, -1.0f), 0.5f);
@@ -538,9 +555,10 @@ START_TEST(test_lifetime) {
         bridge.ReleaseWorld();
         ck_assert(bridge.GetWorld() == nullptr);
     }
-    {   // Attach/Detach inside a callback.
+    { // Attach/Detach inside a callback.
         b2World w(b2Vec2(0.0f, -9.8f));
-        LockedAttach l; // chained listeners must outlive the bridge (its destructor still forwards EndContact)
+        LockedAttach
+            l; // chained listeners must outlive the bridge (its destructor still forwards EndContact)
         rugo::Bridge bridge(&w);
         groundBox(w, 5.0f, 1.0f, b2Vec2(0.0f, -1.0f), 0.5f);
         b2Body* a = dynamicBody(w, b2Vec2(0, 0.3f));
@@ -703,8 +721,9 @@ START_TEST(test_memory_and_sharing) {
     ck_assert_int_eq(bridge.Attach(b, roughDef(disc)), RUGO_OK);
     ck_assert_ptr_eq(bridge.GetShape(a), bridge.GetShape(b));
     rugo::BodyMemory ma = bridge.GetBodyMemory(a), mb = bridge.GetBodyMemory(b);
-    std::printf("memory: per rough body %zu bytes bridge + %zu bytes Box2D (%d proxies); shared shape %zu bytes\n",
-                ma.bridgeBytes, ma.box2dBytes, ma.proxyCount, ma.sharedShapeBytes);
+    std::printf(
+        "memory: per rough body %zu bytes bridge + %zu bytes Box2D (%d proxies); shared shape %zu bytes\n",
+        ma.bridgeBytes, ma.box2dBytes, ma.proxyCount, ma.sharedShapeBytes);
     ck_assert_int_gt(static_cast<long>(ma.bridgeBytes), 0);
     ck_assert_int_gt(static_cast<long>(ma.box2dBytes), 0);
     ck_assert_int_eq(ma.proxyCount, bridge.GetProxyCount(a));
@@ -752,16 +771,20 @@ struct ManifoldChecker : public b2ContactListener {
         bool flip = false;
         if (pa && pb) {
             q.lod = 0;
-            ck_assert_int_eq(test_collide_shapes(ctx, bridge->GetShape(bA), tr(bA->GetTransform()), bridge->GetShape(bB),
-                                                 tr(bB->GetTransform()), &q, k, 64, &n, &st, nullptr), RUGO_OK);
+            ck_assert_int_eq(test_collide_shapes(ctx, bridge->GetShape(bA), tr(bA->GetTransform()),
+                                                 bridge->GetShape(bB), tr(bB->GetTransform()), &q, k, 64, &n,
+                                                 &st, nullptr),
+                             RUGO_OK);
         } else {
             const b2Body* rb = pa ? bA : bB;
             const b2Fixture* of = pa ? fb : fa;
             const b2CircleShape* cs = static_cast<const b2CircleShape*>(of->GetShape());
             b2Vec2 cw = b2Mul(of->GetBody()->GetTransform(), cs->m_p);
             q.lod = 0;
-            ck_assert_int_eq(test_collide_circle(ctx, bridge->GetShape(rb), tr(rb->GetTransform()), rugo_v2(cw.x, cw.y),
-                                                 cs->m_radius, &q, k, 64, &n, &st, nullptr), RUGO_OK);
+            ck_assert_int_eq(test_collide_circle(ctx, bridge->GetShape(rb), tr(rb->GetTransform()),
+                                                 rugo_v2(cw.x, cw.y), cs->m_radius, &q, k, 64, &n, &st,
+                                                 nullptr),
+                             RUGO_OK);
             flip = !pa;
         }
         // Point 0 is the deepest point owned by this proxy pair: find it among librugo's contacts.
@@ -770,8 +793,9 @@ struct ManifoldChecker : public b2ContactListener {
         for (int i = 0; i < n; ++i) {
             const double s = k[i].separation - k[i].tolerance_a - k[i].tolerance_b;
             rugo_vec2 nn = flip ? rugo_v2_scale(-1.0, k[i].normal) : k[i].normal;
-            const double e = std::fabs(s - static_cast<double>(wm.separations[0])) +
-                             std::hypot(nn.x - static_cast<double>(wm.normal.x), nn.y - static_cast<double>(wm.normal.y));
+            const double e =
+                std::fabs(s - static_cast<double>(wm.separations[0])) +
+                std::hypot(nn.x - static_cast<double>(wm.normal.x), nn.y - static_cast<double>(wm.normal.y));
             if (e < best) {
                 best = e;
                 bi = i;
@@ -780,8 +804,9 @@ struct ManifoldChecker : public b2ContactListener {
         ck_assert_int_ge(bi, 0);
         // The same point along the surface (tangential offset; along n the bands shift it).
         const rugo_vec2 pk = flip ? k[bi].point_a : k[bi].point_b;
-        const double tang = std::fabs((static_cast<double>(wm.points[0].x) - pk.x) * static_cast<double>(wm.normal.y) -
-                                      (static_cast<double>(wm.points[0].y) - pk.y) * static_cast<double>(wm.normal.x));
+        const double tang =
+            std::fabs((static_cast<double>(wm.points[0].x) - pk.x) * static_cast<double>(wm.normal.y) -
+                      (static_cast<double>(wm.points[0].y) - pk.y) * static_cast<double>(wm.normal.x));
         if (best > 1e-3 || tang > 1e-3) {
             // Led by a point the patch builder added (a flat face's end, the band-adjusted deepest
             // point beside a contact) or by the mean normal of merged regions (docs/box2d.md, "Which
@@ -791,7 +816,8 @@ struct ManifoldChecker : public b2ContactListener {
             double angle = 180.0;
             for (int i = 0; i < n; ++i) {
                 const rugo_vec2 nn = flip ? rugo_v2_scale(-1.0, k[i].normal) : k[i].normal;
-                const double dot = nn.x * static_cast<double>(wm.normal.x) + nn.y * static_cast<double>(wm.normal.y);
+                const double dot =
+                    nn.x * static_cast<double>(wm.normal.x) + nn.y * static_cast<double>(wm.normal.y);
                 angle = std::min(angle, std::acos(std::max(-1.0, std::min(1.0, dot))) * 180.0 / kPi);
             }
             maxCompletedAngle = std::max(maxCompletedAngle, angle);
@@ -800,7 +826,8 @@ struct ManifoldChecker : public b2ContactListener {
         const double s0 = k[bi].separation - k[bi].tolerance_a - k[bi].tolerance_b;
         rugo_vec2 n0 = flip ? rugo_v2_scale(-1.0, k[bi].normal) : k[bi].normal;
         maxSepErr = std::max(maxSepErr, std::fabs(s0 - static_cast<double>(wm.separations[0])));
-        maxNormalErr = std::max(maxNormalErr, std::hypot(n0.x - static_cast<double>(wm.normal.x), n0.y - static_cast<double>(wm.normal.y)));
+        maxNormalErr = std::max(maxNormalErr, std::hypot(n0.x - static_cast<double>(wm.normal.x),
+                                                         n0.y - static_cast<double>(wm.normal.y)));
         speculativeSeen += s0 > 0.0;
         ++checked;
         for (int i = 0; i < m->pointCount; ++i) {
@@ -849,11 +876,13 @@ START_TEST(test_manifold_encoding) {
         ck_assert_int_eq(bridge.Attach(top, roughDef(s, 1.0, 0)), RUGO_OK);
         for (int i = 0; i < 90; ++i)
             bridge.Step(1.0f / 60.0f, 8, 3);
-        std::printf("manifold %s: %d checked against librugo (and %d led by a completed point), max |ds| %.3g m, max "
-                    "|dn| %.3g; %d points warm-started, %d ids persisted; completed points' normals within %.3g deg of a "
-                    "contact's\n",
-                    pair == 0 ? "rough-circle" : "rough-rough", chk.checked, chk.completed, chk.maxSepErr, chk.maxNormalErr,
-                    chk.warm, chk.persisted, chk.maxCompletedAngle);
+        std::printf(
+            "manifold %s: %d checked against librugo (and %d led by a completed point), max |ds| %.3g m, max "
+            "|dn| %.3g; %d points warm-started, %d ids persisted; completed points' normals within %.3g deg "
+            "of a "
+            "contact's\n",
+            pair == 0 ? "rough-circle" : "rough-rough", chk.checked, chk.completed, chk.maxSepErr,
+            chk.maxNormalErr, chk.warm, chk.persisted, chk.maxCompletedAngle);
         ck_assert(chk.completed <= chk.checked);
         ck_assert_int_gt(chk.checked, 10);
         // Float precision of Box2D's manifold (positions ~1 m: 1e-7 relative, a few roundings).
@@ -882,7 +911,8 @@ START_TEST(test_queries) {
     rugo::RayHit hit;
     ck_assert(bridge.RayCast(b2Vec2(0.0f, 0.0f), b2Vec2(10.0f, 0.0f), &hit));
     ck_assert_ptr_eq(hit.body, a);
-    ck_assert(std::fabs(hit.point.x - 1.5f) < 1e-4f); // the curve's radius is 0.5 at the joints (~1e-4 between)
+    ck_assert(std::fabs(hit.point.x - 1.5f) <
+              1e-4f); // the curve's radius is 0.5 at the joints (~1e-4 between)
     ck_assert(hit.normal.x < -0.999f);
     ck_assert(bridge.RayCast(b2Vec2(2.0f, 0.0f), b2Vec2(10.0f, 0.0f), &hit)); // from inside the proxies
     ck_assert_ptr_eq(hit.body, a);
@@ -896,17 +926,22 @@ START_TEST(test_queries) {
     b2AABB box;
     box.lowerBound = b2Vec2(2.37f, 0.37f); // a corner region of the boxes the curve does not reach
     box.upperBound = b2Vec2(2.45f, 0.45f);
-    bridge.QueryAABB(box, [&](b2Body*) { ++found; return true; });
+    bridge.QueryAABB(box, [&](b2Body*) {
+        ++found;
+        return true;
+    });
     ck_assert_int_eq(found, 0);
     box.lowerBound = b2Vec2(1.0f, -1.0f);
     box.upperBound = b2Vec2(6.0f, 1.0f);
     found = 0;
-    bridge.QueryAABB(box, [&](b2Body*) { ++found; return true; });
+    bridge.QueryAABB(box, [&](b2Body*) {
+        ++found;
+        return true;
+    });
     ck_assert_int_eq(found, 2);
     rugo_shape_destroy(disc);
 }
 END_TEST
-
 
 // ---- one region, one normal (regression: rough body vs circle overlap) ----------------------------
 // A rough star and a dynamic circle start 0.1 m into each other and are pushed together. librugo
@@ -938,8 +973,8 @@ struct RegionNormalChecker : public b2ContactListener {
         t.q.c = xr.q.c / l;
         t.q.s = xr.q.s / l;
         const b2Vec2 cc = circle->GetWorldCenter();
-        ck_assert_int_eq(test_collide_circle(ctx, bridge->GetShape(rough), t, rugo_v2(cc.x, cc.y), radius, nullptr, k, 16, &n,
-                                             &st, nullptr),
+        ck_assert_int_eq(test_collide_circle(ctx, bridge->GetShape(rough), t, rugo_v2(cc.x, cc.y), radius,
+                                             nullptr, k, 16, &n, &st, nullptr),
                          RUGO_OK);
         if (n == 0) return; // a speculative point (checked by the other tests)
         int d = 0;
@@ -948,7 +983,8 @@ struct RegionNormalChecker : public b2ContactListener {
         b2WorldManifold wm;
         c->GetWorldManifold(&wm);
         const double sgn = bA == rough ? 1.0 : -1.0; // librugo: rough -> circle
-        const double dot = sgn * (k[d].normal.x * static_cast<double>(wm.normal.x) + k[d].normal.y * static_cast<double>(wm.normal.y));
+        const double dot = sgn * (k[d].normal.x * static_cast<double>(wm.normal.x) +
+                                  k[d].normal.y * static_cast<double>(wm.normal.y));
         maxAngle = std::max(maxAngle, std::acos(std::max(-1.0, std::min(1.0, dot))) * 180.0 / kPi);
         ++manifolds;
     }
@@ -972,7 +1008,9 @@ START_TEST(test_circle_overlap_one_normal) {
         rugo_contact k[16];
         int n = 0;
         rugo_contact_state st;
-        ck_assert_int_eq(test_collide_circle(ctx, s, t, rugo_v2(cc.x, cc.y), R, nullptr, k, 16, &n, &st, nullptr), RUGO_OK);
+        ck_assert_int_eq(
+            test_collide_circle(ctx, s, t, rugo_v2(cc.x, cc.y), R, nullptr, k, 16, &n, &st, nullptr),
+            RUGO_OK);
         double d = 0.0;
         for (int i = 0; i < n; ++i)
             d = std::max(d, -(k[i].separation - k[i].tolerance_a - k[i].tolerance_b));
@@ -1023,23 +1061,25 @@ START_TEST(test_circle_overlap_one_normal) {
         ck_assert(start > 0.09);
         ++cases;
     }
-    std::printf("circle overlap: %d directions from 0.1 m deep; largest growth in a step %.4f m, largest depth after 2 s "
+    std::printf("circle overlap: %d directions from 0.1 m deep; largest growth in a step %.4f m, largest "
+                "depth after 2 s "
                 "%.4f m; submitted normals within %.2f deg of librugo's region normal\n",
                 cases, worstGrowth, worstEnd, worstAngle);
-    ck_assert(worstAngle <= 10.0);         // one region, one normal (joints take the region's)
-    ck_assert(worstGrowth <= b2_linearSlop); // the overlap never grows
+    ck_assert(worstAngle <= 10.0);              // one region, one normal (joints take the region's)
+    ck_assert(worstGrowth <= b2_linearSlop);    // the overlap never grows
     ck_assert(worstEnd <= 2.0 * b2_linearSlop); // and resolves to Box2D's resting penetration
     rugo_collide_context_destroy(ctx);
     rugo_shape_destroy(s);
 }
 END_TEST
 
-
 // ---- sensors, kinematic bodies, chains, debug draw ------------------------------------------------
 namespace {
 struct SensorCounter : public b2ContactListener {
     int begin = 0, end = 0, preSensor = 0;
-    static bool sensor(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
+    static bool sensor(const b2Contact* c) {
+        return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor();
+    }
     void BeginContact(b2Contact* c) override { begin += sensor(c); }
     void EndContact(b2Contact* c) override { end += sensor(c); }
     void PreSolve(b2Contact* c, const b2Manifold*) override { preSensor += sensor(c); }
@@ -1061,7 +1101,8 @@ START_TEST(test_sensor) {
     rugo::RoughBodyDef rd = roughDef(disc, 1.0, 0);
     rd.isSensor = true;
     ck_assert_int_eq(bridge.Attach(sensorBody, rd), RUGO_OK);
-    for (b2Fixture* f = sensorBody->GetFixtureList(); f; f = f->GetNext()) ck_assert(f->IsSensor());
+    for (b2Fixture* f = sensorBody->GetFixtureList(); f; f = f->GetNext())
+        ck_assert(f->IsSensor());
     b2Body* box = dynamicBody(w, b2Vec2(0.0f, 3.0f));
     b2PolygonShape p;
     p.SetAsBox(0.2f, 0.2f);
@@ -1069,8 +1110,8 @@ START_TEST(test_sensor) {
     const long pre0 = bridge.GetStats().preSolves;
     for (int i = 0; i < 120; ++i)
         bridge.Step(1.0f / 60.0f, 8, 3);
-    std::printf("sensor: begin %d end %d, presolves on sensors %d, box at y %.3f\n", counter.begin, counter.end,
-                counter.preSensor, static_cast<double>(box->GetPosition().y));
+    std::printf("sensor: begin %d end %d, presolves on sensors %d, box at y %.3f\n", counter.begin,
+                counter.end, counter.preSensor, static_cast<double>(box->GetPosition().y));
     ck_assert_int_ge(counter.begin, 1);
     ck_assert_int_eq(counter.begin, counter.end); // entered and left
     ck_assert_int_eq(counter.preSensor, 0);
@@ -1104,12 +1145,13 @@ START_TEST(test_kinematic_platform) {
         bridge.Step(1.0f / 60.0f, 8, 3);
         worstDev = std::max(worstDev, std::fabs(rider->GetPosition().y - platform->GetPosition().y - gap0));
     }
-    std::printf("kinematic platform: rose %.3f m, rider gap %.4f m, largest change of the gap %.4f m, rider x %.4f\n",
-                static_cast<double>(platform->GetPosition().y), static_cast<double>(gap0), static_cast<double>(worstDev),
-                static_cast<double>(rider->GetPosition().x));
+    std::printf(
+        "kinematic platform: rose %.3f m, rider gap %.4f m, largest change of the gap %.4f m, rider x %.4f\n",
+        static_cast<double>(platform->GetPosition().y), static_cast<double>(gap0),
+        static_cast<double>(worstDev), static_cast<double>(rider->GetPosition().x));
     ck_assert(std::fabs(platform->GetPosition().y - 1.0f) < 0.01f);
-    ck_assert(std::fabs(gap0 - 0.45f) < 0.01f);  // resting on the plate: half heights, within the bands
-    ck_assert(worstDev < 0.01f);                  // rides along: 1 cm (Box2D's slop is 5 mm)
+    ck_assert(std::fabs(gap0 - 0.45f) < 0.01f); // resting on the plate: half heights, within the bands
+    ck_assert(worstDev < 0.01f);                // rides along: 1 cm (Box2D's slop is 5 mm)
     ck_assert(std::fabs(rider->GetPosition().x) < 0.01f);
     rugo_shape_destroy(plate);
     rugo_shape_destroy(disc);
@@ -1133,7 +1175,8 @@ static void slideOnFloor(bool chain, double* speedLoss, double* maxVy, double* m
     b2EdgeShape e;
     if (chain) {
         std::vector<b2Vec2> v;
-        for (int i = 0; i <= 40; ++i) v.push_back(b2Vec2(8.0f - 0.25f * static_cast<float>(i), 0.0f));
+        for (int i = 0; i <= 40; ++i)
+            v.push_back(b2Vec2(8.0f - 0.25f * static_cast<float>(i), 0.0f));
         c.CreateChain(v.data(), static_cast<int32>(v.size()), b2Vec2(8.25f, 0.0f), b2Vec2(-2.25f, 0.0f));
         fd.shape = &c;
     } else {
@@ -1192,19 +1235,23 @@ START_TEST(test_chain_one_sided_no_ghost_bumps) {
     double lossEdge, vyEdge, omEdge, lossChain, vyChain, omChain;
     slideOnFloor(false, &lossEdge, &vyEdge, &omEdge);
     slideOnFloor(true, &lossChain, &vyChain, &omChain);
-    std::printf("sliding over one edge: speed loss %.2e, largest |vy| %.2e m/s, |w| %.2e rad/s; over a 40-edge chain: "
-                "%.2e, %.2e m/s, %.2e rad/s\n", lossEdge, vyEdge, omEdge, lossChain, vyChain, omChain);
+    std::printf("sliding over one edge: speed loss %.2e, largest |vy| %.2e m/s, |w| %.2e rad/s; over a "
+                "40-edge chain: "
+                "%.2e, %.2e m/s, %.2e rad/s\n",
+                lossEdge, vyEdge, omEdge, lossChain, vyChain, omChain);
     std::fflush(stdout);
     ck_assert(std::fabs(lossChain) < 0.005 && std::fabs(lossEdge) < 0.005);
     ck_assert(vyChain < 0.02 && omChain < 0.05);
     float boxUp, roughUp, boxDown, roughDown;
     throughChain(true, &boxUp, &roughUp);
     throughChain(false, &boxDown, &roughDown);
-    std::printf("one-sided chain: thrown up from below, highest box %.3f m, rough disc %.3f m; dropped from above, "
-                "box rests at %.3f m, rough disc at %.3f m\n", static_cast<double>(boxUp), static_cast<double>(roughUp),
-                static_cast<double>(boxDown), static_cast<double>(roughDown));
-    ck_assert(boxUp > 1.0f && roughUp > 1.0f);           // both passed through the back of the chain
-    ck_assert(std::fabs(boxDown - 0.2f) < 0.02f);       // both landed on its front
+    std::printf(
+        "one-sided chain: thrown up from below, highest box %.3f m, rough disc %.3f m; dropped from above, "
+        "box rests at %.3f m, rough disc at %.3f m\n",
+        static_cast<double>(boxUp), static_cast<double>(roughUp), static_cast<double>(boxDown),
+        static_cast<double>(roughDown));
+    ck_assert(boxUp > 1.0f && roughUp > 1.0f);    // both passed through the back of the chain
+    ck_assert(std::fabs(boxDown - 0.2f) < 0.02f); // both landed on its front
     ck_assert(std::fabs(roughDown - 0.2f) < 0.02f);
 }
 END_TEST
@@ -1239,7 +1286,8 @@ START_TEST(test_draw) {
     const int n = 32;
     const double joint = (4.0 + 2.0 * std::cos(2.0 * kPi / n)) / 6.0;
     std::vector<rugo_vec2> pts;
-    for (int k = 0; k < n; ++k) pts.push_back(rugo_v2(R / joint * std::cos(2 * kPi * k / n), R / joint * std::sin(2 * kPi * k / n)));
+    for (int k = 0; k < n; ++k)
+        pts.push_back(rugo_v2(R / joint * std::cos(2 * kPi * k / n), R / joint * std::sin(2 * kPi * k / n)));
     std::vector<double> tol(n, lam);
     rugo_shape* disc = makeShape(pts, &tol, 0.5, 0.0);
     b2World w(b2Vec2(0.0f, -9.8f));
@@ -1253,8 +1301,10 @@ START_TEST(test_draw) {
     bridge.Draw(&d, rugo::kDrawCurve);
     ck_assert_int_eq(d.segments, 8 * n);
     double worst = 0.0;
-    for (const b2Vec2& p : d.segmentEnds) worst = std::max(worst, std::fabs(static_cast<double>((p - at).Length()) - R));
-    ck_assert_msg(worst < 2e-3, "curve drawn %g from the circle", worst); // the spline's radius varies ~1e-3 between joints
+    for (const b2Vec2& p : d.segmentEnds)
+        worst = std::max(worst, std::fabs(static_cast<double>((p - at).Length()) - R));
+    ck_assert_msg(worst < 2e-3, "curve drawn %g from the circle",
+                  worst); // the spline's radius varies ~1e-3 between joints
     RecordingDraw band;
     bridge.Draw(&band, rugo::kDrawBand);
     ck_assert_int_eq(band.segments, 2 * 8 * n);
@@ -1286,19 +1336,20 @@ START_TEST(test_draw) {
     RecordingDraw none;
     bridge.Draw(&none, rugo::kDrawContacts);
     ck_assert_int_eq(none.points, 0); // no step yet
-    for (int i = 0; i < 20; ++i) // lands after ~0.2 s (and would sleep, with no contacts to draw, after 0.5 s more)
+    for (int i = 0; i < 20;
+         ++i) // lands after ~0.2 s (and would sleep, with no contacts to draw, after 0.5 s more)
         bridge.Step(1.0f / 60.0f, 8, 3);
     RecordingDraw contacts;
     bridge.Draw(&contacts, rugo::kDrawContacts);
-    std::printf("draw: %d curve segments, %d band segments, %d proxy boxes, %d contact points after landing\n", d.segments,
-                band.segments, boxes.polygons, contacts.points);
+    std::printf(
+        "draw: %d curve segments, %d band segments, %d proxy boxes, %d contact points after landing\n",
+        d.segments, band.segments, boxes.polygons, contacts.points);
     ck_assert_int_ge(contacts.points, 1);
     ck_assert_int_eq(contacts.segments, contacts.points); // one normal per point
-    bridge.Draw(nullptr, rugo::kDrawCurve);             // no-op, no crash
+    bridge.Draw(nullptr, rugo::kDrawCurve);               // no-op, no crash
     rugo_shape_destroy(disc);
 }
 END_TEST
-
 
 // ---- misuse from inside the bridge's own callbacks (run under the sanitizers by scripts/test.sh) -----
 namespace {
@@ -1345,7 +1396,7 @@ struct EndContactMisuse : public b2ContactListener {
 
 START_TEST(test_misuse_in_callbacks) {
     rugo_shape* disc = makeDisc(32, 0.3, 0.5, 0.0);
-    {   // QueryAABB: the callback destroys the body it is given, a rough body not yet reported, and
+    { // QueryAABB: the callback destroys the body it is given, a rough body not yet reported, and
         // detaches a third; destroyed bodies are not reported afterwards.
         b2World w(b2Vec2(0.0f, -9.8f));
         rugo::Bridge bridge(&w);
@@ -1389,10 +1440,11 @@ START_TEST(test_misuse_in_callbacks) {
         ck_assert_int_ge(static_cast<int>(seen.size()), 2);
         ck_assert_int_le(static_cast<int>(seen.size()), 5);
         for (size_t i = 1; i < seen.size(); ++i)
-            ck_assert(std::find(bodies.begin(), bodies.end(), seen[i]) != bodies.end()); // never a destroyed one
+            ck_assert(std::find(bodies.begin(), bodies.end(), seen[i]) !=
+                      bodies.end()); // never a destroyed one
         ck_assert_int_eq(w.GetBodyCount(), 4);
     }
-    {   // Draw: a b2Draw call destroys a rough body and detaches another while the bridge draws.
+    { // Draw: a b2Draw call destroys a rough body and detaches another while the bridge draws.
         b2World w(b2Vec2(0.0f, -9.8f));
         rugo::Bridge bridge(&w);
         b2Body* a = dynamicBody(w, b2Vec2(0.0f, 0.0f));
@@ -1410,9 +1462,10 @@ START_TEST(test_misuse_in_callbacks) {
         ck_assert(!bridge.IsRough(c));
         RecordingDraw after;
         bridge.Draw(&after, rugo::kDrawCurve);
-        ck_assert_int_eq(after.segments, 8 * (1 << bridge.GetLevel(a))); // only a is left: 8 per segment of its level
+        ck_assert_int_eq(after.segments,
+                         8 * (1 << bridge.GetLevel(a))); // only a is left: 8 per segment of its level
     }
-    {   // EndContact during Detach tries to detach another body: a clear status, nothing corrupted.
+    { // EndContact during Detach tries to detach another body: a clear status, nothing corrupted.
         b2World w(b2Vec2(0.0f, -9.8f));
         EndContactMisuse l; // outlives the bridge
         w.SetContactListener(&l);
@@ -1437,7 +1490,7 @@ START_TEST(test_misuse_in_callbacks) {
             for (int i = 0; i < 10; ++i)
                 bridge.Step(1.0f / 60.0f, 8, 3);
             l.bridge = nullptr;
-        }   // the destructor detaches rough[2] and rough[3] (EndContacts forwarded)
+        } // the destructor detaches rough[2] and rough[3] (EndContacts forwarded)
         ck_assert_int_gt(l.ends, 0);
         ck_assert(rough[2]->GetFixtureList() == nullptr && rough[3]->GetFixtureList() == nullptr);
         w.Step(1.0f / 60.0f, 8, 3);

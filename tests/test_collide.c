@@ -2351,7 +2351,8 @@ static int ref_tree_pairs(const rugo_mobb_tree* ta, int stop_a, const rugo_mobb_
         const rugo_obb bb =
             rugo_obb_transform(rel, t.lb < 0 ? rugo_mobb_tree_root(tb) : rugo_mobb_tree_node(tb, t.lb, t.kb));
         if (!rugo_obb_overlap(a, &bb)) continue;
-        const int ha = t.la < 0 ? stop_a - ja + 1 : stop_a - t.la, hb = t.lb < 0 ? stop_b - jb + 1 : stop_b - t.lb;
+        const int ha = t.la < 0 ? stop_a - ja + 1 : stop_a - t.la,
+                  hb = t.lb < 0 ? stop_b - jb + 1 : stop_b - t.lb;
         if (ha == 0 && hb == 0) {
             if (n < cap) out[n] = (rugo_node_pair){t.ka, t.kb};
             ++n;
@@ -2440,7 +2441,8 @@ START_TEST(test_context_reserve) {
     ck_assert_int_eq(rugo_collide_context_create(&aw, &cw), RUGO_OK);
     ck_assert_int_eq(rugo_collide_context_create(&ao, &co), RUGO_OK);
     enum { CONTACTS = 16 };
-    for (int k = 0; k < N_SHAPES; ++k) ck_assert_int_eq(rugo_collide_context_reserve(cw, g_shapes[k].s, CONTACTS), RUGO_OK);
+    for (int k = 0; k < N_SHAPES; ++k)
+        ck_assert_int_eq(rugo_collide_context_reserve(cw, g_shapes[k].s, CONTACTS), RUGO_OK);
     const long reserved = (1L << 40) - with.budget, base_without = (1L << 40) - without.budget;
     test_rng r = test_rng_seed(2026);
     int most = 0, touching = 0;
@@ -2455,10 +2457,12 @@ START_TEST(test_context_reserve) {
         int n = 0;
         rugo_contact_state state;
         rugo_query_stats st;
-        ck_assert_int_eq(test_collide_shapes(cw, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, &st), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(cw, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, &st),
+                         RUGO_OK);
         most = st.contacts_found > most ? st.contacts_found : most;
         touching += n > 0;
-        ck_assert_int_eq(test_collide_shapes(co, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, NULL), RUGO_OK);
+        ck_assert_int_eq(test_collide_shapes(co, A->s, xa, B->s, xb, &q, cs, CONTACTS, &n, &state, NULL),
+                         RUGO_OK);
     }
     const long after_reserve = (1L << 40) - with.budget - reserved;
     const long grown = (1L << 40) - without.budget - base_without;
@@ -2498,7 +2502,8 @@ START_TEST(test_context_reserve) {
         int cnt = 0;
         long tests = 0;
         ck_assert_int_eq(rugo_tree_pairs(tr, rugo_identity_transform(), fine, tr,
-                                         rugo_make_transform(0.01, 0.0, 0.1), fine, cb, NULL, 0, &cnt, &tests),
+                                         rugo_make_transform(0.01, 0.0, 0.1), fine, cb, NULL, 0, &cnt,
+                                         &tests),
                          RUGO_OK);
         printf("context reserve, 512 segments: %d segment pairs, %ld allocations after the reserve\n", cnt,
                (1L << 40) - bb.budget - res);
@@ -2772,14 +2777,16 @@ START_TEST(test_bad_inputs) {
         /* a primitive placed by a transform: the same contacts as its points moved to the world */
         const rugo_transform xb = rugo_make_transform(0.3, -0.2, 0.7);
         rugo_primitive moved = poly;
-        for (int i = 0; i < 4; ++i) moved.points[i] = rugo_transform_point(xb, poly.points[i]);
+        for (int i = 0; i < 4; ++i)
+            moved.points[i] = rugo_transform_point(xb, poly.points[i]);
         rugo_contact c1[4], c2[4];
         rugo_contact_output o1 = rugo_contact_output_of(c1, 4), o2 = rugo_contact_output_of(c2, 4);
         ck_assert_int_eq(rugo_collide_primitive(a, x, &poly, xb, &q, ctx, &o1), RUGO_OK);
         ck_assert_int_eq(rugo_collide_primitive(a, x, &moved, x, &q, ctx, &o2), RUGO_OK);
         ck_assert_int_eq(o1.state, o2.state);
         ck_assert_int_eq(o1.count, o2.count);
-        for (int i = 0; i < o1.count; ++i) ck_assert_near(c1[i].separation, c2[i].separation, 1e-12);
+        for (int i = 0; i < o1.count; ++i)
+            ck_assert_near(c1[i].separation, c2[i].separation, 1e-12);
     }
     /* two points are a segment (a primitive of any count 1..8), not an error */
     ck_assert_int_eq(test_collide_polygon(ctx, a, x, sq, 2, 0.0, &q, c, 4, &n, &st, NULL), RUGO_OK);
@@ -3111,7 +3118,6 @@ START_TEST(test_shape_bad_inputs_and_leaks) {
 }
 END_TEST
 
-
 /* ---- query margin (speculative contacts, used by the Box2D bridge) ------------------------------ */
 
 /* margin m: every local minimum of the distance within λ_A + λ_B + m, facing, is reported (against the
@@ -3186,7 +3192,8 @@ START_TEST(test_query_margin) {
             spurious += !found;
         }
     }
-    printf("margin: %ld minima required by the reference, %ld missed, %ld spurious; %ld contacts beyond the band\n",
+    printf("margin: %ld minima required by the reference, %ld missed, %ld spurious; %ld contacts beyond the "
+           "band\n",
            required, missed, spurious, extra);
     ck_assert_int_eq(missed, 0);
     ck_assert_int_eq(spurious, 0);
@@ -3200,8 +3207,8 @@ START_TEST(test_query_margin) {
                                          rugo_make_transform(5, 0, 0), &q, c0, CAP, &n, &st, NULL),
                      RUGO_ERR_BAD_ARGUMENT);
     q.margin = NAN;
-    ck_assert_int_eq(test_collide_circle(ctx, g_shapes[0].s, rugo_identity_transform(), rugo_v2(5, 0), 1.0, &q, c0,
-                                         CAP, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_circle(ctx, g_shapes[0].s, rugo_identity_transform(), rugo_v2(5, 0), 1.0,
+                                         &q, c0, CAP, &n, &st, NULL),
                      RUGO_ERR_NOT_FINITE);
     /* Primitives: a circle just beyond the band is reported with the margin only. */
     const tshape* A = &g_shapes[0];
@@ -3220,7 +3227,6 @@ START_TEST(test_query_margin) {
     rugo_collide_context_destroy(ctx);
 }
 END_TEST
-
 
 /* ---- containment through the tree (collide_levels.c, "Containment through the tree") ------------ */
 
@@ -3242,19 +3248,21 @@ static void contain_check(const rugo_shape* s, int level, rugo_contour c, rugo_v
     T->inside += all != 0;
     if ((tree != 0) != (all != 0) || (pub != 0) != (all != 0)) {
         if (T->mismatches < 5)
-            printf("containment mismatch: level %d, p = (%.17g, %.17g): tree %d, public %d, all segments %d\n",
-                   level, p.x, p.y, tree, pub, all);
+            printf(
+                "containment mismatch: level %d, p = (%.17g, %.17g): tree %d, public %d, all segments %d\n",
+                level, p.x, p.y, tree, pub, all);
         T->mismatches++;
     }
     const rugo_curve_point ref = rugo_contour_closest_point(c, p);
     rugo_curve_point cp;
     ck_assert_int_eq(rugo_shape_closest_point(s, level, p, &cp), RUGO_OK);
-    if (cp.segment != ref.segment || cp.t != ref.t || cp.point.x != ref.point.x || cp.point.y != ref.point.y ||
-        cp.distance != ref.distance) {
+    if (cp.segment != ref.segment || cp.t != ref.t || cp.point.x != ref.point.x ||
+        cp.point.y != ref.point.y || cp.distance != ref.distance) {
         if (T->closest_mismatches < 5)
-            printf("closest point mismatch: level %d, p = (%.17g, %.17g): tree (%d, %.17g, %.17g), all segments "
-                   "(%d, %.17g, %.17g)\n",
-                   level, p.x, p.y, cp.segment, cp.t, cp.distance, ref.segment, ref.t, ref.distance);
+            printf(
+                "closest point mismatch: level %d, p = (%.17g, %.17g): tree (%d, %.17g, %.17g), all segments "
+                "(%d, %.17g, %.17g)\n",
+                level, p.x, p.y, cp.segment, cp.t, cp.distance, ref.segment, ref.t, ref.distance);
         T->closest_mismatches++;
     }
 }
@@ -3272,9 +3280,10 @@ static void contain_stress(const rugo_shape* s, test_rng* r, contain_tally* T) {
         rugo_contour_bounds(c, &lo, &hi);
         const double w = hi.x - lo.x, h = hi.y - lo.y;
         for (int i = 0; i < 200; ++i)
-            contain_check(s, L,
-                          c, rugo_v2(test_rng_uniform(r, lo.x - 0.2 * w, hi.x + 0.2 * w),
-                                     test_rng_uniform(r, lo.y - 0.2 * h, hi.y + 0.2 * h)), T);
+            contain_check(s, L, c,
+                          rugo_v2(test_rng_uniform(r, lo.x - 0.2 * w, hi.x + 0.2 * w),
+                                  test_rng_uniform(r, lo.y - 0.2 * h, hi.y + 0.2 * h)),
+                          T);
         for (int k = 0; k < c.count; ++k) {
             rugo_vec2 b[4];
             rugo_contour_bezier(c, k, b);
@@ -3463,7 +3472,8 @@ START_TEST(test_work_against_segments) {
             ck_assert_int_eq(in != 0, rugo_contour_contains(ca, pt) != 0);
             max_visited = visited > max_visited ? visited : max_visited;
         }
-        printf("one contact, %d segments: %ld box tests, %ld segment pairs\n", n, qs.box_tests, qs.segment_pairs);
+        printf("one contact, %d segments: %ld box tests, %ld segment pairs\n", n, qs.box_tests,
+               qs.segment_pairs);
         rugo_shape_destroy(a);
         rugo_shape_destroy(b);
     }

@@ -43,9 +43,9 @@ static rugo_transform compose(rugo_transform m, rugo_transform x) {
     return r;
 }
 
-static rugo_status query(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
-                         rugo_transform xb, const rugo_contact_query* q, rugo_contact_cache* cache,
-                         rugo_contact* c, int capacity, rugo_contact_output* out) {
+static rugo_status query(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                         const rugo_shape* b, rugo_transform xb, const rugo_contact_query* q,
+                         rugo_contact_cache* cache, rugo_contact* c, int capacity, rugo_contact_output* out) {
     *out = rugo_contact_output_of(c, capacity);
     out->cache = cache;
     return rugo_collide_shapes(a, xa, b, xb, q, ctx, out);
@@ -102,8 +102,8 @@ static void assert_within(const rugo_contact_output* fresh, const rugo_contact_o
                     best = ds;
                 }
             }
-            ck_assert_msg(best <= delta, "separation %g off by %g > delta %g", x->contacts[i].separation, best,
-                          delta);
+            ck_assert_msg(best <= delta, "separation %g off by %g > delta %g", x->contacts[i].separation,
+                          best, delta);
             ck_assert_msg(best_point <= 0.2, "no contact near a point (%g away)", best_point);
         }
     }
@@ -258,7 +258,7 @@ START_TEST(test_partial_answers_are_not_kept) {
     ck_assert_int_eq(o.stats.reused, 1);
     ck_assert_int_eq(o.count, n);
     /* a search cut short by the caller's room (or asking for the state alone) is not kept */
-    for (int room = 0; room < n; room += n - 1 > 0 ? n - 1 : 1) {
+    for (int room = 0; room<n; room += n - 1> 0 ? n - 1 : 1) {
         rugo_contact_cache_clear(cache);
         ck_assert_int_eq(query(f.ctx, f.a, f.xa, f.b, f.xb, &f.q, cache, room ? c : NULL, room, &o), RUGO_OK);
         ck_assert_int_eq(o.stats.reused, 0);
@@ -321,7 +321,8 @@ START_TEST(test_bad_input_and_no_allocation_per_query) {
     ck_assert_int_eq(rugo_contact_cache_create(NULL, 4, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_contact_cache_create(NULL, -1, &cache), RUGO_ERR_BAD_ARGUMENT);
     ck_assert_ptr_null(cache);
-    ck_assert_int_eq(rugo_contact_cache_create(NULL, RUGO_MAX_CONTROL_POINTS + 1, &cache), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_contact_cache_create(NULL, RUGO_MAX_CONTROL_POINTS + 1, &cache),
+                     RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_contact_cache_reserve(NULL, 4), RUGO_ERR_NULL_ARGUMENT);
     rugo_contact_cache_clear(NULL);
     rugo_contact_cache_destroy(NULL);

@@ -33,8 +33,9 @@ static double v2_dist(rugo_vec2 a, rugo_vec2 b) { return hypot(a.x - b.x, a.y - 
  * segment 1 (points 0..3) straight and evenly spaced, segment 4 (points 3..6) parabolic (v = 0),
  * segment 8 (points 7..10) a point, the rest cubic. Segment 0 ends tangent to the line y = -1. */
 #define DEG_N 13
-static const rugo_vec2 DEG_POINTS[DEG_N] = {{-2, -1}, {-1, -1}, {0, -1}, {1, -1}, {2, -0.5}, {2.5, 0.5}, {2.5, 2},
-                                            {0, 3},   {0, 3},   {0, 3},  {0, 3},  {-2, 2},   {-2.5, 0.5}};
+static const rugo_vec2 DEG_POINTS[DEG_N] = {{-2, -1},   {-1, -1}, {0, -1},    {1, -1}, {2, -0.5},
+                                            {2.5, 0.5}, {2.5, 2}, {0, 3},     {0, 3},  {0, 3},
+                                            {0, 3},     {-2, 2},  {-2.5, 0.5}};
 enum { DEG_STRAIGHT = 1, DEG_PARABOLIC = 4, DEG_POINT = 8, DEG_CUBIC = 11 };
 
 /* A seeded random star: n points, random centre and radius; bumpiness 0.3 keeps it simple. */
@@ -51,7 +52,8 @@ static void star(uint64_t seed, int n, rugo_vec2* out, rugo_vec2* centre, double
 static rugo_vec2* dense_polygon(rugo_contour c, int m) {
     rugo_vec2* v = vec_alloc(c.count * m);
     for (int j = 0; j < c.count; ++j)
-        for (int i = 0; i < m; ++i) v[j * m + i] = rugo_contour_point(c, j, (double)i / m);
+        for (int i = 0; i < m; ++i)
+            v[j * m + i] = rugo_contour_point(c, j, (double)i / m);
     return v;
 }
 
@@ -74,10 +76,12 @@ static int polygon_winding(const rugo_vec2* v, int n, rugo_vec2 p) {
 
 static void poly_from_roots(const double* r, int k, double lead, double* a) {
     /* a = lead * prod (t - r_i), ascending powers */
-    for (int i = 0; i <= RUGO__POLY_MAX_DEGREE; ++i) a[i] = 0.0;
+    for (int i = 0; i <= RUGO__POLY_MAX_DEGREE; ++i)
+        a[i] = 0.0;
     a[0] = lead;
     for (int i = 0; i < k; ++i) {
-        for (int d = i + 1; d >= 1; --d) a[d] = a[d - 1] - r[i] * a[d];
+        for (int d = i + 1; d >= 1; --d)
+            a[d] = a[d - 1] - r[i] * a[d];
         a[0] = -r[i] * a[0];
     }
 }
@@ -88,7 +92,8 @@ START_TEST(poly_simple_roots) {
         poly_from_roots(r, k, 1.0, a);
         int n = rugo__poly_roots(a, k, 0.0, 1.0, 0.0, out);
         ck_assert_int_eq(n, k);
-        for (int i = 0; i < k; ++i) ck_assert_near(out[i], r[i], 1e-13);
+        for (int i = 0; i < k; ++i)
+            ck_assert_near(out[i], r[i], 1e-13);
     }
     /* Only the roots inside the interval, and roots exactly at its ends. */
     poly_from_roots(r, 5, -3.0, a);
@@ -135,7 +140,8 @@ START_TEST(poly_degenerate) {
     n = rugo__poly_roots(a, 3, 0.0, 1.0, 0.0, out);
     /* round-off may split the double root into two roots ~1e-8 apart */
     ck_assert(n == 2 || n == 3);
-    for (int i = 0; i + 1 < n; ++i) ck_assert_near(out[i], 0.3, 1e-7);
+    for (int i = 0; i + 1 < n; ++i)
+        ck_assert_near(out[i], 0.3, 1e-7);
     ck_assert_near(out[n - 1], 0.7, 1e-14);
     double sq[3] = {0.09 + 1e-18, -0.6, 1.0}; /* (t - 0.3)^2 + 1e-18 */
     n = rugo__poly_roots(sq, 2, 0.0, 1.0, 0.0, out);
@@ -155,11 +161,13 @@ START_TEST(poly_degenerate) {
     poly_from_roots(r3, 3, 1.0, a);
     n = rugo__poly_roots(a, 3, 0.0, 1.0, 0.0, out);
     ck_assert_int_ge(n, 1);
-    for (int i = 0; i < n; ++i) ck_assert_near(out[i], 0.4, 1e-5);
+    for (int i = 0; i < n; ++i)
+        ck_assert_near(out[i], 0.4, 1e-5);
     poly_from_roots(r3, 5, 1.0, a);
     n = rugo__poly_roots(a, 5, 0.0, 1.0, 0.0, out);
     ck_assert_int_ge(n, 1);
-    for (int i = 0; i < n; ++i) ck_assert_near(out[i], 0.4, 1e-2);
+    for (int i = 0; i < n; ++i)
+        ck_assert_near(out[i], 0.4, 1e-2);
     /* Non-finite input gives nothing rather than garbage. */
     double bad[2] = {NAN, 1.0};
     ck_assert_int_eq(rugo__poly_roots(bad, 1, 0.0, 1.0, 0.0, out), 0);
@@ -184,21 +192,25 @@ START_TEST(poly_random) {
                 double re = test_rng_uniform(&rng, -0.5, 1.5), im = test_rng_uniform(&rng, 0.01, 1.0);
                 double f[3] = {re * re + im * im, -2 * re, 1.0}, b[6] = {0, 0, 0, 0, 0, 0};
                 for (int i = 0; i <= d; ++i)
-                    for (int k = 0; k < 3; ++k) b[i + k] += a[i] * f[k];
+                    for (int k = 0; k < 3; ++k)
+                        b[i + k] += a[i] * f[k];
                 memcpy(a, b, sizeof a);
                 d += 2;
             } else {
                 double r = test_rng_uniform(&rng, -0.5, 1.5);
                 real[nreal++] = r;
-                for (int i = d + 1; i >= 1; --i) a[i] = a[i - 1] - r * a[i];
+                for (int i = d + 1; i >= 1; --i)
+                    a[i] = a[i - 1] - r * a[i];
                 a[0] = -r * a[0];
                 d += 1;
             }
         }
         int n = rugo__poly_roots(a, deg, 0.0, 1.0, 0.0, out);
         ck_assert_int_ge(n, 0);
-        for (int i = 1; i < n; ++i) ck_assert(out[i] > out[i - 1]);
-        for (int i = 0; i < n; ++i) ck_assert(out[i] >= 0.0 && out[i] <= 1.0);
+        for (int i = 1; i < n; ++i)
+            ck_assert(out[i] > out[i - 1]);
+        for (int i = 0; i < n; ++i)
+            ck_assert(out[i] >= 0.0 && out[i] <= 1.0);
         /* each in-range real root is found, unless it nearly coincides with another (then it may
          * merge with its neighbour, which is still within the cluster) */
         for (int i = 0; i < nreal; ++i) {
@@ -207,21 +219,26 @@ START_TEST(poly_random) {
             for (int k = 0; k < nreal; ++k)
                 if (k != i) sep = fmin(sep, fabs(real[k] - real[i]));
             double best = HUGE_VAL;
-            for (int k = 0; k < n; ++k) best = fmin(best, fabs(out[k] - real[i]));
+            for (int k = 0; k < n; ++k)
+                best = fmin(best, fabs(out[k] - real[i]));
             /* forward error of a simple root: round-off of p over |p'(r)| */
             double dp = 0.0, ap = 0.0;
-            for (int k = deg; k >= 1; --k) dp = dp * real[i] + k * a[k];
-            for (int k = deg; k >= 0; --k) ap = ap * fabs(real[i]) + fabs(a[k]);
+            for (int k = deg; k >= 1; --k)
+                dp = dp * real[i] + k * a[k];
+            for (int k = deg; k >= 0; --k)
+                ap = ap * fabs(real[i]) + fabs(a[k]);
             double cond = 64 * DBL_EPSILON * ap / fabs(dp);
             if (sep > 1e-3)
-                ck_assert_msg(best <= 1e-13 + cond, "trial %d root %.17g missed (best %.3g)", trial, real[i], best);
+                ck_assert_msg(best <= 1e-13 + cond, "trial %d root %.17g missed (best %.3g)", trial, real[i],
+                              best);
             else
                 ck_assert_msg(best <= 1e-3, "trial %d clustered root %.17g missed", trial, real[i]);
         }
         /* every reported root is a root */
         for (int k = 0; k < n; ++k) {
             double best = HUGE_VAL;
-            for (int i = 0; i < nreal; ++i) best = fmin(best, fabs(out[k] - real[i]));
+            for (int i = 0; i < nreal; ++i)
+                best = fmin(best, fabs(out[k] - real[i]));
             ck_assert_msg(best <= 1e-3, "trial %d spurious root %.17g", trial, out[k]);
         }
         /* grid sign changes */
@@ -230,8 +247,10 @@ START_TEST(poly_random) {
             double t = g / 200.0, v = rugo__poly_eval(a, deg, t);
             if ((prev < 0 && v > 0) || (prev > 0 && v < 0)) {
                 int inside = 0;
-                for (int k = 0; k < n; ++k) inside |= out[k] >= (g - 1) / 200.0 && out[k] <= t;
-                ck_assert_msg(inside, "trial %d: sign change in [%g, %g] without a root", trial, (g - 1) / 200.0, t);
+                for (int k = 0; k < n; ++k)
+                    inside |= out[k] >= (g - 1) / 200.0 && out[k] <= t;
+                ck_assert_msg(inside, "trial %d: sign change in [%g, %g] without a root", trial,
+                              (g - 1) / 200.0, t);
             }
             prev = v;
         }
@@ -245,14 +264,17 @@ START_TEST(poly_scaled) {
     poly_from_roots(r, 3, 1e12, a);
     int n = rugo__poly_roots(a, 3, -100.0, 100.0, 0.0, out);
     ck_assert_int_eq(n, 3);
-    for (int i = 0; i < 3; ++i) ck_assert_near(out[i], r[i], 1e-12 * 100);
+    for (int i = 0; i < 3; ++i)
+        ck_assert_near(out[i], r[i], 1e-12 * 100);
 }
 END_TEST
 
 /* ---------------------------------------------------------------------------------------------------
  * Evaluation. */
 
-static rugo_vec2 lerp(rugo_vec2 a, rugo_vec2 b, double t) { return rugo_v2(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)); }
+static rugo_vec2 lerp(rugo_vec2 a, rugo_vec2 b, double t) {
+    return rugo_v2(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+}
 
 static rugo_vec2 de_casteljau(const rugo_vec2 b[4], double t) {
     rugo_vec2 p01 = lerp(b[0], b[1], t), p12 = lerp(b[1], b[2], t), p23 = lerp(b[2], b[3], t);
@@ -264,7 +286,8 @@ START_TEST(basis_partition_of_unity) {
         double t = i / 1000.0, b[4];
         rugo_bspline_basis(t, b);
         ck_assert_near(b[0] + b[1] + b[2] + b[3], 1.0, 1e-15);
-        for (int k = 0; k < 4; ++k) ck_assert(b[k] >= 0.0);
+        for (int k = 0; k < 4; ++k)
+            ck_assert(b[k] >= 0.0);
     }
     double b[4];
     rugo_bspline_basis(0.0, b);
@@ -287,8 +310,10 @@ START_TEST(evaluation_continuity_and_forms) {
             /* C0, C1, C2 at the joint with the next segment. */
             rugo_vec2 a = rugo_contour_point(c, j, 1.0), b = rugo_contour_point(c, j + 1, 0.0);
             ck_assert_near(v2_dist(a, b), 0.0, 1e-15 * scale);
-            ck_assert_near(v2_dist(rugo_contour_d1(c, j, 1.0), rugo_contour_d1(c, j + 1, 0.0)), 0.0, 1e-14 * scale);
-            ck_assert_near(v2_dist(rugo_contour_d2(c, j, 1.0), rugo_contour_d2(c, j + 1, 0.0)), 0.0, 1e-14 * scale);
+            ck_assert_near(v2_dist(rugo_contour_d1(c, j, 1.0), rugo_contour_d1(c, j + 1, 0.0)), 0.0,
+                           1e-14 * scale);
+            ck_assert_near(v2_dist(rugo_contour_d2(c, j, 1.0), rugo_contour_d2(c, j + 1, 0.0)), 0.0,
+                           1e-14 * scale);
             rugo_vec2 bz[4];
             rugo_contour_bezier(c, j, bz);
             for (int i = 0; i <= 50; ++i) {
@@ -306,7 +331,9 @@ START_TEST(evaluation_continuity_and_forms) {
                 ck_assert_near(v2_dist(rugo_contour_d2(c, j, t), fd2), 0.0, 1e-4 * (scale + 3));
                 /* point_at: global parameter, wrapping both ways. */
                 ck_assert_near(v2_dist(rugo_contour_point_at(c, j + t), p), 0.0, 1e-13 * (scale + 3));
-                if (t < 1.0) ck_assert_near(v2_dist(rugo_contour_point_at(c, j + t - 2.0 * n), p), 0.0, 1e-12 * (scale + 3));
+                if (t < 1.0)
+                    ck_assert_near(v2_dist(rugo_contour_point_at(c, j + t - 2.0 * n), p), 0.0,
+                                   1e-12 * (scale + 3));
             }
             /* Derivative coefficients (3.8) agree with d1. */
             rugo_vec2 v, w, r;
@@ -346,7 +373,8 @@ END_TEST
 
 START_TEST(degenerate_segments_everywhere) {
     rugo_contour c = contour_of(DEG_POINTS, DEG_N);
-    ck_assert_int_eq(rugo_contour_check(DEG_POINTS, DEG_N, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_OK);
+    ck_assert_int_eq(rugo_contour_check(DEG_POINTS, DEG_N, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL),
+                     RUGO_OK);
     rugo_vec2 v, w, r;
     rugo_contour_derivative_coefficients(c, DEG_PARABOLIC, &v, &w, &r);
     ck_assert(v.x == 0.0 && v.y == 0.0);
@@ -449,7 +477,8 @@ START_TEST(arc_length_quadrature) {
                 double l2, e2;
                 ck_assert_int_eq(rugo_contour_segment_length_adaptive(c, j, tols[k], &l2, &e2), RUGO_OK);
                 ck_assert(e2 <= tols[k]);
-                ck_assert_msg(fabs(l2 - ad) <= e2 + 1e-13, "tol %g: actual %.3g > bound %.3g", tols[k], fabs(l2 - ad), e2);
+                ck_assert_msg(fabs(l2 - ad) <= e2 + 1e-13, "tol %g: actual %.3g > bound %.3g", tols[k],
+                              fabs(l2 - ad), e2);
             }
             total += gl;
         }
@@ -542,7 +571,7 @@ START_TEST(arc_length_to_round_off) {
     }
     for (int i = 0; i < N_SMOOTH; ++i)
         smooth[i] = rugo_v2(cos(two_pi * i / N_SMOOTH), sin(two_pi * i / N_SMOOTH));
-    const rugo_vec2 deg_pts[N_DEG] = {{0, 0}, {2, 0}, {3, 0}, {3, 0}, {3, 0},
+    const rugo_vec2 deg_pts[N_DEG] = {{0, 0}, {2, 0}, {3, 0}, {3, 0},  {3, 0},
                                       {3, 1}, {3, 2}, {1, 3}, {-1, 2}, {-1, 1}};
     memcpy(deg, deg_pts, sizeof deg);
     const struct {
@@ -557,8 +586,9 @@ START_TEST(arc_length_to_round_off) {
             /* The reference against itself at a looser tolerance: it resolves these segments. */
             ck_assert_near(reference_length(c, j, 1e-14L), ref, 1e-13 * ref + 1e-300);
             const double len = rugo_contour_segment_length(c, j);
-            ck_assert_msg(fabs(len - ref) <= 1e-12 * ref, "case %d segment %d: %.17g vs %.17g (%.3g relative)",
-                          k, j, len, ref, fabs(len - ref) / ref);
+            ck_assert_msg(fabs(len - ref) <= 1e-12 * ref,
+                          "case %d segment %d: %.17g vs %.17g (%.3g relative)", k, j, len, ref,
+                          fabs(len - ref) / ref);
             double ad, err;
             const double tol = 1e-13 * ref + 1e-300;
             ck_assert_int_eq(rugo_contour_segment_length_adaptive(c, j, tol, &ad, &err), RUGO_OK);
@@ -627,7 +657,8 @@ static poly_props polygon_props(rugo_contour c, int m, rugo_vec2 o) {
         kadd(&a, &ac, cr);
         kadd(&x, &xc, (p0.x + p1.x) * cr);
         kadd(&y, &yc, (p0.y + p1.y) * cr);
-        kadd(&j, &jc, cr * (p0.x * p0.x + p0.x * p1.x + p1.x * p1.x + p0.y * p0.y + p0.y * p1.y + p1.y * p1.y));
+        kadd(&j, &jc,
+             cr * (p0.x * p0.x + p0.x * p1.x + p1.x * p1.x + p0.y * p0.y + p0.y * p1.y + p1.y * p1.y));
         p0 = p1;
     }
     poly_props r;
@@ -689,7 +720,8 @@ START_TEST(mass_properties_exact) {
     ck_assert_near(m.inertia, 6236160408677.0 / 135193411584.0, 1e-13);
     /* Clockwise: the same region, area and inertia negative (inertia has the sign of the area). */
     rugo_vec2 rev[6];
-    for (int i = 0; i < 6; ++i) rev[i] = hex[5 - i];
+    for (int i = 0; i < 6; ++i)
+        rev[i] = hex[5 - i];
     rugo_mass_properties w = rugo_contour_mass_properties(contour_of(rev, 6));
     ck_assert_near(w.area, -m.area, 1e-14);
     ck_assert_near(w.centroid.x, m.centroid.x, 1e-14);
@@ -702,18 +734,21 @@ START_TEST(mass_properties_triangle) {
     /* Corners repeated four times: the curve is exactly the triangle (straight sides, point-like
      * segments at the corners), so the polygon formulas are exact references. */
     rugo_vec2 a = {0.5, -1}, b = {4, 0.25}, c3 = {1, 3}, pts[12];
-    for (int i = 0; i < 4; ++i) pts[i] = a, pts[4 + i] = b, pts[8 + i] = c3;
+    for (int i = 0; i < 4; ++i)
+        pts[i] = a, pts[4 + i] = b, pts[8 + i] = c3;
     rugo_contour c = contour_of(pts, 12);
     ck_assert_int_eq(rugo_contour_check(pts, 12, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_OK);
     double area = 0.5 * rugo_v2_cross(rugo_v2_sub(b, a), rugo_v2_sub(c3, a));
-    double l2 = rugo_v2_dot(rugo_v2_sub(b, a), rugo_v2_sub(b, a)) + rugo_v2_dot(rugo_v2_sub(c3, b), rugo_v2_sub(c3, b)) +
+    double l2 = rugo_v2_dot(rugo_v2_sub(b, a), rugo_v2_sub(b, a)) +
+                rugo_v2_dot(rugo_v2_sub(c3, b), rugo_v2_sub(c3, b)) +
                 rugo_v2_dot(rugo_v2_sub(a, c3), rugo_v2_sub(a, c3));
     rugo_mass_properties m = rugo_contour_mass_properties(c);
     ck_assert_near(m.area, area, 1e-14 * area);
     ck_assert_near(m.centroid.x, (a.x + b.x + c3.x) / 3, 1e-14);
     ck_assert_near(m.centroid.y, (a.y + b.y + c3.y) / 3, 1e-14);
     ck_assert_near(m.inertia, area * l2 / 36, 1e-13 * area * l2 / 36); /* triangle: A (a^2 + b^2 + c^2)/36 */
-    double per = sqrt(rugo_v2_dot(rugo_v2_sub(b, a), rugo_v2_sub(b, a))) + sqrt(rugo_v2_dot(rugo_v2_sub(c3, b), rugo_v2_sub(c3, b))) +
+    double per = sqrt(rugo_v2_dot(rugo_v2_sub(b, a), rugo_v2_sub(b, a))) +
+                 sqrt(rugo_v2_dot(rugo_v2_sub(c3, b), rugo_v2_sub(c3, b))) +
                  sqrt(rugo_v2_dot(rugo_v2_sub(a, c3), rugo_v2_sub(a, c3)));
     ck_assert_near(rugo_contour_perimeter(c), per, 1e-13 * per);
     rugo_vec2 lo, hi;
@@ -741,7 +776,8 @@ START_TEST(mass_properties_invariance) {
         for (int k = 0; k < 3; ++k) {
             double ca = cos(angles[k]), sa = sin(angles[k]);
             for (int i = 0; i < n; ++i)
-                moved[i] = rugo_v2(ca * pts[i].x - sa * pts[i].y + shifts[k][0], sa * pts[i].x + ca * pts[i].y + shifts[k][1]);
+                moved[i] = rugo_v2(ca * pts[i].x - sa * pts[i].y + shifts[k][0],
+                                   sa * pts[i].x + ca * pts[i].y + shifts[k][1]);
             rugo_mass_properties r = rugo_contour_mass_properties(contour_of(moved, n));
             rugo_vec2 ec = rugo_v2(ca * m.centroid.x - sa * m.centroid.y + shifts[k][0],
                                    sa * m.centroid.x + ca * m.centroid.y + shifts[k][1]);
@@ -763,7 +799,8 @@ START_TEST(orientation_reversal_mapping) {
     rugo_vec2 ccw[16], cw[16], fixed[16];
     star(500, 16, ccw, NULL, NULL);
     ck_assert(!rugo_contour_orient_ccw(ccw, 16)); /* already counter-clockwise: untouched */
-    for (int i = 0; i < 16; ++i) cw[i] = ccw[(5 * 16 - 3 * i) % 16]; /* clockwise, another start */
+    for (int i = 0; i < 16; ++i)
+        cw[i] = ccw[(5 * 16 - 3 * i) % 16]; /* clockwise, another start */
     memcpy(fixed, cw, sizeof cw);
     ck_assert(rugo_contour_signed_area(contour_of(cw, 16)) < 0);
     ck_assert(rugo_contour_orient_ccw(fixed, 16));
@@ -774,11 +811,13 @@ START_TEST(orientation_reversal_mapping) {
     for (int j = 0; j < 16; ++j)
         for (int i = 0; i <= 20; ++i) {
             double t = i / 20.0;
-            ck_assert_near(v2_dist(rugo_contour_point(a, j, t), rugo_contour_point(b, 16 - 2 - j, 1.0 - t)), 0.0, 1e-14);
+            ck_assert_near(v2_dist(rugo_contour_point(a, j, t), rugo_contour_point(b, 16 - 2 - j, 1.0 - t)),
+                           0.0, 1e-14);
         }
     /* Odd count too. */
     rugo_vec2 odd[7];
-    for (int i = 0; i < 7; ++i) odd[i] = rugo_v2(cos(-2 * PI * i / 7), sin(-2 * PI * i / 7));
+    for (int i = 0; i < 7; ++i)
+        odd[i] = rugo_v2(cos(-2 * PI * i / 7), sin(-2 * PI * i / 7));
     rugo_vec2 odd_r[7];
     memcpy(odd_r, odd, sizeof odd);
     ck_assert(rugo_contour_orient_ccw(odd_r, 7));
@@ -816,7 +855,8 @@ static double extreme_along(rugo_contour c, rugo_vec2 e) {
 static void check_bounds(rugo_contour c) {
     rugo_vec2 lo, hi;
     rugo_contour_bounds(c, &lo, &hi);
-    double scale = fmax(hi.x - lo.x, hi.y - lo.y) + fmax(fabs(lo.x), fabs(hi.x)) + fmax(fabs(lo.y), fabs(hi.y));
+    double scale =
+        fmax(hi.x - lo.x, hi.y - lo.y) + fmax(fabs(lo.x), fabs(hi.x)) + fmax(fabs(lo.y), fabs(hi.y));
     double tol = 1e-12 * scale;
     for (int k = 0; k < c.count * 200; ++k) {
         rugo_vec2 p = rugo_contour_point_at(c, k / 200.0);
@@ -891,7 +931,8 @@ START_TEST(closest_point_vs_brute_force) {
         rugo_contour c = contour_of(pts, n);
         for (int k = 0; k < 60; ++k) {
             double sc = k < 40 ? 1.6 : 10.0;
-            check_closest(c, rugo_v2(ctr.x + test_rng_uniform(&rng, -sc, sc) * rad, ctr.y + test_rng_uniform(&rng, -sc, sc) * rad));
+            check_closest(c, rugo_v2(ctr.x + test_rng_uniform(&rng, -sc, sc) * rad,
+                                     ctr.y + test_rng_uniform(&rng, -sc, sc) * rad));
         }
         /* the centroid-ish centre, joints and points on the curve */
         check_closest(c, ctr);
@@ -905,7 +946,8 @@ START_TEST(closest_point_vs_brute_force) {
         }
     }
     rugo_contour d = contour_of(DEG_POINTS, DEG_N);
-    for (int k = 0; k < 200; ++k) check_closest(d, rugo_v2(test_rng_uniform(&rng, -4, 4), test_rng_uniform(&rng, -3, 5)));
+    for (int k = 0; k < 200; ++k)
+        check_closest(d, rugo_v2(test_rng_uniform(&rng, -4, 4), test_rng_uniform(&rng, -3, 5)));
     /* The pointed corner is closest for points straight above it. */
     rugo_curve_point cp = rugo_contour_closest_point(d, rugo_v2(0, 4));
     ck_assert_near(cp.distance, 1.0, 1e-14);
@@ -924,7 +966,8 @@ static void check_contains_random(rugo_contour c, uint64_t seed, int count) {
     test_rng rng = test_rng_seed(seed);
     int tested = 0, inside = 0;
     for (int k = 0; k < count; ++k) {
-        rugo_vec2 p = rugo_v2(test_rng_uniform(&rng, lo.x - 0.2 * w, hi.x + 0.2 * w), test_rng_uniform(&rng, lo.y - 0.2 * h, hi.y + 0.2 * h));
+        rugo_vec2 p = rugo_v2(test_rng_uniform(&rng, lo.x - 0.2 * w, hi.x + 0.2 * w),
+                              test_rng_uniform(&rng, lo.y - 0.2 * h, hi.y + 0.2 * h));
         /* every 8th point sits exactly on the level of a joint: rays through joints */
         if (k % 8 == 0) p.y = rugo_contour_point(c, (int)(test_rng_next(&rng) % (uint64_t)c.count), 0.0).y;
         if (rugo_contour_closest_point(c, p).distance < 1e-6) continue;
@@ -945,7 +988,8 @@ START_TEST(contains_vs_polygon) {
         star(800 + s, n, pts, NULL, NULL);
         check_contains_random(contour_of(pts, n), 900 + (uint64_t)s, 2000);
         /* Non-zero winding: the clockwise copy contains the same points. */
-        for (int i = 0; i < n; ++i) rev[i] = pts[n - 1 - i];
+        for (int i = 0; i < n; ++i)
+            rev[i] = pts[n - 1 - i];
         check_contains_random(contour_of(rev, n), 900 + (uint64_t)s, 500);
     }
     check_contains_random(contour_of(DEG_POINTS, DEG_N), 999, 3000);
@@ -1016,7 +1060,8 @@ START_TEST(ray_cast_vs_brute_force) {
         rugo_vec2* poly = dense_polygon(c, 2000);
         int np = n * 2000, hits = 0;
         for (int k = 0; k < 300; ++k) {
-            rugo_vec2 o = rugo_v2(ctr.x + test_rng_uniform(&rng, -2.5, 2.5) * rad, ctr.y + test_rng_uniform(&rng, -2.5, 2.5) * rad);
+            rugo_vec2 o = rugo_v2(ctr.x + test_rng_uniform(&rng, -2.5, 2.5) * rad,
+                                  ctr.y + test_rng_uniform(&rng, -2.5, 2.5) * rad);
             double ang = test_rng_uniform(&rng, 0, 2 * PI), len = test_rng_uniform(&rng, 0.1, 3.0);
             rugo_vec2 d = rugo_v2(len * cos(ang), len * sin(ang));
             if (k % 3 == 0) d = rugo_v2_sub(ctr, o); /* aimed at the body */
@@ -1089,7 +1134,8 @@ START_TEST(ray_cast_special) {
         ck_assert_near(v2_dist(hit.point, p), 0.0, 1e-12 * rad);
         ck_assert_near(v2_dist(nm, n0), 0.0, 1e-9);
         /* the joint: start of segment j or the very end of segment j-1 (never t = 1) */
-        ck_assert((hit.segment == j && hit.t < 1e-9) || (hit.segment == rugo__wrap(j - 1, 16) && hit.t > 1.0 - 1e-9));
+        ck_assert((hit.segment == j && hit.t < 1e-9) ||
+                  (hit.segment == rugo__wrap(j - 1, 16) && hit.t > 1.0 - 1e-9));
     }
     /* Tangent rays: along the top and bottom tangent lines, hitting the tangent points. */
     rugo_vec2 lo, hi;
@@ -1112,11 +1158,13 @@ START_TEST(ray_cast_special) {
     ck_assert_near(s, 0.0, 1e-12);
     /* Translated far away: same answers. */
     rugo_vec2 far[16];
-    for (int i = 0; i < 16; ++i) far[i] = rugo_v2(pts[i].x + 1e6, pts[i].y - 1e6);
+    for (int i = 0; i < 16; ++i)
+        far[i] = rugo_v2(pts[i].x + 1e6, pts[i].y - 1e6);
     double s0, s1;
     ck_assert(rugo_contour_ray_cast(c, m.centroid, rugo_v2(0.3, 1), 100.0, &s0, NULL, NULL));
-    ck_assert_int_eq(rugo_contour_ray_cast(contour_of(far, 16), rugo_v2(m.centroid.x + 1e6, m.centroid.y - 1e6),
-                                           rugo_v2(0.3, 1), 100.0, &s1, NULL, NULL),
+    ck_assert_int_eq(rugo_contour_ray_cast(contour_of(far, 16),
+                                           rugo_v2(m.centroid.x + 1e6, m.centroid.y - 1e6), rugo_v2(0.3, 1),
+                                           100.0, &s1, NULL, NULL),
                      1);
     ck_assert_near(s0, s1, 1e-8);
 }
@@ -1133,7 +1181,8 @@ START_TEST(check_null_and_counts) {
     ck_assert_int_eq(rugo_contour_check(pts, 3, 0, &pr, NULL), RUGO_ERR_TOO_FEW_POINTS);
     ck_assert_int_eq(rugo_contour_check(pts, -1, 0, &pr, NULL), RUGO_ERR_TOO_FEW_POINTS);
     /* counts are checked before any point is read */
-    ck_assert_int_eq(rugo_contour_check(pts, RUGO_MAX_CONTROL_POINTS + 1, 0, &pr, NULL), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(rugo_contour_check(pts, RUGO_MAX_CONTROL_POINTS + 1, 0, &pr, NULL),
+                     RUGO_ERR_TOO_MANY_POINTS);
     ck_assert_int_eq(pr.index, -1);
     ck_assert_int_eq(pr.segment_a, -1);
 }
@@ -1142,14 +1191,16 @@ END_TEST
 START_TEST(check_power_of_two) {
     rugo_vec2 pts[12];
     star(2, 12, pts, NULL, NULL);
-    ck_assert_int_eq(rugo_contour_check(pts, 12, RUGO_CHECK_POWER_OF_TWO, NULL, NULL), RUGO_ERR_NOT_POWER_OF_TWO);
+    ck_assert_int_eq(rugo_contour_check(pts, 12, RUGO_CHECK_POWER_OF_TWO, NULL, NULL),
+                     RUGO_ERR_NOT_POWER_OF_TWO);
     ck_assert_int_eq(rugo_contour_check(pts, 12, 0, NULL, NULL), RUGO_OK);
     ck_assert_int_eq(rugo_contour_check(pts, 12, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_OK);
     star(2, 8, pts, NULL, NULL);
     ck_assert_int_eq(rugo_contour_check(pts, 8, RUGO_CHECK_ALL, NULL, NULL), RUGO_OK);
     /* the power-of-two rule comes before finiteness */
     pts[0].x = NAN;
-    ck_assert_int_eq(rugo_contour_check(pts, 7, RUGO_CHECK_POWER_OF_TWO, NULL, NULL), RUGO_ERR_NOT_POWER_OF_TWO);
+    ck_assert_int_eq(rugo_contour_check(pts, 7, RUGO_CHECK_POWER_OF_TWO, NULL, NULL),
+                     RUGO_ERR_NOT_POWER_OF_TWO);
 }
 END_TEST
 
@@ -1172,7 +1223,8 @@ END_TEST
 
 START_TEST(check_zero_area) {
     rugo_vec2 col[6] = {{0, 0}, {1, 1}, {2, 2}, {5, 5}, {3, 3}, {1, 1}};
-    ck_assert_int_eq(rugo_contour_check(col, 6, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_ERR_ZERO_AREA);
+    ck_assert_int_eq(rugo_contour_check(col, 6, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL),
+                     RUGO_ERR_ZERO_AREA);
     rugo_vec2 same[4] = {{2, 3}, {2, 3}, {2, 3}, {2, 3}};
     ck_assert_int_eq(rugo_contour_check(same, 4, 0, NULL, NULL), RUGO_ERR_ZERO_AREA);
     /* Nearly collinear below the threshold, then clearly above it. */
@@ -1234,7 +1286,8 @@ START_TEST(check_loop_inside_segment) {
     ck_assert_near(bz[1].x, 4.0, 1e-14);
     ck_assert_near(bz[3].x, 1.0, 1e-14);
     rugo_contour_problem pr;
-    ck_assert_int_eq(rugo_contour_check(pts, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_eq(rugo_contour_check(pts, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL),
+                     RUGO_ERR_SELF_INTERSECTING);
     ck_assert_int_eq(pr.segment_a, 1);
     ck_assert_int_eq(pr.segment_b, 1);
     ck_assert(segment_near(contour_of(pts, 6), 1, pr.where, 1e-8));
@@ -1247,7 +1300,8 @@ START_TEST(check_touching_and_near) {
     rugo_vec2 hg[6] = {{1, 1}, {0, -0.5}, {-1, 1}, {-1, -1}, {0, 0.5}, {1, -1}};
     rugo_contour_problem pr;
     if (rugo_contour_signed_area(contour_of(hg, 6)) < 0) rugo_contour_orient_ccw(hg, 6);
-    ck_assert_int_eq(rugo_contour_check(hg, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_eq(rugo_contour_check(hg, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL),
+                     RUGO_ERR_SELF_INTERSECTING);
     ck_assert_near(v2_dist(pr.where, rugo_v2(0, 0)), 0.0, 1e-4); /* a tangency: located to ~sqrt(tol) */
     ck_assert(pr.segment_a != pr.segment_b);
     /* Open the waist a little (gap 4 * 0.01 / 6 ~ 6.7e-3 between the sides): valid. */
@@ -1259,13 +1313,15 @@ START_TEST(check_touching_and_near) {
     ck_assert_int_eq(rugo_contour_check(ok2, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_OK);
     /* Crossing past the waist: self-intersecting. */
     rugo_vec2 bad[6] = {{1, 1}, {0, -0.6}, {-1, 1}, {-1, -1}, {0, 0.6}, {1, -1}};
-    ck_assert_int_eq(rugo_contour_check(bad, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_eq(rugo_contour_check(bad, 6, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL),
+                     RUGO_ERR_SELF_INTERSECTING);
     /* The degenerate-segment contour (with a segment shrunk to a point) is valid. */
     ck_assert_int_eq(rugo_contour_check(DEG_POINTS, DEG_N, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_OK);
     /* A spike: the curve goes out and retraces the same line (c_{j-1}, c_j, c_{j+1} collinear
      * with c_j at the tip and three-fold): overlapping, hence self-intersecting. */
     rugo_vec2 spike[9] = {{-3, -2}, {0, 0}, {2, 0}, {4, 0}, {4, 0}, {4, 0}, {2, 0}, {0, 0}, {-3, 2}};
-    ck_assert_int_eq(rugo_contour_check(spike, 9, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_eq(rugo_contour_check(spike, 9, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL),
+                     RUGO_ERR_SELF_INTERSECTING);
     ck_assert(segment_near(contour_of(spike, 9), pr.segment_a, pr.where, 1e-6));
     ck_assert(segment_near(contour_of(spike, 9), pr.segment_b, pr.where, 1e-6));
     /* A sharp but open corner (three-fold point) is fine. */
@@ -1337,7 +1393,8 @@ START_TEST(check_self_intersection_vs_polyline) {
         rugo_status st = rugo_contour_check(p, n, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
         if (st == RUGO_ERR_ZERO_AREA) continue;
         int brute = polyline_crosses(contour_of(p, n), 150);
-        ck_assert_msg((st == RUGO_ERR_SELF_INTERSECTING) == brute, "trial %d: status %d, polyline %d", trial, st, brute);
+        ck_assert_msg((st == RUGO_ERR_SELF_INTERSECTING) == brute, "trial %d: status %d, polyline %d", trial,
+                      st, brute);
         if (brute) {
             ++crossing;
             ck_assert(segment_near(contour_of(p, n), pr.segment_a, pr.where, 1e-8));
@@ -1357,7 +1414,8 @@ START_TEST(deterministic_outputs) {
     rugo_contour c = contour_of(pts, 32);
     rugo_mass_properties a = rugo_contour_mass_properties(c), b = rugo_contour_mass_properties(c);
     ck_assert(memcmp(&a, &b, sizeof a) == 0);
-    rugo_curve_point p = rugo_contour_closest_point(c, rugo_v2(0.1, 0.2)), q = rugo_contour_closest_point(c, rugo_v2(0.1, 0.2));
+    rugo_curve_point p = rugo_contour_closest_point(c, rugo_v2(0.1, 0.2)),
+                     q = rugo_contour_closest_point(c, rugo_v2(0.1, 0.2));
     ck_assert(p.segment == q.segment && p.t == q.t && p.distance == q.distance);
 }
 END_TEST
@@ -1368,11 +1426,14 @@ END_TEST
 START_TEST(check_review_cases) {
     const rugo_vec2 eight[4] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}};
     rugo_contour_problem pr;
-    ck_assert_int_eq(rugo_contour_check(eight, 4, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL), RUGO_ERR_SELF_INTERSECTING);
+    ck_assert_int_eq(rugo_contour_check(eight, 4, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL),
+                     RUGO_ERR_SELF_INTERSECTING);
     ck_assert_int_ge(pr.segment_a, 0);
-    ck_assert_int_eq(rugo_contour_check(eight, 4, 0, NULL, NULL), RUGO_ERR_ZERO_AREA); /* no crossing test asked */
+    ck_assert_int_eq(rugo_contour_check(eight, 4, 0, NULL, NULL),
+                     RUGO_ERR_ZERO_AREA); /* no crossing test asked */
     const rugo_vec2 flat[4] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
-    ck_assert_int_eq(rugo_contour_check(flat, 4, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL), RUGO_ERR_ZERO_AREA);
+    ck_assert_int_eq(rugo_contour_check(flat, 4, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL),
+                     RUGO_ERR_ZERO_AREA);
     const rugo_vec2 huge[4] = {{1e200, 0}, {0, 1e200}, {-1e200, 0}, {0, -1e200}};
     ck_assert_int_eq(rugo_contour_check(huge, 4, RUGO_CHECK_ALL, NULL, NULL), RUGO_ERR_NOT_FINITE);
     const rugo_vec2 sq[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -1400,21 +1461,28 @@ int main(void) {
         const TTest* tests[12];
     } groups[] = {
         {"poly", {poly_simple_roots, poly_degenerate, poly_random, poly_scaled}},
-        {"evaluation", {basis_partition_of_unity, evaluation_continuity_and_forms, tangent_normal,
-                        degenerate_segments_everywhere, orientation_reversal_mapping, deterministic_outputs}},
+        {"evaluation",
+         {basis_partition_of_unity, evaluation_continuity_and_forms, tangent_normal,
+          degenerate_segments_everywhere, orientation_reversal_mapping, deterministic_outputs}},
         {"arc_length",
-         {arc_length_quadrature, arc_length_straight_and_cusp, arc_length_arguments, arc_length_to_round_off}},
-        {"mass", {mass_properties_vs_polygon, mass_properties_exact, mass_properties_triangle, mass_properties_invariance}},
-        {"queries", {bounds_tight, closest_point_vs_brute_force, contains_vs_polygon, contains_tangent_and_joint_rays,
-                     ray_cast_vs_brute_force, ray_cast_special}},
-        {"check", {check_null_and_counts, check_power_of_two, check_not_finite, check_zero_area, check_figure_eight,
-                   check_loop_inside_segment, check_touching_and_near, check_random_stars_fast, check_self_intersection_vs_polyline,
-                   check_review_cases}},
+         {arc_length_quadrature, arc_length_straight_and_cusp, arc_length_arguments,
+          arc_length_to_round_off}},
+        {"mass",
+         {mass_properties_vs_polygon, mass_properties_exact, mass_properties_triangle,
+          mass_properties_invariance}},
+        {"queries",
+         {bounds_tight, closest_point_vs_brute_force, contains_vs_polygon, contains_tangent_and_joint_rays,
+          ray_cast_vs_brute_force, ray_cast_special}},
+        {"check",
+         {check_null_and_counts, check_power_of_two, check_not_finite, check_zero_area, check_figure_eight,
+          check_loop_inside_segment, check_touching_and_near, check_random_stars_fast,
+          check_self_intersection_vs_polyline, check_review_cases}},
     };
     for (size_t g = 0; g < sizeof groups / sizeof groups[0]; ++g) {
         TCase* tc = tcase_create(groups[g].name);
         tcase_set_timeout(tc, 120);
-        for (int i = 0; i < 12 && groups[g].tests[i]; ++i) tcase_add_test(tc, groups[g].tests[i]);
+        for (int i = 0; i < 12 && groups[g].tests[i]; ++i)
+            tcase_add_test(tc, groups[g].tests[i]);
         suite_add_tcase(s, tc);
     }
     return test_run_suite(s);

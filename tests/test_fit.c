@@ -11,7 +11,8 @@
 /* Samples of the curve of ctrl (n points) at the uniform parameters u_k = k n / m. */
 static void sample_uniform(const rugo_vec2* ctrl, int n, int m, rugo_vec2* out) {
     rugo_contour c = {ctrl, n};
-    for (int k = 0; k < m; ++k) out[k] = rugo_contour_point_at(c, (double)k * n / m);
+    for (int k = 0; k < m; ++k)
+        out[k] = rugo_contour_point_at(c, (double)k * n / m);
 }
 
 static rugo_fit_def make_def(const rugo_vec2* samples, int m, int n, rugo_parameterization param) {
@@ -51,7 +52,8 @@ START_TEST(uniform_recovers_control_points) {
             const int m = n * per_segment_num[v] / per_segment_den[v] + (per_segment_den[v] > 1 ? 1 : 0);
             if (m < n) continue;
             const double radius = test_rng_uniform(&rng, 0.5, 50.0);
-            const rugo_vec2 centre = rugo_v2(test_rng_uniform(&rng, -1e3, 1e3), test_rng_uniform(&rng, -1e3, 1e3));
+            const rugo_vec2 centre =
+                rugo_v2(test_rng_uniform(&rng, -1e3, 1e3), test_rng_uniform(&rng, -1e3, 1e3));
             rugo_vec2* truth = malloc((size_t)n * sizeof *truth);
             rugo_vec2* fitted = malloc((size_t)n * sizeof *fitted);
             rugo_vec2* samples = malloc((size_t)m * sizeof *samples);
@@ -97,11 +99,14 @@ START_TEST(chord_length_dense_star) {
             rugo_fit_result res;
             ck_assert_int_eq(rugo_fit_contour(&d, fitted, &res), RUGO_OK);
             const double rel = res.max_error / radius;
-            printf("fit: chord-length, star %d, J=%d, 8 samples/segment: max_error %.3g, rms %.3g (of size)\n", v, J,
-                   rel, res.rms_error / radius);
+            printf(
+                "fit: chord-length, star %d, J=%d, 8 samples/segment: max_error %.3g, rms %.3g (of size)\n",
+                v, J, rel, res.rms_error / radius);
             /* J = 4, 5: the star's fifth harmonic has only 3 to 6 control points per wave. */
             ck_assert_msg(rel < (J >= 6 ? 1e-3 : 1e-2), "J=%d: chord-length max_error %.3g of size", J, rel);
-            if (J >= 6) ck_assert_msg(rel < previous / 4.0, "J=%d: error %.3g did not drop from %.3g", J, rel, previous);
+            if (J >= 6)
+                ck_assert_msg(rel < previous / 4.0, "J=%d: error %.3g did not drop from %.3g", J, rel,
+                              previous);
             previous = rel;
             ck_assert(res.rms_error > 0.0 && res.rms_error <= res.max_error);
             /* The reported error is what it says: recompute it from the fitted curve. */
@@ -141,8 +146,10 @@ START_TEST(circle_known_error) {
         rugo_vec2* samples = malloc((size_t)m * sizeof *samples);
         rugo_vec2* unit = malloc((size_t)n * sizeof *unit);
         rugo_vec2* fitted = malloc((size_t)n * sizeof *fitted);
-        for (int k = 0; k < m; ++k) samples[k] = rugo_v2(r0 * cos(TWO_PI * k / m), r0 * sin(TWO_PI * k / m));
-        for (int j = 0; j < n; ++j) unit[j] = rugo_v2(cos(TWO_PI * j / n), sin(TWO_PI * j / n));
+        for (int k = 0; k < m; ++k)
+            samples[k] = rugo_v2(r0 * cos(TWO_PI * k / m), r0 * sin(TWO_PI * k / m));
+        for (int j = 0; j < n; ++j)
+            unit[j] = rugo_v2(cos(TWO_PI * j / n), sin(TWO_PI * j / n));
         rugo_contour uc = {unit, n};
         double num = 0.0, den = 0.0;
         for (int k = 0; k < m; ++k) {
@@ -165,8 +172,8 @@ START_TEST(circle_known_error) {
             ck_assert_near(fitted[j].y, R * unit[j].y, 1e-12 * r0);
         }
         ck_assert_near(res.max_error, expect_max, 1e-12 * r0);
-        printf("fit: circle, n=%d, %d samples: R/r = %.12f, max_error %.3g, rms %.3g (of radius)\n", n, m, R / r0,
-               res.max_error / r0, res.rms_error / r0);
+        printf("fit: circle, n=%d, %d samples: R/r = %.12f, max_error %.3g, rms %.3g (of radius)\n", n, m,
+               R / r0, res.max_error / r0, res.rms_error / r0);
         /* The cubic B-spline's error on a circle falls like (2 pi / n)^4. */
         const double h = TWO_PI / n;
         ck_assert(res.max_error / r0 < 0.01 * h * h * h * h);
@@ -262,8 +269,10 @@ START_TEST(extreme_coordinates) {
     static const double scales[] = {1e-300, 1e-150, 1e150, 1e300};
     for (int v = 0; v < 4; ++v) {
         rugo_vec2 big[M], big_truth[N];
-        for (int k = 0; k < M; ++k) big[k] = rugo_v2_scale(scales[v], samples[k]);
-        for (int j = 0; j < N; ++j) big_truth[j] = rugo_v2_scale(scales[v], truth[j]);
+        for (int k = 0; k < M; ++k)
+            big[k] = rugo_v2_scale(scales[v], samples[k]);
+        for (int j = 0; j < N; ++j)
+            big_truth[j] = rugo_v2_scale(scales[v], truth[j]);
         rugo_fit_def d = make_def(big, M, N, RUGO_PARAM_UNIFORM);
         rugo_fit_result res;
         ck_assert_int_eq(rugo_fit_contour(&d, out, &res), RUGO_OK);
@@ -276,11 +285,13 @@ START_TEST(extreme_coordinates) {
     /* Samples spanning almost the whole double range: control points overshoot the samples' hull
      * (a cubic B-spline's control polygon encloses its curve) and cannot be represented. */
     rugo_vec2 huge[M];
-    for (int k = 0; k < M; ++k) huge[k] = rugo_v2_scale(1.7e308 / 1.5, samples[k]);
+    for (int k = 0; k < M; ++k)
+        huge[k] = rugo_v2_scale(1.7e308 / 1.5, samples[k]);
     rugo_fit_def d = make_def(huge, M, N, RUGO_PARAM_UNIFORM);
     rugo_fit_result res = {-1.0, -1.0};
     rugo_vec2 before[N];
-    for (int j = 0; j < N; ++j) out[j] = before[j] = rugo_v2(1.0, 2.0);
+    for (int j = 0; j < N; ++j)
+        out[j] = before[j] = rugo_v2(1.0, 2.0);
     rugo_status st = rugo_fit_contour(&d, out, &res);
     ck_assert(st == RUGO_OK || st == RUGO_ERR_NOT_FINITE);
     if (st != RUGO_OK) {
@@ -296,14 +307,17 @@ START_TEST(singular_fits) {
     rugo_vec2 samples[M], out[N];
     /* Eleven samples within a tiny arc, one far away: chord-length parameters put eleven samples in
      * segment 0 and one near u = n/2, leaving control points free. */
-    for (int k = 0; k < M - 1; ++k) samples[k] = rugo_v2(1e-6 * k, 1e-6 * k * k);
+    for (int k = 0; k < M - 1; ++k)
+        samples[k] = rugo_v2(1e-6 * k, 1e-6 * k * k);
     samples[M - 1] = rugo_v2(5.0, 3.0);
     rugo_fit_def d = make_def(samples, M, N, RUGO_PARAM_CHORD_LENGTH);
     rugo_fit_result res = {-1.0, -1.0};
-    for (int j = 0; j < N; ++j) out[j] = rugo_v2(42.0, 42.0);
+    for (int j = 0; j < N; ++j)
+        out[j] = rugo_v2(42.0, 42.0);
     ck_assert_int_eq(rugo_fit_contour(&d, out, &res), RUGO_ERR_SINGULAR);
     /* Outputs untouched on error. */
-    for (int j = 0; j < N; ++j) ck_assert(out[j].x == 42.0 && out[j].y == 42.0);
+    for (int j = 0; j < N; ++j)
+        ck_assert(out[j].x == 42.0 && out[j].y == 42.0);
     ck_assert(res.max_error == -1.0 && res.rms_error == -1.0);
 
     /* The same points with uniform parameters are well posed (every segment gets a sample). */
@@ -312,8 +326,10 @@ START_TEST(singular_fits) {
 
     /* Two clusters: segments between them are empty. */
     rugo_vec2 two[16];
-    for (int k = 0; k < 8; ++k) two[k] = rugo_v2(1e-5 * k, 1e-5 * k * k);
-    for (int k = 0; k < 8; ++k) two[8 + k] = rugo_v2(10.0 - 1e-5 * k, 10.0 + 2e-5 * k * k);
+    for (int k = 0; k < 8; ++k)
+        two[k] = rugo_v2(1e-5 * k, 1e-5 * k * k);
+    for (int k = 0; k < 8; ++k)
+        two[8 + k] = rugo_v2(10.0 - 1e-5 * k, 10.0 + 2e-5 * k * k);
     d = make_def(two, 16, 16, RUGO_PARAM_CHORD_LENGTH);
     rugo_vec2 out16[16];
     ck_assert_int_eq(rugo_fit_contour(&d, out16, &res), RUGO_ERR_SINGULAR);
@@ -354,9 +370,11 @@ START_TEST(interpolation_when_m_equals_n) {
         ck_assert_near(f.y, samples[k].y, 1e-13 * 3.0);
     }
     /* All samples equal: the fit is that point. */
-    for (int k = 0; k < N; ++k) samples[k] = rugo_v2(-7.5, 1e9);
+    for (int k = 0; k < N; ++k)
+        samples[k] = rugo_v2(-7.5, 1e9);
     ck_assert_int_eq(rugo_fit_contour(&d, out, &res), RUGO_OK);
-    for (int k = 0; k < N; ++k) ck_assert(out[k].x == -7.5 && out[k].y == 1e9);
+    for (int k = 0; k < N; ++k)
+        ck_assert(out[k].x == -7.5 && out[k].y == 1e9);
     ck_assert(res.max_error <= 1e-15 * 1e9);
 }
 END_TEST
@@ -370,8 +388,8 @@ START_TEST(properties) {
         /* Irregular parameters plus noise: a genuine approximation problem. */
         double u = (k + 0.4 * sin(3.0 * k)) * N / M;
         rugo_contour c = {truth, N};
-        samples[k] = rugo_v2_add(rugo_contour_point_at(c, u),
-                                 rugo_v2(test_rng_uniform(&rng, -0.01, 0.01), test_rng_uniform(&rng, -0.01, 0.01)));
+        samples[k] = rugo_v2_add(rugo_contour_point_at(c, u), rugo_v2(test_rng_uniform(&rng, -0.01, 0.01),
+                                                                      test_rng_uniform(&rng, -0.01, 0.01)));
     }
     rugo_fit_def d = make_def(samples, M, N, RUGO_PARAM_CHORD_LENGTH);
     rugo_fit_result ra, rb;
@@ -389,7 +407,8 @@ START_TEST(properties) {
     rugo_vec2 moved[M];
     const double cs = cos(0.7) * 1e3, sn = sin(0.7) * 1e3;
     for (int k = 0; k < M; ++k)
-        moved[k] = rugo_v2(cs * samples[k].x - sn * samples[k].y + 5e5, sn * samples[k].x + cs * samples[k].y - 2e5);
+        moved[k] =
+            rugo_v2(cs * samples[k].x - sn * samples[k].y + 5e5, sn * samples[k].x + cs * samples[k].y - 2e5);
     d.samples = moved;
     ck_assert_int_eq(rugo_fit_contour(&d, b, &rb), RUGO_OK);
     for (int j = 0; j < N; ++j) {
@@ -400,13 +419,15 @@ START_TEST(properties) {
 
     /* Orientation kept: clockwise samples give a clockwise contour. */
     rugo_vec2 rev[M];
-    for (int k = 0; k < M; ++k) rev[k] = samples[M - 1 - k];
+    for (int k = 0; k < M; ++k)
+        rev[k] = samples[M - 1 - k];
     d.samples = rev;
     ck_assert_int_eq(rugo_fit_contour(&d, b, &rb), RUGO_OK);
     rugo_contour cb = {b, N}, ca = {a, N};
     ck_assert(rugo_contour_signed_area(cb) < 0.0);
     ck_assert(rugo_contour_signed_area(ca) > 0.0);
-    ck_assert_near(-rugo_contour_signed_area(cb), rugo_contour_signed_area(ca), 1e-3 * rugo_contour_signed_area(ca));
+    ck_assert_near(-rugo_contour_signed_area(cb), rugo_contour_signed_area(ca),
+                   1e-3 * rugo_contour_signed_area(ca));
 }
 END_TEST
 
@@ -544,7 +565,8 @@ START_TEST(move_two_points_land) {
     const double ts[2] = {0.3, 0.75};
     const rugo_vec2 deltas[2] = {{0.5, -0.25}, {-0.3, 0.8}};
     for (int mode = 0; mode < 2; ++mode) {
-        for (int level = 4; level <= PJ; ++level) check_landing((rugo_detail_mode)mode, level, 2, segs, ts, deltas);
+        for (int level = 4; level <= PJ; ++level)
+            check_landing((rugo_detail_mode)mode, level, 2, segs, ts, deltas);
         /* Overlapping supports (adjacent segments) and a wrap-around pair. */
         const int segs2[2] = {4, 5}, segs3[2] = {15, 0};
         check_landing((rugo_detail_mode)mode, 4, 2, segs2, ts, deltas);
@@ -559,7 +581,8 @@ START_TEST(move_many_points_land) {
     const double ts[8] = {0.0, 0.6, 0.5, 1.0, 0.25, 0.5, 0.1, 0.9};
     rugo_vec2 deltas[8];
     test_rng rng = test_rng_seed(66u);
-    for (int i = 0; i < 8; ++i) deltas[i] = rugo_v2(test_rng_uniform(&rng, -1, 1), test_rng_uniform(&rng, -1, 1));
+    for (int i = 0; i < 8; ++i)
+        deltas[i] = rugo_v2(test_rng_uniform(&rng, -1, 1), test_rng_uniform(&rng, -1, 1));
     check_landing(RUGO_DETAILS_FIXED, 4, 8, segs, ts, deltas);
     check_landing(RUGO_DETAILS_LOCAL, 4, 8, segs, ts, deltas);
     /* Four generic points on the coarsest 4-point level determine all four control points. */
@@ -582,16 +605,20 @@ START_TEST(move_points_least_norm) {
     for (int i = 0; i < 2; ++i) {
         double b[4];
         rugo_bspline_basis(ts[i], b);
-        for (int a = 0; a < 4; ++a) rows[i][(segs[i] - 1 + a + n) % n] += b[a];
+        for (int a = 0; a < 4; ++a)
+            rows[i][(segs[i] - 1 + a + n) % n] += b[a];
     }
     double g[2][2] = {{0, 0}, {0, 0}};
     for (int i = 0; i < 2; ++i)
         for (int k = 0; k < 2; ++k)
-            for (int j = 0; j < n; ++j) g[i][k] += rows[i][j] * rows[k][j];
+            for (int j = 0; j < n; ++j)
+                g[i][k] += rows[i][j] * rows[k][j];
     const double det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
     rugo_vec2 y[2];
-    y[0] = rugo_v2((g[1][1] * deltas[0].x - g[0][1] * deltas[1].x) / det, (g[1][1] * deltas[0].y - g[0][1] * deltas[1].y) / det);
-    y[1] = rugo_v2((-g[1][0] * deltas[0].x + g[0][0] * deltas[1].x) / det, (-g[1][0] * deltas[0].y + g[0][0] * deltas[1].y) / det);
+    y[0] = rugo_v2((g[1][1] * deltas[0].x - g[0][1] * deltas[1].x) / det,
+                   (g[1][1] * deltas[0].y - g[0][1] * deltas[1].y) / det);
+    y[1] = rugo_v2((-g[1][0] * deltas[0].x + g[0][0] * deltas[1].x) / det,
+                   (-g[1][0] * deltas[0].y + g[0][0] * deltas[1].y) / det);
 
     rugo_pyramid* p = make_pyramid(7u, NULL);
     rugo_vec2 before[16], after[16];
@@ -619,15 +646,18 @@ START_TEST(single_point_equals_move_point) {
                 rugo_pyramid* b = make_pyramid(55u, NULL);
                 const int seg = (5 * level + v) % (1 << level);
                 const rugo_vec2 delta = rugo_v2(0.7, -0.45);
-                ck_assert_int_eq(rugo_pyramid_move_point(a, level, seg, ts[v], delta, (rugo_detail_mode)mode), RUGO_OK);
-                ck_assert_int_eq(rugo_pyramid_move_points(b, level, 1, &seg, &ts[v], &delta, (rugo_detail_mode)mode),
+                ck_assert_int_eq(rugo_pyramid_move_point(a, level, seg, ts[v], delta, (rugo_detail_mode)mode),
                                  RUGO_OK);
+                ck_assert_int_eq(
+                    rugo_pyramid_move_points(b, level, 1, &seg, &ts[v], &delta, (rugo_detail_mode)mode),
+                    RUGO_OK);
                 for (int l = 2; l <= PJ; ++l) {
                     rugo_vec2 pa[PN], pb[PN];
                     level_points(a, l, pa);
                     level_points(b, l, pb);
-                    ck_assert_msg(test_max_diff(pa, pb, 1 << l) <= 1e-12 * 10.0, "mode %d level %d t %g: level %d differs by %g",
-                                  mode, level, ts[v], l, test_max_diff(pa, pb, 1 << l));
+                    ck_assert_msg(test_max_diff(pa, pb, 1 << l) <= 1e-12 * 10.0,
+                                  "mode %d level %d t %g: level %d differs by %g", mode, level, ts[v], l,
+                                  test_max_diff(pa, pb, 1 << l));
                 }
                 rugo_pyramid_destroy(a);
                 rugo_pyramid_destroy(b);
@@ -637,11 +667,13 @@ START_TEST(single_point_equals_move_point) {
 }
 END_TEST
 
-static void expect_singular_unchanged(int level, int count, const int* segs, const double* ts, const rugo_vec2* deltas) {
+static void expect_singular_unchanged(int level, int count, const int* segs, const double* ts,
+                                      const rugo_vec2* deltas) {
     rugo_pyramid* p = make_pyramid(3u, NULL);
     rugo_vec2 before[PN], after[PN];
     level_points(p, PJ, before);
-    ck_assert_int_eq(rugo_pyramid_move_points(p, level, count, segs, ts, deltas, RUGO_DETAILS_FIXED), RUGO_ERR_SINGULAR);
+    ck_assert_int_eq(rugo_pyramid_move_points(p, level, count, segs, ts, deltas, RUGO_DETAILS_FIXED),
+                     RUGO_ERR_SINGULAR);
     level_points(p, PJ, after);
     ck_assert_int_eq(memcmp(before, after, sizeof before), 0);
     rugo_pyramid_destroy(p);
@@ -685,7 +717,8 @@ START_TEST(conflicting_constraints_singular) {
         const double ts[5] = {0.0, 0.2, 0.4, 0.6, 0.8};
         rugo_vec2 deltas[5];
         test_rng rng = test_rng_seed(2u);
-        for (int i = 0; i < 5; ++i) deltas[i] = rugo_v2(test_rng_uniform(&rng, -1, 1), test_rng_uniform(&rng, -1, 1));
+        for (int i = 0; i < 5; ++i)
+            deltas[i] = rugo_v2(test_rng_uniform(&rng, -1, 1), test_rng_uniform(&rng, -1, 1));
         expect_singular_unchanged(4, 5, segs, ts, deltas);
         expect_singular_unchanged(PJ, 5, segs, ts, deltas);
     }
@@ -747,8 +780,10 @@ START_TEST(move_points_bad_input) {
     ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, NULL, ts, deltas, F), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, NULL, deltas, F), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, ts, NULL, F), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, ts, deltas, (rugo_detail_mode)5), RUGO_ERR_BAD_ARGUMENT);
-    ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, ts, deltas, (rugo_detail_mode)-1), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, ts, deltas, (rugo_detail_mode)5),
+                     RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_pyramid_move_points(p, 4, 2, segs, ts, deltas, (rugo_detail_mode)-1),
+                     RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_pyramid_move_points(p, 1, 2, segs, ts, deltas, F), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_pyramid_move_points(p, PJ + 1, 2, segs, ts, deltas, F), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_pyramid_move_points(p, -3, 2, segs, ts, deltas, F), RUGO_ERR_BAD_LEVEL);

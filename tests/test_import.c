@@ -411,7 +411,6 @@ START_TEST(bad_path_data) {
 }
 END_TEST
 
-
 /* Every allocation failure is OUT_OF_MEMORY with nothing leaked, for parsing and sampling; the
  * allocator given is the one used. */
 START_TEST(allocation_failures) {
@@ -1169,7 +1168,7 @@ START_TEST(path_from_points_all_equal) {
     rugo_outline_samples s;
     rugo_parse_error e;
     ck_assert_int_ne(rugo_outline_sample(&sd, &s, &e), RUGO_OK); /* nothing to sample: an error, */
-    ck_assert_ptr_null(s.points);                                  /* not a crash */
+    ck_assert_ptr_null(s.points);                                /* not a crash */
     ck_assert_int_eq(s.count, 0);
     rugo_path_free(&p);
 }
@@ -1259,8 +1258,9 @@ START_TEST(inkscape_made_fit_error) {
     rugo_outline_fit f32, f64;
     fit_samples(s.points, s.count, 32, &f32);
     fit_samples(s.points, s.count, 64, &f64);
-    printf("import: Inkscape-made rock, perimeter %.17g; n=32 max %.17g rms %.17g; n=64 max %.17g rms %.17g\n",
-           s.perimeter, f32.max_error, f32.rms_error, f64.max_error, f64.rms_error);
+    printf(
+        "import: Inkscape-made rock, perimeter %.17g; n=32 max %.17g rms %.17g; n=64 max %.17g rms %.17g\n",
+        s.perimeter, f32.max_error, f32.rms_error, f64.max_error, f64.rms_error);
     ck_assert_near(f32.max_error, 1.0599460193729771, 1e-9);
     ck_assert_near(f32.rms_error, 0.24871679163716404, 1e-9);
     ck_assert_near(f64.max_error, 0.37179376109272083, 1e-9);
@@ -1379,7 +1379,8 @@ END_TEST
 START_TEST(fit_outline_extreme_radius) {
     enum { M = 64, N = 16 };
     rugo_vec2 unit[M], tiny[M];
-    for (int i = 0; i < M; ++i) unit[i] = rugo_v2(cos(2 * PI * i / M), sin(2 * PI * i / M));
+    for (int i = 0; i < M; ++i)
+        unit[i] = rugo_v2(cos(2 * PI * i / M), sin(2 * PI * i / M));
     rugo_outline_fit_def fd = rugo_default_outline_fit_def();
     fd.samples = unit;
     fd.sample_count = M;
@@ -1389,7 +1390,8 @@ START_TEST(fit_outline_extreme_radius) {
     ck_assert(ref.max_error > 1e-6 && ref.max_error < 1e-2); /* the cubic's deviation from a circle */
     const double radii[4] = {1e-300, 1e300, 0x1p-997, 0x1p+997};
     for (int v = 0; v < 4; ++v) {
-        for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(radii[v], unit[i]);
+        for (int i = 0; i < M; ++i)
+            tiny[i] = rugo_v2_scale(radii[v], unit[i]);
         fd.samples = tiny;
         ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);
         ck_assert_int_eq(f.control_count, N);
@@ -1414,7 +1416,8 @@ START_TEST(fit_outline_extreme_radius) {
     fd.samples = unit;
     fd.tolerance = 1e-4;
     ck_assert_int_eq(rugo_fit_outline(&fd, &ref), RUGO_OK);
-    for (int i = 0; i < M; ++i) tiny[i] = rugo_v2_scale(1e-300, unit[i]);
+    for (int i = 0; i < M; ++i)
+        tiny[i] = rugo_v2_scale(1e-300, unit[i]);
     fd.samples = tiny;
     fd.tolerance = 1e-304;
     ck_assert_int_eq(rugo_fit_outline(&fd, &f), RUGO_OK);

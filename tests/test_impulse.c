@@ -13,7 +13,9 @@
 
 #include <stdio.h>
 
-static rugo_vec2 pv(rugo_vec2 v, rugo_real w, rugo_vec2 r) { return rugo_v2_add(v, rugo_v2_scale(w, rugo_v2_perp(r))); }
+static rugo_vec2 pv(rugo_vec2 v, rugo_real w, rugo_vec2 r) {
+    return rugo_v2_add(v, rugo_v2_scale(w, rugo_v2_perp(r)));
+}
 
 static double ke(double im, double ii, rugo_vec2 v, double w) {
     double e = 0.0;
@@ -78,8 +80,8 @@ START_TEST(test_random_collisions) {
         if (res.branch == 3 && fabs(vn2 + in.restitution * vn) > vtol)
             ck_assert_msg(fabs(vn2) <= vtol, "frictionless: vn=%g vn'=%g eps=%g", vn, vn2, in.restitution);
         else
-            ck_assert_msg(fabs(vn2 + in.restitution * vn) <= vtol, "branch %d: vn=%g vn'=%g eps=%g", res.branch, vn,
-                          vn2, in.restitution);
+            ck_assert_msg(fabs(vn2 + in.restitution * vn) <= vtol, "branch %d: vn=%g vn'=%g eps=%g",
+                          res.branch, vn, vn2, in.restitution);
         if (res.branch == 1) ck_assert_msg(fabs(vt2) <= vtol, "sticking leaves slip %g", vt2);
         /* friction cone, from the vector itself */
         double jn = rugo_v2_dot(j, in.normal);
@@ -91,7 +93,8 @@ START_TEST(test_random_collisions) {
         ck_assert_near(res.impulse_normal, jn, 1e-12 * jlen);
         ck_assert_near(fabs(res.impulse_tangent), fabs(jt), 1e-9 * jlen); /* sliding reports μ J_n exactly */
         /* energy */
-        double e0 = ke(in.inv_mass_a, in.inv_inertia_a, in.v_a, in.w_a) + ke(in.inv_mass_b, in.inv_inertia_b, in.v_b, in.w_b);
+        double e0 = ke(in.inv_mass_a, in.inv_inertia_a, in.v_a, in.w_a) +
+                    ke(in.inv_mass_b, in.inv_inertia_b, in.v_b, in.w_b);
         double e1 = ke(in.inv_mass_a, in.inv_inertia_a, va, wa) + ke(in.inv_mass_b, in.inv_inertia_b, vb, wb);
         ck_assert_msg(e1 - e0 <= 1e-10 * e0, "energy grew by %g of %g (branch %d)", e1 - e0, e0, res.branch);
         ck_assert_near(res.energy_change, e1 - e0, 1e-10 * e0);
@@ -105,9 +108,11 @@ START_TEST(test_random_collisions) {
             double kyy = im + in.inv_inertia_a * ra.y * ra.y + in.inv_inertia_b * rb.y * rb.y;
             double det = kxx * kyy - kxy * kxy;
             rugo_vec2 tg = rugo_v2_add(vrel, rugo_v2_scale(in.restitution * vn, in.normal));
-            rugo_vec2 js = rugo_v2_scale(-1.0 / det, rugo_v2(kyy * tg.x - kxy * tg.y, -kxy * tg.x + kxx * tg.y));
+            rugo_vec2 js =
+                rugo_v2_scale(-1.0 / det, rugo_v2(kyy * tg.x - kxy * tg.y, -kxy * tg.x + kxx * tg.y));
             double sjn = rugo_v2_dot(js, in.normal), sjt = rugo_v2_dot(js, rugo_v2_perp(in.normal));
-            rugo_vec2 vav = rugo_v2_add(vrel, rugo_v2_scale(0.5, rugo_v2(kxx * js.x + kxy * js.y, kxy * js.x + kyy * js.y)));
+            rugo_vec2 vav = rugo_v2_add(
+                vrel, rugo_v2_scale(0.5, rugo_v2(kxx * js.x + kxy * js.y, kxy * js.x + kyy * js.y)));
             double de = rugo_v2_dot(js, vav);
             if (sjn >= 0.0 && fabs(sjt) <= in.friction * sjn && de > 1e-6 * e0) {
                 ++guarded;
@@ -120,7 +125,8 @@ START_TEST(test_random_collisions) {
     ck_assert_int_gt(branches[2], 10000);
     ck_assert_int_gt(branches[3], 10000);
     ck_assert_int_gt(guarded, 100);
-    fprintf(stderr, "impulse: %ld cases: none %ld, sticking %ld, sliding %ld, frictionless %ld; energy guard %ld\n",
+    fprintf(stderr,
+            "impulse: %ld cases: none %ld, sticking %ld, sliding %ld, frictionless %ld; energy guard %ld\n",
             cases, branches[0], branches[1], branches[2], branches[3], guarded);
 }
 END_TEST

@@ -59,17 +59,20 @@ START_TEST(test_covariance_axes_known) {
         /* A symmetric cross of points: exact covariance diag(2 * 9 + ..., ...) in the (u, w) frame. */
         const double s[4][2] = {{3, 0}, {-3, 0}, {0, 1}, {0, -1}};
         rugo_vec2 p[4];
-        for (int i = 0; i < 4; ++i) p[i] = rugo_v2_add(o, rugo_v2_add(rugo_v2_scale(s[i][0], u), rugo_v2_scale(s[i][1], w)));
+        for (int i = 0; i < 4; ++i)
+            p[i] = rugo_v2_add(o, rugo_v2_add(rugo_v2_scale(s[i][0], u), rugo_v2_scale(s[i][1], w)));
         rugo_covariance_axes(p, 4, axis);
         check_frame(axis);
-        ck_assert_msg(direction_error(axis[0], u) < 1e-12, "angle %g: axis (%g, %g)", angle, axis[0].x, axis[0].y);
+        ck_assert_msg(direction_error(axis[0], u) < 1e-12, "angle %g: axis (%g, %g)", angle, axis[0].x,
+                      axis[0].y);
     }
     /* Points on a line, at any angle. */
     for (int trial = 0; trial < 100; ++trial) {
         double angle = test_rng_uniform(&r, 0.0, 2.0 * PI);
         rugo_vec2 u = rugo_v2(cos(angle), sin(angle));
         rugo_vec2 p[5];
-        for (int i = 0; i < 5; ++i) p[i] = rugo_v2_add(rugo_v2(1e5, -2e5), rugo_v2_scale(test_rng_uniform(&r, -4.0, 4.0), u));
+        for (int i = 0; i < 5; ++i)
+            p[i] = rugo_v2_add(rugo_v2(1e5, -2e5), rugo_v2_scale(test_rng_uniform(&r, -4.0, 4.0), u));
         rugo_covariance_axes(p, 5, axis);
         check_frame(axis);
         ck_assert(direction_error(axis[0], u) < 1e-9);
@@ -90,7 +93,8 @@ START_TEST(test_covariance_axes_degenerate) {
     }
     /* Isotropic with round-off (a rotated regular octagon): the coordinate axes. */
     rugo_vec2 oct[8];
-    for (int i = 0; i < 8; ++i) oct[i] = rugo_v2(5.0 + cos(0.3 + i * PI / 4), -7.0 + sin(0.3 + i * PI / 4));
+    for (int i = 0; i < 8; ++i)
+        oct[i] = rugo_v2(5.0 + cos(0.3 + i * PI / 4), -7.0 + sin(0.3 + i * PI / 4));
     rugo_covariance_axes(oct, 8, axis);
     ck_assert(axis[0].x == 1.0 && axis[0].y == 0.0);
     /* One point, coincident points: no spread at all. */
@@ -111,7 +115,9 @@ END_TEST
 
 /* ---- separating axes against a brute-force polygon test --------------------------------------- */
 
-static double orient(rugo_vec2 a, rugo_vec2 b, rugo_vec2 c) { return rugo_v2_cross(rugo_v2_sub(b, a), rugo_v2_sub(c, a)); }
+static double orient(rugo_vec2 a, rugo_vec2 b, rugo_vec2 c) {
+    return rugo_v2_cross(rugo_v2_sub(b, a), rugo_v2_sub(c, a));
+}
 
 static double point_segment_distance(rugo_vec2 p, rugo_vec2 a, rugo_vec2 b) {
     rugo_vec2 d = rugo_v2_sub(b, a);
@@ -146,7 +152,8 @@ static double box_distance(const rugo_obb* a, const rugo_obb* b) {
         if (inside_quad(pa, pb[i]) || inside_quad(pb, pa[i])) return 0.0;
     double m = INFINITY;
     for (int i = 0; i < 4; ++i)
-        for (int k = 0; k < 4; ++k) m = fmin(m, segment_distance(pa[i], pa[(i + 1) % 4], pb[k], pb[(k + 1) % 4]));
+        for (int k = 0; k < 4; ++k)
+            m = fmin(m, segment_distance(pa[i], pa[(i + 1) % 4], pb[k], pb[(k + 1) % 4]));
     return m;
 }
 
@@ -184,7 +191,8 @@ START_TEST(test_sat_touching_nested_degenerate) {
         /* Face to face, same axes: touching along a side. */
         double g0 = test_rng_uniform(&r, 0.1, 3.0), g1 = test_rng_uniform(&r, 0.1, 3.0);
         double slide = test_rng_uniform(&r, -0.9, 0.9) * (h1 + g1);
-        rugo_vec2 c = rugo_v2_add(a.center, rugo_v2_add(rugo_v2_scale(h0 + g0, a.axis[0]), rugo_v2_scale(slide, a.axis[1])));
+        rugo_vec2 c = rugo_v2_add(
+            a.center, rugo_v2_add(rugo_v2_scale(h0 + g0, a.axis[0]), rugo_v2_scale(slide, a.axis[1])));
         rugo_obb b = make_box(c.x, c.y, angle, g0, g1);
         ck_assert_msg(rugo_obb_overlap(&a, &b) && rugo_obb_overlap(&b, &a), "face touching, trial %d", trial);
         /* Pulled apart by a visible gap: separated. */
@@ -193,14 +201,15 @@ START_TEST(test_sat_touching_nested_degenerate) {
         ck_assert(!rugo_obb_overlap(&a, &b2));
         /* Corner on a face: a box turned by 45 degrees whose corner touches a's side. */
         double diag = g0 * sqrt(2.0);
-        c = rugo_v2_add(a.center, rugo_v2_add(rugo_v2_scale(h1 + diag, a.axis[1]), rugo_v2_scale(0.5 * h0, a.axis[0])));
+        c = rugo_v2_add(a.center,
+                        rugo_v2_add(rugo_v2_scale(h1 + diag, a.axis[1]), rugo_v2_scale(0.5 * h0, a.axis[0])));
         rugo_obb corner = make_box(c.x, c.y, angle + PI / 4, g0, g0);
         ck_assert_msg(rugo_obb_overlap(&a, &corner), "corner touching, trial %d", trial);
         corner.center = rugo_v2_add(corner.center, rugo_v2_scale(1e-6, a.axis[1]));
         ck_assert(!rugo_obb_overlap(&a, &corner));
         /* Nested either way, any rotation; identical boxes. */
-        rugo_obb inner = make_box(cx + 0.1 * h0 * a.axis[0].x, cy + 0.1 * h0 * a.axis[0].y, test_rng_uniform(&r, 0.0, PI),
-                                  0.3 * fmin(h0, h1), 0.2 * fmin(h0, h1));
+        rugo_obb inner = make_box(cx + 0.1 * h0 * a.axis[0].x, cy + 0.1 * h0 * a.axis[0].y,
+                                  test_rng_uniform(&r, 0.0, PI), 0.3 * fmin(h0, h1), 0.2 * fmin(h0, h1));
         ck_assert(rugo_obb_overlap(&a, &inner) && rugo_obb_overlap(&inner, &a));
         ck_assert(rugo_obb_overlap(&a, &a));
     }
@@ -233,8 +242,8 @@ START_TEST(test_transform_enclose_contains) {
     test_rng r = test_rng_seed(5);
     for (int trial = 0; trial < 2000; ++trial) {
         rugo_obb a = random_box(&r, 10.0, 3.0), b = random_box(&r, 10.0, 3.0);
-        rugo_transform t = rugo_make_transform(test_rng_uniform(&r, -100, 100), test_rng_uniform(&r, -100, 100),
-                                               test_rng_uniform(&r, -PI, PI));
+        rugo_transform t = rugo_make_transform(
+            test_rng_uniform(&r, -100, 100), test_rng_uniform(&r, -100, 100), test_rng_uniform(&r, -PI, PI));
         /* transform: corners of the moved box = moved corners; overlap and containment unchanged. */
         rugo_obb ta = rugo_obb_transform(t, &a), tb = rugo_obb_transform(t, &b);
         check_frame(ta.axis);
@@ -251,11 +260,13 @@ START_TEST(test_transform_enclose_contains) {
         ck_assert_near(rugo_obb_area(&ta), rugo_obb_area(&a), 1e-12);
         /* corners counter-clockwise, area 4 h0 h1 */
         double shoelace = 0.0;
-        for (int i = 0; i < 4; ++i) shoelace += 0.5 * rugo_v2_cross(ca[i], ca[(i + 1) % 4]);
+        for (int i = 0; i < 4; ++i)
+            shoelace += 0.5 * rugo_v2_cross(ca[i], ca[(i + 1) % 4]);
         ck_assert_near(shoelace, rugo_obb_area(&a), 1e-9);
         ck_assert_near(rugo_obb_area(&a), 4.0 * a.half[0] * a.half[1], 0.0);
         /* contains: the corners with a little slack, not points beyond a side */
-        for (int i = 0; i < 4; ++i) ck_assert(rugo_obb_contains(&a, ca[i], 1e-12));
+        for (int i = 0; i < 4; ++i)
+            ck_assert(rugo_obb_contains(&a, ca[i], 1e-12));
         rugo_vec2 out = rugo_v2_add(a.center, rugo_v2_scale(a.half[0] + 1e-6, a.axis[0]));
         ck_assert(!rugo_obb_contains(&a, out, 0.0));
         ck_assert(rugo_obb_contains(&a, out, 2e-6));
@@ -265,11 +276,13 @@ START_TEST(test_transform_enclose_contains) {
         ck_assert(memcmp(e.axis, a.axis, sizeof e.axis) == 0);
         rugo_vec2 cb[4];
         rugo_obb_corners(&b, cb);
-        for (int i = 0; i < 4; ++i) ck_assert(rugo_obb_contains(&e, cb[i], 1e-12));
+        for (int i = 0; i < 4; ++i)
+            ck_assert(rugo_obb_contains(&e, cb[i], 1e-12));
         for (int ax = 0; ax < 2; ++ax)
             for (int side = -1; side <= 1; side += 2) {
                 double best = -INFINITY;
-                for (int i = 0; i < 4; ++i) best = fmax(best, side * rugo_v2_dot(rugo_v2_sub(cb[i], e.center), e.axis[ax]));
+                for (int i = 0; i < 4; ++i)
+                    best = fmax(best, side * rugo_v2_dot(rugo_v2_sub(cb[i], e.center), e.axis[ax]));
                 ck_assert_near(best, e.half[ax], 1e-12);
             }
         /* enclosing a box in its own axes gives it back */
@@ -321,14 +334,15 @@ static void check_leaf(rugo_contour c, int seg, double band, double min_length, 
     ck_assert(b.half[0] >= band && b.half[1] >= band);
     for (int i = 0; i <= 400; ++i) {
         rugo_vec2 p = rugo_contour_point(c, seg, i / 400.0);
-        ck_assert_msg(rugo_obb_contains(&b, p, tol - band), "segment %d, t = %g outside its box", seg, i / 400.0);
+        ck_assert_msg(rugo_obb_contains(&b, p, tol - band), "segment %d, t = %g outside its box", seg,
+                      i / 400.0);
     }
     for (int ax = 0; ax < 2; ++ax)
         for (int side = -1; side <= 1; side += 2) {
             rugo_vec2 e = rugo_v2_scale((double)side, b.axis[ax]);
             double m = max_projection(c, seg, b.center, e);
-            ck_assert_msg(fabs(m - (b.half[ax] - band)) <= tol, "axis %d side %d: reach %.17g, half - band %.17g", ax,
-                          side, m, b.half[ax] - band);
+            ck_assert_msg(fabs(m - (b.half[ax] - band)) <= tol,
+                          "axis %d side %d: reach %.17g, half - band %.17g", ax, side, m, b.half[ax] - band);
         }
 }
 
@@ -401,7 +415,8 @@ START_TEST(test_leaf_box_random_and_far) {
         check_leaf(four(q), 1, band, 0.0, 1e-11);
         /* Far from the origin: the box stays as tight as the curve's own evaluation allows. */
         rugo_vec2 far[4];
-        for (int i = 0; i < 4; ++i) far[i] = rugo_v2_add(q[i], rugo_v2(1e6, -3e6));
+        for (int i = 0; i < 4; ++i)
+            far[i] = rugo_v2_add(q[i], rugo_v2(1e6, -3e6));
         check_leaf(four(far), 1, band, 0.0, 1e-8);
         rugo_obb a = rugo_segment_box(four(q), 1, band, 0.0), b = rugo_segment_box(four(far), 1, band, 0.0);
         ck_assert(direction_error(a.axis[0], b.axis[0]) < 1e-8);
@@ -459,7 +474,8 @@ static rugo_tolerances* make_tolerances(const rugo_pyramid* p, double lo, double
     return t;
 }
 
-static rugo_mobb_tree* make_tree(const rugo_pyramid* p, const rugo_tolerances* t, rugo_box_method m, double min_length) {
+static rugo_mobb_tree* make_tree(const rugo_pyramid* p, const rugo_tolerances* t, rugo_box_method m,
+                                 double min_length) {
     rugo_mobb_tree_def def = rugo_default_mobb_tree_def();
     def.pyramid = p;
     def.tolerances = t;
@@ -481,7 +497,8 @@ static rugo_contour curve_of(const rugo_pyramid* p, int j) {
  * (ii) its own coarse segment thickened by λ^j_k; parents contain their children; the root contains
  * every coarsest node. Thickening is checked as discs: each sample must lie in the box shrunk by the
  * radius. Returns the number of sample checks. */
-static long check_tree_invariant(const rugo_mobb_tree* tree, const rugo_pyramid* p, const rugo_tolerances* t) {
+static long check_tree_invariant(const rugo_mobb_tree* tree, const rugo_pyramid* p,
+                                 const rugo_tolerances* t) {
     enum { S = 32 };
     int J = rugo_pyramid_finest_level(p), J0 = rugo_pyramid_coarsest_level(p);
     ck_assert_int_eq(rugo_mobb_tree_finest_level(tree), J);
@@ -505,28 +522,30 @@ static long check_tree_invariant(const rugo_mobb_tree* tree, const rugo_pyramid*
                 double beta = t ? fl.bound[i] : 0.0;
                 for (int s = 0; s <= S; ++s) {
                     rugo_vec2 q = rugo_contour_point(fine, i, (double)s / S);
-                    ck_assert_msg(rugo_obb_contains(box, q, slack - beta), "level %d node %d: finest segment %d, t = %g",
-                                  j, k, i, (double)s / S);
+                    ck_assert_msg(rugo_obb_contains(box, q, slack - beta),
+                                  "level %d node %d: finest segment %d, t = %g", j, k, i, (double)s / S);
                     ++checks;
                 }
             }
             double lambda = t ? tl.total[k] : 0.0;
             for (int s = 0; s <= S; ++s) {
                 rugo_vec2 q = rugo_contour_point(cj, k, (double)s / S);
-                ck_assert_msg(rugo_obb_contains(box, q, slack - lambda), "level %d node %d: own segment, t = %g", j, k,
-                              (double)s / S);
+                ck_assert_msg(rugo_obb_contains(box, q, slack - lambda),
+                              "level %d node %d: own segment, t = %g", j, k, (double)s / S);
                 ++checks;
             }
             if (j < J)
                 for (int c = 0; c < 2; ++c) {
                     rugo_vec2 corner[4];
                     rugo_obb_corners(rugo_mobb_tree_node(tree, j + 1, 2 * k + c), corner);
-                    for (int i = 0; i < 4; ++i) ck_assert(rugo_obb_contains(box, corner[i], slack));
+                    for (int i = 0; i < 4; ++i)
+                        ck_assert(rugo_obb_contains(box, corner[i], slack));
                 }
             if (j == J0) {
                 rugo_vec2 corner[4];
                 rugo_obb_corners(box, corner);
-                for (int i = 0; i < 4; ++i) ck_assert(rugo_obb_contains(rugo_mobb_tree_root(tree), corner[i], slack));
+                for (int i = 0; i < 4; ++i)
+                    ck_assert(rugo_obb_contains(rugo_mobb_tree_root(tree), corner[i], slack));
             }
         }
     }
@@ -624,7 +643,8 @@ START_TEST(test_tree_nodes_and_areas) {
     ck_assert(isnan(rugo_mobb_tree_level_area(tree, 2)));
     ck_assert(isnan(rugo_mobb_tree_level_area(tree, 9)));
     /* Coarser boxes are bigger in total (they hold their children). */
-    for (int j = 3; j < 8; ++j) ck_assert(rugo_mobb_tree_level_area(tree, j) > rugo_mobb_tree_level_area(tree, j + 1));
+    for (int j = 3; j < 8; ++j)
+        ck_assert(rugo_mobb_tree_level_area(tree, j) > rugo_mobb_tree_level_area(tree, j + 1));
     /* Accessors tolerate NULL. */
     ck_assert_ptr_null(rugo_mobb_tree_node(NULL, 3, 0));
     ck_assert_ptr_null(rugo_mobb_tree_root(NULL));
@@ -650,12 +670,14 @@ START_TEST(test_tree_linear_size) {
                 rugo_mobb_tree* tree = make_tree(p, t, (rugo_box_method)m, 0.0);
                 long nodes = 0;
                 for (int j = 0; j <= J + 1; ++j)
-                    for (int k = 0; k < (1 << j); ++k) nodes += rugo_mobb_tree_node(tree, j, k) != NULL;
+                    for (int k = 0; k < (1 << j); ++k)
+                        nodes += rugo_mobb_tree_node(tree, j, k) != NULL;
                 ck_assert_int_eq(nodes, 2L * n - (1L << coarsest));
                 for (int k = 0; k < n; ++k) {
                     rugo_vec2 corner[4];
                     rugo_obb_corners(rugo_mobb_tree_node(tree, J, k), corner);
-                    for (int i = 0; i < 4; ++i) ck_assert(rugo_obb_contains(rugo_mobb_tree_root(tree), corner[i], 1e-9));
+                    for (int i = 0; i < 4; ++i)
+                        ck_assert(rugo_obb_contains(rugo_mobb_tree_root(tree), corner[i], 1e-9));
                 }
                 rugo_mobb_tree_destroy(tree);
             }
@@ -670,7 +692,8 @@ END_TEST
 static int same_tree(const rugo_mobb_tree* a, const rugo_mobb_tree* b) {
     for (int j = rugo_mobb_tree_coarsest_level(a); j <= rugo_mobb_tree_finest_level(a); ++j)
         for (int k = 0; k < (1 << j); ++k)
-            if (memcmp(rugo_mobb_tree_node(a, j, k), rugo_mobb_tree_node(b, j, k), sizeof(rugo_obb)) != 0) return 0;
+            if (memcmp(rugo_mobb_tree_node(a, j, k), rugo_mobb_tree_node(b, j, k), sizeof(rugo_obb)) != 0)
+                return 0;
     return memcmp(rugo_mobb_tree_root(a), rugo_mobb_tree_root(b), sizeof(rugo_obb)) == 0;
 }
 
@@ -691,7 +714,8 @@ START_TEST(test_tree_determinism) {
     /* The methods differ only above the leaves. */
     rugo_mobb_tree* a = make_tree(p, t, RUGO_BOXES_MULTIRES, 0.0);
     rugo_mobb_tree* b = make_tree(p, t, RUGO_BOXES_OF_BOXES, 0.0);
-    for (int k = 0; k < N; ++k) ck_assert(memcmp(rugo_mobb_tree_node(a, 7, k), rugo_mobb_tree_node(b, 7, k), sizeof(rugo_obb)) == 0);
+    for (int k = 0; k < N; ++k)
+        ck_assert(memcmp(rugo_mobb_tree_node(a, 7, k), rugo_mobb_tree_node(b, 7, k), sizeof(rugo_obb)) == 0);
     ck_assert(!same_tree(a, b));
     rugo_mobb_tree_destroy(a);
     rugo_mobb_tree_destroy(b);
@@ -725,7 +749,8 @@ static void ref_axes_from_covariance(double a, double b, double c, rugo_vec2 axi
 
 static void ref_covariance_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]) {
     rugo_vec2 o = points[0], mean = rugo_v2(0.0, 0.0);
-    for (int i = 0; i < n; ++i) mean = rugo_v2_add(mean, rugo_v2_sub(points[i], o));
+    for (int i = 0; i < n; ++i)
+        mean = rugo_v2_add(mean, rugo_v2_sub(points[i], o));
     mean = rugo_v2_scale(1.0 / n, mean);
     double a = 0.0, b = 0.0, c = 0.0;
     for (int i = 0; i < n; ++i) {
@@ -744,7 +769,8 @@ static void ref_box_interval(const rugo_obb* b, rugo_vec2 o, rugo_vec2 e, double
     *hi = m + r;
 }
 
-static rugo_obb ref_box_from_intervals(const rugo_vec2 axis[2], rugo_vec2 o, const double lo[2], const double hi[2]) {
+static rugo_obb ref_box_from_intervals(const rugo_vec2 axis[2], rugo_vec2 o, const double lo[2],
+                                       const double hi[2]) {
     rugo_obb r;
     r.axis[0] = axis[0];
     r.axis[1] = axis[1];
@@ -774,7 +800,8 @@ static rugo_vec2 ref_offset_at(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, double t) 
     return rugo_v2(a * v.x + b * w.x + c * r.x, a * v.y + b * w.y + c * r.y);
 }
 
-static void ref_projection_extremes(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_vec2 e, double* lo, double* hi) {
+static void ref_projection_extremes(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r, rugo_vec2 e, double* lo,
+                                    double* hi) {
     double alpha = rugo_v2_dot(v, e), beta = rugo_v2_dot(w, e), gamma = rugo_v2_dot(r, e);
     double cand[4];
     int nc = 0;
@@ -820,7 +847,8 @@ static double ref_weight_length(rugo_vec2 v, rugo_vec2 w, rugo_vec2 r) {
     return 0.5 * sum;
 }
 
-static rugo_obb ref_segment_box(rugo_contour c, int segment, double band, double min_length, double* length_out) {
+static rugo_obb ref_segment_box(rugo_contour c, int segment, double band, double min_length,
+                                double* length_out) {
     rugo_vec2 v, w, r, b[4];
     rugo_contour_derivative_coefficients(c, segment, &v, &w, &r);
     rugo_contour_bezier(c, segment, b);
@@ -829,7 +857,8 @@ static rugo_obb ref_segment_box(rugo_contour c, int segment, double band, double
     rugo_vec2 samples[5];
     int ns = 0;
     if (length > min_length) {
-        for (int i = 0; i < 5; ++i) samples[ns++] = ref_offset_at(v, w, r, 0.25 * i);
+        for (int i = 0; i < 5; ++i)
+            samples[ns++] = ref_offset_at(v, w, r, 0.25 * i);
     } else {
         samples[ns++] = rugo_v2(0.0, 0.0);
         samples[ns++] = ref_offset_at(v, w, r, 1.0);
@@ -873,7 +902,8 @@ static rugo_obb ref_padded(rugo_obb b) {
 }
 
 /* The reference tree: node (j, k) at nodes[(1 << j) - (1 << J0) + k], as the library stores them. */
-static rugo_obb* ref_tree(const rugo_pyramid* p, const rugo_tolerances* t, rugo_box_method method, double min_length) {
+static rugo_obb* ref_tree(const rugo_pyramid* p, const rugo_tolerances* t, rugo_box_method method,
+                          double min_length) {
     int J = rugo_pyramid_finest_level(p), J0 = rugo_pyramid_coarsest_level(p), n = 1 << J;
     rugo_obb* nodes = xmalloc(((size_t)2 * n - ((size_t)1 << J0)) * sizeof *nodes);
     ref_moments* mom = xmalloc((size_t)n * sizeof *mom);
@@ -895,7 +925,8 @@ static rugo_obb* ref_tree(const rugo_pyramid* p, const rugo_tolerances* t, rugo_
         rugo_obb* level = nodes + ((1 << j) - (1 << J0));
         const rugo_obb* below = nodes + ((2 << j) - (1 << J0));
         for (int k = 0; k < (1 << j); ++k) {
-            rugo_obb own = ref_padded(ref_segment_box(c, k, t ? fmax(tl.total[k], 0.0) : 0.0, min_length, NULL));
+            rugo_obb own =
+                ref_padded(ref_segment_box(c, k, t ? fmax(tl.total[k], 0.0) : 0.0, min_length, NULL));
             rugo_obb box;
             if (method == RUGO_BOXES_MULTIRES) {
                 box = own;
@@ -944,13 +975,13 @@ START_TEST(test_leaf_box_matches_reference) {
      * ill-conditioned), centre 4.7e-16, extents 3.1e-16 of the scale; the bounds leave a factor of 15
      * or more. */
     const rugo_vec2 kinds[7][4] = {
-        {{0, 0}, {1, 2}, {3, -1}, {4, 1.5}},                              /* cubic */
-        {{-1.5, 0.75}, {-0.5, -0.25}, {0.5, 0.75}, {1.5, 3.75}},          /* parabolic, v = 0 */
-        {{-1.5, 2.25}, {-0.5, 0.25}, {0.5, 0.25}, {1.5, 2.25}},           /* parabolic, axis-aligned */
-        {{0, 0}, {1, 2}, {1.5, 3}, {4, 8}},                               /* straight, tilted */
-        {{0, 1}, {1, 1}, {3, 1}, {4, 1}},                                 /* straight, axis-aligned */
-        {{2.5, -1.25}, {2.5, -1.25}, {2.5, -1.25}, {2.5, -1.25}},         /* a point */
-        {{0, 0}, {2, 1}, {0, 1}, {2, 0}},                                 /* a cusp */
+        {{0, 0}, {1, 2}, {3, -1}, {4, 1.5}},                      /* cubic */
+        {{-1.5, 0.75}, {-0.5, -0.25}, {0.5, 0.75}, {1.5, 3.75}},  /* parabolic, v = 0 */
+        {{-1.5, 2.25}, {-0.5, 0.25}, {0.5, 0.25}, {1.5, 2.25}},   /* parabolic, axis-aligned */
+        {{0, 0}, {1, 2}, {1.5, 3}, {4, 8}},                       /* straight, tilted */
+        {{0, 1}, {1, 1}, {3, 1}, {4, 1}},                         /* straight, axis-aligned */
+        {{2.5, -1.25}, {2.5, -1.25}, {2.5, -1.25}, {2.5, -1.25}}, /* a point */
+        {{0, 0}, {2, 1}, {0, 1}, {2, 0}},                         /* a cusp */
     };
     test_rng r = test_rng_seed(307);
     double worst[3] = {0.0, 0.0, 0.0};
@@ -961,7 +992,8 @@ START_TEST(test_leaf_box_matches_reference) {
         else
             test_random_points(&r, 4, 5.0, q);
         if (trial % 2 == 1)
-            for (int i = 0; i < 4; ++i) q[i] = rugo_v2_add(q[i], rugo_v2(1e6, -3e6));
+            for (int i = 0; i < 4; ++i)
+                q[i] = rugo_v2_add(q[i], rugo_v2(1e6, -3e6));
         double band = trial % 3 == 0 ? 0.0 : test_rng_uniform(&r, 0.0, 1.0);
         double len = rugo_contour_segment_length(four(q), 1);
         const double min_lengths[3] = {0.0, len, 0.999 * len};
@@ -969,7 +1001,8 @@ START_TEST(test_leaf_box_matches_reference) {
             rugo_obb a = rugo_segment_box(four(q), 1, band, min_lengths[l]);
             rugo_obb b = ref_segment_box(four(q), 1, band, min_lengths[l], NULL);
             compare_boxes(&a, &b, worst);
-            if (trial == 4 || trial == 5) ck_assert(memcmp(&a, &b, sizeof a) == 0); /* degenerate: the same bits */
+            if (trial == 4 || trial == 5)
+                ck_assert(memcmp(&a, &b, sizeof a) == 0); /* degenerate: the same bits */
         }
     }
     ck_assert_msg(worst[0] < 2e-14, "axis turn %g", worst[0]);
@@ -1020,14 +1053,16 @@ START_TEST(test_tree_matches_reference) {
                             const rugo_obb* b = &ref[(1 << j) - 4 + k];
                             compare_boxes(a, b, worst);
                             if (!far)
-                                worst_area = fmax(worst_area, fabs(rugo_obb_area(a) - rugo_obb_area(b)) / rugo_obb_area(b));
+                                worst_area = fmax(worst_area, fabs(rugo_obb_area(a) - rugo_obb_area(b)) /
+                                                                  rugo_obb_area(b));
                             ++nodes_compared;
                         }
                     for (int k = 0; k < n && m == 0; ++k) {
                         double beta = t ? fmax(fl.bound[k], fl.total[k]) : 0.0;
                         const rugo_obb* leaf = rugo_mobb_tree_node(tree, J, k);
                         rugo_obb box = rugo_segment_box(fine, k, beta, min_length);
-                        double scale = box.half[0] + box.half[1] + fmax(fabs(box.center.x), fabs(box.center.y));
+                        double scale =
+                            box.half[0] + box.half[1] + fmax(fabs(box.center.x), fabs(box.center.y));
                         for (int i = 0; i <= 64; ++i) {
                             rugo_vec2 s = rugo_contour_point(fine, k, i / 64.0);
                             ck_assert(rugo_obb_contains(leaf, s, -beta));

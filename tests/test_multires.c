@@ -46,7 +46,8 @@ static void example_shape(rugo_vec2* pts) {
     test_random_star(&r, EX_N, rugo_v2(0.0, 0.0), 200.0, 0.35, pts);
     rugo_contour c = {pts, EX_N};
     rugo_vec2 off = rugo_v2_sub(EX_POINT, rugo_contour_point(c, EX_SEG, EX_T));
-    for (int i = 0; i < EX_N; ++i) pts[i] = rugo_v2_add(pts[i], off);
+    for (int i = 0; i < EX_N; ++i)
+        pts[i] = rugo_v2_add(pts[i], off);
 }
 
 static double vec_dist(rugo_vec2 a, rugo_vec2 b) { return rugo__v2_length(rugo_v2_sub(a, b)); }
@@ -68,7 +69,8 @@ START_TEST(theorem_2_1_single_level) {
             double t;
             rugo_level_parameter(6, EX_SEG, EX_T, level, &seg, &t);
             rugo_vec2 coarse_before = rugo_contour_point(level_of(p, level), seg, t);
-            ck_assert_int_eq(rugo_pyramid_move_point(p, level, seg, t, EX_DELTA, RUGO_DETAILS_FIXED), RUGO_OK);
+            ck_assert_int_eq(rugo_pyramid_move_point(p, level, seg, t, EX_DELTA, RUGO_DETAILS_FIXED),
+                             RUGO_OK);
             rugo_vec2 after = finest_point(p, EX_SEG, EX_T);
             ck_assert_near(after.x - before.x, EX_DELTA.x, 1e-9);
             ck_assert_near(after.y - before.y, EX_DELTA.y, 1e-9);
@@ -95,7 +97,8 @@ START_TEST(coarser_levels_move_wider) {
         rugo_level_parameter(6, EX_SEG, EX_T, level, &seg, &t);
         ck_assert_int_eq(rugo_pyramid_move_point(p, level, seg, t, EX_DELTA, RUGO_DETAILS_FIXED), RUGO_OK);
         rugo_contour c = level_of(p, 6);
-        for (int i = 0; i < EX_N; ++i) moved[level] += vec_dist(c.points[i], pts[i]);
+        for (int i = 0; i < EX_N; ++i)
+            moved[level] += vec_dist(c.points[i], pts[i]);
         rugo_pyramid_destroy(p);
     }
     ck_assert_double_gt(moved[3], moved[4]);
@@ -123,7 +126,8 @@ START_TEST(corollary_2_2_deform) {
                 ck_assert_near(after.x - before.x, EX_DELTA.x, 1e-9);
                 ck_assert_near(after.y - before.y, EX_DELTA.y, 1e-9);
                 double sum = 0.0;
-                for (int i = 0; i < spread; ++i) sum += weights[i];
+                for (int i = 0; i < spread; ++i)
+                    sum += weights[i];
                 ck_assert_near(sum, 1.0, 1e-15);
                 if (spread < 4) ck_assert_double_eq(weights[spread], -1.0); /* only `spread` written */
                 rugo_pyramid_destroy(p);
@@ -145,8 +149,9 @@ START_TEST(deform_fixed_is_sum_of_moves) {
         int seg;
         double t;
         rugo_level_parameter(6, EX_SEG, EX_T, 6 - i, &seg, &t);
-        ck_assert_int_eq(rugo_pyramid_move_point(b, 6 - i, seg, t, rugo_v2_scale(w[i], EX_DELTA), RUGO_DETAILS_FIXED),
-                         RUGO_OK);
+        ck_assert_int_eq(
+            rugo_pyramid_move_point(b, 6 - i, seg, t, rugo_v2_scale(w[i], EX_DELTA), RUGO_DETAILS_FIXED),
+            RUGO_OK);
     }
     rugo_contour ca = level_of(a, 6), cb = level_of(b, 6);
     ck_assert_double_le(test_max_diff(ca.points, cb.points, EX_N), 1e-10);
@@ -179,14 +184,17 @@ START_TEST(local_mode_deviation_measured) {
                 int seg;
                 double t;
                 rugo_level_parameter(6, EX_SEG, EX_T, level, &seg, &t);
-                ck_assert_int_eq(rugo_pyramid_move_point(p, level, seg, t, EX_DELTA, RUGO_DETAILS_LOCAL), RUGO_OK);
-            } else {
-                ck_assert_int_eq(rugo_pyramid_deform(p, EX_SEG, EX_T, EX_DELTA, 4, 1.0, RUGO_DETAILS_LOCAL, NULL),
+                ck_assert_int_eq(rugo_pyramid_move_point(p, level, seg, t, EX_DELTA, RUGO_DETAILS_LOCAL),
                                  RUGO_OK);
+            } else {
+                ck_assert_int_eq(
+                    rugo_pyramid_deform(p, EX_SEG, EX_T, EX_DELTA, 4, 1.0, RUGO_DETAILS_LOCAL, NULL),
+                    RUGO_OK);
             }
             rugo_vec2 moved = rugo_v2_sub(finest_point(p, EX_SEG, EX_T), before);
             double dev = vec_dist(moved, EX_DELTA);
-            ck_assert_msg(isfinite(dev) && dev < 0.1 * dn, "filter %d level %d: LOCAL deviation %g", k, level, dev);
+            ck_assert_msg(isfinite(dev) && dev < 0.1 * dn, "filter %d level %d: LOCAL deviation %g", k, level,
+                          dev);
             if (level == 6) ck_assert_msg(dev <= 1e-9, "LOCAL at the finest level must be exact: %g", dev);
             rugo_pyramid_destroy(p);
         }
@@ -235,7 +243,8 @@ START_TEST(move_point_on_four_point_level) {
     ck_assert_near(c.points[3].x - sq[3].x, 0.25 * (1.0 / 6.0) / wsum, 1e-15);
     ck_assert_near(c.points[0].x - sq[0].x, 0.25 * (4.0 / 6.0) / wsum, 1e-15);
     ck_assert_near(c.points[1].y - sq[1].y, 0.5 * (1.0 / 6.0) / wsum, 1e-15);
-    ck_assert_int_eq(rugo_pyramid_deform(p, 1, 0.5, rugo_v2(1.0, 1.0), 1, 0.0, RUGO_DETAILS_FIXED, NULL), RUGO_OK);
+    ck_assert_int_eq(rugo_pyramid_deform(p, 1, 0.5, rugo_v2(1.0, 1.0), 1, 0.0, RUGO_DETAILS_FIXED, NULL),
+                     RUGO_OK);
     rugo_pyramid_destroy(p);
 }
 END_TEST
@@ -345,10 +354,12 @@ START_TEST(coarsest_level_respected) {
             ck_assert_ptr_nonnull(l);
         }
         /* Deform can spread over J - J_min + 1 levels, not more. */
-        ck_assert_int_eq(rugo_pyramid_deform(p, 3, 0.5, rugo_v2(0.01, 0.0), 7 - j0 + 1, 1.0, RUGO_DETAILS_FIXED, NULL),
-                         RUGO_OK);
-        ck_assert_int_eq(rugo_pyramid_deform(p, 3, 0.5, rugo_v2(0.01, 0.0), 7 - j0 + 2, 1.0, RUGO_DETAILS_FIXED, NULL),
-                         RUGO_ERR_BAD_LEVEL);
+        ck_assert_int_eq(
+            rugo_pyramid_deform(p, 3, 0.5, rugo_v2(0.01, 0.0), 7 - j0 + 1, 1.0, RUGO_DETAILS_FIXED, NULL),
+            RUGO_OK);
+        ck_assert_int_eq(
+            rugo_pyramid_deform(p, 3, 0.5, rugo_v2(0.01, 0.0), 7 - j0 + 2, 1.0, RUGO_DETAILS_FIXED, NULL),
+            RUGO_ERR_BAD_LEVEL);
         rugo_pyramid_destroy(p);
     }
 }
@@ -358,13 +369,15 @@ START_TEST(clockwise_input_reversed) {
     test_rng r = test_rng_seed(11);
     rugo_vec2 ccw[32], cw[32];
     test_random_star(&r, 32, rugo_v2(5.0, 5.0), 3.0, 0.3, ccw);
-    for (int i = 0; i < 32; ++i) cw[i] = ccw[31 - i];
+    for (int i = 0; i < 32; ++i)
+        cw[i] = ccw[31 - i];
     rugo_pyramid* p = make_pyramid(cw, 32, RUGO_FILTER_DEFAULT, 0);
     ck_assert(rugo_pyramid_was_reversed(p));
     rugo_contour c = level_of(p, 5);
     ck_assert_int_eq(memcmp(c.points, ccw, sizeof ccw), 0);
     ck_assert_double_gt(rugo_contour_signed_area(c), 0.0);
-    for (int j = 2; j <= 5; ++j) ck_assert_double_gt(rugo_contour_signed_area(level_of(p, j)), 0.0);
+    for (int j = 2; j <= 5; ++j)
+        ck_assert_double_gt(rugo_contour_signed_area(level_of(p, j)), 0.0);
     /* set_finest normalises and flags the same way. */
     ck_assert_int_eq(rugo_pyramid_set_finest(p, ccw, 32), RUGO_OK);
     ck_assert(!rugo_pyramid_was_reversed(p));
@@ -483,7 +496,8 @@ START_TEST(displace_level_fixed_adds_refined_delta) {
     }
     /* Displacing the finest level is set_finest with the displaced points. */
     rugo_vec2 moved[EX_N];
-    for (int i = 0; i < EX_N; ++i) moved[i] = rugo_v2_add(c.points[i], d6[i]);
+    for (int i = 0; i < EX_N; ++i)
+        moved[i] = rugo_v2_add(c.points[i], d6[i]);
     rugo_pyramid* q = make_pyramid(pts, EX_N, RUGO_FILTER_CDF4_6, 3);
     ck_assert_int_eq(rugo_pyramid_displace_level(p, 6, d6, RUGO_DETAILS_LOCAL), RUGO_OK);
     ck_assert_int_eq(rugo_pyramid_set_finest(q, moved, EX_N), RUGO_OK);
@@ -524,12 +538,15 @@ END_TEST
 START_TEST(deformation_weights_values) {
     double w[8];
     ck_assert_int_eq(rugo_deformation_weights(4, 0.0, w), RUGO_OK);
-    for (int i = 0; i < 4; ++i) ck_assert_double_eq(w[i], 0.25);
+    for (int i = 0; i < 4; ++i)
+        ck_assert_double_eq(w[i], 0.25);
     ck_assert_int_eq(rugo_deformation_weights(1, 5.0, w), RUGO_OK);
     ck_assert_double_eq(w[0], 1.0);
-    /* Closed form against the definition, m = 4, w = 2: piece i = (e^{-i/2} - e^{-(i+1)/2}) / (1 - e^{-2}). */
+    /* Closed form against the definition, m = 4, w = 2: piece i = (e^{-i/2} - e^{-(i+1)/2}) / (1 - e^{-2}).
+     */
     ck_assert_int_eq(rugo_deformation_weights(4, 2.0, w), RUGO_OK);
-    for (int i = 0; i < 4; ++i) ck_assert_near(w[i], (exp(-0.5 * i) - exp(-0.5 * (i + 1))) / (1.0 - exp(-2.0)), 1e-15);
+    for (int i = 0; i < 4; ++i)
+        ck_assert_near(w[i], (exp(-0.5 * i) - exp(-0.5 * (i + 1))) / (1.0 - exp(-2.0)), 1e-15);
     /* ... and against a numerical integral of g, m = 3, w = -1.3 (increasing weights). */
     ck_assert_int_eq(rugo_deformation_weights(3, -1.3, w), RUGO_OK);
     double A = (1.0 - exp(1.3)) / -1.3;
@@ -663,7 +680,8 @@ START_TEST(create_bad_input) {
     ck_assert_int_eq(rugo_pyramid_create(&d, &p, NULL), RUGO_ERR_NOT_FINITE);
     /* Collinear points: no area. */
     rugo_vec2 line[8];
-    for (int i = 0; i < 8; ++i) line[i] = rugo_v2(i < 4 ? i : 8 - i, 2.0 * (i < 4 ? i : 8 - i));
+    for (int i = 0; i < 8; ++i)
+        line[i] = rugo_v2(i < 4 ? i : 8 - i, 2.0 * (i < 4 ? i : 8 - i));
     d.points = line;
     d.count = 8;
     ck_assert_int_eq(rugo_pyramid_create(&d, &p, NULL), RUGO_ERR_ZERO_AREA);
@@ -726,7 +744,8 @@ START_TEST(edit_bad_input) {
     ck_assert_int_eq(rugo_pyramid_deform(p, 0, 0.5, d, 0, 0.0, F, NULL), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_pyramid_deform(p, 0, 0.5, d, 5, 0.0, F, NULL), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_pyramid_deform(p, 0, 0.5, d, 2, NAN, F, NULL), RUGO_ERR_NOT_FINITE);
-    ck_assert_int_eq(rugo_pyramid_deform(p, 0, 0.5, d, 2, 1.0, (rugo_detail_mode)-1, NULL), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_pyramid_deform(p, 0, 0.5, d, 2, 1.0, (rugo_detail_mode)-1, NULL),
+                     RUGO_ERR_BAD_ARGUMENT);
     /* displace_level */
     ck_assert_int_eq(rugo_pyramid_displace_level(NULL, 4, deltas, F), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_pyramid_displace_level(p, 4, NULL, F), RUGO_ERR_NULL_ARGUMENT);

@@ -1616,7 +1616,6 @@ START_TEST(test_determinism_and_finiteness) {
 }
 END_TEST
 
-
 /* ---------------------------------------------------------------------------------------------- */
 /* Work: pairs decided on the whole square, minima next to a piece's end */
 
@@ -1654,7 +1653,8 @@ START_TEST(test_decided_on_the_whole_square) {
             const double d = cutoff + 1.2 + test_rng_uniform(&r, 0.0, 1.0);
             for (int i = 0; i < 4; ++i) {
                 f[i] = rugo_v2(test_rng_uniform(&r, 0, 0.4), test_rng_uniform(&r, 0, 0.4));
-                g[i] = rugo_v2(test_rng_uniform(&r, 0, 0.4) + d * cos(th), test_rng_uniform(&r, 0, 0.4) + d * sin(th));
+                g[i] = rugo_v2(test_rng_uniform(&r, 0, 0.4) + d * cos(th),
+                               test_rng_uniform(&r, 0, 0.4) + d * sin(th));
             }
             transform_piece(f, scale, off);
             transform_piece(g, scale, off);
@@ -1665,7 +1665,8 @@ START_TEST(test_decided_on_the_whole_square) {
             /* near: f along x with a small bulge, g along y beside its end; the cutoff reaches across */
             for (int i = 0; i < 4; ++i) {
                 f[i] = rugo_v2(i / 3.0, test_rng_uniform(&r, 0.0, 0.05));
-                g[i] = rugo_v2(1.15 + test_rng_uniform(&r, 0.0, 0.05), test_rng_uniform(&r, -0.5, -0.4) + i / 3.0);
+                g[i] = rugo_v2(1.15 + test_rng_uniform(&r, 0.0, 0.05),
+                               test_rng_uniform(&r, -0.5, -0.4) + i / 3.0);
             }
             transform_piece(f, scale, off);
             transform_piece(g, scale, off);
@@ -1734,7 +1735,8 @@ START_TEST(test_minimum_beside_piece_end) {
                         ck_assert_int_eq(out.crossing_count, 0);
                         const int holds = (part == 0) == (delta > 0.0);
                         if (holds) {
-                            ck_assert_msg(out.stationary_count == 1 && out.stationary[0].kind == RUGO__MINIMUM,
+                            ck_assert_msg(out.stationary_count == 1 &&
+                                              out.stationary[0].kind == RUGO__MINIMUM,
                                           "%s: %d stationary", label, out.stationary_count);
                             ck_assert_near(out.stationary[0].distance, m.distance, 1e-13 * scale + coord);
                             ck_assert_near(out.stationary[0].pa.x, m.pa.x, 1e-9 * scale + coord);

@@ -50,14 +50,16 @@ static void random_pair(test_rng* r, rugo_vec2 f[4], rugo_vec2 g[4]) {
 static double band_value(const double h[2][4], double s) {
     const int k = s >= 0.5;
     const double u = 2.0 * s - k, w = 1.0 - u;
-    const double v = w * w * w * h[k][0] + 3 * w * w * u * h[k][1] + 3 * w * u * u * h[k][2] + u * u * u * h[k][3];
+    const double v =
+        w * w * w * h[k][0] + 3 * w * w * u * h[k][1] + 3 * w * u * u * h[k][2] + u * u * u * h[k][3];
     return v > 0.0 ? v : 0.0;
 }
 
 static rugo_vec2 bez(const rugo_vec2 p[4], double u) {
     const double w = 1.0 - u;
     const double b0 = w * w * w, b1 = 3 * w * w * u, b2 = 3 * w * u * u, b3 = u * u * u;
-    return rugo_v2(b0 * p[0].x + b1 * p[1].x + b2 * p[2].x + b3 * p[3].x, b0 * p[0].y + b1 * p[1].y + b2 * p[2].y + b3 * p[3].y);
+    return rugo_v2(b0 * p[0].x + b1 * p[1].x + b2 * p[2].x + b3 * p[3].x,
+                   b0 * p[0].y + b1 * p[1].y + b2 * p[2].y + b3 * p[3].y);
 }
 
 static double phi_of(const rugo__banded_piece* f, const rugo__banded_piece* g, double s, double t) {
@@ -103,7 +105,8 @@ START_TEST(test_smooth_against_round_off) {
             rugo__banded_piece bf, bg;
             rugo__banded_piece_smooth(f, &bf);
             rugo__banded_piece_smooth(g, &bg);
-            rugo__narrow_resolved(&bf, &bg, cutoff, NAN, delta, RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &rs);
+            rugo__narrow_resolved(&bf, &bg, cutoff, NAN, delta,
+                                  RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &rs);
             ck_assert_int_eq(rs.overflow, 0);
             /* No minimum missed, each within δ (a polished one to round-off). */
             for (int i = 0; i < ex.stationary_count && ex.crossing_count == 0; ++i) {
@@ -111,10 +114,11 @@ START_TEST(test_smooth_against_round_off) {
                 if (e->kind != RUGO__MINIMUM || e->distance > cutoff - delta) continue;
                 double best = HUGE_VAL;
                 for (int j = 0; j < rs.stationary_count; ++j)
-                    if (rs.stationary[j].kind == RUGO__MINIMUM && fabs(rs.stationary[j].distance - e->distance) < best)
+                    if (rs.stationary[j].kind == RUGO__MINIMUM &&
+                        fabs(rs.stationary[j].distance - e->distance) < best)
                         best = fabs(rs.stationary[j].distance - e->distance);
-                ck_assert_msg(best <= delta, "delta %g pair %d: minimum at distance %.9g missed (best %.3g)", delta, k,
-                              e->distance, best);
+                ck_assert_msg(best <= delta, "delta %g pair %d: minimum at distance %.9g missed (best %.3g)",
+                              delta, k, e->distance, best);
                 ++checked;
             }
             /* Every reported minimum lies on both curves, within the cutoff (+ δ). */
@@ -129,19 +133,23 @@ START_TEST(test_smooth_against_round_off) {
                 int same = 0;
                 for (int i = 0; i < ex.crossing_count; ++i)
                     same |= fabs(rs.crossings[j].s - ex.crossings[i].s) <= 1e-9 &&
-                            fabs(rs.crossings[j].t - ex.crossings[i].t) <= 1e-9 && rs.crossings[j].kind == ex.crossings[i].kind;
-                ck_assert_msg(same || ex.overflow, "delta %g pair %d: crossing (%.9f, %.9f) not the round-off one", delta, k,
+                            fabs(rs.crossings[j].t - ex.crossings[i].t) <= 1e-9 &&
+                            rs.crossings[j].kind == ex.crossings[i].kind;
+                ck_assert_msg(same || ex.overflow,
+                              "delta %g pair %d: crossing (%.9f, %.9f) not the round-off one", delta, k,
                               rs.crossings[j].s, rs.crossings[j].t);
             }
             for (int i = 0; i < ex.crossing_count && !ex.overflow; ++i) {
                 int found = 0;
                 for (int j = 0; j < rs.crossing_count; ++j)
-                    found |= fabs(rs.crossings[j].s - ex.crossings[i].s) <= 1e-9 && fabs(rs.crossings[j].t - ex.crossings[i].t) <= 1e-9;
+                    found |= fabs(rs.crossings[j].s - ex.crossings[i].s) <= 1e-9 &&
+                             fabs(rs.crossings[j].t - ex.crossings[i].t) <= 1e-9;
                 /* an overlap shallower than δ: another of its crossings, or a touching to δ */
                 found |= rs.crossing_count > 0;
                 for (int j = 0; j < rs.stationary_count && !found; ++j)
                     found |= rs.stationary[j].kind == RUGO__MINIMUM && rs.stationary[j].distance <= delta;
-                ck_assert_msg(found, "delta %g pair %d: crossing (%.9f, %.9f) missed", delta, k, ex.crossings[i].s, ex.crossings[i].t);
+                ck_assert_msg(found, "delta %g pair %d: crossing (%.9f, %.9f) missed", delta, k,
+                              ex.crossings[i].s, ex.crossings[i].t);
                 transversal += found;
             }
         }
@@ -177,7 +185,8 @@ START_TEST(test_banded_against_brute_force) {
         for (int di = 0; di < 2; ++di) {
             const double delta = di == 0 ? 1e-3 : 1e-6;
             rugo__narrow_result rs;
-            rugo__narrow_resolved(&f, &g, cutoff, NAN, delta, RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &rs);
+            rugo__narrow_resolved(&f, &g, cutoff, NAN, delta,
+                                  RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &rs);
             if (rs.overflow) { /* the box budget ran out (the query falls back to the round-off phase) */
                 ++overflows;
                 continue;
@@ -188,7 +197,8 @@ START_TEST(test_banded_against_brute_force) {
                 const double v = phi_of(&f, &g, rs.stationary[j].s, rs.stationary[j].t);
                 if (v < best) best = v;
             }
-            ck_assert_msg(best <= ref + delta + 1e-9, "pair %d delta %g: best %.9g, brute force %.9g", k, delta, best, ref);
+            ck_assert_msg(best <= ref + delta + 1e-9, "pair %d delta %g: best %.9g, brute force %.9g", k,
+                          delta, best, ref);
             ck_assert_double_ge(best, ref - 1e-9); /* a real pair cannot beat the minimum */
         }
         ++checked;
@@ -210,7 +220,8 @@ START_TEST(test_conforming_arcs_give_a_patch) {
     for (int di = 0; di < 3; ++di) {
         const double delta = di == 0 ? 1e-3 : (di == 1 ? 1e-5 : 1e-6);
         rugo__narrow_result rs;
-        rugo__narrow_resolved(&bf, &bg, 0.01, NAN, delta, RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA, &rs);
+        rugo__narrow_resolved(&bf, &bg, 0.01, NAN, delta, RUGO__RESOLVED_CROSSINGS | RUGO__RESOLVED_MINIMA,
+                              &rs);
         ck_assert_msg(rs.overflow == 0, "delta %g: overflow", delta);
         ck_assert_int_eq(rs.crossing_count, 0);
         ck_assert_int_ge(rs.stationary_count, 1);
@@ -248,7 +259,8 @@ START_TEST(test_bad_input_gives_nothing) {
     arc_piece(1.0, 0.0, 0.3, rugo_v2(0.05, -0.05), g);
     rugo__banded_piece_smooth(g, &bg);
     rugo__narrow_resolved(&bf, &bg, NAN, NAN, 1e-3, 7, &rs);
-    for (int j = 0; j < rs.stationary_count; ++j) ck_assert_int_ne(rs.stationary[j].kind, RUGO__MINIMUM);
+    for (int j = 0; j < rs.stationary_count; ++j)
+        ck_assert_int_ne(rs.stationary[j].kind, RUGO__MINIMUM);
 }
 END_TEST
 

@@ -24,12 +24,15 @@ START_TEST(next_golden_values) {
         uint64_t seed;
         uint64_t first[5];
     } golden[] = {
-        {0u, {0x99ec5f36cb75f2b4ull, 0xbf6e1f784956452aull, 0x1a5f849d4933e6e0ull, 0x6aa594f1262d2d2cull,
-              0xbba5ad4a1f842e59ull}},
-        {42u, {0x15780b2e0c2ec716ull, 0x6104d9866d113a7eull, 0xae17533239e499a1ull, 0xecb8ad4703b360a1ull,
-               0xfde6dc7fe2ec5e64ull}},
-        {UINT64_MAX, {0x8f5520d52a7ead08ull, 0xc476a018caa1802dull, 0x81de31c0d260469eull,
-                      0xbf658d7e065f3c2full, 0x913593fda1bca32aull}},
+        {0u,
+         {0x99ec5f36cb75f2b4ull, 0xbf6e1f784956452aull, 0x1a5f849d4933e6e0ull, 0x6aa594f1262d2d2cull,
+          0xbba5ad4a1f842e59ull}},
+        {42u,
+         {0x15780b2e0c2ec716ull, 0x6104d9866d113a7eull, 0xae17533239e499a1ull, 0xecb8ad4703b360a1ull,
+          0xfde6dc7fe2ec5e64ull}},
+        {UINT64_MAX,
+         {0x8f5520d52a7ead08ull, 0xc476a018caa1802dull, 0x81de31c0d260469eull, 0xbf658d7e065f3c2full,
+          0x913593fda1bca32aull}},
     };
     for (size_t g = 0; g < sizeof golden / sizeof golden[0]; ++g) {
         rugo_rng rng;
@@ -62,7 +65,8 @@ START_TEST(uniform_golden_values) {
     static const uint64_t top53[3] = {755370490430936ull, 3413550631330343ull, 6125286505004179ull};
     rugo_rng rng;
     rugo_rng_seed(&rng, 42);
-    for (int i = 0; i < 3; ++i) ck_assert(rugo_rng_uniform(&rng) == (double)top53[i] * 0x1.0p-53);
+    for (int i = 0; i < 3; ++i)
+        ck_assert(rugo_rng_uniform(&rng) == (double)top53[i] * 0x1.0p-53);
     /* range = lo + (hi - lo) u with the same draws */
     rugo_rng_seed(&rng, 42);
     ck_assert(rugo_rng_range(&rng, -3.0, 5.0) == -3.0 + 8.0 * ((double)top53[0] * 0x1.0p-53));
@@ -82,7 +86,8 @@ START_TEST(below_golden_values) {
     static const uint32_t want[8] = {0, 4, 5, 3, 5, 8, 3, 5};
     rugo_rng rng;
     rugo_rng_seed(&rng, 3);
-    for (int i = 0; i < 8; ++i) ck_assert_uint_eq(rugo_rng_below(&rng, 10), want[i]);
+    for (int i = 0; i < 8; ++i)
+        ck_assert_uint_eq(rugo_rng_below(&rng, 10), want[i]);
 }
 END_TEST
 
@@ -134,11 +139,13 @@ START_TEST(different_seeds_differ) {
     }
     int same = 0;
     for (int i = 0; i < S; ++i)
-        for (int j = i + 1; j < S; ++j) same += first[i] == first[j];
+        for (int j = i + 1; j < S; ++j)
+            same += first[i] == first[j];
     rugo_rng a, b;
     rugo_rng_seed(&a, 1);
     rugo_rng_seed(&b, 2);
-    for (int i = 0; i < S; ++i) same += rugo_rng_next(&a) == rugo_rng_next(&b);
+    for (int i = 0; i < S; ++i)
+        same += rugo_rng_next(&a) == rugo_rng_next(&b);
     ck_assert_int_eq(same, 0);
 }
 END_TEST
@@ -205,7 +212,8 @@ START_TEST(uniform_moments_and_bins) {
     ck_assert_near(mean, 0.5, 5.0 * sqrt(1.0 / 12.0 / BIG));
     ck_assert_near(var, 1.0 / 12.0, 5.0 * sqrt((1.0 / 80.0 - 1.0 / 144.0) / BIG));
     double chi2 = 0.0, e = BIG / 10.0;
-    for (int k = 0; k < 10; ++k) chi2 += (bins[k] - e) * (bins[k] - e) / e;
+    for (int k = 0; k < 10; ++k)
+        chi2 += (bins[k] - e) * (bins[k] - e) / e;
     ck_assert_msg(chi2 < 44.81, "chi-square %.3f", chi2);
 
     for (int i = 0; i < 1000; ++i) {
@@ -244,7 +252,8 @@ START_TEST(below_unbiased) {
         }
         ck_assert_int_eq(out_of_range, 0);
         double chi2 = 0.0, e = (double)BIG / ns[c];
-        for (uint32_t k = 0; k < ns[c]; ++k) chi2 += (counts[k] - e) * (counts[k] - e) / e;
+        for (uint32_t k = 0; k < ns[c]; ++k)
+            chi2 += (counts[k] - e) * (counts[k] - e) / e;
         ck_assert_msg(chi2 < limits[c], "n = %u: chi-square %.3f", ns[c], chi2);
     }
     /* n = 3 * 2^30: 2^32 mod n = 2^30, so r mod n without rejection would give values below 2^30

@@ -24,7 +24,8 @@ static const double FIG55_TIPO_5[32] = {0.55, 0.55, 0.55, 0.55, 0.04, 0.04, 0.04
 static const double SENTINEL = -12345.0;
 
 static void fill(double* v, int n, double x) {
-    for (int i = 0; i < n; ++i) v[i] = x;
+    for (int i = 0; i < n; ++i)
+        v[i] = x;
 }
 static int all_equal(const double* v, int n, double x) {
     for (int i = 0; i < n; ++i)
@@ -72,18 +73,23 @@ START_TEST(preset_tipo_3_tipo_5_fig55) {
     double v[128];
     for (uint64_t seed = 0; seed < 3; ++seed) {
         ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_3, seed, 32, v), RUGO_OK);
-        for (int i = 0; i < 32; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_3[i]);
+        for (int i = 0; i < 32; ++i)
+            ck_assert_double_eq(v[i], FIG55_TIPO_3[i]);
         ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_5, seed, 32, v), RUGO_OK);
-        for (int i = 0; i < 32; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_5[i]);
+        for (int i = 0; i < 32; ++i)
+            ck_assert_double_eq(v[i], FIG55_TIPO_5[i]);
         ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_3, seed, 128, v), RUGO_OK);
-        for (int i = 0; i < 128; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_3[i % 32]);
+        for (int i = 0; i < 128; ++i)
+            ck_assert_double_eq(v[i], FIG55_TIPO_3[i % 32]);
         ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_5, seed, 128, v), RUGO_OK);
-        for (int i = 0; i < 128; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_5[i % 32]);
+        for (int i = 0; i < 128; ++i)
+            ck_assert_double_eq(v[i], FIG55_TIPO_5[i % 32]);
         ck_assert_double_eq(v[127], 0.04); /* the table's last row */
     }
     /* Counts that are not multiples of the period keep the phase at segment 0. */
     ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_5, 0, 7, v), RUGO_OK);
-    for (int i = 0; i < 7; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_5[i]);
+    for (int i = 0; i < 7; ++i)
+        ck_assert_double_eq(v[i], FIG55_TIPO_5[i]);
     ck_assert_int_eq(rugo_tolerances_preset(RUGO_PRESET_TIPO_3, 0, 1, v), RUGO_OK);
     ck_assert_double_eq(v[0], 0.32);
 }
@@ -102,7 +108,8 @@ START_TEST(preset_tipo_2_draw_order) {
         while (i < N) {
             int len = 1 + (int)rugo_rng_below(&rng, 4);
             double x = rugo_rng_range(&rng, 0.04, 0.65);
-            for (int k = 0; k < len && i < N; ++k) w[i++] = x;
+            for (int k = 0; k < len && i < N; ++k)
+                w[i++] = x;
         }
         ck_assert(memcmp(v, w, sizeof v) == 0);
     }
@@ -129,7 +136,8 @@ START_TEST(preset_tipo_2_properties) {
     int i = 0;
     while (i < N) {
         int j = i;
-        while (j < N && a[j] == a[i]) ++j;
+        while (j < N && a[j] == a[i])
+            ++j;
         const int len = j - i;
         if (!(a[i] >= 0.04 && a[i] <= 0.65)) ++bad;
         if (len < 1 || len > 4) ++bad;
@@ -142,7 +150,8 @@ START_TEST(preset_tipo_2_properties) {
     }
     ck_assert_int_eq(bad, 0);
     double chi2 = 0.0, e = (double)blocks / 4.0;
-    for (int k = 1; k <= 4; ++k) chi2 += (lengths[k] - e) * (lengths[k] - e) / e;
+    for (int k = 1; k <= 4; ++k)
+        chi2 += (lengths[k] - e) * (lengths[k] - e) / e;
     ck_assert_msg(chi2 < 30.66, "block lengths chi-square %.3f", chi2);
     ck_assert_near(sum / blocks, 0.345, 5.0 * 0.61 / sqrt(12.0 * blocks));
 }
@@ -190,14 +199,16 @@ START_TEST(pattern_values_and_errors) {
     const double pat[3] = {0.1, 0.2, 0.3};
     double v[10];
     ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, 10, v), RUGO_OK);
-    for (int i = 0; i < 10; ++i) ck_assert_double_eq(v[i], pat[i % 3]);
+    for (int i = 0; i < 10; ++i)
+        ck_assert_double_eq(v[i], pat[i % 3]);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, 2, v), RUGO_OK); /* period longer than n */
     ck_assert_double_eq(v[1], 0.2);
     fill(v, 10, SENTINEL);
     ck_assert_int_eq(rugo_tolerances_pattern(NULL, 3, 10, v), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, 10, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, 0, v), RUGO_ERR_TOO_FEW_POINTS);
-    ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, RUGO_MAX_CONTROL_POINTS + 1, v), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(rugo_tolerances_pattern(pat, 3, RUGO_MAX_CONTROL_POINTS + 1, v),
+                     RUGO_ERR_TOO_MANY_POINTS);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, 0, 10, v), RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, -1, 10, v), RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_pattern(pat, RUGO_MAX_CONTROL_POINTS + 1, 10, v), RUGO_ERR_BAD_ARGUMENT);
@@ -216,18 +227,21 @@ START_TEST(blocks_values_and_errors) {
     const double vals[4] = {0.55, 0.04, 0.65, 0.04};
     double v[128];
     ck_assert_int_eq(rugo_tolerances_blocks(vals, 4, 4, 128, v), RUGO_OK);
-    for (int i = 0; i < 128; ++i) ck_assert_double_eq(v[i], FIG55_TIPO_5[i % 32]);
+    for (int i = 0; i < 128; ++i)
+        ck_assert_double_eq(v[i], FIG55_TIPO_5[i % 32]);
     const double two[2] = {1.0, 2.0};
     ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 3, 10, v), RUGO_OK);
     const double want[10] = {1, 1, 1, 2, 2, 2, 1, 1, 1, 2};
-    for (int i = 0; i < 10; ++i) ck_assert_double_eq(v[i], want[i]);
+    for (int i = 0; i < 10; ++i)
+        ck_assert_double_eq(v[i], want[i]);
     ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 1000, 10, v), RUGO_OK); /* one long block */
     ck_assert(all_equal(v, 10, 1.0));
     fill(v, 128, SENTINEL);
     ck_assert_int_eq(rugo_tolerances_blocks(NULL, 2, 3, 10, v), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 3, 10, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 3, 0, v), RUGO_ERR_TOO_FEW_POINTS);
-    ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 3, RUGO_MAX_CONTROL_POINTS + 1, v), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 3, RUGO_MAX_CONTROL_POINTS + 1, v),
+                     RUGO_ERR_TOO_MANY_POINTS);
     ck_assert_int_eq(rugo_tolerances_blocks(two, 0, 3, 10, v), RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_blocks(two, -2, 3, 10, v), RUGO_ERR_BAD_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_blocks(two, 2, 0, 10, v), RUGO_ERR_BAD_ARGUMENT);
@@ -269,7 +283,8 @@ START_TEST(random_values_and_errors) {
     fill(u, 8, SENTINEL);
     ck_assert_int_eq(rugo_tolerances_random(0.1, 0.9, 1, 8, NULL), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_int_eq(rugo_tolerances_random(0.1, 0.9, 1, 0, u), RUGO_ERR_TOO_FEW_POINTS);
-    ck_assert_int_eq(rugo_tolerances_random(0.1, 0.9, 1, RUGO_MAX_CONTROL_POINTS + 1, u), RUGO_ERR_TOO_MANY_POINTS);
+    ck_assert_int_eq(rugo_tolerances_random(0.1, 0.9, 1, RUGO_MAX_CONTROL_POINTS + 1, u),
+                     RUGO_ERR_TOO_MANY_POINTS);
     ck_assert_int_eq(rugo_tolerances_random(NAN, 0.9, 1, 8, u), RUGO_ERR_NOT_FINITE);
     ck_assert_int_eq(rugo_tolerances_random(0.1, INFINITY, 1, 8, u), RUGO_ERR_NOT_FINITE);
     ck_assert_int_eq(rugo_tolerances_random(0.9, 0.1, 1, 8, u), RUGO_ERR_EMPTY_RANGE);
@@ -385,12 +400,14 @@ START_TEST(output_count) {
     for (int mth = 0; mth < 2; ++mth)
         for (int levels = 1; levels <= 3; ++levels) {
             const int m = 32 << levels;
-            for (int i = 0; i < MAXOUT + 8; ++i) out[i] = rugo_v2(SENTINEL, SENTINEL);
+            for (int i = 0; i < MAXOUT + 8; ++i)
+                out[i] = rugo_v2(SENTINEL, SENTINEL);
             ck_assert_int_eq(roughen(pts, 32, lam, METHODS[mth], levels, 1, out), RUGO_OK);
             for (int i = 0; i < m; ++i) {
                 ck_assert(rugo__v2_finite(out[i]) && out[i].x != SENTINEL);
             }
-            for (int i = m; i < MAXOUT + 8; ++i) ck_assert_double_eq(out[i].x, SENTINEL);
+            for (int i = m; i < MAXOUT + 8; ++i)
+                ck_assert_double_eq(out[i].x, SENTINEL);
             static rugo_vec2 ref[MAXOUT];
             refine(pts, 32, levels, ref);
             /* λ <= 0.32, σ <= 0.34: no control point moves by more than ~20 σ */
@@ -479,8 +496,8 @@ END_TEST
 /* ACCEPTANCE (draw order and geometry, wavelet): with one level and a tolerance on segment k only,
  * the output is the synthesis of the input with the single detail d_{k+1} = g σ n, n the outward
  * normal of the input curve at segment k, t = 1/2 (multires.h's frame), σ = λ_k / q, and g the
- * Gaussian number (k+1) mod N (from 0) of rugo_rng seeded with the seed (draw s is detail s). Clockwise input: the same
- * with the true outward normal. */
+ * Gaussian number (k+1) mod N (from 0) of rugo_rng seeded with the seed (draw s is detail s). Clockwise
+ * input: the same with the true outward normal. */
 START_TEST(wavelet_single_segment_draw_order) {
     enum { N = 32 };
     rugo_vec2 pts[N];
@@ -506,8 +523,10 @@ START_TEST(wavelet_single_segment_draw_order) {
                 rugo_rng rng;
                 rugo_rng_seed(&rng, seed);
                 double g = 0.0;
-                for (int s = 0; s <= (k + 1) % N; ++s) g = rugo_rng_gaussian(&rng);
-                for (int s = 0; s < N; ++s) det[s] = rugo_v2(0.0, 0.0);
+                for (int s = 0; s <= (k + 1) % N; ++s)
+                    g = rugo_rng_gaussian(&rng);
+                for (int s = 0; s < N; ++s)
+                    det[s] = rugo_v2(0.0, 0.0);
                 det[(k + 1) % N] = rugo_v2_scale(sign * g * 0.4 / 0.95, rugo_contour_normal(c, k, 0.5));
                 ck_assert_int_eq(rugo_wavelet_synthesize(RUGO_FILTER_DEFAULT, pts, det, N, want), RUGO_OK);
                 ck_assert_double_le(test_max_diff(out, want, 2 * N), 1e-12);
@@ -548,7 +567,8 @@ START_TEST(local_single_segment_draw_order) {
                 rugo_rng rng;
                 rugo_rng_seed(&rng, seed);
                 double g = 0.0;
-                for (int s = 0; s <= k; ++s) g = rugo_rng_gaussian(&rng);
+                for (int s = 0; s <= k; ++s)
+                    g = rugo_rng_gaussian(&rng);
                 const int seg = 2 * k + 1;
                 rugo_vec2 delta = rugo_v2_scale(sign * g * 0.3 / 0.95, rugo_contour_normal(cref, seg, 0.0));
                 for (int i = 0; i < 2 * N; ++i) {
@@ -559,7 +579,8 @@ START_TEST(local_single_segment_draw_order) {
                     ck_assert_near(out[i].y, want.y, 1e-12);
                     if (w == 0.0) ck_assert(out[i].x == ref[i].x && out[i].y == ref[i].y);
                 }
-                rugo_vec2 moved = rugo_v2_sub(rugo_contour_point(cout, seg, 0.0), rugo_contour_point(cref, seg, 0.0));
+                rugo_vec2 moved =
+                    rugo_v2_sub(rugo_contour_point(cout, seg, 0.0), rugo_contour_point(cref, seg, 0.0));
                 ck_assert_near(moved.x, delta.x, 1e-12);
                 ck_assert_near(moved.y, delta.y, 1e-12);
             }
@@ -573,8 +594,8 @@ END_TEST
  * noise, so it is linear only to first order: the departure from linearity, relative to the size of
  * the perturbation, shrinks in proportion to σ (measured about 4.5% for tipo_3 on a 64-point object
  * of radius ~200 with the wavelet method, 0.045% for tipo_3 / 100). */
-static double nonlinearity(const rugo_vec2* pts, int n, const double* lam, double scale, rugo_roughen_method method,
-                           int levels) {
+static double nonlinearity(const rugo_vec2* pts, int n, const double* lam, double scale,
+                           rugo_roughen_method method, int levels) {
     static rugo_vec2 a[MAXOUT], b[MAXOUT], ref[MAXOUT];
     double l1[MAXN], l2[MAXN];
     for (int i = 0; i < n; ++i) {
@@ -637,7 +658,8 @@ static void one_level_law(rugo_roughen_method method, const rugo_vec2* pts, int 
     rugo_contour c = {pts, n}, cref = {ref, m};
     for (int k = 0; k < n; ++k) {
         if (method == RUGO_ROUGHEN_WAVELET) {
-            for (int s = 0; s < n; ++s) det[s] = rugo_v2(0.0, 0.0);
+            for (int s = 0; s < n; ++s)
+                det[s] = rugo_v2(0.0, 0.0);
             det[(k + 1) % n] = rugo_contour_normal(c, k, 0.5);
             ck_assert_int_eq(rugo_wavelet_synthesize(RUGO_FILTER_DEFAULT, pts, det, n, resp), RUGO_OK);
         } else {
@@ -657,7 +679,8 @@ static void one_level_law(rugo_roughen_method method, const rugo_vec2* pts, int 
     for (int k = 0; k < n; ++k)
         for (int l = 0; l < n; ++l) {
             double s = 0.0;
-            for (int u = 0; u < U; ++u) s += a[(size_t)k * U + u] * a[(size_t)l * U + u];
+            for (int u = 0; u < U; ++u)
+                s += a[(size_t)k * U + u] * a[(size_t)l * U + u];
             s /= U;
             if (k == l) trA += s;
             trA2 += s * s;
@@ -669,7 +692,8 @@ static void one_level_law(rugo_roughen_method method, const rugo_vec2* pts, int 
         ck_assert_int_eq(roughen(pts, n, lam, method, 1, (uint64_t)seed, resp), RUGO_OK);
         deviations(resp, ref, m, dev);
         double ms = 0.0;
-        for (int u = 0; u < U; ++u) ms += dev[u] * dev[u];
+        for (int u = 0; u < U; ++u)
+            ms += dev[u] * dev[u];
         total += ms / U;
     }
     *expected_ms = sigma * sigma * trA;
@@ -689,8 +713,8 @@ START_TEST(one_level_variance_exact_law) {
     for (int mth = 0; mth < 2; ++mth) {
         double e, se, got;
         one_level_law(METHODS[mth], pts, N, 0.5, 300, &e, &se, &got);
-        ck_assert_msg(fabs(got - e) <= 5.0 * se, "method %d: mean square %.6g, expected %.6g +- %.3g", mth, got, e,
-                      se);
+        ck_assert_msg(fabs(got - e) <= 5.0 * se, "method %d: mean square %.6g, expected %.6g +- %.3g", mth,
+                      got, e, se);
         /* the factor RMS / σ */
         const double sigma = 0.5 / RUGO_DEFAULT_Q, f = sqrt(e) / sigma;
         if (mth == 0)
@@ -772,12 +796,14 @@ START_TEST(constant_lambda_uniform) {
         for (int s = 0; s < S; ++s) {
             ck_assert_int_eq(roughen(pts, N, lam, METHODS[mth], LEVELS, 50000u + (uint64_t)s, out), RUGO_OK);
             deviations(out, ref, M, dev);
-            for (int u = 0; u < M * T; ++u) q[u / (M * T / 4)] += dev[u] * dev[u];
+            for (int u = 0; u < M * T; ++u)
+                q[u / (M * T / 4)] += dev[u] * dev[u];
         }
         const double all = sqrt((q[0] + q[1] + q[2] + q[3]) / (M * T * S));
         for (int i = 0; i < 4; ++i) {
             const double qi = sqrt(q[i] / (M * T / 4 * S));
-            ck_assert_msg(fabs(qi / all - 1.0) <= 0.05, "method %d quarter %d: %.4f vs %.4f", mth, i, qi, all);
+            ck_assert_msg(fabs(qi / all - 1.0) <= 0.05, "method %d quarter %d: %.4f vs %.4f", mth, i, qi,
+                          all);
         }
     }
 }
@@ -820,11 +846,13 @@ START_TEST(tipo_5_blocks_differ) {
         }
         double r[2][3];
         for (int w = 0; w < 2; ++w)
-            for (int g = 0; g < 3; ++g) r[w][g] = sqrt(ss[w][g] / cnt[w][g]);
-        ck_assert_msg(r[0][1] / r[0][0] > 2.0 && r[0][2] / r[0][0] > 2.0 && r[1][1] / r[1][0] > 4.0 &&
-                          r[1][2] / r[1][0] > 4.0 && r[0][2] > r[0][1] && r[1][2] > r[1][1],
-                      "method %d: RMS on 0.04 / 0.55 / 0.65 blocks: whole %.4f %.4f %.4f, central %.4f %.4f %.4f",
-                      mth, r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2]);
+            for (int g = 0; g < 3; ++g)
+                r[w][g] = sqrt(ss[w][g] / cnt[w][g]);
+        ck_assert_msg(
+            r[0][1] / r[0][0] > 2.0 && r[0][2] / r[0][0] > 2.0 && r[1][1] / r[1][0] > 4.0 &&
+                r[1][2] / r[1][0] > 4.0 && r[0][2] > r[0][1] && r[1][2] > r[1][1],
+            "method %d: RMS on 0.04 / 0.55 / 0.65 blocks: whole %.4f %.4f %.4f, central %.4f %.4f %.4f", mth,
+            r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2]);
     }
 }
 END_TEST
@@ -868,9 +896,11 @@ START_TEST(allocator_used) {
         ck_assert_int_eq(cnt.allocs, cnt.frees);
         ck_assert(memcmp(a, b, sizeof a) == 0);
         cnt.fail = 1;
-        for (int i = 0; i < 128; ++i) b[i] = rugo_v2(SENTINEL, SENTINEL);
+        for (int i = 0; i < 128; ++i)
+            b[i] = rugo_v2(SENTINEL, SENTINEL);
         ck_assert_int_eq(rugo_roughen(&d, b), RUGO_ERR_OUT_OF_MEMORY);
-        for (int i = 0; i < 128; ++i) ck_assert_double_eq(b[i].x, SENTINEL);
+        for (int i = 0; i < 128; ++i)
+            ck_assert_double_eq(b[i].x, SENTINEL);
     }
 }
 END_TEST
@@ -881,7 +911,8 @@ START_TEST(roughen_bad_input) {
     object(64, pts);
     fill(lam, 64, 0.2);
     static rugo_vec2 out[256];
-    for (int i = 0; i < 256; ++i) out[i] = rugo_v2(SENTINEL, SENTINEL);
+    for (int i = 0; i < 256; ++i)
+        out[i] = rugo_v2(SENTINEL, SENTINEL);
     rugo_roughen_def good = rugo_default_roughen_def();
     good.points = pts;
     good.count = 64;
@@ -957,7 +988,8 @@ START_TEST(roughen_bad_input) {
         d.method = METHODS[mth];
         ck_assert_int_eq(rugo_roughen(&d, out), RUGO_ERR_NOT_FINITE);
     }
-    for (int i = 0; i < 256; ++i) ck_assert_double_eq(out[i].x, SENTINEL); /* nothing written */
+    for (int i = 0; i < 256; ++i)
+        ck_assert_double_eq(out[i].x, SENTINEL); /* nothing written */
 
     /* The smallest valid input, 4 points, works for both methods and any filter. */
     rugo_vec2 four[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -972,7 +1004,8 @@ START_TEST(roughen_bad_input) {
             d.filter = (rugo_filter)f;
             d.levels = 3;
             ck_assert_int_eq(rugo_roughen(&d, out), RUGO_OK);
-            for (int i = 0; i < 32; ++i) ck_assert(rugo__v2_finite(out[i]));
+            for (int i = 0; i < 32; ++i)
+                ck_assert(rugo__v2_finite(out[i]));
         }
 }
 END_TEST

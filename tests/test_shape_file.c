@@ -1240,7 +1240,8 @@ START_TEST(roughness_parse_valid) {
     /* Everything given; unknown members are ignored; members in any order. */
     d = parse_rough_ok(
         "\"note\": {\"x\": [null]}, \"seed\": 9007199254740992, \"q\": 1.96, \"estimator\": "
-        "\"coefficients\", \"friction\": {\"lambda_min\": 0.1, \"alpha\": 2, \"base\": 0.25, \"unit\": \"m\"}, "
+        "\"coefficients\", \"friction\": {\"lambda_min\": 0.1, \"alpha\": 2, \"base\": 0.25, \"unit\": "
+        "\"m\"}, "
         "\"restitution\": {\"epsilon\": 0.3, \"epsilon_max\": 0.8}, \"perturbation\": "
         "{\"method\": \"local\", \"levels\": 1, \"control_points\": [[0, 0], [0.5, 0], [1, 0], "
         "[1, 0.5], [1, 1], [0.5, 1], [0, 1], [0, 0.5]]}, \"preset\": \"tipo_2\"");
@@ -1634,18 +1635,19 @@ START_TEST(roughness_round_trip_bits) {
     d.roughness.perturbation_count = 8;
     rugo_text text;
     ck_assert_int_eq(rugo_shape_desc_write(&d, NULL, &text), RUGO_OK);
-    ck_assert_str_eq(text.data,
-                     "{\n  \"control_points\": [\n    [0, 0],\n    [1, 0],\n    [1, 1],\n    [0, 1]\n  ],\n"
-                     "  \"filter\": \"cdf4.8\",\n  \"roughness\": {\n    \"tolerances\": [\n      0.25,\n"
-                     "      0.5,\n      0,\n      1\n    ],\n    \"seed\": 42,\n"
-                     "    \"q\": 0.94999999999999996,\n    \"estimator\": \"detail\",\n"
-                     "    \"friction\": {\"alpha\": 109.09090909090911, \"lambda_min\": 0.00050000000000000001, "
-                     "\"base\": 0.29999999999999999},\n"
-                     "    \"restitution\": {\"epsilon\": 0.5, \"epsilon_max\": 0.90000000000000002},\n"
-                     "    \"perturbation\": {\n      \"method\": \"local\",\n      \"levels\": 1,\n"
-                     "      \"control_points\": [\n        [0, 0],\n        [0.5, 0],\n        [1, 0],\n"
-                     "        [1, 0.5],\n        [1, 1],\n        [0.5, 1],\n        [0, 1],\n"
-                     "        [0, 0.5]\n      ]\n    }\n  }\n}\n");
+    ck_assert_str_eq(
+        text.data,
+        "{\n  \"control_points\": [\n    [0, 0],\n    [1, 0],\n    [1, 1],\n    [0, 1]\n  ],\n"
+        "  \"filter\": \"cdf4.8\",\n  \"roughness\": {\n    \"tolerances\": [\n      0.25,\n"
+        "      0.5,\n      0,\n      1\n    ],\n    \"seed\": 42,\n"
+        "    \"q\": 0.94999999999999996,\n    \"estimator\": \"detail\",\n"
+        "    \"friction\": {\"alpha\": 109.09090909090911, \"lambda_min\": 0.00050000000000000001, "
+        "\"base\": 0.29999999999999999},\n"
+        "    \"restitution\": {\"epsilon\": 0.5, \"epsilon_max\": 0.90000000000000002},\n"
+        "    \"perturbation\": {\n      \"method\": \"local\",\n      \"levels\": 1,\n"
+        "      \"control_points\": [\n        [0, 0],\n        [0.5, 0],\n        [1, 0],\n"
+        "        [1, 0.5],\n        [1, 1],\n        [0.5, 1],\n        [0, 1],\n"
+        "        [0, 0.5]\n      ]\n    }\n  }\n}\n");
     rugo_text_free(&text);
     d.roughness.has_perturbation = false;
     d.roughness.kind = RUGO_ROUGHNESS_PRESET;

@@ -11,8 +11,8 @@ static int brute(const rugo_aabb* b, int n, rugo__pair* out) {
     int c = 0;
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j)
-            if (b[i].lower.x <= b[j].upper.x && b[j].lower.x <= b[i].upper.x && b[i].lower.y <= b[j].upper.y &&
-                b[j].lower.y <= b[i].upper.y) {
+            if (b[i].lower.x <= b[j].upper.x && b[j].lower.x <= b[i].upper.x &&
+                b[i].lower.y <= b[j].upper.y && b[j].lower.y <= b[i].upper.y) {
                 out[c].a = i;
                 out[c].b = j;
                 ++c;
@@ -26,7 +26,8 @@ static void check_against_brute(rugo__sweep_prune* sap, const rugo_aabb* boxes, 
     const rugo__pair* pairs = rugo__sweep_prune_pairs(sap, &count);
     int rc = brute(boxes, n, ref);
     ck_assert_int_eq(count, rc);
-    if (rc > 0) ck_assert_int_eq(memcmp(pairs, ref, (size_t)rc * sizeof *ref), 0); /* same pairs, same order */
+    if (rc > 0)
+        ck_assert_int_eq(memcmp(pairs, ref, (size_t)rc * sizeof *ref), 0); /* same pairs, same order */
 }
 
 static void random_box(test_rng* r, rugo_aabb* b, double world, double max_half) {
@@ -46,14 +47,16 @@ START_TEST(test_random_moving_scenes) {
         rugo__sweep_prune* sap = NULL;
         ck_assert_int_eq(rugo__sweep_prune_create(NULL, &sap), RUGO_OK);
         int n = 150 + (int)(seed * 50);
-        for (int i = 0; i < n; ++i) random_box(&r, &boxes[i], 100.0, 3.0);
+        for (int i = 0; i < n; ++i)
+            random_box(&r, &boxes[i], 100.0, 3.0);
         for (int step = 0; step < 120; ++step) {
             /* n changes now and then: the general algorithm restarts */
             if (step % 40 == 39) {
                 int nn = n + (int)test_rng_uniform(&r, -60.0, 60.0);
                 if (nn < 2) nn = 2;
                 if (nn > max_n) nn = max_n;
-                for (int i = n; i < nn; ++i) random_box(&r, &boxes[i], 100.0, 3.0);
+                for (int i = n; i < nn; ++i)
+                    random_box(&r, &boxes[i], 100.0, 3.0);
                 n = nn;
             }
             for (int i = 0; i < n; ++i) {
@@ -66,7 +69,8 @@ START_TEST(test_random_moving_scenes) {
                 boxes[i].upper.y += dy;
                 if (u > 0.99) { /* resize, keeping lower <= upper */
                     double g = test_rng_uniform(&r, -0.3, 0.3);
-                    boxes[i].upper.x = boxes[i].upper.x + g < boxes[i].lower.x ? boxes[i].lower.x : boxes[i].upper.x + g;
+                    boxes[i].upper.x =
+                        boxes[i].upper.x + g < boxes[i].lower.x ? boxes[i].lower.x : boxes[i].upper.x + g;
                 }
             }
             /* exact touching cases: box 0 abuts box 1 on x */

@@ -54,8 +54,8 @@ static rugo_pyramid* make_pyramid(const rugo_vec2* pts, int n, int coarsest) {
     return p;
 }
 
-static rugo_tolerances* make_tolerances(const rugo_pyramid* p, const double* finest, rugo_tolerance_estimator e,
-                                        int neighbours) {
+static rugo_tolerances* make_tolerances(const rugo_pyramid* p, const double* finest,
+                                        rugo_tolerance_estimator e, int neighbours) {
     rugo_tolerance_def def = rugo_default_tolerance_def();
     def.pyramid = p;
     def.finest = finest;
@@ -91,7 +91,8 @@ static void rough_shape(uint64_t seed, int n0, int levels, double sigma0, rugo_v
     test_random_star(&tr, n0, rugo_v2(0.0, 0.0), 100.0, 0.3, cur);
     for (int l = 0; l < levels; ++l) {
         double* sigma = xmalloc((size_t)n * sizeof *sigma);
-        for (int i = 0; i < n; ++i) sigma[i] = sigma0 * pow(0.6, l) * test_rng_uniform(&tr, 0.3, 1.7);
+        for (int i = 0; i < n; ++i)
+            sigma[i] = sigma0 * pow(0.6, l) * test_rng_uniform(&tr, 0.3, 1.7);
         add_level(cur, n, sigma, 0.3, &rng, out, NULL);
         memcpy(cur, out, (size_t)(2 * n) * sizeof *cur);
         n *= 2;
@@ -110,8 +111,10 @@ static double spec_gamma(const double* lambda, int n, int segment, double t) {
                                       {1, -2.5, 2, -0.5},
                                       {-1.0 / 6.0, 0.5, -0.5, 1.0 / 6.0}};
     double l[4], a[4];
-    for (int i = 0; i < 4; ++i) l[i] = lambda[rugo__wrap(k - 1 + i, n)];
-    for (int r = 0; r < 4; ++r) a[r] = minv[r][0] * l[0] + minv[r][1] * l[1] + minv[r][2] * l[2] + minv[r][3] * l[3];
+    for (int i = 0; i < 4; ++i)
+        l[i] = lambda[rugo__wrap(k - 1 + i, n)];
+    for (int r = 0; r < 4; ++r)
+        a[r] = minv[r][0] * l[0] + minv[r][1] * l[1] + minv[r][2] * l[2] + minv[r][3] * l[3];
     return a[0] + a[1] * u + a[2] * u * u + a[3] * u * u * u;
 }
 
@@ -136,8 +139,10 @@ static double dist_to_segment(rugo_contour c, int k, rugo_vec2 p) {
         double d2 = rugo__v2_length(rugo_v2_sub(rugo_contour_point(c, k, x2), p));
         if (d1 < best) best = d1;
         if (d2 < best) best = d2;
-        if (d1 < d2) b = x2;
-        else a = x1;
+        if (d1 < d2)
+            b = x2;
+        else
+            a = x1;
     }
     return best;
 }
@@ -180,7 +185,8 @@ START_TEST(tolerance_at_continuous_and_exact_at_midpoints) {
     enum { N = 64 };
     test_rng r = test_rng_seed(61);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.0, 1.0);
+    for (int i = 0; i < N; ++i)
+        lam[i] = test_rng_uniform(&r, 0.0, 1.0);
     double worst_jump = 0.0, worst_mid = 0.0, worst_spec = 0.0;
     for (int j = 0; j < N; ++j) {
         /* segment end: t -> 1 of j against t = 0 of j+1 (including the wrap N-1 -> 0) */
@@ -195,7 +201,8 @@ START_TEST(tolerance_at_continuous_and_exact_at_midpoints) {
         worst_mid = fmax(worst_mid, fabs(mid - lam[j]));
         for (int i = 0; i <= 64; ++i) {
             double t = i / 64.0;
-            worst_spec = fmax(worst_spec, fabs(rugo_tolerance_at(lam, N, j, t, -INFINITY) - spec_gamma(lam, N, j, t)));
+            worst_spec =
+                fmax(worst_spec, fabs(rugo_tolerance_at(lam, N, j, t, -INFINITY) - spec_gamma(lam, N, j, t)));
         }
     }
     printf("lambda(t): largest jump %.3g, midpoint error %.3g, difference from M^-1 form %.3g\n", worst_jump,
@@ -209,7 +216,8 @@ START_TEST(tolerance_at_continuous_and_exact_at_midpoints) {
     double prev = rugo_tolerance_at(lam, N, 0, 0.0, 0.0), worst_step = 0.0;
     for (int j = 0; j < N; ++j)
         for (int i = 1; i <= 4096; ++i) {
-            double v = i == 4096 ? rugo_tolerance_at(lam, N, j + 1, 0.0, 0.0) : rugo_tolerance_at(lam, N, j, i / 4096.0, 0.0);
+            double v = i == 4096 ? rugo_tolerance_at(lam, N, j + 1, 0.0, 0.0)
+                                 : rugo_tolerance_at(lam, N, j, i / 4096.0, 0.0);
             worst_step = fmax(worst_step, fabs(v - prev));
             prev = v;
         }
@@ -222,8 +230,10 @@ START_TEST(tolerance_at_continuous_and_exact_at_midpoints) {
     ck_assert(rugo_tolerance_at(lam, N, 7, 0.5, 0.0) == lam[7]);
     /* constant λ gives constant λ(t) */
     double c[N];
-    for (int i = 0; i < N; ++i) c[i] = 0.25;
-    for (int i = 0; i <= 32; ++i) ck_assert_near(rugo_tolerance_at(c, N, 3, i / 32.0, 0.0), 0.25, 1e-15);
+    for (int i = 0; i < N; ++i)
+        c[i] = 0.25;
+    for (int i = 0; i <= 32; ++i)
+        ck_assert_near(rugo_tolerance_at(c, N, 3, i / 32.0, 0.0), 0.25, 1e-15);
     /* bad input */
     ck_assert(isnan(rugo_tolerance_at(NULL, N, 0, 0.5, 0.0)));
     ck_assert(isnan(rugo_tolerance_at(lam, 0, 0, 0.5, 0.0)));
@@ -235,7 +245,8 @@ END_TEST
 START_TEST(tolerance_at_clamp) {
     enum { N = 16 };
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = (i % 4 < 2) ? 1.0 : 0.0; /* 1 1 0 0 1 1 0 0 ... */
+    for (int i = 0; i < N; ++i)
+        lam[i] = (i % 4 < 2) ? 1.0 : 0.0; /* 1 1 0 0 1 1 0 0 ... */
     const double minimum = 0.05;
     double unclamped_min = INFINITY, clamped_min = INFINITY;
     int clamped = 0;
@@ -277,7 +288,8 @@ START_TEST(create_errors) {
     test_random_star(&r, N, rugo_v2(0, 0), 10.0, 0.3, pts);
     rugo_pyramid* p = make_pyramid(pts, N, 3);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = 0.1;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.1;
     rugo_tolerance_def good = rugo_default_tolerance_def();
     good.pyramid = p;
     good.finest = lam;
@@ -288,33 +300,47 @@ START_TEST(create_errors) {
     ck_assert_int_eq(rugo_tolerances_create(NULL, &t), RUGO_ERR_NULL_ARGUMENT);
     ck_assert_ptr_null(t);
     ck_assert_int_eq(rugo_tolerances_create(&good, NULL), RUGO_ERR_NULL_ARGUMENT);
-    d = good; d.cookie = 0;
+    d = good;
+    d.cookie = 0;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.pyramid = NULL;
+    d = good;
+    d.pyramid = NULL;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_NULL_ARGUMENT);
-    d = good; d.finest = NULL;
+    d = good;
+    d.finest = NULL;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_NULL_ARGUMENT);
-    d = good; d.count = N / 2;
+    d = good;
+    d.count = N / 2;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.estimator = (rugo_tolerance_estimator)7;
+    d = good;
+    d.estimator = (rugo_tolerance_estimator)7;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.neighbours = 0;
+    d = good;
+    d.neighbours = 0;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.extremes = 2;
+    d = good;
+    d.extremes = 2;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.extremes = 17; /* more than the 16 samples per half */
+    d = good;
+    d.extremes = 17; /* more than the 16 samples per half */
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_ARGUMENT);
-    d = good; d.q = 0.0;
+    d = good;
+    d.q = 0.0;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_QUANTILE);
-    d = good; d.q = -1.0;
+    d = good;
+    d.q = -1.0;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_QUANTILE);
-    d = good; d.q = NAN;
+    d = good;
+    d.q = NAN;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_QUANTILE);
-    d = good; d.q = INFINITY;
+    d = good;
+    d.q = INFINITY;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_BAD_QUANTILE);
-    d = good; d.minimum = -0.01;
+    d = good;
+    d.minimum = -0.01;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_NEGATIVE_TOLERANCE);
-    d = good; d.minimum = NAN;
+    d = good;
+    d.minimum = NAN;
     ck_assert_int_eq(rugo_tolerances_create(&d, &t), RUGO_ERR_NOT_FINITE);
     lam[9] = -0.1;
     ck_assert_int_eq(rugo_tolerances_create(&good, &t), RUGO_ERR_NEGATIVE_TOLERANCE);
@@ -324,10 +350,12 @@ START_TEST(create_errors) {
     ck_assert_int_eq(rugo_tolerances_create(&good, &t), RUGO_ERR_NOT_FINITE);
     ck_assert_ptr_null(t);
     /* finite input whose accumulation overflows */
-    for (int i = 0; i < N; ++i) lam[i] = 1e308;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 1e308;
     ck_assert_int_eq(rugo_tolerances_create(&good, &t), RUGO_ERR_NOT_FINITE);
     ck_assert_ptr_null(t);
-    for (int i = 0; i < N; ++i) lam[i] = 0.1;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.1;
     ck_assert_int_eq(rugo_tolerances_create(&good, &t), RUGO_OK);
     ck_assert_ptr_nonnull(t);
 
@@ -369,7 +397,8 @@ START_TEST(create_uses_allocator) {
     test_random_star(&r, N, rugo_v2(0, 0), 10.0, 0.3, pts);
     rugo_pyramid* p = make_pyramid(pts, N, 2);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = 0.2;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.2;
     for (int fail = 0; fail <= 2; ++fail) {
         counting_heap h = {0, 0, fail < 2 ? fail : -1};
         rugo_tolerance_def d = rugo_default_tolerance_def();
@@ -400,19 +429,21 @@ END_TEST
 /* Independent DETAIL estimator: refine f^j with rugo_wavelet_refine, g = f^{j+1} - refined on the
  * two fine halves at the centres of 16 cells each, outward components w.r.t. f^j, sort, RMS of the
  * `extremes` largest and smallest. */
-static double detail_sigma_reference(rugo_contour coarse, rugo_contour fine, const rugo_vec2* refined_pts, int k,
-                                     int extremes) {
+static double detail_sigma_reference(rugo_contour coarse, rugo_contour fine, const rugo_vec2* refined_pts,
+                                     int k, int extremes) {
     rugo_contour refined = {refined_pts, fine.count};
     double w[32];
     for (int h = 0; h < 2; ++h)
         for (int i = 0; i < 16; ++i) {
             double tf = (i + 0.5) / 16.0;
-            rugo_vec2 g = rugo_v2_sub(rugo_contour_point(fine, 2 * k + h, tf), rugo_contour_point(refined, 2 * k + h, tf));
+            rugo_vec2 g = rugo_v2_sub(rugo_contour_point(fine, 2 * k + h, tf),
+                                      rugo_contour_point(refined, 2 * k + h, tf));
             w[h * 16 + i] = rugo_v2_dot(g, rugo_contour_normal(coarse, k, (h + tf) / 2.0));
         }
     qsort(w, 32, sizeof w[0], cmp_double);
     double s = 0.0;
-    for (int i = 0; i < extremes; ++i) s += w[i] * w[i] + w[31 - i] * w[31 - i];
+    for (int i = 0; i < extremes; ++i)
+        s += w[i] * w[i] + w[31 - i] * w[31 - i];
     return sqrt(s / (2.0 * extremes));
 }
 
@@ -424,14 +455,16 @@ START_TEST(levels_accumulate_and_estimators_match_reference) {
     rugo_pyramid* p = make_pyramid(pts, N, 2);
     double lam[N];
     test_rng r = test_rng_seed(78);
-    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.0, 2.0);
+    for (int i = 0; i < N; ++i)
+        lam[i] = test_rng_uniform(&r, 0.0, 2.0);
     for (int e = 0; e < 2; ++e) {
         for (int nb = 1; nb <= 5; nb += 4) {
             rugo_tolerances* t = make_tolerances(p, lam, (rugo_tolerance_estimator)e, nb);
             rugo_tolerance_level top = level_of(t, J);
             ck_assert_int_eq(top.level, J);
             ck_assert_int_eq(top.count, N);
-            for (int i = 0; i < N; ++i) ck_assert(top.own[i] == lam[i] && top.total[i] == lam[i]);
+            for (int i = 0; i < N; ++i)
+                ck_assert(top.own[i] == lam[i] && top.total[i] == lam[i]);
             double worst_rel = 0.0;
             for (int j = J - 1; j >= 2; --j) {
                 rugo_tolerance_level l = level_of(t, j), up = level_of(t, j + 1);
@@ -481,7 +514,8 @@ START_TEST(detail_estimator_extremes) {
     rough_shape(79, N0, LEVELS, 3.0, pts);
     rugo_pyramid* p = make_pyramid(pts, N, 2);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = 0.0;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.0;
     rugo_tolerances* t[3];
     const int ex[3] = {3, 8, 16};
     for (int i = 0; i < 3; ++i) {
@@ -506,7 +540,8 @@ START_TEST(detail_estimator_extremes) {
         }
         free(refined);
     }
-    for (int i = 0; i < 3; ++i) rugo_tolerances_destroy(t[i]);
+    for (int i = 0; i < 3; ++i)
+        rugo_tolerances_destroy(t[i]);
     rugo_pyramid_destroy(p);
     free(pts);
 }
@@ -523,7 +558,8 @@ START_TEST(refined_curve_has_no_own_tolerance) {
     ck_assert_int_eq(rugo_wavelet_refine(c1, 2 * N0, c2), RUGO_OK);
     rugo_pyramid* p = make_pyramid(c2, N, 2);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = 0.5;
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.5;
     for (int e = 0; e < 2; ++e) {
         rugo_tolerances* t = make_tolerances(p, lam, (rugo_tolerance_estimator)e, 1);
         for (int j = 5; j >= 4; --j) {
@@ -559,7 +595,8 @@ static rugo_pyramid* sigma_shape(uint64_t seed, int j0, const double* sigma, dou
     /* the pyramid's local details at level j0 are the drawn ones (perfect reconstruction, same frames) */
     const rugo_vec2* local = NULL;
     ck_assert_int_eq(rugo_pyramid_details(p, j0, NULL, &local), RUGO_OK);
-    for (int s = 0; s < n; ++s) ck_assert_near(local[s].y, normal[s], 1e-9);
+    for (int s = 0; s < n; ++s)
+        ck_assert_near(local[s].y, normal[s], 1e-9);
     free(coarse);
     free(fine);
     return p;
@@ -575,9 +612,11 @@ START_TEST(coefficient_estimator_recovers_constant_sigma) {
     double* sigma = xmalloc(N * sizeof *sigma);
     double* normal = xmalloc(N * sizeof *normal);
     double* lam = xmalloc(2 * N * sizeof *lam);
-    for (int i = 0; i < 2 * N; ++i) lam[i] = 0.0;
+    for (int i = 0; i < 2 * N; ++i)
+        lam[i] = 0.0;
     const double s0 = 0.3;
-    for (int i = 0; i < N; ++i) sigma[i] = s0;
+    for (int i = 0; i < N; ++i)
+        sigma[i] = s0;
     for (uint64_t seed = 1; seed <= 3; ++seed) {
         rugo_pyramid* p = sigma_shape(seed, J0, sigma, normal);
         for (int nb = 1; nb <= 4; nb += 3) {
@@ -619,8 +658,10 @@ START_TEST(coefficient_estimator_recovers_blocks) {
     double* sigma = xmalloc(N * sizeof *sigma);
     double* normal = xmalloc(N * sizeof *normal);
     double* lam = xmalloc(2 * N * sizeof *lam);
-    for (int i = 0; i < 2 * N; ++i) lam[i] = 0.0;
-    for (int i = 0; i < N; ++i) sigma[i] = block_sigma[i / B];
+    for (int i = 0; i < 2 * N; ++i)
+        lam[i] = 0.0;
+    for (int i = 0; i < N; ++i)
+        sigma[i] = block_sigma[i / B];
     rugo_pyramid* p = sigma_shape(99, J0, sigma, normal);
     rugo_tolerances* t = make_tolerances(p, lam, RUGO_ESTIMATOR_COEFFICIENTS, NB);
     rugo_tolerance_level l = level_of(t, J0);
@@ -661,22 +702,28 @@ START_TEST(detail_estimator_is_proportional_to_sigma) {
     double* sigma = xmalloc(N * sizeof *sigma);
     double* normal = xmalloc(N * sizeof *normal);
     double* lam = xmalloc(2 * N * sizeof *lam);
-    for (int i = 0; i < 2 * N; ++i) lam[i] = 0.0;
+    for (int i = 0; i < 2 * N; ++i)
+        lam[i] = 0.0;
     double seed_mean[SEEDS], batch[SEEDS * (N / B)];
     int nbatch = 0;
     for (int si = 0; si < SEEDS; ++si) {
-        for (int i = 0; i < N; ++i) sigma[i] = 0.3;
+        for (int i = 0; i < N; ++i)
+            sigma[i] = 0.3;
         rugo_pyramid* p = sigma_shape(11 + (uint64_t)si, J0, sigma, normal);
         rugo_tolerances* td = make_tolerances(p, lam, RUGO_ESTIMATOR_DETAIL, 1);
         rugo_tolerances* tc = make_tolerances(p, lam, RUGO_ESTIMATOR_COEFFICIENTS, 1);
         rugo_tolerance_level ld = level_of(td, J0), lc = level_of(tc, J0);
         double m = 0.0, v = 0.0, mc = 0.0;
-        for (int k = 0; k < N; ++k) m += ld.own[k] / (Q * 0.3) / N;
-        for (int k = 0; k < N; ++k) v += pow(ld.own[k] / (Q * 0.3) - m, 2) / (N - 1);
-        for (int k = 0; k < N; ++k) mc += lc.own[k] / N;
+        for (int k = 0; k < N; ++k)
+            m += ld.own[k] / (Q * 0.3) / N;
+        for (int k = 0; k < N; ++k)
+            v += pow(ld.own[k] / (Q * 0.3) - m, 2) / (N - 1);
+        for (int k = 0; k < N; ++k)
+            mc += lc.own[k] / N;
         for (int b = 0; b < N / B; ++b) {
             double bm = 0.0;
-            for (int k = b * B; k < (b + 1) * B; ++k) bm += ld.own[k] / (Q * 0.3) / B;
+            for (int k = b * B; k < (b + 1) * B; ++k)
+                bm += ld.own[k] / (Q * 0.3) / B;
             batch[nbatch++] = bm;
         }
         printf("detail estimator, seed %d: mean sigma_detail/sigma = %.4f (per-segment spread %.4f); "
@@ -688,13 +735,18 @@ START_TEST(detail_estimator_is_proportional_to_sigma) {
         rugo_pyramid_destroy(p);
     }
     double mean = 0.0, sd = 0.0;
-    for (int i = 0; i < nbatch; ++i) mean += batch[i] / nbatch;
-    for (int i = 0; i < nbatch; ++i) sd += (batch[i] - mean) * (batch[i] - mean) / (nbatch - 1);
+    for (int i = 0; i < nbatch; ++i)
+        mean += batch[i] / nbatch;
+    for (int i = 0; i < nbatch; ++i)
+        sd += (batch[i] - mean) * (batch[i] - mean) / (nbatch - 1);
     sd = sqrt(sd);
-    printf("detail estimator: overall mean ratio %.4f, standard deviation of a 512-segment mean %.4f\n", mean, sd);
-    for (int si = 0; si < SEEDS; ++si) ck_assert_double_le(fabs(seed_mean[si] - mean), 5.0 * sd / sqrt(N / B));
+    printf("detail estimator: overall mean ratio %.4f, standard deviation of a 512-segment mean %.4f\n", mean,
+           sd);
+    for (int si = 0; si < SEEDS; ++si)
+        ck_assert_double_le(fabs(seed_mean[si] - mean), 5.0 * sd / sqrt(N / B));
     /* blocks of different σ: the same proportion */
-    for (int i = 0; i < N; ++i) sigma[i] = block_sigma[i / B];
+    for (int i = 0; i < N; ++i)
+        sigma[i] = block_sigma[i / B];
     rugo_pyramid* p = sigma_shape(99, J0, sigma, normal);
     rugo_tolerances* td = make_tolerances(p, lam, RUGO_ESTIMATOR_DETAIL, 1);
     rugo_tolerance_level ld = level_of(td, J0);
@@ -702,7 +754,8 @@ START_TEST(detail_estimator_is_proportional_to_sigma) {
         double m = 0.0;
         int cnt = 0;
         /* away from the block edges, where the detail curve mixes two σ */
-        for (int k = b * B + EDGE; k < (b + 1) * B - EDGE; ++k, ++cnt) m += ld.own[k] / (Q * block_sigma[b]);
+        for (int k = b * B + EDGE; k < (b + 1) * B - EDGE; ++k, ++cnt)
+            m += ld.own[k] / (Q * block_sigma[b]);
         m /= cnt;
         printf("detail estimator, block %d (sigma %.2f): mean sigma_detail/sigma = %.4f (%+.2f SD)\n", b,
                block_sigma[b], m, (m - mean) / sd);
@@ -726,28 +779,33 @@ static rugo_pyramid* scaled_rough_pyramid(uint64_t seed, int n0, int levels, dou
                                           double** lam) {
     const int n = n0 << levels;
     *J = 0;
-    while ((1 << *J) < n) ++*J;
+    while ((1 << *J) < n)
+        ++*J;
     *pts = xmalloc((size_t)n * sizeof **pts);
     rough_shape(seed, n0, levels, sigma0, *pts);
-    for (int i = 0; i < n; ++i) (*pts)[i] = rugo_v2_add(offset, rugo_v2_scale(scale, (*pts)[i]));
+    for (int i = 0; i < n; ++i)
+        (*pts)[i] = rugo_v2_add(offset, rugo_v2_scale(scale, (*pts)[i]));
     *lam = xmalloc((size_t)n * sizeof **lam);
     test_rng r = test_rng_seed(lambda_seed);
-    for (int i = 0; i < n; ++i) (*lam)[i] = scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
+    for (int i = 0; i < n; ++i)
+        (*lam)[i] = scale * test_rng_uniform(&r, 0.0, 1.5) * (i % 5 == 0 ? 0.1 : 1.0);
     return make_pyramid(*pts, n, 2);
 }
 
 /* ACCEPTANCE: β is never exceeded: for dense samples of the finest curve inside coarse segment k,
  * (distance to coarse segment k) + λ^J(t) <= β^j_k at every level; with λ = 0 it bounds the pure
  * geometric distance; β^J_k >= max λ(t) on the segment. Prints the tightness (β / measured max). */
-static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int zero_lambda, double minimum, double scale,
-                        rugo_vec2 offset) {
+static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int zero_lambda, double minimum,
+                        double scale, rugo_vec2 offset) {
     const int n = n0 << levels;
     int J = 0;
     rugo_vec2* pts = NULL;
     double* lam = NULL;
-    rugo_pyramid* p = scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 1000, &J, &pts, &lam);
+    rugo_pyramid* p =
+        scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 1000, &J, &pts, &lam);
     if (zero_lambda)
-        for (int i = 0; i < n; ++i) lam[i] = 0.0;
+        for (int i = 0; i < n; ++i)
+            lam[i] = 0.0;
     minimum *= scale;
     rugo_tolerance_def def = rugo_default_tolerance_def();
     def.pyramid = p;
@@ -763,8 +821,10 @@ static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int ze
     double tight_top = INFINITY;
     for (int k = 0; k < n; ++k) {
         double mx = 0.0;
-        for (int i = 0; i <= 4 * S; ++i) mx = fmax(mx, rugo_tolerance_at(lam, n, k, (double)i / (4 * S), minimum));
-        ck_assert_msg(mx <= top.bound[k], "finest segment %d: max lambda %.17g > beta %.17g", k, mx, top.bound[k]);
+        for (int i = 0; i <= 4 * S; ++i)
+            mx = fmax(mx, rugo_tolerance_at(lam, n, k, (double)i / (4 * S), minimum));
+        ck_assert_msg(mx <= top.bound[k], "finest segment %d: max lambda %.17g > beta %.17g", k, mx,
+                      top.bound[k]);
         ck_assert_double_ge(top.bound[k], minimum);
         if (mx > 0.0) tight_top = fmin(tight_top, mx / top.bound[k]);
     }
@@ -777,8 +837,9 @@ static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int ze
             sp[i * S + s] = rugo_contour_point(fin, i, tt);
             sl[i * S + s] = rugo_tolerance_at(lam, n, i, tt, minimum);
         }
-    printf("beta (seed %d, %d segments, %s, scale %g, offset (%g, %g)): finest min(max lambda / beta) = %.4f\n",
-           (int)seed, n, zero_lambda ? "lambda = 0" : "random lambda", scale, offset.x, offset.y, tight_top);
+    printf(
+        "beta (seed %d, %d segments, %s, scale %g, offset (%g, %g)): finest min(max lambda / beta) = %.4f\n",
+        (int)seed, n, zero_lambda ? "lambda = 0" : "random lambda", scale, offset.x, offset.y, tight_top);
     for (int j = J - 1; j >= 2; --j) {
         rugo_contour c = curve_of(p, j);
         rugo_tolerance_level l = level_of(t, j);
@@ -791,8 +852,8 @@ static void check_bound(uint64_t seed, int n0, int levels, double sigma0, int ze
                     double d = dist_to_segment(c, k, sp[i * S + s]) + sl[i * S + s];
                     worst = fmax(worst, d);
                 }
-            ck_assert_msg(worst <= l.bound[k], "level %d segment %d: measured %.17g > beta %.17g", j, k, worst,
-                          l.bound[k]);
+            ck_assert_msg(worst <= l.bound[k], "level %d segment %d: measured %.17g > beta %.17g", j, k,
+                          worst, l.bound[k]);
             double ratio = l.bound[k] / worst;
             ratio_min = fmin(ratio_min, ratio);
             ratio_max = fmax(ratio_max, ratio);
@@ -814,7 +875,8 @@ START_TEST(bound_never_exceeded) {
     check_bound(201, 16, 3, 4.0, 0, 0.0, 1.0, origin); /* 128 segments, random λ */
     check_bound(202, 16, 3, 4.0, 1, 0.0, 1.0, origin); /* λ = 0: pure geometry */
     check_bound(203, 32, 2, 6.0, 0, 0.2, 1.0, origin); /* rougher, with a clamp minimum */
-    check_bound(204, 8, 4, 3.0, 0, 0.0, 1.0, origin);  /* 128 segments from an 8-point star: large coarse drift */
+    check_bound(204, 8, 4, 3.0, 0, 0.0, 1.0,
+                origin); /* 128 segments from an 8-point star: large coarse drift */
     /* far from the origin (round-off of coordinates ~1e6 against features ~1) and tiny */
     check_bound(205, 16, 3, 4.0, 1, 0.0, 0.01, rugo_v2(1e6, -1e6));
     check_bound(206, 16, 3, 4.0, 0, 0.0, 1e-6, rugo_v2(3e-5, 0.0));
@@ -826,12 +888,14 @@ END_TEST
 /* ACCEPTANCE: rugo_tolerance_level_error is never exceeded: at dense common parameters t,
  * |f^j(t) - f^J(t)| + |λ^j(t) - λ^J(t)| <= per_segment[k] at every level, and the bound is within a
  * small factor of the measured maximum (it is meant to pick levels, so it must not be loose). */
-static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, double scale, rugo_vec2 offset) {
+static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, double scale,
+                              rugo_vec2 offset) {
     const int n = n0 << levels;
     int J = 0;
     rugo_vec2* pts = NULL;
     double* lam = NULL;
-    rugo_pyramid* p = scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 77, &J, &pts, &lam);
+    rugo_pyramid* p =
+        scaled_rough_pyramid(seed, n0, levels, sigma0, scale, offset, seed + 77, &J, &pts, &lam);
     rugo_tolerances* t = make_tolerances(p, lam, RUGO_ESTIMATOR_DETAIL, 2);
     rugo_contour fin = curve_of(p, J);
     rugo_tolerance_level top = level_of(t, J);
@@ -852,12 +916,15 @@ static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, 
                     const double u = (double)q / S, tc = ((double)s + u) / cells;
                     const int i = k * cells + s;
                     /* the finest point at u, the coarse point at the same common parameter */
-                    const rugo_vec2 d = rugo_v2_sub(rugo_contour_point(fin, i, u), rugo_contour_point(c, k, tc));
-                    const double e = rugo__v2_length(d) + fabs(rugo_tolerance_at(l.total, l.count, k, tc, 0.0) -
-                                                               rugo_tolerance_at(top.total, top.count, i, u, 0.0));
+                    const rugo_vec2 d =
+                        rugo_v2_sub(rugo_contour_point(fin, i, u), rugo_contour_point(c, k, tc));
+                    const double e =
+                        rugo__v2_length(d) + fabs(rugo_tolerance_at(l.total, l.count, k, tc, 0.0) -
+                                                  rugo_tolerance_at(top.total, top.count, i, u, 0.0));
                     worst = fmax(worst, e);
                 }
-            ck_assert_msg(worst <= per[k], "level %d segment %d: measured %.17g > bound %.17g", j, k, worst, per[k]);
+            ck_assert_msg(worst <= per[k], "level %d segment %d: measured %.17g > bound %.17g", j, k, worst,
+                          per[k]);
             ck_assert_double_le(per[k], mx);
             worst_all = fmax(worst_all, worst);
             if (worst > 1e-9 * scale) {
@@ -873,10 +940,12 @@ static void check_level_error(uint64_t seed, int n0, int levels, double sigma0, 
         }
         ck_assert_double_ge(mx, worst_all);
         const double mean = counted ? ratio_sum / counted : 1.0;
-        printf("level error (seed %d, level %d of %d): max bound %.4g, measured %.4g; bound / measured mean %.3f, "
-               "max %.3f\n", (int)seed, j, J, mx, worst_all, mean, ratio_max);
-        ck_assert_msg(mx <= 1.5 * worst_all, "level %d: max bound %.6g more than 1.5x the measured %.6g", j, mx,
-                      worst_all);
+        printf("level error (seed %d, level %d of %d): max bound %.4g, measured %.4g; bound / measured mean "
+               "%.3f, "
+               "max %.3f\n",
+               (int)seed, j, J, mx, worst_all, mean, ratio_max);
+        ck_assert_msg(mx <= 1.5 * worst_all, "level %d: max bound %.6g more than 1.5x the measured %.6g", j,
+                      mx, worst_all);
         ck_assert_msg(mean <= 2.0, "level %d: bound / measured %.3f on average", j, mean);
     }
     free(per);
@@ -945,12 +1014,13 @@ static double deepest_band_separation(rugo_collide_context* ctx, const rugo_shap
     rugo_contact c[64];
     int count = 0;
     rugo_contact_state state;
-    ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 64, &count, &state,
-                                         NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 64, &count,
+                                         &state, NULL),
                      RUGO_OK);
     if (state != RUGO_STATE_CONTACT || count == 0) return NAN;
     double deepest = INFINITY;
-    for (int i = 0; i < count; ++i) deepest = fmin(deepest, c[i].separation - c[i].tolerance_a - c[i].tolerance_b);
+    for (int i = 0; i < count; ++i)
+        deepest = fmin(deepest, c[i].separation - c[i].tolerance_a - c[i].tolerance_b);
     return deepest;
 }
 
@@ -960,7 +1030,8 @@ static rugo_shape* level_error_shape(uint64_t seed, double* lam_scale) {
     double lam[N];
     rough_shape(seed, N0, LEVELS, 2.0, pts);
     test_rng r = test_rng_seed(seed + 5);
-    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.2, 1.2);
+    for (int i = 0; i < N; ++i)
+        lam[i] = test_rng_uniform(&r, 0.2, 1.2);
     *lam_scale = 1.2;
     rugo_shape_def d = rugo_default_shape_def();
     d.points = pts;
@@ -1003,11 +1074,13 @@ START_TEST(level_error_bounds_contact_separation) {
             int count = 0;
             rugo_contact_state state;
             rugo_transform xb = rugo_make_transform(mid * u.c, mid * u.s, rot);
-            ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 8, &count,
-                                                 &state, NULL),
+            ck_assert_int_eq(test_collide_shapes(ctx, a, rugo_make_transform(0.0, 0.0, 0.0), b, xb, &q, c, 8,
+                                                 &count, &state, NULL),
                              RUGO_OK);
-            if (state == RUGO_STATE_INTERSECTING) lo = mid;
-            else hi = mid;
+            if (state == RUGO_STATE_INTERSECTING)
+                lo = mid;
+            else
+                hi = mid;
         }
         const double dist = hi + test_rng_uniform(&r, 0.0, 3.0 * (la + lb));
         const rugo_transform xb = rugo_make_transform(dist * u.c, dist * u.s, rot);
@@ -1017,7 +1090,8 @@ START_TEST(level_error_bounds_contact_separation) {
             const double sj = deepest_band_separation(ctx, a, b, xb, rel, margin);
             if (isnan(sj)) continue; /* the coarse curves cross */
             const double allowed = ea[-rel] + eb[-rel];
-            ck_assert_msg(fabs(sj - s0) <= allowed, "pose %d level %d: |%.9g - %.9g| > %.9g", pose, rel, sj, s0, allowed);
+            ck_assert_msg(fabs(sj - s0) <= allowed, "pose %d level %d: |%.9g - %.9g| > %.9g", pose, rel, sj,
+                          s0, allowed);
             worst_ratio = fmax(worst_ratio, fabs(sj - s0) / allowed);
             ++compared;
         }
@@ -1043,7 +1117,8 @@ START_TEST(shape_level_error_bad_input) {
     ck_assert(isnan(mx));
     ck_assert_int_eq(rugo_shape_level_error(a, 3, per, &mx), RUGO_OK);
     double m = 0.0;
-    for (int k = 0; k < 8; ++k) m = fmax(m, per[k]);
+    for (int k = 0; k < 8; ++k)
+        m = fmax(m, per[k]);
     ck_assert_double_eq(m, mx);
     ck_assert_int_eq(rugo_shape_level_error(a, rugo_shape_finest_level(a), per, &mx), RUGO_OK);
     ck_assert_double_eq(mx, 0.0);
@@ -1060,7 +1135,8 @@ START_TEST(determinism) {
     rough_shape(5, N0, LEVELS, 3.0, pts);
     rugo_pyramid* p = make_pyramid(pts, N, 2);
     double lam[N];
-    for (int i = 0; i < N; ++i) lam[i] = 0.01 * (i % 7);
+    for (int i = 0; i < N; ++i)
+        lam[i] = 0.01 * (i % 7);
     for (int e = 0; e < 2; ++e) {
         rugo_tolerances* a = make_tolerances(p, lam, (rugo_tolerance_estimator)e, 2);
         rugo_tolerances* b = make_tolerances(p, lam, (rugo_tolerance_estimator)e, 2);
@@ -1181,8 +1257,9 @@ START_TEST(friction_default_in_metres) {
         ck_assert(mu >= 0.3 - 1e-15 && mu <= 0.9 + 1e-14);
     }
     rugo_friction_map c;
-    ck_assert_int_eq(rugo_friction_calibrate(RUGO_DEFAULT_FRICTION_LAMBDA_MIN, RUGO_DEFAULT_FRICTION_LAMBDA_MAX,
-                                             RUGO_DEFAULT_MU_MIN, RUGO_DEFAULT_MU_MAX, &c),
+    ck_assert_int_eq(rugo_friction_calibrate(RUGO_DEFAULT_FRICTION_LAMBDA_MIN,
+                                             RUGO_DEFAULT_FRICTION_LAMBDA_MAX, RUGO_DEFAULT_MU_MIN,
+                                             RUGO_DEFAULT_MU_MAX, &c),
                      RUGO_OK);
     ck_assert(c.alpha == m.alpha && c.lambda_min == m.lambda_min && c.base == m.base);
 }
@@ -1213,8 +1290,8 @@ END_TEST
 START_TEST(restitution_in_band) {
     rugo_restitution r = rugo_default_restitution();
     const double lambda = 0.3;
-    ck_assert(rugo_restitution_in_band(&r, 0.0, lambda) == r.epsilon);         /* ε_c(0) = ε */
-    ck_assert(rugo_restitution_in_band(&r, lambda, lambda) == r.epsilon_max);  /* ε_c(λ) = ε_max */
+    ck_assert(rugo_restitution_in_band(&r, 0.0, lambda) == r.epsilon);            /* ε_c(0) = ε */
+    ck_assert(rugo_restitution_in_band(&r, lambda, lambda) == r.epsilon_max);     /* ε_c(λ) = ε_max */
     ck_assert(rugo_restitution_in_band(&r, 2 * lambda, lambda) == r.epsilon_max); /* clamped */
     ck_assert(rugo_restitution_in_band(&r, -0.1, lambda) == r.epsilon);
     ck_assert(rugo_restitution_in_band(&r, 0.1, 0.0) == r.epsilon); /* λ = 0 gives ε */
@@ -1255,7 +1332,8 @@ START_TEST(bound_on_segment_certified) {
     enum { N = 64 };
     double lam[N];
     test_rng r = test_rng_seed(77);
-    for (int i = 0; i < N; ++i) lam[i] = test_rng_uniform(&r, 0.0, 1.0) < 0.3 ? 0.65 : 0.04;
+    for (int i = 0; i < N; ++i)
+        lam[i] = test_rng_uniform(&r, 0.0, 1.0) < 0.3 ? 0.65 : 0.04;
     for (int k = -N; k < 2 * N; ++k) {
         double b = rugo_tolerance_bound_on_segment(lam, N, k, 0.0), top = 0.0;
         for (int i = 0; i <= 1000; ++i) {

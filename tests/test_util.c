@@ -34,7 +34,8 @@ void test_random_star(test_rng* r, int n, rugo_vec2 centre, double radius, doubl
     for (int k = 0; k < n; ++k) {
         double th = 6.283185307179586 * k / n;
         double rad = 1.0;
-        for (int h = 0; h < H; ++h) rad += bumpiness * amp[h] / total * sin((h + 2) * th + phase[h]);
+        for (int h = 0; h < H; ++h)
+            rad += bumpiness * amp[h] / total * sin((h + 2) * th + phase[h]);
         out[k].x = centre.x + radius * rad * cos(th);
         out[k].y = centre.y + radius * rad * sin(th);
     }
@@ -97,55 +98,62 @@ rugo_contact_query test_exact_query(void) {
     return q;
 }
 
-static rugo_status unpack(rugo_status st, const rugo_contact_output* out, int* count, rugo_contact_state* state,
-                          rugo_query_stats* stats) {
+static rugo_status unpack(rugo_status st, const rugo_contact_output* out, int* count,
+                          rugo_contact_state* state, rugo_query_stats* stats) {
     if (count != NULL) *count = out->count;
     if (state != NULL) *state = out->state;
     if (stats != NULL) *stats = out->stats;
     return st;
 }
 
-rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
-                                rugo_transform xb, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
-                                int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* q,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats) {
     rugo_contact_output out = rugo_contact_output_of(contacts, capacity);
     const rugo_contact_query exact = test_exact_query();
-    return unpack(rugo_collide_shapes(a, xa, b, xb, q != NULL ? q : &exact, ctx, &out), &out, count, state, stats);
+    return unpack(rugo_collide_shapes(a, xa, b, xb, q != NULL ? q : &exact, ctx, &out), &out, count, state,
+                  stats);
 }
 
 static rugo_status collide_primitive(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
-                                     const rugo_primitive* p, const rugo_contact_query* q, rugo_contact* contacts,
-                                     int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+                                     const rugo_primitive* p, const rugo_contact_query* q,
+                                     rugo_contact* contacts, int capacity, int* count,
+                                     rugo_contact_state* state, rugo_query_stats* stats) {
     rugo_contact_output out = rugo_contact_output_of(contacts, capacity);
     const rugo_contact_query exact = test_exact_query();
-    return unpack(rugo_collide_primitive(a, xa, p, rugo_identity_transform(), q != NULL ? q : &exact, ctx, &out),
-                  &out, count, state, stats);
+    return unpack(
+        rugo_collide_primitive(a, xa, p, rugo_identity_transform(), q != NULL ? q : &exact, ctx, &out), &out,
+        count, state, stats);
 }
 
-rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
-                                double radius, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
-                                int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                rugo_vec2 center, double radius, const rugo_contact_query* q,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats) {
     const rugo_primitive p = rugo_make_circle(center, radius);
     return collide_primitive(ctx, a, xa, &p, q, contacts, capacity, count, state, stats);
 }
 
-rugo_status test_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
-                                 rugo_vec2 p2, double radius, const rugo_contact_query* q, rugo_contact* contacts,
-                                 int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats) {
+rugo_status test_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 rugo_vec2 p1, rugo_vec2 p2, double radius, const rugo_contact_query* q,
+                                 rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                 rugo_query_stats* stats) {
     const rugo_primitive p = rugo_make_capsule(p1, p2, radius);
     return collide_primitive(ctx, a, xa, &p, q, contacts, capacity, count, state, stats);
 }
 
 rugo_status test_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
                                  const rugo_vec2* vertices, int vertex_count, double radius,
-                                 const rugo_contact_query* q, rugo_contact* contacts, int capacity, int* count,
-                                 rugo_contact_state* state, rugo_query_stats* stats) {
+                                 const rugo_contact_query* q, rugo_contact* contacts, int capacity,
+                                 int* count, rugo_contact_state* state, rugo_query_stats* stats) {
     /* built field by field (not rugo_make_polygon) so that the query itself checks bad polygons */
     rugo_primitive p;
     memset(&p, 0, sizeof p);
     p.count = vertex_count;
     p.radius = radius;
-    for (int i = 0; i < vertex_count && i < RUGO_PRIMITIVE_MAX_POINTS && vertices != NULL; ++i) p.points[i] = vertices[i];
+    for (int i = 0; i < vertex_count && i < RUGO_PRIMITIVE_MAX_POINTS && vertices != NULL; ++i)
+        p.points[i] = vertices[i];
     if (vertices == NULL) p.count = 0;
     return collide_primitive(ctx, a, xa, &p, q, contacts, capacity, count, state, stats);
 }

@@ -32,11 +32,11 @@ double test_max_diff(const rugo_vec2* a, const rugo_vec2* b, int n);
 double test_max_abs(const rugo_vec2* a, int n);
 
 /* Check assertion that |a - b| <= tol, printing both values on failure. */
-#define ck_assert_near(a, b, tol)                                                                  \
-    do {                                                                                           \
-        double ck_a_ = (a), ck_b_ = (b), ck_t_ = (tol);                                            \
-        ck_assert_msg(fabs(ck_a_ - ck_b_) <= ck_t_, "%s = %.17g, %s = %.17g, |diff| = %.3g > %.3g", \
-                      #a, ck_a_, #b, ck_b_, fabs(ck_a_ - ck_b_), ck_t_);                           \
+#define ck_assert_near(a, b, tol)                                                                            \
+    do {                                                                                                     \
+        double ck_a_ = (a), ck_b_ = (b), ck_t_ = (tol);                                                      \
+        ck_assert_msg(fabs(ck_a_ - ck_b_) <= ck_t_, "%s = %.17g, %s = %.17g, |diff| = %.3g > %.3g", #a,      \
+                      ck_a_, #b, ck_b_, fabs(ck_a_ - ck_b_), ck_t_);                                         \
     } while (0)
 
 /* An allocator (ctx: a test_budget_ctx) that fails once `budget` allocations have been made and
@@ -52,22 +52,25 @@ void test_budget_free(void* p, void* ctx);
  * round-off answers the accuracy tests pin against their references. */
 rugo_contact_query test_exact_query(void);
 
-/* The contact queries as the suites assert on them (a NULL query: test_exact_query()): the caller's array and room in, the count, state
- * and statistics out (stats may be NULL), through rugo_contact_output. The primitives as
- * rugo_collide_primitive takes them, in world coordinates. */
-rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
-                                rugo_transform xb, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
-                                int* count, rugo_contact_state* state, rugo_query_stats* stats);
-rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 center,
-                                double radius, const rugo_contact_query* q, rugo_contact* contacts, int capacity,
-                                int* count, rugo_contact_state* state, rugo_query_stats* stats);
-rugo_status test_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, rugo_vec2 p1,
-                                 rugo_vec2 p2, double radius, const rugo_contact_query* q, rugo_contact* contacts,
-                                 int capacity, int* count, rugo_contact_state* state, rugo_query_stats* stats);
+/* The contact queries as the suites assert on them (a NULL query: test_exact_query()): the caller's array and
+ * room in, the count, state and statistics out (stats may be NULL), through rugo_contact_output. The
+ * primitives as rugo_collide_primitive takes them, in world coordinates. */
+rugo_status test_collide_shapes(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                const rugo_shape* b, rugo_transform xb, const rugo_contact_query* q,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats);
+rugo_status test_collide_circle(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                rugo_vec2 center, double radius, const rugo_contact_query* q,
+                                rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                rugo_query_stats* stats);
+rugo_status test_collide_segment(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                                 rugo_vec2 p1, rugo_vec2 p2, double radius, const rugo_contact_query* q,
+                                 rugo_contact* contacts, int capacity, int* count, rugo_contact_state* state,
+                                 rugo_query_stats* stats);
 rugo_status test_collide_polygon(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
                                  const rugo_vec2* vertices, int vertex_count, double radius,
-                                 const rugo_contact_query* q, rugo_contact* contacts, int capacity, int* count,
-                                 rugo_contact_state* state, rugo_query_stats* stats);
+                                 const rugo_contact_query* q, rugo_contact* contacts, int capacity,
+                                 int* count, rugo_contact_state* state, rugo_query_stats* stats);
 
 /* Runs one suite and returns the process exit code. */
 int test_run_suite(Suite* s);

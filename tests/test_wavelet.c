@@ -11,14 +11,14 @@ static const rugo_filter ALL_FILTERS[] = {RUGO_FILTER_CDF4_2, RUGO_FILTER_CDF4_4
 /* SPEC 2.1 written out again, independently of the library's tables. */
 static const double SPEC_A2[] = {5. / 4, 5. / 32, -3. / 8, 3. / 32};
 static const double SPEC_A4[] = {35. / 32, 35. / 128, -3. / 8, -1. / 256, 5. / 64, -5. / 256};
-static const double SPEC_A6[] = {525. / 512, 2625. / 8192, -733. / 2048, -557. / 8192,
-                                 115. / 1024, -55. / 8192, -35. / 2048, 35. / 8192};
+static const double SPEC_A6[] = {525. / 512,  2625. / 8192, -733. / 2048, -557. / 8192,
+                                 115. / 1024, -55. / 8192,  -35. / 2048,  35. / 8192};
 static const double SPEC_A8[] = {8085. / 8192, 11319. / 32768, -1403. / 4096, -1807. / 16384, 523. / 4096,
-                                 205. / 16384, -133. / 4096,  217. / 65536,  63. / 16384,    -63. / 65536};
-static const double SPEC_A12[] = {495495. / 524288,   778635. / 2097152, -5249. / 16384,  -1354283. / 8388608,
-                                  288995. / 2097152,  401465. / 8388608, -3415. / 65536,  -32543. / 4194304,
-                                  15153. / 1048576,   -1095. / 4194304,  -165. / 65536,   3135. / 8388608,
-                                  429. / 2097152,     -429. / 8388608};
+                                 205. / 16384, -133. / 4096,   217. / 65536,  63. / 16384,    -63. / 65536};
+static const double SPEC_A12[] = {495495. / 524288,  778635. / 2097152, -5249. / 16384, -1354283. / 8388608,
+                                  288995. / 2097152, 401465. / 8388608, -3415. / 65536, -32543. / 4194304,
+                                  15153. / 1048576,  -1095. / 4194304,  -165. / 65536,  3135. / 8388608,
+                                  429. / 2097152,    -429. / 8388608};
 static const double* const SPEC_A[] = {SPEC_A2, SPEC_A4, SPEC_A6, SPEC_A8, SPEC_A12};
 static const int SPEC_A_COUNT[] = {4, 6, 8, 10, 14};
 
@@ -30,7 +30,8 @@ static rugo_vec2* vec_alloc(int n) {
 
 static int log2_int(int n) {
     int k = 0;
-    while ((1 << k) < n) ++k;
+    while ((1 << k) < n)
+        ++k;
     return k;
 }
 
@@ -72,22 +73,27 @@ START_TEST(filter_taps_equal_spec) {
         ck_assert_int_eq(nb, 3);
         ck_assert_int_eq(np, 3);
         /* Exact equality: every value is a dyadic rational, exactly representable. */
-        for (int i = 0; i < na; ++i) ck_assert_double_eq(a[i], SPEC_A[k][i]);
+        for (int i = 0; i < na; ++i)
+            ck_assert_double_eq(a[i], SPEC_A[k][i]);
         const double pq[3] = {3. / 8, 1. / 4, 1. / 16};
         for (int i = 0; i < 3; ++i) {
             ck_assert_double_eq(p[i], 2.0 * pq[i]);
             ck_assert_double_eq(b[i], (i % 2 ? -1.0 : 1.0) * pq[i]);
         }
-        for (int i = 0; i < nq; ++i) ck_assert_double_eq(q[i], 2.0 * (i % 2 ? -1.0 : 1.0) * SPEC_A[k][i]);
+        for (int i = 0; i < nq; ++i)
+            ck_assert_double_eq(q[i], 2.0 * (i % 2 ? -1.0 : 1.0) * SPEC_A[k][i]);
         /* The lowpass filters sum to 1 exactly: the full a, and Pq = p / 2. */
         double sa = a[0], sp = p[0];
-        for (int i = 1; i < na; ++i) sa += 2.0 * a[i];
-        for (int i = 1; i < np; ++i) sp += 2.0 * p[i];
+        for (int i = 1; i < na; ++i)
+            sa += 2.0 * a[i];
+        for (int i = 1; i < np; ++i)
+            sp += 2.0 * p[i];
         ck_assert_double_eq(sa, 1.0);
         ck_assert_double_eq(sp, 2.0);
         /* Highpass filters annihilate constants. */
         double sb = b[0] + 2.0 * (b[1] + b[2]), sq = q[0];
-        for (int i = 1; i < nq; ++i) sq += 2.0 * q[i];
+        for (int i = 1; i < nq; ++i)
+            sq += 2.0 * q[i];
         ck_assert_double_eq(sb, 0.0);
         ck_assert_double_eq(sq, 0.0);
         /* NULL outputs are allowed. */
@@ -101,7 +107,8 @@ START_TEST(filter_taps_equal_spec) {
     int c;
     ck_assert_int_eq(rugo_filter_taps(RUGO_FILTER_COUNT, RUGO_FILTER_A, &t, &c), RUGO_ERR_BAD_FILTER);
     ck_assert_int_eq(rugo_filter_taps((rugo_filter)-3, RUGO_FILTER_P, &t, &c), RUGO_ERR_BAD_FILTER);
-    ck_assert_int_eq(rugo_filter_taps(RUGO_FILTER_CDF4_8, (rugo_filter_part)7, &t, &c), RUGO_ERR_BAD_ARGUMENT);
+    ck_assert_int_eq(rugo_filter_taps(RUGO_FILTER_CDF4_8, (rugo_filter_part)7, &t, &c),
+                     RUGO_ERR_BAD_ARGUMENT);
 }
 END_TEST
 
@@ -165,7 +172,8 @@ START_TEST(perfect_reconstruction_multilevel) {
                     test_random_star(&r, n, rugo_v2(500.0 * trial, -300.0), 250.0, 0.4, x);
                 memcpy(y, x, (size_t)n * sizeof *x);
                 int levels = log2_int(n) - 2;
-                ck_assert_int_eq(rugo_wavelet_analyze_levels(ALL_FILTERS[k], y, n, levels, NULL, NULL), RUGO_OK);
+                ck_assert_int_eq(rugo_wavelet_analyze_levels(ALL_FILTERS[k], y, n, levels, NULL, NULL),
+                                 RUGO_OK);
                 ck_assert_int_eq(rugo_wavelet_synthesize_levels(ALL_FILTERS[k], y, n, levels, NULL, NULL),
                                  RUGO_OK);
                 double err = test_max_diff(x, y, n) / test_max_abs(x, n);
@@ -345,7 +353,8 @@ START_TEST(mean_preserved) {
             rugo_vec2* c = vec_alloc(half);
             rugo_vec2* d = vec_alloc(half);
             test_random_points(&r, 2 * half, 10.0, x);
-            for (int i = 0; i < 2 * half; ++i) x[i] = rugo_v2_add(x[i], rugo_v2(1000.0, -500.0));
+            for (int i = 0; i < 2 * half; ++i)
+                x[i] = rugo_v2_add(x[i], rugo_v2(1000.0, -500.0));
             ck_assert_int_eq(rugo_wavelet_analyze(ALL_FILTERS[k], x, half, c, d), RUGO_OK);
             double mfx = 0, mfy = 0, mcx = 0, mcy = 0, mdx = 0, mdy = 0;
             for (int i = 0; i < 2 * half; ++i) {
@@ -386,10 +395,12 @@ START_TEST(coarse_points_not_convex_average) {
             x[i] = rugo_v2(rad * cos(th), rad * sin(th));
         }
         double maxx = -1e300;
-        for (int i = 0; i < N; ++i) maxx = fmax(maxx, x[i].x);
+        for (int i = 0; i < N; ++i)
+            maxx = fmax(maxx, x[i].x);
         ck_assert_int_eq(rugo_wavelet_analyze(ALL_FILTERS[k], x, N / 2, c, d), RUGO_OK);
         double maxc = -1e300;
-        for (int s = 0; s < N / 2; ++s) maxc = fmax(maxc, c[s].x);
+        for (int s = 0; s < N / 2; ++s)
+            maxc = fmax(maxc, c[s].x);
         ck_assert_msg(maxc > maxx + 1e-3, "filter %d: max coarse x %g, max fine x %g", k, maxc, maxx);
     }
 }
@@ -490,7 +501,8 @@ START_TEST(bad_arguments) {
     ck_assert_int_eq(rugo_wavelet_refine(c, 1, x), RUGO_ERR_TOO_FEW_POINTS);
     /* Multi-level. */
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, NULL, 16, 1, NULL, NULL), RUGO_ERR_NULL_ARGUMENT);
-    ck_assert_int_eq(rugo_wavelet_analyze_levels(RUGO_FILTER_COUNT, x, 16, 1, NULL, NULL), RUGO_ERR_BAD_FILTER);
+    ck_assert_int_eq(rugo_wavelet_analyze_levels(RUGO_FILTER_COUNT, x, 16, 1, NULL, NULL),
+                     RUGO_ERR_BAD_FILTER);
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 2, 0, NULL, NULL), RUGO_ERR_TOO_FEW_POINTS);
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 12, 1, NULL, NULL), RUGO_ERR_NOT_POWER_OF_TWO);
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 2 * RUGO_MAX_CONTROL_POINTS, 1, NULL, NULL),
@@ -500,7 +512,8 @@ START_TEST(bad_arguments) {
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 16, 40, NULL, NULL), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_wavelet_synthesize_levels(F, x, 16, 3, NULL, NULL), RUGO_ERR_BAD_LEVEL);
     ck_assert_int_eq(rugo_wavelet_synthesize_levels(F, x, 12, 1, NULL, NULL), RUGO_ERR_NOT_POWER_OF_TWO);
-    ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 16, 2, x, NULL), RUGO_ERR_BAD_ARGUMENT); /* scratch = data */
+    ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 16, 2, x, NULL),
+                     RUGO_ERR_BAD_ARGUMENT); /* scratch = data */
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 16, 2, s, NULL), RUGO_OK);
     rugo_allocator bad = {failing_alloc, failing_free, NULL};
     ck_assert_int_eq(rugo_wavelet_analyze_levels(F, x, 16, 2, NULL, &bad), RUGO_ERR_OUT_OF_MEMORY);

@@ -24,7 +24,8 @@ static rugo_shape* make_shape(const rugo_vec2* pts, int n, surface sf) {
     d.points = pts;
     d.count = n;
     double lam[64];
-    for (int i = 0; i < n; ++i) lam[i] = sf.lambda;
+    for (int i = 0; i < n; ++i)
+        lam[i] = sf.lambda;
     d.tolerances = sf.lambda > 0.0 ? lam : NULL;
     d.friction.alpha = 0.0;
     d.friction.lambda_min = 0.0;
@@ -41,7 +42,8 @@ static rugo_shape* make_block(double w, double h, surface sf) {
     rugo_vec2 c[4] = {{x, -y}, {x, y}, {-x, y}, {-x, -y}};
     rugo_vec2 p[16];
     int k = 0;
-    for (int i = 0; i < 4; ++i) { /* doubled corner, two points on the side: straight sides, tight round corners */
+    for (int i = 0; i < 4;
+         ++i) { /* doubled corner, two points on the side: straight sides, tight round corners */
         rugo_vec2 n = c[(i + 1) % 4];
         p[k++] = c[i];
         p[k++] = c[i];
@@ -53,7 +55,8 @@ static rugo_shape* make_block(double w, double h, surface sf) {
 
 static rugo_shape* make_disc(double r0, int n, surface sf) {
     rugo_vec2 p[64];
-    for (int i = 0; i < n; ++i) p[i] = rugo_v2(r0 * cos(2 * PI * i / n), r0 * sin(2 * PI * i / n));
+    for (int i = 0; i < n; ++i)
+        p[i] = rugo_v2(r0 * cos(2 * PI * i / n), r0 * sin(2 * PI * i / n));
     return make_shape(p, n, sf);
 }
 
@@ -65,8 +68,8 @@ static rugo_world* make_world(rugo_world_def d) {
     return w;
 }
 
-static int add(rugo_world* w, const rugo_shape* s, rugo_body_type type, double x, double y, double a, rugo_vec2 v,
-               double omega) {
+static int add(rugo_world* w, const rugo_shape* s, rugo_body_type type, double x, double y, double a,
+               rugo_vec2 v, double omega) {
     rugo_body_def b = rugo_default_body_def();
     b.shape = s;
     b.type = type;
@@ -108,7 +111,8 @@ static double slide_distance(double lambda, double mu, double v0, double h, int*
         const rugo_contact_record* rec = rugo_world_contact_records(w, &nrec);
         for (int k = 0; k < nrec; ++k) {
             ck_assert(rec[k].impulse_normal >= 0.0);
-            ck_assert(fabs(rec[k].impulse_tangent) <= rec[k].friction * rec[k].impulse_normal * (1 + 1e-9) + 1e-15);
+            ck_assert(fabs(rec[k].impulse_tangent) <=
+                      rec[k].friction * rec[k].impulse_normal * (1 + 1e-9) + 1e-15);
             if (rec[k].sticking) *sticking_seen = 1;
         }
     }
@@ -180,14 +184,17 @@ START_TEST(test_rolling_resistance) {
     double v1, v3, slip;
     rolling_speeds(0.0, &v1, &v3, &slip);
     const double free_decel = (v1 - v3) / 2.0;
-    fprintf(stderr, "rolling resistance off: v(1 s) %.4f, v(3 s) %.4f m/s, deceleration %.4f m/s^2, slip %.1e\n", v1,
+    fprintf(stderr,
+            "rolling resistance off: v(1 s) %.4f, v(3 s) %.4f m/s, deceleration %.4f m/s^2, slip %.1e\n", v1,
             v3, free_decel, slip);
     for (int k = 1; k <= 2; ++k) {
         rolling_speeds((double)k, &v1, &v3, &slip);
         /* what the resistance adds to the simulator's own losses (micro-collisions in the bands) */
         const double added = (v1 - v3) / 2.0 - free_decel, model = 2.0 / 3.0 * k * g * lam / R;
-        fprintf(stderr, "rolling resistance %d: v(1 s) %.4f, v(3 s) %.4f m/s, added deceleration %.4f m/s^2 (model "
-                "%.4f, %+.1f%%), slip %.1e\n", k, v1, v3, added, model, 100.0 * (added - model) / model, slip);
+        fprintf(stderr,
+                "rolling resistance %d: v(1 s) %.4f, v(3 s) %.4f m/s, added deceleration %.4f m/s^2 (model "
+                "%.4f, %+.1f%%), slip %.1e\n",
+                k, v1, v3, added, model, 100.0 * (added - model) / model, slip);
         /* 10 %: the impulses come in micro-collisions, whose mean normal impulse is m g h only on average,
          * and each angular impulse is undone into rolling by friction a step later */
         ck_assert_msg(fabs(added - model) <= 0.10 * model, "added deceleration %g, model %g", added, model);
@@ -219,11 +226,14 @@ START_TEST(test_disc_rolls) {
     /* a sliding block with the same μ stops after v0/(μ g) = 1.02 s; the disc is checked at 4 s */
     const double t_block = v0 / (0.3 * 9.81);
     int steps = (int)(4.0 / d.time_step);
-    for (int i = 0; i < steps; ++i) ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
+    for (int i = 0; i < steps; ++i)
+        ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
     rugo_body_state s = state(w, b);
     double v = s.linear_velocity.x, om = s.angular_velocity;
-    fprintf(stderr, "disc after 4 s (%.1fx the block's stopping time): v = %.4f m/s (2/3 v0 = %.4f), -ωR = %.4f, "
-            "|v + ωR|/v = %.2e\n", 4.0 / t_block, v, 2.0 * v0 / 3.0, -om * R, fabs(v + om * R) / v);
+    fprintf(stderr,
+            "disc after 4 s (%.1fx the block's stopping time): v = %.4f m/s (2/3 v0 = %.4f), -ωR = %.4f, "
+            "|v + ωR|/v = %.2e\n",
+            4.0 / t_block, v, 2.0 * v0 / 3.0, -om * R, fabs(v + om * R) / v);
     /* rolling without slipping: v = -ωR (clockwise spin for motion to +x) to 2% (the curve is within
      * 2e-4 of the circle; micro-collision hops leave a small residual slip) */
     ck_assert_msg(fabs(v + om * R) <= 0.02 * v, "v = %g, ωR = %g", v, om * R);
@@ -272,8 +282,10 @@ START_TEST(test_energy_elastic) {
         rugo_body_state s = state(w, i);
         ck_assert(fabs(s.center.x) < 2.75 && fabs(s.center.y) < 2.75);
     }
-    fprintf(stderr, "elastic scene, 10000 steps: energy in [%.6f, %.6f] of the initial; %ld impulses, %ld "
-            "bisections, %d unresolved steps\n", emin / e0, emax / e0, impulses, bisections, unresolved);
+    fprintf(stderr,
+            "elastic scene, 10000 steps: energy in [%.6f, %.6f] of the initial; %ld impulses, %ld "
+            "bisections, %d unresolved steps\n",
+            emin / e0, emax / e0, impulses, bisections, unresolved);
     ck_assert_int_gt(impulses, 100);
     /* 1% is the acceptance; frictionless ε = 1 impulses conserve energy exactly (up to round-off),
      * and with several points of one pair treated one after another the energy cannot grow */
@@ -305,7 +317,8 @@ static void rest_scene(rugo_integrator integ, double* creep, double* drop, doubl
     ids[1] = add(w, blk, RUGO_BODY_DYNAMIC, 2.0, 0.15 + 0.002, 0.0, rugo_v2(0, 0), 0.0);
     ids[2] = add(w, disc, RUGO_BODY_DYNAMIC, 0.0, disc_radius(0.2, 32) + 0.004, 0.0, rugo_v2(0, 0), 0.0);
     rugo_vec2 c0[3];
-    for (int i = 0; i < 3; ++i) c0[i] = state(w, ids[i]).center;
+    for (int i = 0; i < 3; ++i)
+        c0[i] = state(w, ids[i]).center;
     *creep = *drop = *spin = *mean_vy = 0.0;
     for (int step = 0; step < 600; ++step) { /* 10 s */
         ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
@@ -384,7 +397,9 @@ END_TEST
 START_TEST(test_rest) {
     double creep, drop, spin, vy;
     rest_scene(RUGO_INTEGRATE_SYMPLECTIC_EULER, &creep, &drop, &spin, &vy);
-    fprintf(stderr, "rest 10 s, symplectic: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported v_y %.3e m/s\n",
+    fprintf(stderr,
+            "rest 10 s, symplectic: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported "
+            "v_y %.3e m/s\n",
             creep, drop, spin, vy);
     /* acceptance: no creep beyond 1 mm; they stay within their bands (8 mm) and upright */
     ck_assert_msg(creep <= 1e-3, "creep %g", creep);
@@ -393,7 +408,9 @@ START_TEST(test_rest) {
     /* At rest the reported velocities average to zero: each is the velocity the body moved with. */
     ck_assert_msg(fabs(vy) <= 1e-4, "symplectic mean resting v_y %g", vy);
     rest_scene(RUGO_INTEGRATE_EXPLICIT_EULER, &creep, &drop, &spin, &vy);
-    fprintf(stderr, "rest 10 s, explicit: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported v_y %.3e m/s\n",
+    fprintf(stderr,
+            "rest 10 s, explicit: creep %.3e m, largest sink %.3e m, block tilt %.3e rad, mean reported v_y "
+            "%.3e m/s\n",
             creep, drop, spin, vy);
     ck_assert_msg(creep <= 1e-3, "creep %g", creep);
     ck_assert_msg(drop <= 0.008, "sank %g", drop);
@@ -417,11 +434,16 @@ static double flight_energy_change(rugo_integrator integ, double h) {
     rugo_world* w = make_world(d);
     int b = add(w, disc, RUGO_BODY_DYNAMIC, 0.0, 100.0, 0.0, rugo_v2(3.0, 5.0), 0.0);
     rugo_body_state s = state(w, b);
-    const double e0 = 0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) + 9.81 * s.center.y;
+    const double e0 =
+        0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) +
+        9.81 * s.center.y;
     const int steps = 120;
-    for (int i = 0; i < steps; ++i) ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
+    for (int i = 0; i < steps; ++i)
+        ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
     s = state(w, b);
-    const double e1 = 0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) + 9.81 * s.center.y;
+    const double e1 =
+        0.5 * (s.linear_velocity.x * s.linear_velocity.x + s.linear_velocity.y * s.linear_velocity.y) +
+        9.81 * s.center.y;
     rugo_world_destroy(w);
     rugo_shape_destroy(disc);
     return (e1 - e0) / steps;
@@ -431,7 +453,9 @@ START_TEST(test_integrators_flight_energy) {
     const double h = 1.0 / 60.0, per_step = 0.5 * 9.81 * 9.81 * h * h;
     const double sym = flight_energy_change(RUGO_INTEGRATE_SYMPLECTIC_EULER, h);
     const double exp_ = flight_energy_change(RUGO_INTEGRATE_EXPLICIT_EULER, h);
-    fprintf(stderr, "free flight, energy change per step and unit mass: symplectic %.6e, explicit %.6e (g²h²/2 = %.6e) J/kg\n",
+    fprintf(stderr,
+            "free flight, energy change per step and unit mass: symplectic %.6e, explicit %.6e (g²h²/2 = "
+            "%.6e) J/kg\n",
             sym, exp_, per_step);
     ck_assert_msg(fabs(sym + per_step) <= 1e-6 * per_step, "symplectic %g", sym);
     ck_assert_msg(fabs(exp_ - per_step) <= 1e-6 * per_step, "explicit %g", exp_);
@@ -448,7 +472,8 @@ static double overlap_of(const rugo_world* w, const rugo_shape* sa, int a, const
     int n = 0;
     rugo_contact_state st = RUGO_STATE_APART;
     rugo_contact_query q = test_exact_query();
-    ck_assert_int_eq(test_collide_shapes(ctx, sa, state(w, a).transform, sb, state(w, b).transform, &q, c, 32, &n, &st, NULL),
+    ck_assert_int_eq(test_collide_shapes(ctx, sa, state(w, a).transform, sb, state(w, b).transform, &q, c, 32,
+                                         &n, &st, NULL),
                      RUGO_OK);
     rugo_collide_context_destroy(ctx);
     double deepest = 0.0;
@@ -472,29 +497,38 @@ START_TEST(test_pressed_together) {
     rugo_world* w = make_world(rugo_default_world_def());
     const int fl = add(w, floor, RUGO_BODY_STATIC, 0.0, -0.5, 0.0, rugo_v2(0, 0), 0.0);
     int col[4];
-    for (int i = 0; i < 4; ++i) col[i] = add(w, blk, RUGO_BODY_DYNAMIC, -1.5, 0.1 + i * (0.2 - 0.015), 0.0, rugo_v2(0, 0), 0.0);
+    for (int i = 0; i < 4; ++i)
+        col[i] = add(w, blk, RUGO_BODY_DYNAMIC, -1.5, 0.1 + i * (0.2 - 0.015), 0.0, rugo_v2(0, 0), 0.0);
     /* posts' inner top corners at (1.5 -+ 0.1, 0.4); the disc's centre r - 15 mm from both */
     const double r = disc_radius(0.2, 32);
     const int p0 = add(w, post, RUGO_BODY_STATIC, 1.5 - 0.1 - 0.15, 0.2, 0.0, rugo_v2(0, 0), 0.0);
     const int p1 = add(w, post, RUGO_BODY_STATIC, 1.5 + 0.1 + 0.15, 0.2, 0.0, rugo_v2(0, 0), 0.0);
-    const int d = add(w, disc, RUGO_BODY_DYNAMIC, 1.5, 0.4 + sqrt((r - 0.015) * (r - 0.015) - 0.01), 0.0, rugo_v2(0, 0), 0.0);
-    const double allow_col = 0.01 * hypot(0.2 + 0.002, 0.1 + 0.002), allow_disc = 0.01 * sqrt(2.0) * (r + 0.002);
-    const double start_col = overlap_of(w, blk, col[0], blk, col[1]), start_disc = overlap_of(w, disc, d, post, p0);
+    const int d = add(w, disc, RUGO_BODY_DYNAMIC, 1.5, 0.4 + sqrt((r - 0.015) * (r - 0.015) - 0.01), 0.0,
+                      rugo_v2(0, 0), 0.0);
+    const double allow_col = 0.01 * hypot(0.2 + 0.002, 0.1 + 0.002),
+                 allow_disc = 0.01 * sqrt(2.0) * (r + 0.002);
+    const double start_col = overlap_of(w, blk, col[0], blk, col[1]),
+                 start_disc = overlap_of(w, disc, d, post, p0);
     double late_col = 0.0, late_disc = 0.0;
     for (int step = 0; step < 120; ++step) {
         ck_assert_int_eq(rugo_world_step(w, NULL), RUGO_OK);
         if (step < 30) continue;
-        for (int i = 0; i < 3; ++i) late_col = fmax(late_col, overlap_of(w, blk, col[i], blk, col[i + 1]));
+        for (int i = 0; i < 3; ++i)
+            late_col = fmax(late_col, overlap_of(w, blk, col[i], blk, col[i + 1]));
         late_col = fmax(late_col, overlap_of(w, floor, fl, blk, col[0]));
         late_disc = fmax(late_disc, fmax(overlap_of(w, disc, d, post, p0), overlap_of(w, disc, d, post, p1)));
     }
     double drift = 0.0;
-    for (int i = 0; i < 4; ++i) drift = fmax(drift, fabs(state(w, col[i]).center.x + 1.5));
+    for (int i = 0; i < 4; ++i)
+        drift = fmax(drift, fabs(state(w, col[i]).center.x + 1.5));
     const rugo_body_state ds = state(w, d);
-    fprintf(stderr, "pressed together: column overlap %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f mm), "
-            "drift %.3e m; disc on two corners %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f mm), at x %.2e\n",
-            1e3 * start_col, 1e3 * late_col, 1e3 * allow_col, drift, 1e3 * start_disc, 1e3 * late_disc, 1e3 * allow_disc,
-            ds.center.x - 1.5);
+    fprintf(
+        stderr,
+        "pressed together: column overlap %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f mm), "
+        "drift %.3e m; disc on two corners %.2f mm at start, largest after 0.5 s %.3f mm (allowance %.3f "
+        "mm), at x %.2e\n",
+        1e3 * start_col, 1e3 * late_col, 1e3 * allow_col, drift, 1e3 * start_disc, 1e3 * late_disc,
+        1e3 * allow_disc, ds.center.x - 1.5);
     ck_assert(start_col > 0.01 && start_disc > 0.01);
     /* 1 % on the allowance: the sizes above are the root boxes' half diagonals up to the band's rounding */
     ck_assert_msg(late_col <= 1.01 * allow_col, "column overlap %g > allowance %g", late_col, allow_col);
@@ -555,7 +589,8 @@ static uint64_t run_hash(void) {
         for (int i = 0; i < rugo_world_body_count(w); ++i) {
             rugo_body_state s = state(w, i);
             const unsigned char* p = (const unsigned char*)&s.transform;
-            for (size_t k = 0; k < sizeof s.transform; ++k) hsh = (hsh ^ p[k]) * 1099511628211ull;
+            for (size_t k = 0; k < sizeof s.transform; ++k)
+                hsh = (hsh ^ p[k]) * 1099511628211ull;
         }
     }
     rugo_world_destroy(w);

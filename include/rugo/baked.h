@@ -47,9 +47,9 @@ RUGO_API bool rugo_is_baked(const void* buffer, size_t size);
  * RUGO_MAX_BAKED_BYTES). */
 RUGO_API rugo_status rugo_shape_bake_size(const rugo_shape* shape, size_t* size);
 
-/** Writes the shape into buffer (capacity bytes, caller-owned). *written receives the size (also on TOO_LARGE, the
- * capacity needed). Errors: NULL_ARGUMENT, TOO_LARGE (capacity below rugo_shape_bake_size, or the
- * shape beyond RUGO_MAX_BAKED_BYTES). Deterministic: the same shape gives the same bytes. */
+/** Writes the shape into buffer (capacity bytes, caller-owned). *written receives the size (also on
+ * TOO_LARGE, the capacity needed). Errors: NULL_ARGUMENT, TOO_LARGE (capacity below rugo_shape_bake_size, or
+ * the shape beyond RUGO_MAX_BAKED_BYTES). Deterministic: the same shape gives the same bytes. */
 RUGO_API rugo_status rugo_shape_bake(const rugo_shape* shape, void* buffer, size_t capacity, size_t* written);
 
 /** Loads a baked shape from memory (size bytes; the buffer is only read and may be freed afterwards).
@@ -74,15 +74,17 @@ typedef struct rugo_baked_write_hook {
  * fsync'ed, then renamed over `path` (and the directory fsync'ed where POSIX allows). On any error the
  * temporary file is removed and an existing file at `path` is left untouched. The file gets mode
  * 0644 on POSIX. hook may be NULL; when given, each chunk is first offered to hook->write and only the
- * bytes it accepts are written, a short count failing the write like a full disk. allocator (NULL = malloc/free) holds the bytes
- * meanwhile. Errors: NULL_ARGUMENT, TOO_LARGE, OUT_OF_MEMORY, IO (detail names the step). */
+ * bytes it accepts are written, a short count failing the write like a full disk. allocator (NULL =
+ * malloc/free) holds the bytes meanwhile. Errors: NULL_ARGUMENT, TOO_LARGE, OUT_OF_MEMORY, IO (detail names
+ * the step). */
 RUGO_API rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path,
                                                  const rugo_allocator* allocator,
                                                  const rugo_baked_write_hook* hook, rugo_baked_error* detail);
 
 /** Reads and loads a baked file (path: a file name, not kept). On success *out is a new shape owned by
- * the caller (free with rugo_shape_destroy); on error NULL. detail may be NULL. Errors: those of rugo_shape_load_baked, IO (cannot open or read),
- * TOO_LARGE (a file beyond RUGO_MAX_BAKED_BYTES, refused before reading it). */
+ * the caller (free with rugo_shape_destroy); on error NULL. detail may be NULL. Errors: those of
+ * rugo_shape_load_baked, IO (cannot open or read), TOO_LARGE (a file beyond RUGO_MAX_BAKED_BYTES, refused
+ * before reading it). */
 RUGO_API rugo_status rugo_shape_read_baked_file(const char* path, const rugo_allocator* allocator,
                                                 rugo_shape** out, rugo_baked_error* detail);
 

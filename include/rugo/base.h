@@ -77,9 +77,9 @@ extern "C" {
 /** 1 if these headers are version major.minor.patch or newer, else 0; usable in `#if`, e.g.
  * `#if RUGO_VERSION_AT_LEAST(0, 2, 0)`. Compares the components in order, so it holds for any
  * component values. For the library actually linked, compare rugo_version_string(). */
-#define RUGO_VERSION_AT_LEAST(major, minor, patch) \
-    (RUGO_VERSION_MAJOR > (major) || \
-     (RUGO_VERSION_MAJOR == (major) && \
+#define RUGO_VERSION_AT_LEAST(major, minor, patch)                                                           \
+    (RUGO_VERSION_MAJOR > (major) ||                                                                         \
+     (RUGO_VERSION_MAJOR == (major) &&                                                                       \
       (RUGO_VERSION_MINOR > (minor) || (RUGO_VERSION_MINOR == (minor) && RUGO_VERSION_PATCH >= (patch)))))
 
 /** The real type: double precision everywhere inside librugo (the Box2D bridge converts to float at
@@ -97,38 +97,40 @@ typedef struct rugo_vec2 {
 /** Status codes returned by every function that can fail on its input. Values are stable (files and
  * tools may print them); new codes are added at the end. rugo_status_string() names each one. */
 typedef enum rugo_status {
-    RUGO_OK = 0,                    /**< success */
-    RUGO_ERR_NULL_ARGUMENT = 1,     /**< a required pointer was NULL */
-    RUGO_ERR_OUT_OF_MEMORY = 2,     /**< the allocator returned NULL */
-    RUGO_ERR_TOO_FEW_POINTS = 3,    /**< a closed cubic contour needs at least 4 control points */
-    RUGO_ERR_NOT_FINITE = 4,        /**< a NaN or infinite value in the input */
-    RUGO_ERR_ZERO_AREA = 5,         /**< the outline encloses no area (collinear or coincident points) */
-    RUGO_ERR_SELF_INTERSECTING = 6, /**< the outline crosses itself (see rugo_contour_problem) */
-    RUGO_ERR_NOT_POWER_OF_TWO = 7,  /**< the count must be a power of two here */
-    RUGO_ERR_BAD_ARGUMENT = 8,      /**< a parameter out of its documented range */
-    RUGO_ERR_BAD_FILTER = 9,        /**< unknown wavelet filter */
-    RUGO_ERR_BAD_LEVEL = 10,        /**< a level outside the pyramid, or a coarsest level below 4 points */
-    RUGO_ERR_TOO_MANY_POINTS = 11,  /**< a count beyond RUGO_MAX_CONTROL_POINTS */
-    RUGO_ERR_PARSE = 12,            /**< malformed text (JSON syntax) */
-    RUGO_ERR_BAD_FIELD = 13,        /**< well-formed text with a missing or wrongly typed field */
-    RUGO_ERR_SINGULAR = 14,         /**< a linear system has no unique solution (e.g. too few fit points) */
-    RUGO_ERR_NOT_CONVERGED = 15,    /**< an iteration did not reach its tolerance */
-    RUGO_ERR_UNSUPPORTED = 16,      /**< the feature was left out of this build (e.g. no Eigen shim) */
-    RUGO_ERR_IO = 17,               /**< a file could not be read or written */
+    RUGO_OK = 0,                      /**< success */
+    RUGO_ERR_NULL_ARGUMENT = 1,       /**< a required pointer was NULL */
+    RUGO_ERR_OUT_OF_MEMORY = 2,       /**< the allocator returned NULL */
+    RUGO_ERR_TOO_FEW_POINTS = 3,      /**< a closed cubic contour needs at least 4 control points */
+    RUGO_ERR_NOT_FINITE = 4,          /**< a NaN or infinite value in the input */
+    RUGO_ERR_ZERO_AREA = 5,           /**< the outline encloses no area (collinear or coincident points) */
+    RUGO_ERR_SELF_INTERSECTING = 6,   /**< the outline crosses itself (see rugo_contour_problem) */
+    RUGO_ERR_NOT_POWER_OF_TWO = 7,    /**< the count must be a power of two here */
+    RUGO_ERR_BAD_ARGUMENT = 8,        /**< a parameter out of its documented range */
+    RUGO_ERR_BAD_FILTER = 9,          /**< unknown wavelet filter */
+    RUGO_ERR_BAD_LEVEL = 10,          /**< a level outside the pyramid, or a coarsest level below 4 points */
+    RUGO_ERR_TOO_MANY_POINTS = 11,    /**< a count beyond RUGO_MAX_CONTROL_POINTS */
+    RUGO_ERR_PARSE = 12,              /**< malformed text (JSON syntax) */
+    RUGO_ERR_BAD_FIELD = 13,          /**< well-formed text with a missing or wrongly typed field */
+    RUGO_ERR_SINGULAR = 14,           /**< a linear system has no unique solution (e.g. too few fit points) */
+    RUGO_ERR_NOT_CONVERGED = 15,      /**< an iteration did not reach its tolerance */
+    RUGO_ERR_UNSUPPORTED = 16,        /**< the feature was left out of this build (e.g. no Eigen shim) */
+    RUGO_ERR_IO = 17,                 /**< a file could not be read or written */
     RUGO_ERR_NEGATIVE_TOLERANCE = 18, /**< a tolerance (roughness band) below zero */
-    RUGO_ERR_EMPTY_RANGE = 19,      /**< a range whose lower end exceeds its upper end (e.g. λ_min > λ_max) */
-    RUGO_ERR_BAD_QUANTILE = 20,     /**< the band factor q of λ = q σ is not > 0 */
-    RUGO_ERR_WORLD_LOCKED = 21,     /**< the physics world is inside a step or callback; retry after the step */
-    RUGO_ERR_NOT_ATTACHED = 22,     /**< the body has no rough shape attached */
+    RUGO_ERR_EMPTY_RANGE = 19,  /**< a range whose lower end exceeds its upper end (e.g. λ_min > λ_max) */
+    RUGO_ERR_BAD_QUANTILE = 20, /**< the band factor q of λ = q σ is not > 0 */
+    RUGO_ERR_WORLD_LOCKED = 21, /**< the physics world is inside a step or callback; retry after the step */
+    RUGO_ERR_NOT_ATTACHED = 22, /**< the body has no rough shape attached */
     RUGO_ERR_ALREADY_ATTACHED = 23, /**< the body already has a rough shape attached */
     RUGO_ERR_BAD_FORMAT = 24,       /**< not a baked shape file (wrong magic) or a field out of range */
     RUGO_ERR_BAD_VERSION = 25,      /**< a baked file of a version this library does not read */
     RUGO_ERR_CHECKSUM = 26,         /**< a baked file whose checksum does not match (corrupted) */
     RUGO_ERR_TRUNCATED = 27,        /**< a file or buffer shorter than its header says */
     RUGO_ERR_TOO_LARGE = 28,        /**< an input beyond the documented size limit */
-    RUGO_ERR_BAD_SIZE = 29,         /**< an outline too small or too large for a shape (RUGO_SHAPE_MIN_SIZE..MAX_SIZE) */
-    RUGO_ERR_CACHE_MISMATCH = 30,   /**< a contact cache holding another pair's answer (clear it, or keep one per pair) */
-    RUGO_STATUS_COUNT               /**< the number of codes (not a status) */
+    RUGO_ERR_BAD_SIZE =
+        29, /**< an outline too small or too large for a shape (RUGO_SHAPE_MIN_SIZE..MAX_SIZE) */
+    RUGO_ERR_CACHE_MISMATCH =
+        30,           /**< a contact cache holding another pair's answer (clear it, or keep one per pair) */
+    RUGO_STATUS_COUNT /**< the number of codes (not a status) */
 } rugo_status;
 
 /** A short constant English name for a status, e.g. "self-intersecting outline". The string is static
@@ -202,9 +204,13 @@ static inline rugo_rot rugo_rot_from_angle(rugo_real radians) {
     return q;
 }
 /** R v. */
-static inline rugo_vec2 rugo_rotate(rugo_rot q, rugo_vec2 v) { return rugo_v2(q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y); }
+static inline rugo_vec2 rugo_rotate(rugo_rot q, rugo_vec2 v) {
+    return rugo_v2(q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y);
+}
 /** R^T v (the inverse rotation for a unit q). */
-static inline rugo_vec2 rugo_inv_rotate(rugo_rot q, rugo_vec2 v) { return rugo_v2(q.c * v.x + q.s * v.y, -q.s * v.x + q.c * v.y); }
+static inline rugo_vec2 rugo_inv_rotate(rugo_rot q, rugo_vec2 v) {
+    return rugo_v2(q.c * v.x + q.s * v.y, -q.s * v.x + q.c * v.y);
+}
 /** The transform with translation (x, y) and rotation angle `radians`. */
 static inline rugo_transform rugo_make_transform(rugo_real x, rugo_real y, rugo_real radians) {
     rugo_transform t;
@@ -215,7 +221,9 @@ static inline rugo_transform rugo_make_transform(rugo_real x, rugo_real y, rugo_
 /** The identity transform. */
 static inline rugo_transform rugo_identity_transform(void) { return rugo_make_transform(0.0, 0.0, 0.0); }
 /** t applied to a point: p + R v (local to world). */
-static inline rugo_vec2 rugo_transform_point(rugo_transform t, rugo_vec2 v) { return rugo_v2_add(t.p, rugo_rotate(t.q, v)); }
+static inline rugo_vec2 rugo_transform_point(rugo_transform t, rugo_vec2 v) {
+    return rugo_v2_add(t.p, rugo_rotate(t.q, v));
+}
 /** The inverse of t applied to a point: R^T (v - p) (world to local, for a unit rotation). */
 static inline rugo_vec2 rugo_inv_transform_point(rugo_transform t, rugo_vec2 v) {
     return rugo_inv_rotate(t.q, rugo_v2_sub(v, t.p));

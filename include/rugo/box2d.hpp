@@ -51,7 +51,6 @@
 /// The Box2D 2.4 bridge of librugo (target rugo::box2d).
 namespace rugo {
 
-
 /// Settings of a Bridge, given to its constructor.
 struct BridgeDef {
     /// Automatic level of detail: the coarsest level whose certified error against the finest level
@@ -112,10 +111,10 @@ struct RoughBodyDef {
 
 /// Debug drawing flags (Bridge::Draw).
 enum DrawFlags : unsigned {
-    kDrawCurve = 1u,    ///< the curve at the body's contact level (b2Draw::DrawSegment polylines)
-    kDrawBand = 2u,     ///< the tolerance band's two offset curves
-    kDrawProxies = 4u,  ///< the proxies: each core polygon pushed out by its skin (DrawPolygon)
-    kDrawContacts = 8u  ///< the last step's rough manifold points and normals
+    kDrawCurve = 1u,   ///< the curve at the body's contact level (b2Draw::DrawSegment polylines)
+    kDrawBand = 2u,    ///< the tolerance band's two offset curves
+    kDrawProxies = 4u, ///< the proxies: each core polygon pushed out by its skin (DrawPolygon)
+    kDrawContacts = 8u ///< the last step's rough manifold points and normals
 };
 
 /// The closest hit of Bridge::RayCast.
@@ -131,18 +130,18 @@ struct RayHit {
 
 /// Counters since construction or ResetStats().
 struct BridgeStats {
-    long evaluations = 0;        ///< Evaluate calls of the bridge's contacts (Box2D's narrow phase)
-    long toiEvaluations = 0;     ///< of those, during Box2D's continuous (TOI) phase
-    long emptyEvaluations = 0;   ///< of those, with no manifold point (not touching)
-    long proxyRejections = 0;    ///< of those, decided by the proxies' distance alone (no query)
-    long reusedEvaluations = 0;  ///< of those, answered from the contact's last query (reuseDistance)
-    long preSolves = 0;          ///< PreSolve calls Box2D made on contacts with a proxy (chained to yours)
-    long queries = 0;            ///< librugo collision queries run (one per body pair and pose)
-    long cacheHits = 0;          ///< proxy contacts answered from a query already run for the same poses
-    long patches = 0;            ///< contact patches built from the queries
-    long patchesDropped = 0;     ///< patches whose proxy pair already owned a deeper one (not submitted)
-    long pointsSubmitted = 0;    ///< manifold points written
-    long speculativePoints = 0;  ///< of those, with positive separation (CCD policy)
+    long evaluations = 0;       ///< Evaluate calls of the bridge's contacts (Box2D's narrow phase)
+    long toiEvaluations = 0;    ///< of those, during Box2D's continuous (TOI) phase
+    long emptyEvaluations = 0;  ///< of those, with no manifold point (not touching)
+    long proxyRejections = 0;   ///< of those, decided by the proxies' distance alone (no query)
+    long reusedEvaluations = 0; ///< of those, answered from the contact's last query (reuseDistance)
+    long preSolves = 0;         ///< PreSolve calls Box2D made on contacts with a proxy (chained to yours)
+    long queries = 0;           ///< librugo collision queries run (one per body pair and pose)
+    long cacheHits = 0;         ///< proxy contacts answered from a query already run for the same poses
+    long patches = 0;           ///< contact patches built from the queries
+    long patchesDropped = 0;    ///< patches whose proxy pair already owned a deeper one (not submitted)
+    long pointsSubmitted = 0;   ///< manifold points written
+    long speculativePoints = 0; ///< of those, with positive separation (CCD policy)
     /// librugo query statistics, summed (rugo_query_stats). @{
     long boxTests = 0, segmentPairs = 0, fallbacks = 0;
     /// @}
@@ -152,15 +151,15 @@ struct BridgeStats {
 
 /// Memory held for one rough body (shapes are shared and counted separately).
 struct BodyMemory {
-    std::size_t bridgeBytes = 0;  ///< the bridge's own record for the body
-    std::size_t box2dBytes = 0;   ///< proxy fixtures, their shapes and broad-phase proxies inside Box2D
-    int proxyCount = 0;           ///< number of proxy fixtures
+    std::size_t bridgeBytes = 0;      ///< the bridge's own record for the body
+    std::size_t box2dBytes = 0;       ///< proxy fixtures, their shapes and broad-phase proxies inside Box2D
+    int proxyCount = 0;               ///< number of proxy fixtures
     std::size_t sharedShapeBytes = 0; ///< the rugo_shape (shared by every body using it; not per body)
 };
 
 /// Rough curved bodies in one b2World (see the top of this file). Not copyable.
 class RUGO_API Bridge {
-public:
+  public:
     /// Installs the bridge's contact listener, contact filter and destruction listener on `world`,
     /// chaining to those the world had (world is not owned; nullptr makes an inert bridge, and so does a
     /// world that already has a bridge: one bridge per world). Create it after setting your own listener
@@ -251,7 +250,7 @@ public:
     /// The implementation (box2d_bridge/), also the listener and filter installed on the world.
     struct Impl;
 
-private:
+  private:
     std::unique_ptr<Impl> m_impl;
 };
 

@@ -56,8 +56,8 @@ typedef struct rugo_contact {
     /** World points on the curves of A and B. @{ */
     rugo_vec2 point_a, point_b;
     /** @} */
-    rugo_vec2 normal;           /**< unit, from A to B */
-    rugo_real separation;       /**< (point_b - point_a)·normal; negative = penetration */
+    rugo_vec2 normal;     /**< unit, from A to B */
+    rugo_real separation; /**< (point_b - point_a)·normal; negative = penetration */
     /** Segment indices at the query's level of each shape (-1: primitive). @{ */
     int segment_a, segment_b;
     /** @} */
@@ -70,10 +70,10 @@ typedef struct rugo_contact {
     /** λ(t) at the points (the override if the query gives one), length units. @{ */
     rugo_real tolerance_a, tolerance_b;
     /** @} */
-    rugo_real friction;         /**< mixed μ of the two surfaces at the points */
-    rugo_real restitution;      /**< mixed base restitution ε of the two surfaces */
-    int region;                 /**< contact region index (overlap region or local minimum), from 0 */
-    uint64_t id;                /**< stable while the contact persists */
+    rugo_real friction;    /**< mixed μ of the two surfaces at the points */
+    rugo_real restitution; /**< mixed base restitution ε of the two surfaces */
+    int region;            /**< contact region index (overlap region or local minimum), from 0 */
+    uint64_t id;           /**< stable while the contact persists */
 } rugo_contact;
 
 /** What a query cost, to set speed against error. */
@@ -135,9 +135,9 @@ typedef struct rugo_contact_query {
     rugo_real tolerance;
     rugo_mix_rule friction_mix;    /**< default RUGO_MIX_MAX (thesis) */
     rugo_mix_rule restitution_mix; /**< default RUGO_MIX_MIN (thesis) */
-    /** >= 0 (length units), default 0: also report local minima of the distance within λ_A + λ_B + margin (speculative
-     * contacts for continuous collision, separation > band). The state is then CONTACT when such a
-     * minimum exists. Errors: NOT_FINITE, BAD_ARGUMENT (negative). */
+    /** >= 0 (length units), default 0: also report local minima of the distance within λ_A + λ_B + margin
+     * (speculative contacts for continuous collision, separation > band). The state is then CONTACT when such
+     * a minimum exists. Errors: NOT_FINITE, BAD_ARGUMENT (negative). */
     rugo_real margin;
     int cookie; /**< set by rugo_default_contact_query; catches uninitialised queries */
 } rugo_contact_query;
@@ -155,8 +155,9 @@ typedef struct rugo_contact_cache rugo_contact_cache;
  * the state only: the query then stops as soon as the state is known, and count, contacts_found and
  * the statistics of the stages it skipped stay 0. */
 typedef struct rugo_contact_output {
-    rugo_contact* contacts;   /**< caller's array of `capacity` contacts (deepest first within each region, regions in a stable order) */
-    int capacity;             /**< room in `contacts` (>= 0) */
+    rugo_contact* contacts; /**< caller's array of `capacity` contacts (deepest first within each region,
+                               regions in a stable order) */
+    int capacity;           /**< room in `contacts` (>= 0) */
     /** Optional (NULL: none): the pair's cache. A query whose shapes moved relative to each other by
      * at most a quarter of its resolution since the answer the cache holds returns that answer moved
      * with the shapes (stats.reused 1; still certified to the resolution); otherwise it searches and
@@ -265,8 +266,8 @@ typedef struct rugo_node_pair {
  * pairs with capacity > 0), BAD_ARGUMENT (capacity < 0), NOT_FINITE (a transform), OUT_OF_MEMORY. */
 RUGO_API rugo_status rugo_tree_pairs(const rugo_mobb_tree* a, rugo_transform xa, int level_a,
                                      const rugo_mobb_tree* b, rugo_transform xb, int level_b,
-                                     rugo_collide_context* ctx, rugo_node_pair* pairs, int capacity, int* count,
-                                     long* box_tests);
+                                     rugo_collide_context* ctx, rugo_node_pair* pairs, int capacity,
+                                     int* count, long* box_tests);
 
 /** Manifold reduction in place: keeps at most k contacts per region (k >= 1; smaller k counts as 1):
  * the deepest, then repeatedly the one farthest from those kept. Order is preserved otherwise. Returns

@@ -37,9 +37,9 @@ enum {
 
 /** What a failed check found, for messages: the offending index or segment pair. */
 typedef struct rugo_contour_problem {
-    int index;     /**< first non-finite point index, or -1 */
-    int segment_a; /**< for RUGO_ERR_SELF_INTERSECTING: two segments that cross (segment_a <= segment_b), */
-    int segment_b; /**< possibly equal for a loop inside one segment; -1 otherwise */
+    int index;       /**< first non-finite point index, or -1 */
+    int segment_a;   /**< for RUGO_ERR_SELF_INTERSECTING: two segments that cross (segment_a <= segment_b), */
+    int segment_b;   /**< possibly equal for a loop inside one segment; -1 otherwise */
     rugo_vec2 where; /**< an approximate crossing point */
 } rugo_contour_problem;
 

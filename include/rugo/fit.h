@@ -34,8 +34,8 @@ typedef struct rugo_fit_def {
     int sample_count;         /**< number of samples, >= control_count and <= RUGO_MAX_CONTROL_POINTS */
     int control_count;        /**< control points to fit, 2^J >= 4 */
     rugo_parameterization parameterization; /**< sample parameters (default chord length) */
-    rugo_allocator allocator; /**< for the fit's own scratch buffers (zeroed: malloc/free) */
-    int cookie;               /**< set by rugo_default_fit_def; catches uninitialised defs */
+    rugo_allocator allocator;               /**< for the fit's own scratch buffers (zeroed: malloc/free) */
+    int cookie;                             /**< set by rugo_default_fit_def; catches uninitialised defs */
 } rugo_fit_def;
 
 /** A def with no samples, control_count 0, chord-length parameters, the malloc/free allocator and the
@@ -44,8 +44,8 @@ RUGO_API rugo_fit_def rugo_default_fit_def(void);
 
 /** How well rugo_fit_contour fitted, in length units. */
 typedef struct rugo_fit_result {
-    rugo_real max_error;  /**< largest distance from a sample to the curve point at its parameter */
-    rugo_real rms_error;  /**< root mean square of those distances */
+    rugo_real max_error; /**< largest distance from a sample to the curve point at its parameter */
+    rugo_real rms_error; /**< root mean square of those distances */
 } rugo_fit_result;
 
 /** Least-squares fit of a closed uniform cubic B-spline with control_count control points to the
@@ -106,17 +106,17 @@ RUGO_API rugo_outline_fit_def rugo_default_outline_fit_def(void);
 
 /** A fitted outline; owns control_points (allocated with `allocator`). */
 typedef struct rugo_outline_fit {
-    rugo_vec2* control_points; /**< control_count points, counter-clockwise */
-    int control_count;         /**< the count used (the one found, for the automatic search) */
-    rugo_real max_error;       /**< largest distance from a sample to the fitted curve (closest point
-                                    on the whole curve, rugo_contour_closest_point), length units */
-    rugo_real rms_error;       /**< root mean square of those distances */
+    rugo_vec2* control_points;        /**< control_count points, counter-clockwise */
+    int control_count;                /**< the count used (the one found, for the automatic search) */
+    rugo_real max_error;              /**< largest distance from a sample to the fitted curve (closest point
+                                           on the whole curve, rugo_contour_closest_point), length units */
+    rugo_real rms_error;              /**< root mean square of those distances */
     rugo_real max_error_at_parameter; /**< rugo_fit_contour's error: distance to the curve point at the
                                            sample's own parameter (>= max_error) */
-    bool tolerance_met;        /**< true if tolerance <= 0 or max_error <= tolerance; false when the
-                                    automatic search stopped at its largest count without reaching it */
-    bool reversed;             /**< true if the fit ran clockwise and the control points were reversed */
-    rugo_allocator allocator;  /**< the allocator of control_points */
+    bool tolerance_met;               /**< true if tolerance <= 0 or max_error <= tolerance; false when the
+                                           automatic search stopped at its largest count without reaching it */
+    bool reversed;            /**< true if the fit ran clockwise and the control points were reversed */
+    rugo_allocator allocator; /**< the allocator of control_points */
 } rugo_outline_fit;
 
 /** Fits a closed cubic B-spline to outline samples: rugo_fit_contour with def->control_count control

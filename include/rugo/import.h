@@ -230,15 +230,15 @@ RUGO_API void rugo_outline_samples_free(rugo_outline_samples* samples);
 
 /** A `<path>` element found in a document. Owns `d` (allocated with `allocator`). */
 typedef struct rugo_svg_path_element {
-    char* d;               /**< the decoded `d` attribute (entities replaced), NUL-terminated */
-    size_t d_length;       /**< bytes of d, without the NUL */
-    size_t d_offset;       /**< byte offset of the raw attribute value in the document */
-    bool d_has_entities;   /**< true if decoding changed the value (positions inside d are then
-                                approximate) */
-    rugo_affine transform; /**< the element's transform composed with those of all its ancestors (root
-                                first): path coordinates to the root's user units, y down */
-    int line;              /**< 1-based line of the element's '<' in the document */
-    int column;            /**< 1-based column (bytes) of the element's '<' */
+    char* d;                  /**< the decoded `d` attribute (entities replaced), NUL-terminated */
+    size_t d_length;          /**< bytes of d, without the NUL */
+    size_t d_offset;          /**< byte offset of the raw attribute value in the document */
+    bool d_has_entities;      /**< true if decoding changed the value (positions inside d are then
+                                   approximate) */
+    rugo_affine transform;    /**< the element's transform composed with those of all its ancestors (root
+                                   first): path coordinates to the root's user units, y down */
+    int line;                 /**< 1-based line of the element's '<' in the document */
+    int column;               /**< 1-based column (bytes) of the element's '<' */
     rugo_allocator allocator; /**< the allocator of d */
 } rugo_svg_path_element;
 

@@ -42,8 +42,8 @@ typedef struct rugo_pyramid_def {
     rugo_filter filter;      /**< default RUGO_FILTER_DEFAULT */
     int coarsest_level;      /**< J_min >= 2 (4 points); 0 means "as coarse as possible" = 2 */
     bool check_self_intersection; /**< true (default) to reject crossing outlines */
-    rugo_allocator allocator;    /**< zeroed = malloc/free */
-    int cookie;                  /**< set by rugo_default_pyramid_def; catches uninitialised defs */
+    rugo_allocator allocator;     /**< zeroed = malloc/free */
+    int cookie;                   /**< set by rugo_default_pyramid_def; catches uninitialised defs */
 } rugo_pyramid_def;
 
 /** A def with the defaults above and its cookie set; fill in points and count. Never fails. */
@@ -90,8 +90,8 @@ RUGO_API void rugo_level_parameter(int from, int segment, rugo_real t, int to, i
 
 /** How details follow an edit of coarser points. */
 typedef enum rugo_detail_mode {
-    RUGO_DETAILS_FIXED = 0,   /**< world-coordinate details held fixed (Theorem 2.1's setting: exact) */
-    RUGO_DETAILS_LOCAL = 1    /**< details re-oriented in the local frames of the edited curve */
+    RUGO_DETAILS_FIXED = 0, /**< world-coordinate details held fixed (Theorem 2.1's setting: exact) */
+    RUGO_DETAILS_LOCAL = 1  /**< details re-oriented in the local frames of the edited curve */
 } rugo_detail_mode;
 
 /** Direct manipulation (2.30)-(2.31): move the point f^level_segment(t) by delta (length units) with
@@ -104,8 +104,8 @@ RUGO_API rugo_status rugo_pyramid_move_point(rugo_pyramid* p, int level, int seg
 /** Multiresolution deformation (2.3.2): move the finest-level point f^J_segment(t) by delta, spread over
  * levels J, J-1, ..., J - spread + 1 with weights of g(s) = e^{-w s} / A (w = 0: equal weights),
  * each piece applied by direct manipulation at the corresponding point of its level, then
- * reconstructed. spread in [1, J - J_min + 1]. weights_out (caller-owned, spread entries, finest first) may be NULL.
- * Errors: see the top of this file; on error the pyramid is unchanged. */
+ * reconstructed. spread in [1, J - J_min + 1]. weights_out (caller-owned, spread entries, finest first) may
+ * be NULL. Errors: see the top of this file; on error the pyramid is unchanged. */
 RUGO_API rugo_status rugo_pyramid_deform(rugo_pyramid* p, int segment, rugo_real t, rugo_vec2 delta,
                                          int spread, rugo_real w, rugo_detail_mode mode,
                                          rugo_real* weights_out);

@@ -84,14 +84,14 @@ typedef enum rugo_roughen_method {
 /** What rugo_roughen needs. Start from rugo_default_roughen_def(); points and tolerances are borrowed
  * for the call only. */
 typedef struct rugo_roughen_def {
-    const rugo_vec2* points; /**< the contour f^n: count control points, counter-clockwise, count = 2^J */
-    int count;               /**< number of control points, a power of two >= 4 */
+    const rugo_vec2* points;     /**< the contour f^n: count control points, counter-clockwise, count = 2^J */
+    int count;                   /**< number of control points, a power of two >= 4 */
     const rugo_real* tolerances; /**< λ per segment of f^n (count values); σ = λ / q per segment */
     rugo_real q;                 /**< default RUGO_DEFAULT_Q */
     rugo_roughen_method method;  /**< default RUGO_ROUGHEN_WAVELET */
-    int levels;          /**< levels added (wavelet) or refine-and-push rounds (local); >= 1, default 2 */
-    rugo_filter filter;  /**< wavelet method's synthesis filter; default RUGO_FILTER_DEFAULT */
-    uint64_t seed;       /**< seed of the rugo_rng that draws the perturbations; default 0 */
+    int levels;         /**< levels added (wavelet) or refine-and-push rounds (local); >= 1, default 2 */
+    rugo_filter filter; /**< wavelet method's synthesis filter; default RUGO_FILTER_DEFAULT */
+    uint64_t seed;      /**< seed of the rugo_rng that draws the perturbations; default 0 */
     rugo_allocator allocator; /**< for working space; zeroed = malloc/free */
     int cookie;               /**< set by rugo_default_roughen_def; catches uninitialised defs */
 } rugo_roughen_def;

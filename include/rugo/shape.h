@@ -39,22 +39,22 @@ typedef struct rugo_shape rugo_shape;
 /** What rugo_shape_create needs. Start from rugo_default_shape_def(); the arrays are borrowed for the
  * call only. */
 typedef struct rugo_shape_def {
-    const rugo_vec2* points; /**< 2^J control points, either orientation (normalised to CCW) */
-    int count;               /**< number of control points: a power of two >= 4 */
-    rugo_filter filter;      /**< default RUGO_FILTER_DEFAULT */
-    int coarsest_level;      /**< J_min >= 2; 0 = as coarse as possible (2). With check_self_intersection
-                                  set, J_min is raised above any level whose curve crosses or touches
-                                  itself (a coarse level of sharp corners can loop): every level kept is
-                                  a simple closed curve. rugo_shape_coarsest_level gives the result. */
+    const rugo_vec2* points;     /**< 2^J control points, either orientation (normalised to CCW) */
+    int count;                   /**< number of control points: a power of two >= 4 */
+    rugo_filter filter;          /**< default RUGO_FILTER_DEFAULT */
+    int coarsest_level;          /**< J_min >= 2; 0 = as coarse as possible (2). With check_self_intersection
+                                      set, J_min is raised above any level whose curve crosses or touches
+                                      itself (a coarse level of sharp corners can loop): every level kept is
+                                      a simple closed curve. rugo_shape_coarsest_level gives the result. */
     const rugo_real* tolerances; /**< λ per finest segment of the INPUT order (count values); NULL = smooth */
-    rugo_real q;             /**< default RUGO_DEFAULT_Q */
+    rugo_real q;                 /**< default RUGO_DEFAULT_Q */
     rugo_tolerance_estimator estimator; /**< default RUGO_ESTIMATOR_DETAIL */
     rugo_friction_map friction;         /**< default rugo_default_friction_map() */
     rugo_restitution restitution;       /**< default rugo_default_restitution() */
     rugo_box_method box_method;         /**< default RUGO_BOXES_MULTIRES */
     bool check_self_intersection; /**< default true: reject a crossing outline, drop looping coarse levels */
-    rugo_allocator allocator;           /**< used for the shape's lifetime; zeroed = malloc/free */
-    int cookie;                         /**< set by rugo_default_shape_def; catches uninitialised defs */
+    rugo_allocator allocator;     /**< used for the shape's lifetime; zeroed = malloc/free */
+    int cookie;                   /**< set by rugo_default_shape_def; catches uninitialised defs */
 } rugo_shape_def;
 
 /** A def with the defaults above and its cookie set; fill in points and count (and tolerances). */

@@ -116,18 +116,18 @@ typedef struct rugo_roughness_desc {
     rugo_real* tolerances;        /**< kind TOLERANCES: tolerance_count values (= the control point count);
                                      owned by the shape desc, allocated with its allocator */
     int tolerance_count;          /**< kind TOLERANCES: entries of tolerances */
-    rugo_real constant; /**< kind CONSTANT: λ >= 0 of every segment (length) */
-    uint64_t seed;      /**< "seed", 0..RUGO_MAX_FILE_SEED (default 0): tipo_2 and perturbations */
-    rugo_real q;        /**< "q", band factor of λ = q σ, > 0 (default RUGO_DEFAULT_Q) */
+    rugo_real constant;           /**< kind CONSTANT: λ >= 0 of every segment (length) */
+    uint64_t seed;                /**< "seed", 0..RUGO_MAX_FILE_SEED (default 0): tipo_2 and perturbations */
+    rugo_real q;                  /**< "q", band factor of λ = q σ, > 0 (default RUGO_DEFAULT_Q) */
     rugo_tolerance_estimator estimator; /**< "estimator": "detail" (default) | "coefficients" */
     rugo_friction_map friction;         /**< "friction": {"alpha", "lambda_min", "base"}
                                              (rugo_default_friction_map) */
     rugo_restitution restitution; /**< "restitution": {"epsilon", "epsilon_max"} (rugo_default_restitution) */
     /* Optional display geometry (written by `rugo roughen`): "perturbation": {"method": "wavelet" |
      * "local", "levels": m, "control_points": [...]}, with exactly count << m control points. */
-    bool has_perturbation;          /**< true if the "perturbation" members below are set */
+    bool has_perturbation;                   /**< true if the "perturbation" members below are set */
     rugo_roughen_method perturbation_method; /**< "method": how the perturbed points were made */
-    int perturbation_levels;        /**< "levels" m, 1..RUGO_MAX_PERTURBATION_LEVELS */
+    int perturbation_levels;                 /**< "levels" m, 1..RUGO_MAX_PERTURBATION_LEVELS */
     rugo_vec2* perturbation_points; /**< the perturbed outline's control points, owned like tolerances */
     int perturbation_count;         /**< entries of perturbation_points, count << perturbation_levels */
     /* Added with arc-length roughness; zero when a caller leaves them out of an initializer. */
@@ -306,7 +306,6 @@ RUGO_API rugo_status rugo_shape_desc_write(const rugo_shape_desc* desc, const ru
  * may be NULL (malloc/free). */
 RUGO_API rugo_status rugo_shape_load_file(const char* path, const rugo_allocator* allocator, rugo_shape** out,
                                           rugo_parse_error* error);
-
 
 /** Reads a whole file (at most RUGO_MAX_JSON_BYTES) into *out, a newly allocated NUL-terminated
  * buffer (allocated with `allocator`, NULL: malloc/free; free with rugo_text_free). Errors (*out

@@ -41,19 +41,19 @@ typedef enum rugo_tolerance_estimator {
 
 /** What rugo_tolerances_create needs. Start from rugo_default_tolerance_def(). */
 typedef struct rugo_tolerance_def {
-    const rugo_pyramid* pyramid; /**< geometry of every level; borrowed only during creation */
-    const rugo_real* finest;     /**< λ per finest segment (2^J values) in the PYRAMID's segment order
-                                    (counter-clockwise: remap if the pyramid reversed the input) */
-    int count;                   /**< must equal 2^J */
-    rugo_real q;                 /**< default RUGO_DEFAULT_Q */
+    const rugo_pyramid* pyramid;        /**< geometry of every level; borrowed only during creation */
+    const rugo_real* finest;            /**< λ per finest segment (2^J values) in the PYRAMID's segment order
+                                           (counter-clockwise: remap if the pyramid reversed the input) */
+    int count;                          /**< must equal 2^J */
+    rugo_real q;                        /**< default RUGO_DEFAULT_Q */
     rugo_tolerance_estimator estimator; /**< default RUGO_ESTIMATOR_DETAIL */
-    int neighbours;              /**< k of the 2k+1 coefficients; >= 1, default 1 (a window wider than a
-                                    level uses each of its details once) */
-    int extremes;                /**< maxima and minima per segment for the detail estimator (of 32 samples,
-                                    16 per fine half); 3..16, default 3 */
-    rugo_real minimum;           /**< floor of λ(t) (clamping of the cubic interpolation); >= 0, default 0 */
-    rugo_allocator allocator;    /**< zeroed = malloc/free */
-    int cookie;                  /**< set by rugo_default_tolerance_def; catches uninitialised defs */
+    int neighbours;           /**< k of the 2k+1 coefficients; >= 1, default 1 (a window wider than a
+                                 level uses each of its details once) */
+    int extremes;             /**< maxima and minima per segment for the detail estimator (of 32 samples,
+                                 16 per fine half); 3..16, default 3 */
+    rugo_real minimum;        /**< floor of λ(t) (clamping of the cubic interpolation); >= 0, default 0 */
+    rugo_allocator allocator; /**< zeroed = malloc/free */
+    int cookie;               /**< set by rugo_default_tolerance_def; catches uninitialised defs */
 } rugo_tolerance_def;
 
 /** A def with the defaults above and its cookie set; fill in pyramid, finest and count. */
@@ -133,7 +133,7 @@ RUGO_API rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_
 typedef struct rugo_friction_map {
     rugo_real alpha;      /**< slope α of μ over λ (1/length); >= 0 */
     rugo_real lambda_min; /**< tolerance of a smooth surface (length); >= 0 */
-    rugo_real base; /**< μ of a smooth surface (λ <= λ_min); >= 0 */
+    rugo_real base;       /**< μ of a smooth surface (λ <= λ_min); >= 0 */
 } rugo_friction_map;
 
 /** Smallest band of the default map, metres: μ = RUGO_DEFAULT_MU_MIN up to it. */
@@ -179,8 +179,8 @@ RUGO_API rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b);
 
 /* ---- restitution in continuous contact (6.5, 7.3) --------------------------------------------- */
 
-/** A surface's restitution in continuous contact: ε_c(δ) = (ε_max - ε) δ² / λ² + ε for a penetration δ inside the band λ (δ clamped to [0, λ]; λ = 0
- * gives ε). Defaults ε = 0.5, ε_max = 0.9 (thesis). */
+/** A surface's restitution in continuous contact: ε_c(δ) = (ε_max - ε) δ² / λ² + ε for a penetration δ inside
+ * the band λ (δ clamped to [0, λ]; λ = 0 gives ε). Defaults ε = 0.5, ε_max = 0.9 (thesis). */
 typedef struct rugo_restitution {
     rugo_real epsilon;     /**< ε: the base coefficient of restitution (no penetration), in [0, 1] */
     rugo_real epsilon_max; /**< ε_max: at the edge of the band (δ = λ), in [ε, 1] */

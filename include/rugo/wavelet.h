@@ -30,7 +30,7 @@ typedef enum rugo_filter {
     RUGO_FILTER_CDF4_2 = 0,  /**< CDF(4, 2), the shortest */
     RUGO_FILTER_CDF4_4 = 1,  /**< CDF(4, 4) */
     RUGO_FILTER_CDF4_6 = 2,  /**< CDF(4, 6) */
-    RUGO_FILTER_CDF4_8 = 3, /**< the thesis' choice and the default */
+    RUGO_FILTER_CDF4_8 = 3,  /**< the thesis' choice and the default */
     RUGO_FILTER_CDF4_12 = 4, /**< CDF(4, 12), the longest */
     RUGO_FILTER_COUNT        /**< the number of filters (not a filter) */
 } rugo_filter;

@@ -43,21 +43,21 @@ typedef enum rugo_body_type {
 
 /** What rugo_world_create needs. Start from rugo_default_world_def(). */
 typedef struct rugo_world_def {
-    rugo_vec2 gravity;        /**< m/s^2; default (0, -9.81) */
-    rugo_real time_step;      /**< s, > 0; default 1/60 */
+    rugo_vec2 gravity;          /**< m/s^2; default (0, -9.81) */
+    rugo_real time_step;        /**< s, > 0; default 1/60 */
     rugo_integrator integrator; /**< default RUGO_INTEGRATE_SYMPLECTIC_EULER */
-    int lod;                  /**< level of detail of contacts (rugo_contact_query.lod: 0 finest, < 0 coarser); default 0 */
+    int lod; /**< level of detail of contacts (rugo_contact_query.lod: 0 finest, < 0 coarser); default 0 */
     /** Resolution of contacts (rugo_contact_query.resolution); default 0, the round-off answers: the
      * thesis' simulator reproduces its experiments with its own contacts. */
     rugo_real resolution;
     /** Where contacts are (rugo_contact_query.contact_rule); default RUGO_CONTACT_THESIS (6.15). */
     rugo_contact_rule contact_rule;
-    int max_bisections;       /**< halvings of a step toward the time of contact; default 8, 0..30 */
+    int max_bisections; /**< halvings of a step toward the time of contact; default 8, 0..30 */
     /** Penetration beyond the bands that triggers bisection, as a fraction of the smaller body's size
      * (root box half-diagonal); default 0.01. */
     rugo_real penetration_tolerance;
-    bool micro_collisions;    /**< true (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
-    bool friction;            /**< true (default): per-point μ; false: frictionless */
+    bool micro_collisions;     /**< true (default): resting contact as micro-collisions with ε_c(δ) (7.3) */
+    bool friction;             /**< true (default): per-point μ; false: frictionless */
     int max_contacts_per_pair; /**< contacts kept per body pair and step; 1..64, default 8 */
     rugo_allocator allocator;  /**< used for the world's lifetime; zeroed = malloc/free */
     int cookie;                /**< set by rugo_default_world_def; catches uninitialised defs */
@@ -79,8 +79,8 @@ typedef struct rugo_body_def {
      * the contact, k the larger of the two bodies' values), never more than stops it. Errors: NOT_FINITE,
      * BAD_ARGUMENT (negative). */
     rugo_real rolling_resistance;
-    void* user_data;            /**< the caller's, returned in rugo_body_state; never dereferenced */
-    int cookie;                 /**< set by rugo_default_body_def; catches uninitialised defs */
+    void* user_data; /**< the caller's, returned in rugo_body_state; never dereferenced */
+    int cookie;      /**< set by rugo_default_body_def; catches uninitialised defs */
 } rugo_body_def;
 /** A def with the defaults above and its cookie set; fill in shape. */
 RUGO_API rugo_body_def rugo_default_body_def(void);
@@ -111,8 +111,8 @@ typedef struct rugo_body_state {
     /** Mass (kg) and moment of inertia about the centre of mass (kg m^2); 0 for static bodies. @{ */
     rugo_real mass, inertia;
     /** @} */
-    rugo_body_type type;        /**< as created */
-    void* user_data;            /**< as given in the body def */
+    rugo_body_type type; /**< as created */
+    void* user_data;     /**< as given in the body def */
 } rugo_body_state;
 /** The state of body `id` into *out. Errors: NULL_ARGUMENT, BAD_ARGUMENT (id out of range). */
 RUGO_API rugo_status rugo_world_body(const rugo_world* world, int id, rugo_body_state* out);
@@ -126,12 +126,12 @@ RUGO_API rugo_status rugo_world_set_transform(rugo_world* world, int id, rugo_tr
 
 /** What one step did. */
 typedef struct rugo_step_stats {
-    int candidate_pairs;   /**< pairs from the sweep and prune */
-    long box_tests;        /**< OBB tests in the tree traversals */
-    int contacts;          /**< contact points handled */
-    int impulses;          /**< impulses applied (collisions + micro-collisions) */
-    int bisections;        /**< step halvings toward a time of contact */
-    bool unresolved;       /**< true if the bisection limit was reached with penetration left (see docs) */
+    int candidate_pairs;      /**< pairs from the sweep and prune */
+    long box_tests;           /**< OBB tests in the tree traversals */
+    int contacts;             /**< contact points handled */
+    int impulses;             /**< impulses applied (collisions + micro-collisions) */
+    int bisections;           /**< step halvings toward a time of contact */
+    bool unresolved;          /**< true if the bisection limit was reached with penetration left (see docs) */
     rugo_real kinetic_energy; /**< after the step, J */
 } rugo_step_stats;
 
@@ -140,20 +140,20 @@ typedef struct rugo_contact_record {
     /** The two bodies' ids. @{ */
     int body_a, body_b;
     /** @} */
-    rugo_vec2 point;           /**< world, midway between the two curve points */
-    rugo_vec2 normal;          /**< unit, from A to B */
-    rugo_real separation;      /**< curve distance (negative: overlap), before the bands */
-    rugo_real tolerance;       /**< λ_A + λ_B at the points */
-    rugo_real friction;        /**< μ used */
-    rugo_real restitution;     /**< ε used (ε_c(δ) for micro-collisions) */
+    rugo_vec2 point;       /**< world, midway between the two curve points */
+    rugo_vec2 normal;      /**< unit, from A to B */
+    rugo_real separation;  /**< curve distance (negative: overlap), before the bands */
+    rugo_real tolerance;   /**< λ_A + λ_B at the points */
+    rugo_real friction;    /**< μ used */
+    rugo_real restitution; /**< ε used (ε_c(δ) for micro-collisions) */
     /** Relative velocity along the normal before and after the impulse, m/s. @{ */
     rugo_real normal_velocity_before, normal_velocity_after;
     /** @} */
     /** Normal and tangential impulse, N s: J_n >= 0 and |J_t| <= μ J_n. @{ */
     rugo_real impulse_normal, impulse_tangent;
     /** @} */
-    bool sticking;             /**< true: the sticking branch; false: sliding or frictionless */
-    bool micro;                /**< true if a micro-collision (resting contact) */
+    bool sticking; /**< true: the sticking branch; false: sliding or frictionless */
+    bool micro;    /**< true if a micro-collision (resting contact) */
 } rugo_contact_record;
 
 /** Advances one time step. stats may be NULL. Errors (the world is then left as before the step):

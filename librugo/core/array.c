@@ -3,7 +3,8 @@
 
 #include "core/internal.h"
 
-rugo_status rugo__array_reserve(rugo__array* a, const rugo_allocator* al, size_t need, size_t elem, size_t first) {
+rugo_status rugo__array_reserve(rugo__array* a, const rugo_allocator* al, size_t need, size_t elem,
+                                size_t first) {
     if (need <= a->capacity) return RUGO_OK;
     if (elem == 0) return RUGO_ERR_OUT_OF_MEMORY;
     size_t n = a->capacity > first ? a->capacity : (first > 0 ? first : 1);

@@ -20,7 +20,8 @@ typedef struct rugo__array {
 /* Room for at least `need` elements of `elem` bytes: the capacity doubles from max(capacity, first)
  * until it holds `need`, and the old elements are copied over. RUGO_OK (also when there was room), or
  * RUGO_ERR_OUT_OF_MEMORY when the size overflows or the allocator fails; the array is then unchanged. */
-rugo_status rugo__array_reserve(rugo__array* a, const rugo_allocator* al, size_t need, size_t elem, size_t first);
+rugo_status rugo__array_reserve(rugo__array* a, const rugo_allocator* al, size_t need, size_t elem,
+                                size_t first);
 
 /* Frees the elements (through the allocator that reserved them) and empties the array. */
 void rugo__array_free(rugo__array* a, const rugo_allocator* al);

@@ -7,38 +7,70 @@
 
 const char* rugo_status_string(rugo_status status) {
     switch (status) {
-    case RUGO_OK: return "ok";
-    case RUGO_ERR_NULL_ARGUMENT: return "a required argument is NULL";
-    case RUGO_ERR_OUT_OF_MEMORY: return "out of memory";
-    case RUGO_ERR_TOO_FEW_POINTS: return "fewer than 4 control points";
-    case RUGO_ERR_NOT_FINITE: return "non-finite value (NaN or infinity)";
-    case RUGO_ERR_ZERO_AREA: return "outline encloses zero area";
-    case RUGO_ERR_SELF_INTERSECTING: return "self-intersecting outline";
-    case RUGO_ERR_NOT_POWER_OF_TWO: return "count is not a power of two";
-    case RUGO_ERR_BAD_ARGUMENT: return "argument out of range";
-    case RUGO_ERR_BAD_FILTER: return "unknown wavelet filter";
-    case RUGO_ERR_BAD_LEVEL: return "level out of range";
-    case RUGO_ERR_TOO_MANY_POINTS: return "too many control points";
-    case RUGO_ERR_PARSE: return "malformed input text";
-    case RUGO_ERR_BAD_FIELD: return "missing or wrongly typed field";
-    case RUGO_ERR_SINGULAR: return "singular linear system";
-    case RUGO_ERR_NOT_CONVERGED: return "iteration did not converge";
-    case RUGO_ERR_UNSUPPORTED: return "not supported by this build";
-    case RUGO_ERR_IO: return "file input/output error";
-    case RUGO_ERR_NEGATIVE_TOLERANCE: return "negative tolerance";
-    case RUGO_ERR_EMPTY_RANGE: return "empty range (lower end above upper end)";
-    case RUGO_ERR_BAD_QUANTILE: return "band factor q must be > 0";
-    case RUGO_ERR_WORLD_LOCKED: return "world is locked (inside a step or callback)";
-    case RUGO_ERR_NOT_ATTACHED: return "body has no rough shape attached";
-    case RUGO_ERR_ALREADY_ATTACHED: return "body already has a rough shape attached";
-    case RUGO_ERR_BAD_FORMAT: return "not a baked shape file, or a field out of range";
-    case RUGO_ERR_BAD_VERSION: return "unsupported baked file version";
-    case RUGO_ERR_CHECKSUM: return "checksum mismatch (corrupted data)";
-    case RUGO_ERR_TRUNCATED: return "data shorter than its header says (truncated)";
-    case RUGO_ERR_TOO_LARGE: return "input beyond the size limit";
-    case RUGO_ERR_BAD_SIZE: return "outline too small or too large for a shape";
-    case RUGO_ERR_CACHE_MISMATCH: return "contact cache holds another pair of shapes or context (clear it)";
-    case RUGO_STATUS_COUNT: break;
+    case RUGO_OK:
+        return "ok";
+    case RUGO_ERR_NULL_ARGUMENT:
+        return "a required argument is NULL";
+    case RUGO_ERR_OUT_OF_MEMORY:
+        return "out of memory";
+    case RUGO_ERR_TOO_FEW_POINTS:
+        return "fewer than 4 control points";
+    case RUGO_ERR_NOT_FINITE:
+        return "non-finite value (NaN or infinity)";
+    case RUGO_ERR_ZERO_AREA:
+        return "outline encloses zero area";
+    case RUGO_ERR_SELF_INTERSECTING:
+        return "self-intersecting outline";
+    case RUGO_ERR_NOT_POWER_OF_TWO:
+        return "count is not a power of two";
+    case RUGO_ERR_BAD_ARGUMENT:
+        return "argument out of range";
+    case RUGO_ERR_BAD_FILTER:
+        return "unknown wavelet filter";
+    case RUGO_ERR_BAD_LEVEL:
+        return "level out of range";
+    case RUGO_ERR_TOO_MANY_POINTS:
+        return "too many control points";
+    case RUGO_ERR_PARSE:
+        return "malformed input text";
+    case RUGO_ERR_BAD_FIELD:
+        return "missing or wrongly typed field";
+    case RUGO_ERR_SINGULAR:
+        return "singular linear system";
+    case RUGO_ERR_NOT_CONVERGED:
+        return "iteration did not converge";
+    case RUGO_ERR_UNSUPPORTED:
+        return "not supported by this build";
+    case RUGO_ERR_IO:
+        return "file input/output error";
+    case RUGO_ERR_NEGATIVE_TOLERANCE:
+        return "negative tolerance";
+    case RUGO_ERR_EMPTY_RANGE:
+        return "empty range (lower end above upper end)";
+    case RUGO_ERR_BAD_QUANTILE:
+        return "band factor q must be > 0";
+    case RUGO_ERR_WORLD_LOCKED:
+        return "world is locked (inside a step or callback)";
+    case RUGO_ERR_NOT_ATTACHED:
+        return "body has no rough shape attached";
+    case RUGO_ERR_ALREADY_ATTACHED:
+        return "body already has a rough shape attached";
+    case RUGO_ERR_BAD_FORMAT:
+        return "not a baked shape file, or a field out of range";
+    case RUGO_ERR_BAD_VERSION:
+        return "unsupported baked file version";
+    case RUGO_ERR_CHECKSUM:
+        return "checksum mismatch (corrupted data)";
+    case RUGO_ERR_TRUNCATED:
+        return "data shorter than its header says (truncated)";
+    case RUGO_ERR_TOO_LARGE:
+        return "input beyond the size limit";
+    case RUGO_ERR_BAD_SIZE:
+        return "outline too small or too large for a shape";
+    case RUGO_ERR_CACHE_MISMATCH:
+        return "contact cache holds another pair of shapes or context (clear it)";
+    case RUGO_STATUS_COUNT:
+        break;
     }
     return "unknown status";
 }

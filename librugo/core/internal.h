@@ -14,8 +14,9 @@
 /* Not assert(): NDEBUG (set by release build types) must not silently turn these off. */
 #include <stdio.h>
 #include <stdlib.h>
-#define RUGO_ASSERT(cond)                                                                          \
-    ((cond) ? (void)0 : (fprintf(stderr, "%s:%d: RUGO_ASSERT(%s) failed\n", __FILE__, __LINE__, #cond), abort()))
+#define RUGO_ASSERT(cond)                                                                                    \
+    ((cond) ? (void)0                                                                                        \
+            : (fprintf(stderr, "%s:%d: RUGO_ASSERT(%s) failed\n", __FILE__, __LINE__, #cond), abort()))
 #else
 #define RUGO_ASSERT(cond) ((void)0)
 #endif

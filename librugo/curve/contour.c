@@ -15,11 +15,13 @@
 static void segment_points(rugo_contour c, int j, rugo_vec2 q[4]) {
     int n = c.count;
     if (n < 1 || c.points == NULL) {
-        for (int i = 0; i < 4; ++i) q[i] = rugo_v2(0.0, 0.0);
+        for (int i = 0; i < 4; ++i)
+            q[i] = rugo_v2(0.0, 0.0);
         return;
     }
     int base = rugo__wrap(j, n);
-    for (int i = 0; i < 4; ++i) q[i] = c.points[rugo__wrap(base - 1 + i, n)];
+    for (int i = 0; i < 4; ++i)
+        q[i] = c.points[rugo__wrap(base - 1 + i, n)];
 }
 
 /* ---------------------------------------------------------------------------------------------------
@@ -29,7 +31,8 @@ static void segment_points(rugo_contour c, int j, rugo_vec2 q[4]) {
 
 static void segment_points_rel(rugo_contour c, int j, rugo_vec2 o, rugo_vec2 q[4]) {
     segment_points(c, j, q);
-    for (int i = 0; i < 4; ++i) q[i] = rugo_v2_sub(q[i], o);
+    for (int i = 0; i < 4; ++i)
+        q[i] = rugo_v2_sub(q[i], o);
 }
 
 /* Power form f(t) = k3 t^3 + k2 t^2 + k1 t + k0 (k3 = v/6, k2 = w/4, k1 = r/2 in the terms of (3.8)).
@@ -48,7 +51,8 @@ static rugo_vec2 power_point(const rugo_vec2 k[4], rugo_real t) {
 }
 
 static rugo_vec2 power_d1(const rugo_vec2 k[4], rugo_real t) {
-    return rugo_v2((3.0 * k[3].x * t + 2.0 * k[2].x) * t + k[1].x, (3.0 * k[3].y * t + 2.0 * k[2].y) * t + k[1].y);
+    return rugo_v2((3.0 * k[3].x * t + 2.0 * k[2].x) * t + k[1].x,
+                   (3.0 * k[3].y * t + 2.0 * k[2].y) * t + k[1].y);
 }
 
 /* Neumaier's compensated sum: perimeters and areas of 2^20 segments keep their last digits. */
@@ -90,8 +94,10 @@ void rugo_contour_derivative_coefficients(rugo_contour c, int segment, rugo_vec2
     rugo_vec2 q[4];
     segment_points(c, segment, q);
     /* (3.8) with c_{j-1} = q0, c_j = q1, c_{j+1} = q2, c_{j+2} = q3. */
-    rugo_vec2 vv = rugo_v2(q[3].x - 3.0 * q[2].x + 3.0 * q[1].x - q[0].x, q[3].y - 3.0 * q[2].y + 3.0 * q[1].y - q[0].y);
-    rugo_vec2 ww = rugo_v2(2.0 * q[2].x - 4.0 * q[1].x + 2.0 * q[0].x, 2.0 * q[2].y - 4.0 * q[1].y + 2.0 * q[0].y);
+    rugo_vec2 vv =
+        rugo_v2(q[3].x - 3.0 * q[2].x + 3.0 * q[1].x - q[0].x, q[3].y - 3.0 * q[2].y + 3.0 * q[1].y - q[0].y);
+    rugo_vec2 ww =
+        rugo_v2(2.0 * q[2].x - 4.0 * q[1].x + 2.0 * q[0].x, 2.0 * q[2].y - 4.0 * q[1].y + 2.0 * q[0].y);
     rugo_vec2 rr = rugo_v2_sub(q[2], q[0]);
     if (v) *v = vv;
     if (w) *w = ww;
@@ -181,7 +187,8 @@ rugo_real rugo_contour_signed_area(rugo_contour c) {
         segment_points_rel(c, j, o, q);
         power_from_points(q, k);
         rugo_real seg = 0.0;
-        for (int g = 0; g < 3; ++g) seg += gw[g] * rugo_v2_cross(power_point(k, gx[g]), power_d1(k, gx[g]));
+        for (int g = 0; g < 3; ++g)
+            seg += gw[g] * rugo_v2_cross(power_point(k, gx[g]), power_d1(k, gx[g]));
         ksum_add(&sum, seg);
     }
     return 0.5 * ksum_value(&sum);
@@ -214,11 +221,11 @@ static void segment_power_local(rugo_contour c, int j, rugo_vec2 k[4]) {
 
 /* Gauss-Legendre rule on [0, 1] (6 points, for the mass properties): nodes and weights (sum 1). */
 static const rugo_real gl6_x[6] = {0.03376524289842398609384922, 0.1693953067668677431693002,
-                                   0.3806904069584015456847491, 0.6193095930415984543152509,
-                                   0.8306046932331322568306998, 0.9662347571015760139061508};
+                                   0.3806904069584015456847491,  0.6193095930415984543152509,
+                                   0.8306046932331322568306998,  0.9662347571015760139061508};
 static const rugo_real gl6_w[6] = {0.08566224618958517252014807, 0.1803807865240693037849168,
-                                   0.2339569672863455236949352, 0.2339569672863455236949352,
-                                   0.1803807865240693037849168, 0.08566224618958517252014807};
+                                   0.2339569672863455236949352,  0.2339569672863455236949352,
+                                   0.1803807865240693037849168,  0.08566224618958517252014807};
 
 static double power_speed(const void* ctx, double t) {
     return rugo__v2_length(power_d1((const rugo_vec2*)ctx, t));
@@ -260,7 +267,8 @@ rugo_status rugo_contour_segment_length_adaptive(rugo_contour c, int segment, ru
 rugo_real rugo_contour_perimeter(rugo_contour c) {
     if (c.points == NULL || c.count < 1) return 0.0;
     ksum s = {0.0, 0.0};
-    for (int j = 0; j < c.count; ++j) ksum_add(&s, rugo_contour_segment_length(c, j));
+    for (int j = 0; j < c.count; ++j)
+        ksum_add(&s, rugo_contour_segment_length(c, j));
     return ksum_value(&s);
 }
 
@@ -355,10 +363,12 @@ void rugo_contour_bounds(rugo_contour c, rugo_vec2* lower, rugo_vec2* upper) {
             rugo_contour_bezier(c, j, b);
             for (int axis = 0; axis < 2; ++axis) {
                 rugo_real e[4];
-                for (int i = 0; i < 4; ++i) e[i] = axis == 0 ? b[i].x : b[i].y;
+                for (int i = 0; i < 4; ++i)
+                    e[i] = axis == 0 ? b[i].x : b[i].y;
                 rugo_real blo = axis == 0 ? lo.x : lo.y, bhi = axis == 0 ? hi.x : hi.y;
                 int inside = 1;
-                for (int i = 0; i < 4; ++i) inside &= e[i] >= blo && e[i] <= bhi;
+                for (int i = 0; i < 4; ++i)
+                    inside &= e[i] >= blo && e[i] <= bhi;
                 if (inside) continue; /* the hull, hence the segment, is within the box already */
                 rugo_vec2 v, w, r;
                 rugo_contour_derivative_coefficients(c, j, &v, &w, &r);
@@ -540,7 +550,8 @@ bool rugo__ray_begin(rugo__ray* r, rugo_vec2 origin, rugo_vec2 direction, rugo_r
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void ray_segment(rugo__ray* r, rugo_contour c, int j) {
+static inline void
+ray_segment(rugo__ray* r, rugo_contour c, int j) {
     const rugo_vec2 origin = r->origin, d = r->d;
     const rugo_real dd = r->dd, dmax = r->dmax, max_fraction = r->max_fraction;
     rugo_vec2 q[4], b[4], k[4];
@@ -568,7 +579,8 @@ static inline void ray_segment(rugo__ray* r, rugo_contour c, int j) {
      * coefficients; that tolerance lets a ray grazing the curve (a double root) hit, and makes
      * a straight segment lying on the ray's line report "every t". */
     rugo_real kmax = 0.0;
-    for (int i = 0; i < 4; ++i) kmax = fmax(kmax, fmax(fabs(k[i].x), fabs(k[i].y)));
+    for (int i = 0; i < 4; ++i)
+        kmax = fmax(kmax, fmax(fabs(k[i].x), fabs(k[i].y)));
     rugo_real tol = 32.0 * DBL_EPSILON * dmax * kmax;
     rugo_real cand[2 * RUGO__POLY_MAX_ROOTS + 2];
     int nc = 0;
@@ -584,12 +596,15 @@ static inline void ray_segment(rugo__ray* r, rugo_contour c, int j) {
         cand[nc++] = 0.0;
         cand[nc++] = 1.0;
         nr = rugo__poly_roots(sp, 3, 0.0, 1.0, 0.0, roots);
-        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        for (int i = 0; i < nr; ++i)
+            cand[nc++] = roots[i];
         rugo_real ds[3] = {sp[1], 2.0 * sp[2], 3.0 * sp[3]};
         nr = rugo__poly_roots(ds, 2, 0.0, 1.0, 0.0, roots);
-        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        for (int i = 0; i < nr; ++i)
+            cand[nc++] = roots[i];
     } else {
-        for (int i = 0; i < nr; ++i) cand[nc++] = roots[i];
+        for (int i = 0; i < nr; ++i)
+            cand[nc++] = roots[i];
     }
     /* An origin on the curve (within round-off) hits at s = 0 rather than at -1e-17 or never. */
     rugo_real s_slack = 32.0 * DBL_EPSILON * kmax / sqrt(dd);

@@ -91,7 +91,8 @@ static rugo_real segment_distance(rugo_vec2 a0, rugo_vec2 a1, rugo_vec2 b0, rugo
     rugo_vec2 ea = rugo_v2_sub(a1, a0), eb = rugo_v2_sub(b1, b0);
     rugo_real d0 = rugo_v2_cross(ea, rugo_v2_sub(b0, a0)), d1 = rugo_v2_cross(ea, rugo_v2_sub(b1, a0));
     rugo_real d2 = rugo_v2_cross(eb, rugo_v2_sub(a0, b0)), d3 = rugo_v2_cross(eb, rugo_v2_sub(a1, b0));
-    if (((d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0)) && ((d2 > 0.0 && d3 < 0.0) || (d2 < 0.0 && d3 > 0.0))) {
+    if (((d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0)) &&
+        ((d2 > 0.0 && d3 < 0.0) || (d2 < 0.0 && d3 > 0.0))) {
         *where = rugo_v2_add(b0, rugo_v2_scale(d0 / (d0 - d1), eb));
         return 0.0;
     }
@@ -114,7 +115,8 @@ static rugo_real norm_inf(rugo_vec2 u) { return fmax(fabs(u.x), fabs(u.y)); }
  * trigonometry (the common case: smooth, gently curved pieces). */
 static int in_open_half_plane(const rugo_vec2* u, int m, rugo_vec2 hint) {
     rugo_real lmax = 0.0;
-    for (int i = 0; i < m; ++i) lmax = fmax(lmax, norm_inf(u[i]));
+    for (int i = 0; i < m; ++i)
+        lmax = fmax(lmax, norm_inf(u[i]));
     if (!(lmax > 0.0)) return 1;
     rugo_real cut = 1e-12 * lmax, hn = norm_inf(hint);
     int fast = hn > 0.0;
@@ -132,12 +134,14 @@ static int in_open_half_plane(const rugo_vec2* u, int m, rugo_vec2 hint) {
     for (int i = 1; i < na; ++i) { /* insertion sort: at most 8 angles */
         rugo_real v = ang[i];
         int k = i - 1;
-        for (; k >= 0 && ang[k] > v; --k) ang[k + 1] = ang[k];
+        for (; k >= 0 && ang[k] > v; --k)
+            ang[k + 1] = ang[k];
         ang[k + 1] = v;
     }
     const rugo_real two_pi = 6.283185307179586476925;
     rugo_real gap = ang[0] + two_pi - ang[na - 1];
-    for (int i = 1; i < na; ++i) gap = fmax(gap, ang[i] - ang[i - 1]);
+    for (int i = 1; i < na; ++i)
+        gap = fmax(gap, ang[i] - ang[i - 1]);
     /* The largest empty angular sector must exceed a half turn, by a margin above atan2's round-off. */
     return gap > 0.5 * two_pi + 1e-9;
 }
@@ -189,8 +193,10 @@ static int pieces_meet(si_ctx* x, const bez4* a, const bez4* b, int ab, int ba, 
 static int piece_loops(si_ctx* x, const bez4* b, int closed, int depth) {
     if (!closed) {
         rugo_vec2 u[3];
-        for (int i = 0; i < 3; ++i) u[i] = rugo_v2_sub(b->p[i + 1], b->p[i]);
-        if (in_open_half_plane(u, 3, rugo_v2_sub(b->p[3], b->p[0]))) return 0; /* monotone along some direction */
+        for (int i = 0; i < 3; ++i)
+            u[i] = rugo_v2_sub(b->p[i + 1], b->p[i]);
+        if (in_open_half_plane(u, 3, rugo_v2_sub(b->p[3], b->p[0])))
+            return 0; /* monotone along some direction */
     }
     if (depth >= SI_MAX_DEPTH / 2) return 0; /* a loop below 1e-15 of the segment is round-off */
     bez4 l, r;

@@ -10,8 +10,8 @@
 
 #include <math.h>
 
-/* Containment helper (contour.c, used by the shape's tree walk, shape/point_query.c): the signed count of the changes of
- * segment j of c between "below" (y < p.y) and "up" (y >= p.y) that happen right of p (x > p.x),
+/* Containment helper (contour.c, used by the shape's tree walk, shape/point_query.c): the signed count of the
+ * changes of segment j of c between "below" (y < p.y) and "up" (y >= p.y) that happen right of p (x > p.x),
  * exactly as rugo_contour_contains counts them; the winding number of c around p is their sum over
  * all segments, and p is inside iff it is not 0. A segment whose curve keeps more than the round-off
  * of its evaluation (relative to its control points' distance from p) above, below or left of p
@@ -49,13 +49,14 @@ void rugo__ray_segment(rugo__ray* r, rugo_contour c, int j);
 bool rugo__ray_finish(const rugo__ray* r, rugo_contour c, rugo_real* fraction, rugo_curve_point* hit,
                       rugo_vec2* normal);
 
-/* For the baked-shape loader (shape/baked.c, through rugo__shape_create_from_parts): a pyramid holding the stored levels (points: levels J_min..J; world, local: levels J_min..J-1; both
- * encoded as in rugo__shape_parts), without the analysis. Validates the decoded finest level with an
- * O(n) outline check: exact signed area of the closed B-spline in closed form, finite (NOT_FINITE),
- * positive (BAD_ARGUMENT when clockwise) and above 1e-13 times the squared diagonal of the joints'
- * bounds (ZERO_AREA; rugo_contour_check demands 1e-12 of the curve's bounds, which contain the
- * joints, so every outline a build accepts passes). No crossing test. `reversed` is what
- * rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL, OUT_OF_MEMORY. */
+/* For the baked-shape loader (shape/baked.c, through rugo__shape_create_from_parts): a pyramid holding the
+ * stored levels (points: levels J_min..J; world, local: levels J_min..J-1; both encoded as in
+ * rugo__shape_parts), without the analysis. Validates the decoded finest level with an O(n) outline check:
+ * exact signed area of the closed B-spline in closed form, finite (NOT_FINITE), positive (BAD_ARGUMENT when
+ * clockwise) and above 1e-13 times the squared diagonal of the joints' bounds (ZERO_AREA; rugo_contour_check
+ * demands 1e-12 of the curve's bounds, which contain the joints, so every outline a build accepts passes). No
+ * crossing test. `reversed` is what rugo_pyramid_was_reversed reports. Also BAD_FILTER, BAD_LEVEL,
+ * OUT_OF_MEMORY. */
 rugo_status rugo__pyramid_from_levels(rugo_filter filter, int finest, int coarsest, bool reversed,
                                       const unsigned char* points, const unsigned char* world,
                                       const unsigned char* local, const rugo_allocator* allocator,

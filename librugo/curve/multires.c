@@ -23,11 +23,11 @@
 struct rugo_pyramid {
     rugo_allocator allocator;
     rugo_filter filter;
-    int finest;      /* J */
-    int coarsest;    /* J_min */
-    int count;       /* 2^J */
-    bool reversed;   /* the last input was clockwise and was reversed */
-    int check_flags; /* rugo_contour_check flags used on input */
+    int finest;        /* J */
+    int coarsest;      /* J_min */
+    int count;         /* 2^J */
+    bool reversed;     /* the last input was clockwise and was reversed */
+    int check_flags;   /* rugo_contour_check flags used on input */
     rugo_vec2* block;  /* one allocation holding everything below */
     rugo_vec2* points; /* C^j at LEVEL_OFFSET(j), J_min <= j <= J */
     rugo_vec2* world;  /* D^j at LEVEL_OFFSET(j), J_min <= j < J */
@@ -72,8 +72,8 @@ static void detail_frame(rugo_contour coarse, int s, rugo_vec2* tangent, rugo_ve
 /* Re-analyses every level from the finest points and recomputes the local details. */
 static void rebuild(rugo_pyramid* p) {
     for (int j = p->finest; j > p->coarsest; --j) {
-        rugo_status st = rugo_wavelet_analyze(p->filter, level_points(p, j), 1 << (j - 1), level_points(p, j - 1),
-                                              level_world(p, j - 1));
+        rugo_status st = rugo_wavelet_analyze(p->filter, level_points(p, j), 1 << (j - 1),
+                                              level_points(p, j - 1), level_world(p, j - 1));
         RUGO_ASSERT(st == RUGO_OK);
         (void)st;
     }
@@ -129,7 +129,8 @@ static rugo_status apply_edit(rugo_pyramid* p, int lo, rugo_detail_mode mode) {
     rugo_vec2* nxt = p->buf_b;
     const rugo_vec2* c0 = level_points(p, lo);
     const rugo_vec2* d0 = level_delta(p, lo);
-    for (int i = 0; i < (1 << lo); ++i) cur[i] = rugo_v2_add(c0[i], d0[i]);
+    for (int i = 0; i < (1 << lo); ++i)
+        cur[i] = rugo_v2_add(c0[i], d0[i]);
     for (int j = lo; j < p->finest; ++j) {
         const int m = 1 << j;
         const rugo_vec2* details = level_world(p, j);
@@ -149,7 +150,8 @@ static rugo_status apply_edit(rugo_pyramid* p, int lo, rugo_detail_mode mode) {
         RUGO_ASSERT(st == RUGO_OK);
         (void)st;
         const rugo_vec2* dd = level_delta(p, j + 1);
-        for (int i = 0; i < 2 * m; ++i) nxt[i] = rugo_v2_add(nxt[i], dd[i]);
+        for (int i = 0; i < 2 * m; ++i)
+            nxt[i] = rugo_v2_add(nxt[i], dd[i]);
         rugo_vec2* tmp = cur;
         cur = nxt;
         nxt = tmp;
@@ -168,7 +170,8 @@ static void add_point_delta(rugo_pyramid* p, int level, int segment, rugo_real t
     rugo_bspline_basis(t, basis);
     for (int i = 0; i < 4; ++i) {
         int k = rugo__wrap(segment - 1 + i, m), u = 0;
-        while (u < nu && idx[u] != k) ++u;
+        while (u < nu && idx[u] != k)
+            ++u;
         if (u == nu) {
             idx[nu] = k;
             w[nu++] = 0.0;
@@ -176,10 +179,12 @@ static void add_point_delta(rugo_pyramid* p, int level, int segment, rugo_real t
         w[u] += basis[i];
     }
     rugo_real norm2 = 0.0;
-    for (int u = 0; u < nu; ++u) norm2 += w[u] * w[u];
+    for (int u = 0; u < nu; ++u)
+        norm2 += w[u] * w[u];
     RUGO_ASSERT(norm2 > 0.0); /* the basis values are >= 0 and sum to 1 */
     rugo_vec2* dl = level_delta(p, level);
-    for (int u = 0; u < nu; ++u) dl[idx[u]] = rugo_v2_add(dl[idx[u]], rugo_v2_scale(w[u] / norm2, d));
+    for (int u = 0; u < nu; ++u)
+        dl[idx[u]] = rugo_v2_add(dl[idx[u]], rugo_v2_scale(w[u] / norm2, d));
 }
 
 /* ---- Creation ------------------------------------------------------------------------------- */
@@ -200,7 +205,8 @@ rugo_status rugo_pyramid_create(const rugo_pyramid_def* def, rugo_pyramid** out,
     rugo_status st = rugo_contour_check(def->points, def->count, flags, problem, &def->allocator);
     if (st != RUGO_OK) return st;
     int finest = 0;
-    while ((1 << finest) < def->count) ++finest;
+    while ((1 << finest) < def->count)
+        ++finest;
     int coarsest = def->coarsest_level == 0 ? 2 : def->coarsest_level;
     if (coarsest < 2 || coarsest > finest) return RUGO_ERR_BAD_LEVEL;
 
@@ -293,7 +299,8 @@ void rugo_level_parameter(int from, int segment, rugo_real t, int to, int* out_s
             const rugo_real u = t * (rugo_real)(1 << k);
             rugo_real fl = floor(u);
             if (fl < 0.0) fl = 0.0;
-            if (fl > (rugo_real)((1 << k) - 1)) fl = (rugo_real)((1 << k) - 1); /* t = 1 stays in the last half */
+            if (fl > (rugo_real)((1 << k) - 1))
+                fl = (rugo_real)((1 << k) - 1); /* t = 1 stays in the last half */
             seg = (seg << k) + (int)fl;
             tt = u - fl;
         }
@@ -304,7 +311,9 @@ void rugo_level_parameter(int from, int segment, rugo_real t, int to, int* out_s
 
 /* ---- Edits ---------------------------------------------------------------------------------- */
 
-static int mode_valid(rugo_detail_mode mode) { return mode == RUGO_DETAILS_FIXED || mode == RUGO_DETAILS_LOCAL; }
+static int mode_valid(rugo_detail_mode mode) {
+    return mode == RUGO_DETAILS_FIXED || mode == RUGO_DETAILS_LOCAL;
+}
 
 rugo_status rugo_pyramid_displace_level(rugo_pyramid* p, int level, const rugo_vec2* delta,
                                         rugo_detail_mode mode) {
@@ -327,8 +336,8 @@ static rugo_status check_point_args(const rugo_pyramid* p, int level, int segmen
     return RUGO_OK;
 }
 
-rugo_status rugo_pyramid_move_point(rugo_pyramid* p, int level, int segment, rugo_real t,
-                                    rugo_vec2 delta, rugo_detail_mode mode) {
+rugo_status rugo_pyramid_move_point(rugo_pyramid* p, int level, int segment, rugo_real t, rugo_vec2 delta,
+                                    rugo_detail_mode mode) {
     if (p == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_status st = check_point_args(p, level, segment, t, delta, mode);
     if (st != RUGO_OK) return st;
@@ -346,7 +355,8 @@ rugo_status rugo_deformation_weights(int m, rugo_real w, rugo_real* out) {
      * 1e-200 the weights equal 1/m to far better than double precision (and w/m could underflow). */
     const rugo_real aw = fabs(w);
     if (aw < 1e-200) {
-        for (int i = 0; i < m; ++i) out[i] = 1.0 / (rugo_real)m;
+        for (int i = 0; i < m; ++i)
+            out[i] = 1.0 / (rugo_real)m;
         return RUGO_OK;
     }
     const rugo_real ratio = expm1(-aw / (rugo_real)m) / expm1(-aw);
@@ -358,7 +368,8 @@ rugo_status rugo_deformation_weights(int m, rugo_real w, rugo_real* out) {
     }
     /* The closed form sums to 1 up to a few ulps; normalising keeps Theorem 2.1's total exact to
      * round-off however many levels share the move. */
-    for (int i = 0; i < m; ++i) out[i] /= sum;
+    for (int i = 0; i < m; ++i)
+        out[i] /= sum;
     return RUGO_OK;
 }
 
@@ -381,7 +392,8 @@ rugo_status rugo_pyramid_deform(rugo_pyramid* p, int segment, rugo_real t, rugo_
         add_point_delta(p, level, seg, tl, rugo_v2_scale(weights[i], delta));
     }
     st = apply_edit(p, lo, mode);
-    if (st == RUGO_OK && weights_out != NULL) memcpy(weights_out, weights, (size_t)spread * sizeof(rugo_real));
+    if (st == RUGO_OK && weights_out != NULL)
+        memcpy(weights_out, weights, (size_t)spread * sizeof(rugo_real));
     return st;
 }
 

@@ -17,14 +17,16 @@
 
 rugo_real rugo__poly_eval(const rugo_real* a, int degree, rugo_real t) {
     rugo_real p = a[degree];
-    for (int k = degree - 1; k >= 0; --k) p = p * t + a[k];
+    for (int k = degree - 1; k >= 0; --k)
+        p = p * t + a[k];
     return p;
 }
 
 /* sum |a_k| |t|^k: scales the rounding error of Horner's rule at t. */
 static rugo_real abs_eval(const rugo_real* a, int degree, rugo_real t) {
     rugo_real at = fabs(t), s = fabs(a[degree]);
-    for (int k = degree - 1; k >= 0; --k) s = s * at + fabs(a[k]);
+    for (int k = degree - 1; k >= 0; --k)
+        s = s * at + fabs(a[k]);
     return s;
 }
 
@@ -76,7 +78,8 @@ static rugo_real refine_root(const rugo_real* a, const rugo_real* da, int degree
 static int roots_rec(const rugo_real* a, int degree, rugo_real lo, rugo_real hi, rugo_real tol, int touch,
                      rugo_real* out) {
     int d = degree;
-    while (d > 0 && a[d] == 0.0) --d;
+    while (d > 0 && a[d] == 0.0)
+        --d;
     rugo_real m = fmax(fabs(lo), fabs(hi));
     /* |p| <= sum |a_k| m^k on [lo, hi]: below tol it is indistinguishable from zero everywhere. */
     rugo_real bound = abs_eval(a, d, m);
@@ -92,7 +95,8 @@ static int roots_rec(const rugo_real* a, int degree, rugo_real lo, rugo_real hi,
     }
 
     rugo_real da[RUGO__POLY_MAX_DEGREE];
-    for (int k = 0; k < d; ++k) da[k] = (rugo_real)(k + 1) * a[k + 1];
+    for (int k = 0; k < d; ++k)
+        da[k] = (rugo_real)(k + 1) * a[k + 1];
 
     rugo_real brk[POLY_MAX_BREAKS];
     int crit_flag[POLY_MAX_BREAKS];
@@ -121,7 +125,8 @@ static int roots_rec(const rugo_real* a, int degree, rugo_real lo, rugo_real hi,
     }
 
     rugo_real val[POLY_MAX_BREAKS];
-    for (int i = 0; i < nb; ++i) val[i] = rugo__poly_eval(a, d, brk[i]);
+    for (int i = 0; i < nb; ++i)
+        val[i] = rugo__poly_eval(a, d, brk[i]);
 
     int count = 0;
     for (int i = 0; i < nb; ++i) {
@@ -133,7 +138,8 @@ static int roots_rec(const rugo_real* a, int degree, rugo_real lo, rugo_real hi,
             int right_ok = i == nb - 1 || sign_of(val[i + 1]) == s;
             hit = left_ok && right_ok;
         }
-        if (hit && (count == 0 || out[count - 1] < brk[i]) && count < RUGO__POLY_MAX_ROOTS) out[count++] = brk[i];
+        if (hit && (count == 0 || out[count - 1] < brk[i]) && count < RUGO__POLY_MAX_ROOTS)
+            out[count++] = brk[i];
         if (i + 1 < nb && val[i] != 0.0 && val[i + 1] != 0.0 && sign_of(val[i]) != sign_of(val[i + 1])) {
             rugo_real r = refine_root(a, da, d, brk[i], brk[i + 1], val[i]);
             if ((count == 0 || out[count - 1] < r) && count < RUGO__POLY_MAX_ROOTS) out[count++] = r;

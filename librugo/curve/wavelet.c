@@ -24,12 +24,12 @@
 /* a: analysis scaling (Aa). */
 static const rugo_real A2[] = {5.0 / 4.0, 5.0 / 32.0, -3.0 / 8.0, 3.0 / 32.0};
 static const rugo_real A4[] = {35.0 / 32.0, 35.0 / 128.0, -3.0 / 8.0, -1.0 / 256.0, 5.0 / 64.0, -5.0 / 256.0};
-static const rugo_real A6[] = {525.0 / 512.0,   2625.0 / 8192.0, -733.0 / 2048.0, -557.0 / 8192.0,
-                               115.0 / 1024.0,  -55.0 / 8192.0,  -35.0 / 2048.0,  35.0 / 8192.0};
+static const rugo_real A6[] = {525.0 / 512.0,  2625.0 / 8192.0, -733.0 / 2048.0, -557.0 / 8192.0,
+                               115.0 / 1024.0, -55.0 / 8192.0,  -35.0 / 2048.0,  35.0 / 8192.0};
 static const rugo_real A8[] = {8085.0 / 8192.0, 11319.0 / 32768.0, -1403.0 / 4096.0, -1807.0 / 16384.0,
                                523.0 / 4096.0,  205.0 / 16384.0,   -133.0 / 4096.0,  217.0 / 65536.0,
                                63.0 / 16384.0,  -63.0 / 65536.0};
-static const rugo_real A12[] = {495495.0 / 524288.0,   778635.0 / 2097152.0, -5249.0 / 16384.0,
+static const rugo_real A12[] = {495495.0 / 524288.0,    778635.0 / 2097152.0, -5249.0 / 16384.0,
                                 -1354283.0 / 8388608.0, 288995.0 / 2097152.0, 401465.0 / 8388608.0,
                                 -3415.0 / 65536.0,      -32543.0 / 4194304.0, 15153.0 / 1048576.0,
                                 -1095.0 / 4194304.0,    -165.0 / 65536.0,     3135.0 / 8388608.0,
@@ -38,22 +38,21 @@ static const rugo_real A12[] = {495495.0 / 524288.0,   778635.0 / 2097152.0, -52
 /* q = 2 Qq, Qq_i = (-1)^i Aa_i. Doubling a double is exact, so these equal the exact values. */
 #define Q2(i, v) ((((i) % 2) ? -2.0 : 2.0) * (v))
 static const rugo_real Q2_[] = {Q2(0, 5.0 / 4.0), Q2(1, 5.0 / 32.0), Q2(2, -3.0 / 8.0), Q2(3, 3.0 / 32.0)};
-static const rugo_real Q4_[] = {Q2(0, 35.0 / 32.0), Q2(1, 35.0 / 128.0), Q2(2, -3.0 / 8.0),
-                                Q2(3, -1.0 / 256.0), Q2(4, 5.0 / 64.0),  Q2(5, -5.0 / 256.0)};
-static const rugo_real Q6_[] = {Q2(0, 525.0 / 512.0),  Q2(1, 2625.0 / 8192.0), Q2(2, -733.0 / 2048.0),
+static const rugo_real Q4_[] = {Q2(0, 35.0 / 32.0),  Q2(1, 35.0 / 128.0), Q2(2, -3.0 / 8.0),
+                                Q2(3, -1.0 / 256.0), Q2(4, 5.0 / 64.0),   Q2(5, -5.0 / 256.0)};
+static const rugo_real Q6_[] = {Q2(0, 525.0 / 512.0),   Q2(1, 2625.0 / 8192.0), Q2(2, -733.0 / 2048.0),
                                 Q2(3, -557.0 / 8192.0), Q2(4, 115.0 / 1024.0),  Q2(5, -55.0 / 8192.0),
                                 Q2(6, -35.0 / 2048.0),  Q2(7, 35.0 / 8192.0)};
-static const rugo_real Q8_[] = {Q2(0, 8085.0 / 8192.0), Q2(1, 11319.0 / 32768.0), Q2(2, -1403.0 / 4096.0),
-                                Q2(3, -1807.0 / 16384.0), Q2(4, 523.0 / 4096.0),  Q2(5, 205.0 / 16384.0),
-                                Q2(6, -133.0 / 4096.0),  Q2(7, 217.0 / 65536.0),  Q2(8, 63.0 / 16384.0),
+static const rugo_real Q8_[] = {Q2(0, 8085.0 / 8192.0),   Q2(1, 11319.0 / 32768.0), Q2(2, -1403.0 / 4096.0),
+                                Q2(3, -1807.0 / 16384.0), Q2(4, 523.0 / 4096.0),    Q2(5, 205.0 / 16384.0),
+                                Q2(6, -133.0 / 4096.0),   Q2(7, 217.0 / 65536.0),   Q2(8, 63.0 / 16384.0),
                                 Q2(9, -63.0 / 65536.0)};
-static const rugo_real Q12_[] = {Q2(0, 495495.0 / 524288.0),    Q2(1, 778635.0 / 2097152.0),
-                                 Q2(2, -5249.0 / 16384.0),      Q2(3, -1354283.0 / 8388608.0),
-                                 Q2(4, 288995.0 / 2097152.0),   Q2(5, 401465.0 / 8388608.0),
-                                 Q2(6, -3415.0 / 65536.0),      Q2(7, -32543.0 / 4194304.0),
-                                 Q2(8, 15153.0 / 1048576.0),    Q2(9, -1095.0 / 4194304.0),
-                                 Q2(10, -165.0 / 65536.0),      Q2(11, 3135.0 / 8388608.0),
-                                 Q2(12, 429.0 / 2097152.0),     Q2(13, -429.0 / 8388608.0)};
+static const rugo_real Q12_[] = {
+    Q2(0, 495495.0 / 524288.0),    Q2(1, 778635.0 / 2097152.0), Q2(2, -5249.0 / 16384.0),
+    Q2(3, -1354283.0 / 8388608.0), Q2(4, 288995.0 / 2097152.0), Q2(5, 401465.0 / 8388608.0),
+    Q2(6, -3415.0 / 65536.0),      Q2(7, -32543.0 / 4194304.0), Q2(8, 15153.0 / 1048576.0),
+    Q2(9, -1095.0 / 4194304.0),    Q2(10, -165.0 / 65536.0),    Q2(11, 3135.0 / 8388608.0),
+    Q2(12, 429.0 / 2097152.0),     Q2(13, -429.0 / 8388608.0)};
 #undef Q2
 
 /* b_i = (-1)^i Pq_i, Pq = [3/8, 1/4, 1/16]; p = 2 Pq (full p = (1, 4, 6, 4, 1)/8). Common to all. */
@@ -69,8 +68,8 @@ typedef struct filter_info {
 
 #define COUNT_OF(x) ((int)(sizeof(x) / sizeof((x)[0])))
 static const filter_info FILTERS[RUGO_FILTER_COUNT] = {
-    {"cdf4.2", A2, Q2_, COUNT_OF(A2)},  {"cdf4.4", A4, Q4_, COUNT_OF(A4)},
-    {"cdf4.6", A6, Q6_, COUNT_OF(A6)},  {"cdf4.8", A8, Q8_, COUNT_OF(A8)},
+    {"cdf4.2", A2, Q2_, COUNT_OF(A2)},     {"cdf4.4", A4, Q4_, COUNT_OF(A4)},
+    {"cdf4.6", A6, Q6_, COUNT_OF(A6)},     {"cdf4.8", A8, Q8_, COUNT_OF(A8)},
     {"cdf4.12", A12, Q12_, COUNT_OF(A12)},
 };
 #define P_COUNT COUNT_OF(P_)
@@ -96,11 +95,24 @@ rugo_status rugo_filter_taps(rugo_filter f, rugo_filter_part part, const rugo_re
     const rugo_real* t;
     int c;
     switch (part) {
-    case RUGO_FILTER_A: t = FILTERS[f].a; c = FILTERS[f].a_count; break;
-    case RUGO_FILTER_B: t = B_; c = B_COUNT; break;
-    case RUGO_FILTER_P: t = P_; c = P_COUNT; break;
-    case RUGO_FILTER_Q: t = FILTERS[f].q; c = FILTERS[f].a_count; break;
-    default: return RUGO_ERR_BAD_ARGUMENT;
+    case RUGO_FILTER_A:
+        t = FILTERS[f].a;
+        c = FILTERS[f].a_count;
+        break;
+    case RUGO_FILTER_B:
+        t = B_;
+        c = B_COUNT;
+        break;
+    case RUGO_FILTER_P:
+        t = P_;
+        c = P_COUNT;
+        break;
+    case RUGO_FILTER_Q:
+        t = FILTERS[f].q;
+        c = FILTERS[f].a_count;
+        break;
+    default:
+        return RUGO_ERR_BAD_ARGUMENT;
     }
     if (taps) *taps = t;
     if (count) *count = c;
@@ -161,7 +173,8 @@ static void synthesize_step(const filter_info* fi, const rugo_vec2* c, const rug
     const int nq = fi->a_count;
     for (int s = 0; s < half; ++s) {
         /* (2.29, corrected), even output:
-         * x_{2s} = p_0 c_s + sum_{i>=1} p_{2i} (c_{s-i} + c_{s+i}) + sum_{i>=0} q_{2i+1} (d_{s-i} + d_{s+i+1}) */
+         * x_{2s} = p_0 c_s + sum_{i>=1} p_{2i} (c_{s-i} + c_{s+i}) + sum_{i>=0} q_{2i+1} (d_{s-i} +
+         * d_{s+i+1}) */
         rugo_real ex = P_[0] * c[s].x, ey = P_[0] * c[s].y;
         for (int i = 1; 2 * i < P_COUNT; ++i) {
             const rugo_vec2 l = c[wrap_near(s - i, half)], r = c[wrap_near(s + i, half)];
@@ -169,7 +182,8 @@ static void synthesize_step(const filter_info* fi, const rugo_vec2* c, const rug
             ey += P_[2 * i] * (l.y + r.y);
         }
         /* odd output:
-         * x_{2s+1} = sum_{i>=0} p_{2i+1} (c_{s-i} + c_{s+i+1}) + q_0 d_{s+1} + sum_{i>=1} q_{2i} (d_{s+1-i} + d_{s+1+i}) */
+         * x_{2s+1} = sum_{i>=0} p_{2i+1} (c_{s-i} + c_{s+i+1}) + q_0 d_{s+1} + sum_{i>=1} q_{2i} (d_{s+1-i} +
+         * d_{s+1+i}) */
         rugo_real ox = 0.0, oy = 0.0;
         for (int i = 0; 2 * i + 1 < P_COUNT; ++i) {
             const rugo_vec2 l = c[wrap_near(s - i, half)], r = c[wrap_near(s + i + 1, half)];
@@ -209,8 +223,8 @@ rugo_status rugo_wavelet_analyze(rugo_filter f, const rugo_vec2* fine, int half,
     return RUGO_OK;
 }
 
-rugo_status rugo_wavelet_synthesize(rugo_filter f, const rugo_vec2* coarse, const rugo_vec2* detail,
-                                    int half, rugo_vec2* fine) {
+rugo_status rugo_wavelet_synthesize(rugo_filter f, const rugo_vec2* coarse, const rugo_vec2* detail, int half,
+                                    rugo_vec2* fine) {
     if (coarse == NULL || fine == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_status st = check_step(f, half);
     if (st != RUGO_OK) return st;
@@ -272,8 +286,8 @@ static rugo_status run_levels(direction dir, rugo_filter f, rugo_vec2* data, int
     return RUGO_OK;
 }
 
-rugo_status rugo_wavelet_analyze_levels(rugo_filter f, rugo_vec2* data, int n, int levels,
-                                        rugo_vec2* scratch, const rugo_allocator* allocator) {
+rugo_status rugo_wavelet_analyze_levels(rugo_filter f, rugo_vec2* data, int n, int levels, rugo_vec2* scratch,
+                                        const rugo_allocator* allocator) {
     return run_levels(DIR_ANALYZE, f, data, n, levels, scratch, allocator);
 }
 

@@ -46,9 +46,8 @@ constexpr double kMoveRankTolerance = 1e-10;
 constexpr double kMoveResidualTolerance = 1e-8;
 
 /* An array owned through the caller's allocator, freed on scope exit. Trivially copyable T only. */
-template <class T>
-class AllocArray {
-public:
+template <class T> class AllocArray {
+  public:
     explicit AllocArray(const rugo_allocator& a) : alloc_(a) {}
     ~AllocArray() { rugo__free(&alloc_, ptr_); }
     AllocArray(const AllocArray&) = delete;
@@ -61,15 +60,14 @@ public:
     T* get() const { return ptr_; }
     T& operator[](std::size_t i) const { return ptr_[i]; }
 
-private:
+  private:
     rugo_allocator alloc_;
     T* ptr_ = nullptr;
 };
 
 /* Reads a C enum argument as an int without a load of an out-of-range enum value, which C++ (and
  * UBSan's -fsanitize=enum) considers undefined; C callers may pass any int. */
-template <class E>
-int enum_as_int(const E& e) {
+template <class E> int enum_as_int(const E& e) {
     static_assert(sizeof(E) == sizeof(int), "C enums are int-sized on supported ABIs");
     int v;
     std::memcpy(&v, &e, sizeof v);
@@ -144,7 +142,8 @@ rugo_status fit_contour(const rugo_fit_def& def, rugo_vec2* control_points, rugo
     AllocArray<double> u(al);
     if (!u.allocate(static_cast<std::size_t>(m))) return RUGO_ERR_OUT_OF_MEMORY;
     if (enum_as_int(def.parameterization) == RUGO_PARAM_UNIFORM) {
-        for (int k = 0; k < m; ++k) u[k] = static_cast<double>(k) * n / m;
+        for (int k = 0; k < m; ++k)
+            u[k] = static_cast<double>(k) * n / m;
     } else {
         double total = 0.0;
         for (int k = 0; k < m; ++k) {
@@ -153,7 +152,8 @@ rugo_status fit_contour(const rugo_fit_def& def, rugo_vec2* control_points, rugo
             total += std::hypot(b.x - a.x, b.y - a.y);
         }
         /* Every chord is > 0 (validated) and <= 2 sqrt(2) in normalised coordinates. */
-        for (int k = 0; k < m; ++k) u[k] = u[k] / total * n;
+        for (int k = 0; k < m; ++k)
+            u[k] = u[k] / total * n;
     }
 
     /* Normal equations A^T A x = A^T q, A (m x n) holding each sample's four basis values. A^T A is a
@@ -164,8 +164,10 @@ rugo_status fit_contour(const rugo_fit_def& def, rugo_vec2* control_points, rugo
     AllocArray<double> band(al);
     AllocArray<rugo_vec2> rhs(al);
     if (!band.allocate(7 * nn) || !rhs.allocate(nn)) return RUGO_ERR_OUT_OF_MEMORY;
-    for (std::size_t i = 0; i < 7 * nn; ++i) band[i] = 0.0;
-    for (std::size_t i = 0; i < nn; ++i) rhs[i] = rugo_v2(0.0, 0.0);
+    for (std::size_t i = 0; i < 7 * nn; ++i)
+        band[i] = 0.0;
+    for (std::size_t i = 0; i < nn; ++i)
+        rhs[i] = rugo_v2(0.0, 0.0);
     for (int k = 0; k < m; ++k) {
         int seg;
         double t, b[4];
@@ -176,7 +178,8 @@ rugo_status fit_contour(const rugo_fit_def& def, rugo_vec2* control_points, rugo
             const std::size_t i = static_cast<std::size_t>(rugo__wrap(seg - 1 + a, n));
             rhs[i].x += b[a] * q.x;
             rhs[i].y += b[a] * q.y;
-            for (int c = 0; c < 4; ++c) band[7 * i + static_cast<std::size_t>(3 + c - a)] += b[a] * b[c];
+            for (int c = 0; c < 4; ++c)
+                band[7 * i + static_cast<std::size_t>(3 + c - a)] += b[a] * b[c];
         }
     }
 
@@ -282,9 +285,11 @@ void unite(int* parent, int a, int b) {
 
 rugo_status validate_move(rugo_pyramid* p, int level, int count, const int* segments, const rugo_real* ts,
                           const rugo_vec2* deltas, int mode) {
-    if (p == nullptr || segments == nullptr || ts == nullptr || deltas == nullptr) return RUGO_ERR_NULL_ARGUMENT;
+    if (p == nullptr || segments == nullptr || ts == nullptr || deltas == nullptr)
+        return RUGO_ERR_NULL_ARGUMENT;
     if (mode != RUGO_DETAILS_FIXED && mode != RUGO_DETAILS_LOCAL) return RUGO_ERR_BAD_ARGUMENT;
-    if (level < rugo_pyramid_coarsest_level(p) || level > rugo_pyramid_finest_level(p)) return RUGO_ERR_BAD_LEVEL;
+    if (level < rugo_pyramid_coarsest_level(p) || level > rugo_pyramid_finest_level(p))
+        return RUGO_ERR_BAD_LEVEL;
     if (count < 1) return RUGO_ERR_BAD_ARGUMENT;
     if (count > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_TOO_MANY_POINTS;
     const int n = 1 << level;
@@ -330,7 +335,8 @@ rugo_status move_points(rugo_pyramid* p, int level, int count, const int* segmen
         owner[j] = -1;
         local[j] = -1;
     }
-    for (int i = 0; i < count; ++i) parent[static_cast<std::size_t>(i)] = i;
+    for (int i = 0; i < count; ++i)
+        parent[static_cast<std::size_t>(i)] = i;
     for (int i = 0; i < count; ++i) {
         for (int a = 0; a < 4; ++a) {
             const std::size_t j = static_cast<std::size_t>(rugo__wrap(segments[i] - 1 + a, n));
@@ -343,13 +349,17 @@ rugo_status move_points(rugo_pyramid* p, int level, int count, const int* segmen
 
     /* Counting sort of the constraints by component root (roots are each component's smallest
      * index), keeping index order inside a component. */
-    for (std::size_t i = 0; i <= nc; ++i) start[i] = 0;
-    for (int i = 0; i < count; ++i) ++start[static_cast<std::size_t>(find_root(parent.get(), i)) + 1];
-    for (std::size_t i = 0; i < nc; ++i) start[i + 1] += start[i];
+    for (std::size_t i = 0; i <= nc; ++i)
+        start[i] = 0;
+    for (int i = 0; i < count; ++i)
+        ++start[static_cast<std::size_t>(find_root(parent.get(), i)) + 1];
+    for (std::size_t i = 0; i < nc; ++i)
+        start[i + 1] += start[i];
     {
         AllocArray<int> fill(al);
         if (!fill.allocate(nc)) return RUGO_ERR_OUT_OF_MEMORY;
-        for (std::size_t i = 0; i < nc; ++i) fill[i] = start[i];
+        for (std::size_t i = 0; i < nc; ++i)
+            fill[i] = start[i];
         for (int i = 0; i < count; ++i) {
             const std::size_t root = static_cast<std::size_t>(find_root(parent.get(), i));
             order[static_cast<std::size_t>(fill[root]++)] = i;
@@ -380,7 +390,8 @@ rugo_status move_points(rugo_pyramid* p, int level, int count, const int* segmen
             scale = std::fmax(scale, std::fmax(std::fabs(deltas[i].x), std::fabs(deltas[i].y)));
         }
         if (scale == 0.0) { /* nothing to move here (delta is zero already) */
-            for (int l = 0; l < k; ++l) local[static_cast<std::size_t>(cols[static_cast<std::size_t>(l)])] = -1;
+            for (int l = 0; l < k; ++l)
+                local[static_cast<std::size_t>(cols[static_cast<std::size_t>(l)])] = -1;
             continue;
         }
         Eigen::MatrixXd nmat = Eigen::MatrixXd::Zero(rows, k);

@@ -213,10 +213,8 @@ rugo_status fit_outline_scaled(const rugo_outline_fit_def* def, rugo_outline_fit
     out->rms_error = std::ldexp(out->rms_error, -k);
     out->max_error_at_parameter = std::ldexp(out->max_error_at_parameter, -k);
     /* Judged in the scaled problem, where the errors are exact, unless the tolerance was clamped. */
-    if (clamped)
-        out->tolerance_met = !(def->tolerance > 0.0) || out->max_error <= def->tolerance;
+    if (clamped) out->tolerance_met = !(def->tolerance > 0.0) || out->max_error <= def->tolerance;
     return RUGO_OK;
 }
 
 } // namespace
-

@@ -101,7 +101,7 @@ typedef struct rugo__json_error {
 /* Parses text[0, length). limits may be NULL (defaults), error may be NULL. On success doc->root is the
  * top-level value; on failure doc holds nothing (rugo__json_doc_free is still safe). */
 rugo_status rugo__json_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                            const rugo__json_limits* limits, rugo__json_doc* doc, rugo__json_error* error);
+                             const rugo__json_limits* limits, rugo__json_doc* doc, rugo__json_error* error);
 void rugo__json_doc_free(rugo__json_doc* doc);
 
 /* 1-based line and column (bytes) of byte `offset` of text (offset is clamped to length). */
@@ -128,8 +128,8 @@ void rugo__json_quote_for_message(const char* s, size_t n, char* out, size_t siz
 
 typedef struct rugo__json_writer {
     rugo_allocator allocator;
-    rugo__array text; /* chars: the text and the NUL that always follows it; NULL before the first write */
-    size_t length;    /* of the text, not counting the NUL */
+    rugo__array text;   /* chars: the text and the NUL that always follows it; NULL before the first write */
+    size_t length;      /* of the text, not counting the NUL */
     rugo_status status; /* first error, sticky */
     int indent;         /* spaces per level; 0: everything on one line */
     int depth;

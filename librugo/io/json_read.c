@@ -231,7 +231,7 @@ static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
 static rugo__json_value* new_value(parser* P, rugo__json_type type, const unsigned char* at) {
     if (++P->values > P->max_values)
         return (rugo__json_value*)fail(P, at, RUGO_ERR_PARSE, "more than %lu values in the text",
-                                      (unsigned long)P->max_values);
+                                       (unsigned long)P->max_values);
     rugo__json_value* v = (rugo__json_value*)arena_alloc(&P->arena, sizeof *v);
     if (v == NULL) return (rugo__json_value*)fail(P, at, RUGO_ERR_OUT_OF_MEMORY, "out of memory");
     v->next = NULL;
@@ -363,7 +363,7 @@ static rugo__json_value* parse_string(parser* P) {
                 if (cp < 0) return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "\\u needs four hex digits");
                 if (cp >= 0xDC00 && cp <= 0xDFFF)
                     return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "lone UTF-16 low surrogate \\u%04lX",
-                                                  (unsigned long)cp);
+                                                   (unsigned long)cp);
                 if (cp >= 0xD800 && cp <= 0xDBFF) {
                     long lo = (stop - s >= 12 && s[6] == '\\' && s[7] == 'u') ? hex4(s + 8) : -1;
                     if (lo < 0xDC00 || lo > 0xDFFF)
@@ -380,13 +380,13 @@ static rugo__json_value* parse_string(parser* P) {
             default: {
                 char buf[16];
                 return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "invalid escape '\\' followed by %s",
-                                              describe(P, s + 1, buf, sizeof buf));
+                                               describe(P, s + 1, buf, sizeof buf));
             }
             }
             s += 2;
         } else if (c < 0x20) {
             return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE,
-                                          "control character 0x%02x in a string (escape it, e.g. \\n)", c);
+                                           "control character 0x%02x in a string (escape it, e.g. \\n)", c);
         } else if (c < 0x80) {
             out[n++] = (unsigned char)c;
             ++s;
@@ -413,7 +413,7 @@ static rugo__json_value* parse_number(parser* P) {
     if (q == end || !is_digit(*q)) {
         char buf[16];
         return (rugo__json_value*)fail(P, q, RUGO_ERR_PARSE, "expected a digit after '-', found %s",
-                                      describe(P, q, buf, sizeof buf));
+                                       describe(P, q, buf, sizeof buf));
     }
     if (*q == '0') {
         ++q;
@@ -441,7 +441,7 @@ static rugo__json_value* parse_number(parser* P) {
     size_t len = (size_t)(q - s);
     if (len > RUGO__JSON_MAX_NUMBER_CHARS)
         return (rugo__json_value*)fail(P, s, RUGO_ERR_PARSE, "number longer than %d characters",
-                                      RUGO__JSON_MAX_NUMBER_CHARS);
+                                       RUGO__JSON_MAX_NUMBER_CHARS);
     char buf[RUGO__JSON_MAX_NUMBER_CHARS + 1];
     memcpy(buf, s, len);
     buf[len] = '\0';
@@ -452,8 +452,8 @@ static rugo__json_value* parse_number(parser* P) {
         char quoted[40];
         rugo__json_quote_for_message(buf, len, quoted, sizeof quoted);
         return (rugo__json_value*)fail(P, s, RUGO_ERR_NOT_FINITE,
-                                      "number %s is out of range (overflows to %s)", quoted,
-                                      x < 0 ? "-infinity" : "infinity");
+                                       "number %s is out of range (overflows to %s)", quoted,
+                                       x < 0 ? "-infinity" : "infinity");
     }
     rugo__json_value* v = new_value(P, RUGO__JSON_NUMBER, s);
     if (v == NULL) return NULL;
@@ -528,11 +528,11 @@ static rugo__json_value* parse_array(parser* P) {
         }
         if (P->p >= P->end)
             return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                          "unexpected end of input in an array (missing ']')");
+                                           "unexpected end of input in an array (missing ']')");
         char buf[16];
         return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                      "expected ',' or ']' after an array element, found %s",
-                                      describe(P, P->p, buf, sizeof buf));
+                                       "expected ',' or ']' after an array element, found %s",
+                                       describe(P, P->p, buf, sizeof buf));
     }
     --P->depth;
     return v;
@@ -557,11 +557,11 @@ static rugo__json_value* parse_object(parser* P) {
         f->key = NULL;
         if (P->p >= P->end)
             return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                          "unexpected end of input in an object (missing '}')");
+                                           "unexpected end of input in an object (missing '}')");
         if (*P->p != '"')
             return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                          "expected a member name in double quotes, found %s",
-                                          describe(P, P->p, buf, sizeof buf));
+                                           "expected a member name in double quotes, found %s",
+                                           describe(P, P->p, buf, sizeof buf));
         rugo__json_value* key = parse_string(P);
         if (key == NULL) return NULL;
         f->key = key->u.string;
@@ -569,8 +569,8 @@ static rugo__json_value* parse_object(parser* P) {
         skip_ws(P);
         if (P->p >= P->end || *P->p != ':')
             return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                          "expected ':' after the member name, found %s",
-                                          describe(P, P->p, buf, sizeof buf));
+                                           "expected ':' after the member name, found %s",
+                                           describe(P, P->p, buf, sizeof buf));
         ++P->p;
         rugo__json_value* val = parse_value(P);
         if (val == NULL) return NULL;
@@ -596,10 +596,10 @@ static rugo__json_value* parse_object(parser* P) {
         }
         if (P->p >= P->end)
             return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                          "unexpected end of input in an object (missing '}')");
+                                           "unexpected end of input in an object (missing '}')");
         return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE,
-                                      "expected ',' or '}' after an object member, found %s",
-                                      describe(P, P->p, buf, sizeof buf));
+                                       "expected ',' or '}' after an object member, found %s",
+                                       describe(P, P->p, buf, sizeof buf));
     }
     --P->depth;
     return v;
@@ -641,12 +641,12 @@ static rugo__json_value* parse_value(parser* P) {
     default:
         if (is_digit(*P->p)) return parse_number(P);
         return (rugo__json_value*)fail(P, P->p, RUGO_ERR_PARSE, "unexpected %s (expected a value)",
-                                      describe(P, P->p, buf, sizeof buf));
+                                       describe(P, P->p, buf, sizeof buf));
     }
 }
 
 rugo_status rugo__json_parse(const char* text, size_t length, const rugo_allocator* allocator,
-                            const rugo__json_limits* limits, rugo__json_doc* doc, rugo__json_error* error) {
+                             const rugo__json_limits* limits, rugo__json_doc* doc, rugo__json_error* error) {
     if (error != NULL) memset(error, 0, sizeof *error);
     if (doc == NULL || text == NULL) {
         if (doc != NULL) memset(doc, 0, sizeof *doc);

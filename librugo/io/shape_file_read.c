@@ -585,7 +585,8 @@ static rugo_status read_friction(const rctx* c, const rugo__json_value* obj, rug
     const rugo__json_value* v = NULL;
     rugo_status s = member(c, obj, "roughness", "friction", &v);
     if (s != RUGO_OK || v == NULL) return s;
-    s = want_type(c, v, RUGO__JSON_OBJECT, "roughness.friction", "an object {\"alpha\", \"lambda_min\", \"base\"}");
+    s = want_type(c, v, RUGO__JSON_OBJECT, "roughness.friction",
+                  "an object {\"alpha\", \"lambda_min\", \"base\"}");
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "alpha", &r->friction.alpha);
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "lambda_min", &r->friction.lambda_min);
     if (s == RUGO_OK) s = number_member(c, v, "roughness.friction", "base", &r->friction.base);

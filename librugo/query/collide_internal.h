@@ -347,7 +347,8 @@ typedef struct contact_out {
 #define RESOLUTION_MOTION_SHARE 0.25
 
 /* The query's resolution δ for shapes of the given sizes (RUGO_RESOLUTION_AUTO: 1e-4 of the smaller). */
-static inline rugo_real rugo__query_resolution(const rugo_contact_query* q, rugo_real size_a, rugo_real size_b) {
+static inline rugo_real rugo__query_resolution(const rugo_contact_query* q, rugo_real size_a,
+                                               rugo_real size_b) {
     if (q->resolution != RUGO_RESOLUTION_AUTO) return q->resolution;
     return 1e-4 * (size_a < size_b ? size_a : size_b);
 }
@@ -371,9 +372,9 @@ typedef struct shape_pair {
     rugo_real scale;
     rugo_query_stats* stats;
     int src;
-    int coincident;   /* some pieces coincide */
-    rugo_real margin; /* query margin: minima up to band + margin count */
-    rugo_real delta;  /* the query's resolution (0: round-off, the certified narrow phase) */
+    int coincident;     /* some pieces coincide */
+    rugo_real margin;   /* query margin: minima up to band + margin count */
+    rugo_real delta;    /* the query's resolution (0: round-off, the certified narrow phase) */
     rugo_real override; /* the query's constant band (>= 0), or -1 */
     int thesis_rule;    /* RUGO_CONTACT_THESIS: minima of the distance, not of the band-adjusted distance */
     /* Bezier pieces computed at most once per query and segment (NULL: not set up, see piece table) */

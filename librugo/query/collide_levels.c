@@ -22,7 +22,9 @@ int rugo__query_level(const rugo_shape* shape, const rugo_contact_query* q, rugo
      * own, stays within its share of the resolution: the answer moves by at most that much. */
     int j = level;
     const rugo_real own = rugo__shape_level_error(shape, level);
-    while (j > rugo_shape_coarsest_level(shape) && rugo__shape_level_error(shape, j - 1) + own <= level_budget) --j;
+    while (j > rugo_shape_coarsest_level(shape) &&
+           rugo__shape_level_error(shape, j - 1) + own <= level_budget)
+        --j;
     return j;
 }
 

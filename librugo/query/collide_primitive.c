@@ -593,8 +593,8 @@ rugo_status rugo_make_polygon(const rugo_vec2* points, int count, rugo_real radi
 }
 
 rugo_status rugo_collide_primitive(const rugo_shape* a, rugo_transform xa, const rugo_primitive* b,
-                                   rugo_transform xb, const rugo_contact_query* query, rugo_collide_context* ctx,
-                                   rugo_contact_output* out) {
+                                   rugo_transform xb, const rugo_contact_query* query,
+                                   rugo_collide_context* ctx, rugo_contact_output* out) {
     if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     out->count = 0;
     out->state = RUGO_STATE_APART;

@@ -76,8 +76,8 @@ static void polish_to_bands(const shape_pair* g, int ka, const rugo_vec2 fl[4], 
  * to the round-off phase where that one ran out of its box budget; the closest pair of a containment
  * always runs the round-off phase. */
 static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, narrow_ask ask, int ka, const rugo_vec2 f[4],
-                       int kb, const rugo_vec2 gb[4], rugo_real cutoff, rugo_real band_cutoff, rugo__array* xs,
-                       size_t* nx, rugo__array* ss, size_t* ns) {
+                       int kb, const rugo_vec2 gb[4], rugo_real cutoff, rugo_real band_cutoff,
+                       rugo__array* xs, size_t* nx, rugo__array* ss, size_t* ns) {
     const rugo_vec2 o = f[0];
     rugo_vec2 fl[4], gl[4];
     for (int i = 0; i < 4; ++i) {
@@ -96,7 +96,8 @@ static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, narrow_ask ask,
     }
     if (!resolved) {
         rugo__narrow_pieces(fl, gl, cutoff, &r);
-        if (ask == ASK_FIRST_PASS && !g->thesis_rule && g->override < 0.0) polish_to_bands(g, ka, fl, kb, gl, &r);
+        if (ask == ASK_FIRST_PASS && !g->thesis_rule && g->override < 0.0)
+            polish_to_bands(g, ka, fl, kb, gl, &r);
     }
     const int src = g->src++;
     if (g->stats != NULL) {
@@ -157,7 +158,7 @@ static int shape_pair_inside_a(void* u, rugo_vec2 p) {
 /* Extreme point of a curve (A's frame pieces from `piece`) along direction d: the point maximising
  * p·d (sign = +1) or minimising it (sign = -1). Exact: ends and roots of the derivative. */
 rugo_vec2 rugo__support_point(const shape_pair* g, int of_b, rugo_vec2 d, int sign, int* seg_out,
-                               rugo_real* t_out) {
+                              rugo_real* t_out) {
     const query_side* s = of_b ? g->B : g->A;
     rugo_real best = -HUGE_VAL;
     rugo_vec2 best_p = rugo_v2(0.0, 0.0);
@@ -220,8 +221,8 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
         const rugo_vec2* f = rugo__cached_piece_a(&pc, g, p.k_a);
         const rugo_vec2* h = rugo__cached_piece_b(&pc, g, p.k_b);
         ns = 0;
-        if (!narrow_pair(ctx, g, ASK_CLOSEST, p.k_a, f, p.k_b, h, bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale,
-                         NAN, NULL, NULL, &ctx->ss2, &ns))
+        if (!narrow_pair(ctx, g, ASK_CLOSEST, p.k_a, f, p.k_b, h,
+                         bound * (1.0 + CUTOFF_PAD) + CUTOFF_PAD * g->scale, NAN, NULL, NULL, &ctx->ss2, &ns))
             return RUGO_ERR_OUT_OF_MEMORY;
         const hit* hs = (const hit*)ctx->ss2.data;
         for (size_t j = 0; j < ns; ++j)
@@ -235,7 +236,7 @@ static rugo_status closest_pair(rugo_collide_context* ctx, shape_pair* g, const 
 
 /* One curve inside the other without crossing: the way out through the closest pair. */
 static rugo_status emit_containment_contact(rugo_collide_context* ctx, shape_pair* g, const tree_side* ta,
-                                       const tree_side* tb, int b_inside_a, contact_out* o) {
+                                            const tree_side* tb, int b_inside_a, contact_out* o) {
     /* An upper bound of the smallest distance: from one point of the inner curve to the outer. */
     hit best;
     memset(&best, 0, sizeof best);
@@ -353,7 +354,8 @@ static void reduce_stretches(contact_out* o, size_t from) {
     size_t w = from;
     for (size_t i = from; i < o->n;) {
         size_t j = i + 1;
-        while (j < o->n && c[j].region == c[i].region) ++j;
+        while (j < o->n && c[j].region == c[i].region)
+            ++j;
         size_t deep = i;
         for (size_t k = i + 1; k < j; ++k)
             if (c[k].separation - c[k].tolerance_a - c[k].tolerance_b <
@@ -396,7 +398,8 @@ static rugo_status emit_minima(contact_out* o, shape_pair* g, hit* hs, size_t ns
             if (!hs[j].dead && hs[j].kind == RUGO__MINIMUM && hs[j].sa == h->sa && hs[j].sb == h->sb) ++index;
         const rugo_vec2 n = h->flat ? flat_normal(g, h) : minimum_normal(g, h);
         const rugo_real phi = rugo_v2_dot(rugo_v2_sub(h->pb, h->pa), n) - lambda;
-        const int joins = prev != NULL && (h->flat || prev->flat) && near_cyclic(h->ua, prev->ua, g->A->n, 1.5) &&
+        const int joins = prev != NULL && (h->flat || prev->flat) &&
+                          near_cyclic(h->ua, prev->ua, g->A->n, 1.5) &&
                           near_cyclic(h->ub, prev->ub, g->B->n, 1.5) && fabs(phi - prev_phi) <= g->delta;
         if (!joins && prev != NULL) ++region;
         stretches |= joins;
@@ -453,7 +456,7 @@ static int pair_is_depth(const shape_pair* g, rugo_vec2 pa, rugo_vec2 pb, rugo_r
 
 /* Deepest penetration pair of region reg; 0 if none. */
 static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g, const regions* r, int reg,
-                                  contact_out* o) {
+                                       contact_out* o) {
     const size_t na = (size_t)g->A->n, nb = (size_t)g->B->n;
     if (!rugo__scratch_reserve(ctx, &ctx->marks, na + nb, 1)) return RUGO_ERR_OUT_OF_MEMORY;
     unsigned char* marks = (unsigned char*)ctx->marks.data;
@@ -484,8 +487,8 @@ static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g,
                 if (acos(c) > sa->half + sb->half + 1e-9) continue;
             }
             size_t ns = 0;
-            if (!narrow_pair(ctx, g, ASK_DEPTHS, sa->k, sa->b, sb->k, sb->b, cutoff, NAN, NULL, NULL, &ctx->ss2,
-                             &ns))
+            if (!narrow_pair(ctx, g, ASK_DEPTHS, sa->k, sa->b, sb->k, sb->b, cutoff, NAN, NULL, NULL,
+                             &ctx->ss2, &ns))
                 return RUGO_ERR_OUT_OF_MEMORY;
             const hit* hs = (const hit*)ctx->ss2.data;
             for (size_t k = 0; k < ns; ++k) {
@@ -507,7 +510,7 @@ static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g,
     if (have) {
         rugo_vec2 d = rugo_v2_sub(best.pa, best.pb);
         if (!rugo__emit_contact(o, best.sa, best.ta, best.sb, best.tb, best.pa, best.pb,
-                  rugo_v2_scale(1.0 / best.distance, d), reg, 1, 0, best.sb))
+                                rugo_v2_scale(1.0 / best.distance, d), reg, 1, 0, best.sb))
             return RUGO_ERR_OUT_OF_MEMORY;
         return RUGO_OK;
     }
@@ -530,8 +533,7 @@ static rugo_status emit_region_contact(rugo_collide_context* ctx, shape_pair* g,
                 const rugo_real u = rugo__wrap_param(u0 + len * (rugo_real)s / (rugo_real)samples, period);
                 if (which == 0) {
                     const rugo_vec2 p = shape_pair_point_a(g, u);
-                    rugo_curve_point cp =
-                        rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p));
+                    rugo_curve_point cp = rugo__query_side_closest(g->B, rugo_inv_transform_point(g->rel, p));
                     if (cp.distance > far) {
                         far = cp.distance;
                         fpa = p;
@@ -610,8 +612,8 @@ static rugo_status shapes_frame_and_levels(shape_query* s, rugo_collide_context*
     g->B = &s->B;
     g->rel = rugo__relative_transform(xa, xb);
     /* the larger shape's size */
-    g->scale = fmax(rugo__box_size(rugo_mobb_tree_root(s->A.tree)),
-                    rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
+    g->scale =
+        fmax(rugo__box_size(rugo_mobb_tree_root(s->A.tree)), rugo__box_size(rugo_mobb_tree_root(s->B.tree)));
     g->stats = stats;
     g->margin = q->margin;
     g->override = override;
@@ -789,8 +791,8 @@ static rugo_status shapes_no_crossing(shape_query* s, rugo_contact_state* state)
 /* The plan (collide_internal.h): checks, frame and levels, candidates, narrow phase, crossings, then
  * the regions or, without crossings, containment or the minima, then finish. The state is
  * INTERSECTING as soon as crossings are found, whatever their contacts. */
-rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b, rugo_transform xb,
-                                const rugo_contact_query* query, rugo_collide_context* ctx,
+rugo_status rugo_collide_shapes(const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
+                                rugo_transform xb, const rugo_contact_query* query, rugo_collide_context* ctx,
                                 rugo_contact_output* out) {
     /* checks */
     if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;

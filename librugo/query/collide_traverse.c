@@ -105,9 +105,11 @@ rugo_status rugo__traverse(rugo_collide_context* ctx, const tree_side* A, const 
     const rugo_obb* base_a[32];
     const rugo_obb* base_b[32];
     if (A->tree != NULL)
-        for (int l = A->jmin; l <= A->stop && l < 32; ++l) base_a[l] = rugo_mobb_tree_node(A->tree, l, 0);
+        for (int l = A->jmin; l <= A->stop && l < 32; ++l)
+            base_a[l] = rugo_mobb_tree_node(A->tree, l, 0);
     if (B->tree != NULL)
-        for (int l = B->jmin; l <= B->stop && l < 32; ++l) base_b[l] = rugo_mobb_tree_node(B->tree, l, 0);
+        for (int l = B->jmin; l <= B->stop && l < 32; ++l)
+            base_b[l] = rugo_mobb_tree_node(B->tree, l, 0);
     if (!rugo__scratch_reserve(ctx, &ctx->stack, 64, sizeof(traversal_node)) ||
         !rugo__scratch_reserve(ctx, &ctx->box_pool, 64, sizeof(tested_box)))
         return RUGO_ERR_OUT_OF_MEMORY;
@@ -153,11 +155,13 @@ rugo_status rugo__traverse(rugo_collide_context* ctx, const tree_side* A, const 
         /* children's boxes: B's at ib0 + j, A's at ia0 + i (or the parent's box where a side stays) */
         const size_t ib0 = nbox;
         if (hb >= ha) {
-            for (int j = 0; j < nkb; ++j) tested_box_make(&pool[nbox++], B, base_b, clb, kb0 + j, 1, rel);
+            for (int j = 0; j < nkb; ++j)
+                tested_box_make(&pool[nbox++], B, base_b, clb, kb0 + j, 1, rel);
         }
         const size_t ia0 = nbox;
         if (ha >= hb) {
-            for (int i = 0; i < nka; ++i) tested_box_make(&pool[nbox++], A, base_a, cla, ka0 + i, 0, rel);
+            for (int i = 0; i < nka; ++i)
+                tested_box_make(&pool[nbox++], A, base_a, cla, ka0 + i, 0, rel);
         }
         /* Pushed in reverse so that pairs come out in increasing order. */
         for (int i = nka - 1; i >= 0; --i) {

@@ -36,7 +36,8 @@ struct rugo_contact_cache {
 
 static int capacity_ok(int capacity) { return capacity >= 0 && capacity <= RUGO_MAX_CONTROL_POINTS; }
 
-rugo_status rugo_contact_cache_create(const rugo_allocator* allocator, int capacity, rugo_contact_cache** out) {
+rugo_status rugo_contact_cache_create(const rugo_allocator* allocator, int capacity,
+                                      rugo_contact_cache** out) {
     if (out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     *out = NULL;
     if (!capacity_ok(capacity)) return RUGO_ERR_BAD_ARGUMENT;

@@ -270,8 +270,8 @@ static void solve(narrow_ctx* c, rugo__narrow_result* out) {
      * whole square is known to fail (gap <= TAU_F, or it was tested below), so stat_prune skips it. */
     c->root_apart = rugo__hull_gap_above(c->f, c->g, TAU_F);
     if (c->root_apart) {
-        if (!(c->cutoff >= 0.0)) return;         /* no stationary search */
-        if (rugo__whole_square_cone(c) != 0) return;           /* tangents nowhere parallel */
+        if (!(c->cutoff >= 0.0)) return;                                 /* no stationary search */
+        if (rugo__whole_square_cone(c) != 0) return;                     /* tangents nowhere parallel */
         if (rugo__hull_gap_above(c->f, c->g, c->cutoff + TAU_F)) return; /* apart beyond the cutoff */
     }
 

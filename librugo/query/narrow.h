@@ -62,7 +62,8 @@ typedef struct rugo__narrow_result {
     int crossing_count;
     rugo__pair_point crossings[RUGO__NARROW_MAX_CROSSINGS]; /* f(s) = g(t), sorted by s */
     int stationary_count;
-    rugo__pair_point stationary[RUGO__NARROW_MAX_STATIONARY]; /* (f-g)·f' = (f-g)·g' = 0, distance <= cutoff */
+    rugo__pair_point
+        stationary[RUGO__NARROW_MAX_STATIONARY]; /* (f-g)·f' = (f-g)·g' = 0, distance <= cutoff */
     int newton_iterations;
     int fallback;
     int overflow; /* more roots than the arrays hold (degenerate input such as overlapping curves) */
@@ -73,7 +74,8 @@ typedef struct rugo__narrow_result {
  * Coincident pieces (infinitely many roots) set overflow and report what fits. Tolerances are
  * relative to the pieces' size; works at any scale and far from the origin (callers pass pieces
  * already moved near the origin for best precision). */
-void rugo__narrow_pieces(const rugo_vec2 f[4], const rugo_vec2 g[4], rugo_real cutoff, rugo__narrow_result* out);
+void rugo__narrow_pieces(const rugo_vec2 f[4], const rugo_vec2 g[4], rugo_real cutoff,
+                         rugo__narrow_result* out);
 
 /* Stationary pairs of the distance from a piece to a point c (circle centre): roots in [0,1] of
  * (f(s) - c)·f'(s) (degree 5), each classified as minimum/maximum of |f - c| (SADDLE for an
@@ -82,7 +84,8 @@ int rugo__narrow_point(const rugo_vec2 f[4], rugo_vec2 c, rugo_real cutoff, rugo
 
 /* Crossings and stationary pairs between a piece and the straight segment q0 + t (q1 - q0), t in
  * [0,1]. Same conventions as rugo__narrow_pieces. */
-void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff, rugo__narrow_result* out);
+void rugo__narrow_line(const rugo_vec2 f[4], rugo_vec2 q0, rugo_vec2 q1, rugo_real cutoff,
+                       rugo__narrow_result* out);
 
 /* rugo__level_contains (shape/internal.h) with the level as rugo_contact_query.level (0 finest, < 0
  * coarser, > 0 absolute; collide_levels.c). */

@@ -70,7 +70,7 @@ int rugo__hull_gap_above(const rugo_vec2 F[4], const rugo_vec2 G[4], rugo_real t
 /* Sign of cross(f', g') certified over a box from the control points of the two sub-hodographs
  * (0 if not one-signed). */
 int rugo__cone_sign_of(const rugo_real c[9], const rugo_vec2 dF[3], const rugo_vec2 dG[3],
-                        rugo_real* radius) {
+                       rugo_real* radius) {
     rugo_real mf = 0.0, mg = 0.0, cmin = INFINITY;
     int pos = 0, neg = 0;
     for (int i = 0; i < 9; ++i) {
@@ -121,8 +121,8 @@ int rugo__whole_square_cone(narrow_ctx* c) {
  *   K = m - Y v(m) + (I - Y J(box)) (box - m),
  * m the centre, v(m) the system there (round-off n), Y the inverse of the point Jacobian jc at m,
  * J(box) the interval Jacobian with rows (a b) and (c d). Returns 1 if K misses the box. */
-int rugo__krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4],
-                             ival a, ival b, ival c, ival d) {
+int rugo__krawczyk_excludes(box bx, const rugo_real v[2], const rugo_real n[2], const rugo_real jc[4], ival a,
+                            ival b, ival c, ival d) {
     rugo_real det = jc[0] * jc[3] - jc[1] * jc[2];
     if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
     rugo_real y11 = jc[3] / det, y12 = -jc[1] / det, y21 = -jc[2] / det, y22 = jc[0] / det;

@@ -74,9 +74,8 @@ int rugo__classify_stationary(const narrow_ctx* c, rugo_real s, rugo_real t, rug
     if (dist <= TAU_TOUCH) return RUGO__MINIMUM;
     pair_eval e = rugo__eval_pair(c, s, t);
     rugo_real a = e.j11, b = e.j12, d = -e.j22;
-    rugo_real scale =
-        rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.gp, e.gp) +
-        rugo__v2_norm(e.r) * (rugo__v2_norm(e.fpp) + rugo__v2_norm(e.gpp));
+    rugo_real scale = rugo_v2_dot(e.fp, e.fp) + rugo_v2_dot(e.gp, e.gp) +
+                      rugo__v2_norm(e.r) * (rugo__v2_norm(e.fpp) + rugo__v2_norm(e.gpp));
     rugo_real m = 0.5 * (a + d), q = hypot(0.5 * (a - d), b);
     /* the entries are good to a few ulps of scale; so are the eigenvalues */
     rugo_real l1 = m - q, l2 = m + q, tol = 1e3 * EPS * scale;

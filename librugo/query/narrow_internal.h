@@ -66,7 +66,7 @@ typedef struct narrow_ctx {
     int root_cone_done, root_cone;
     rugo_real root_rho;
     rugo_real root_cross[9]; /* cross(df[i], dg[j]) at 3 i + j (solve) */
-    root cross[TMP_CROSS]; /* (the lists last: they are not cleared) */
+    root cross[TMP_CROSS];   /* (the lists last: they are not cleared) */
     root stat[TMP_STAT];
 } narrow_ctx;
 

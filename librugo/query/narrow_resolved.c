@@ -35,8 +35,8 @@
 #define NEWTON_TOL 1e-13
 
 enum {
-    STACK_MAX = 100,   /* depth-first stack: one more frame per halving, of either piece */
-    MAX_DEPTH = 48,    /* halvings of one parameter (2^-48: below any useful δ) */
+    STACK_MAX = 100,    /* depth-first stack: one more frame per halving, of either piece */
+    MAX_DEPTH = 48,     /* halvings of one parameter (2^-48: below any useful δ) */
     BOX_BUDGET = 20000, /* boxes per call, then overflow (the caller falls back to the round-off phase) */
     NEWTON_MAX = 12,
     TMP_ROOTS = 64
@@ -52,16 +52,16 @@ typedef struct box {
 typedef struct sub {
     rugo_vec2 p[4];
     rugo_real l[4];
-    int knot;                        /* a whole piece whose band is two cubics (halves) */
-    const rugo_real (*halves)[4];    /* the piece's two halves (when knot) */
-    rugo_real l0, l1;          /* λ at the two ends */
-    rugo_real lmax;            /* the band's largest value over the sub-piece (>= 0) */
-    rugo_real band_dev;        /* |band - linear| bound */
-    rugo_real band_slope;      /* max |dλ/du|, the sub-piece's parameter */
-    int have_flat, have_cone;  /* flat and the cone are computed when a box first needs them */
-    rugo_real flat;            /* |sub-piece - its linear Bezier| + band_dev */
-    rugo_vec2 centre;          /* of the control points */
-    rugo_vec2 normal;          /* unit normal of the chord (0 for a point) */
+    int knot;                     /* a whole piece whose band is two cubics (halves) */
+    const rugo_real (*halves)[4]; /* the piece's two halves (when knot) */
+    rugo_real l0, l1;             /* λ at the two ends */
+    rugo_real lmax;               /* the band's largest value over the sub-piece (>= 0) */
+    rugo_real band_dev;           /* |band - linear| bound */
+    rugo_real band_slope;         /* max |dλ/du|, the sub-piece's parameter */
+    int have_flat, have_cone;     /* flat and the cone are computed when a box first needs them */
+    rugo_real flat;               /* |sub-piece - its linear Bezier| + band_dev */
+    rugo_vec2 centre;             /* of the control points */
+    rugo_vec2 normal;             /* unit normal of the chord (0 for a point) */
     /* tangent cone (cone_ok: the hodograph's directions stay within 90 degrees of the chord) */
     int cone_ok;
     rugo_vec2 axis;
@@ -168,7 +168,8 @@ static void finish_sub(sub* q) {
             slope = mx(slope, 3.0 * fabs(q->l[i + 1] - q->l[i]));
     }
     q->band_slope = slope;
-    q->centre = rugo_v2(0.25 * (p[0].x + p[1].x + p[2].x + p[3].x), 0.25 * (p[0].y + p[1].y + p[2].y + p[3].y));
+    q->centre =
+        rugo_v2(0.25 * (p[0].x + p[1].x + p[2].x + p[3].x), 0.25 * (p[0].y + p[1].y + p[2].y + p[3].y));
     const rugo_vec2 chord = rugo_v2_sub(p[3], p[0]);
     const rugo_real len = vlen(chord);
     q->normal = len > 0.0 ? rugo_v2(-chord.y / len, chord.x / len) : rugo_v2(0.0, 0.0);
@@ -319,8 +320,8 @@ static int reduce_runs(found* a, int n, rugo_real reach);
 
 /* Adds (s, t) to a list unless a root within r (in both parameters) is there; a polished root
  * replaces an unpolished one. Returns the index, or -1 when the list is full (overflow). */
-static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rugo_real phi, int kind, int polished,
-                     rugo_real r) {
+static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rugo_real phi, int kind,
+                     int polished, rugo_real r) {
     for (int i = 0; i < *n; ++i)
         if (fabs(list[i].s - s) <= r && fabs(list[i].t - t) <= r) {
             if (polished && !list[i].polished) {
@@ -352,7 +353,9 @@ static int add_found(rctx* c, found* list, int* n, rugo_real s, rugo_real t, rug
 /* ---------------------------------------------------------------------------------------------- */
 /* Newton polishing on the true pieces */
 
-static int in_domain(rugo_real s, rugo_real t) { return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12; }
+static int in_domain(rugo_real s, rugo_real t) {
+    return s >= -1e-12 && s <= 1.0 + 1e-12 && t >= -1e-12 && t <= 1.0 + 1e-12;
+}
 /* Newton may overshoot on its way to a root inside the domain: iterates may roam this far. */
 static int near_domain(rugo_real s, rugo_real t) { return s >= -0.5 && s <= 1.5 && t >= -0.5 && t <= 1.5; }
 static rugo_real clamp01(rugo_real v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
@@ -386,8 +389,8 @@ static int polish_crossing(rctx* c, rugo_real* s, rugo_real* t) {
 
 typedef struct phi_eval {
     rugo_real phi, d;
-    rugo_real gs, gt;           /* gradient */
-    rugo_real hss, hst, htt;    /* Hessian */
+    rugo_real gs, gt;        /* gradient */
+    rugo_real hss, hst, htt; /* Hessian */
 } phi_eval;
 
 /* φ = |f(s) - g(t)| - λ_f(s) - λ_g(t), its gradient and Hessian (0: the points coincide). */
@@ -489,7 +492,8 @@ static int polish_stationary(rctx* c, rugo_real* s, rugo_real* t, int* kind) {
 
 /* min over v in [0, 1] of |x - (q0 + v V)| - (b0 + v db): a convex function of v whose unconstrained
  * minimiser is the foot of x shifted by db h / (L sqrt(L^2 - db^2)) (|db| < L; else an end). */
-static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b0, rugo_real db, rugo_real* v_out) {
+static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b0, rugo_real db,
+                             rugo_real* v_out) {
     const rugo_real L2 = rugo_v2_dot(V, V);
     const rugo_vec2 w = rugo_v2_sub(x, q0);
     rugo_real v;
@@ -636,7 +640,8 @@ static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
     const rugo_vec2 Q0 = G->p[0], V = rugo_v2_sub(G->p[3], G->p[0]);
     const rugo_real UU = rugo_v2_dot(U, U), VV = rugo_v2_dot(V, V);
     if (!(UU > 0.0) || !(VV > 0.0)) return 0;
-    const rugo_real q0 = rugo_v2_dot(rugo_v2_sub(Q0, P0), U) / UU, q1 = rugo_v2_dot(rugo_v2_sub(G->p[3], P0), U) / UU;
+    const rugo_real q0 = rugo_v2_dot(rugo_v2_sub(Q0, P0), U) / UU,
+                    q1 = rugo_v2_dot(rugo_v2_sub(G->p[3], P0), U) / UU;
     const rugo_real ua = mx(0.0, mn(q0, q1)), ub = mn(1.0, mx(q0, q1));
     if (!(ua < ub)) return 0;
     rugo_real us[2] = {ua, ub}, vs[2], phis[2];
@@ -682,7 +687,8 @@ static void leaf(rctx* c, box b, sub* F, sub* G) {
                     bez3(c->g->p, t, &gp, &gd, &gdd);
                     rugo_real cr = rugo_v2_cross(fd, gd);
                     if (cr == 0.0) cr = denom;
-                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1, 1e-9);
+                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1,
+                              1e-9);
                 }
             } else if (c->want & RUGO__RESOLVED_MINIMA) {
                 /* Chords that cross where the curves have no crossing Newton can find: the curves come
@@ -721,7 +727,8 @@ static void leaf(rctx* c, box b, sub* F, sub* G) {
                     bez3(c->f->p, s, &fp, &fd, &fdd);
                     bez3(c->g->p, t, &gp, &gd, &gdd);
                     const rugo_real cr = rugo_v2_cross(fd, gd);
-                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1, 1e-9);
+                    add_found(c, c->cross, &c->ncross, s, t, 0.0, cr > 0.0 ? 1 : (cr < 0.0 ? -1 : 0), 1,
+                              1e-9);
                 }
             }
         }
@@ -755,7 +762,8 @@ static void leaf(rctx* c, box b, sub* F, sub* G) {
                 bez3(c->f->p, s, &fp, &fd, &fdd);
                 bez3(c->g->p, t, &gp, &gd, &gdd);
                 const rugo_real d = vlen(rugo_v2_sub(fp, gp));
-                if (d <= c->saddle_cutoff) add_found(c, c->saddles, &c->nsaddle, s, t, d, RUGO__SADDLE, 1, 1e-9);
+                if (d <= c->saddle_cutoff)
+                    add_found(c, c->saddles, &c->nsaddle, s, t, d, RUGO__SADDLE, 1, 1e-9);
             }
         }
     }
@@ -985,8 +993,8 @@ void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece
     out->overflow |= c.overflow;
 }
 
-int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s, rugo_real* t,
-                              rugo_real* phi) {
+int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s,
+                              rugo_real* t, rugo_real* phi) {
     rctx c;
     c.f = f;
     c.g = g;

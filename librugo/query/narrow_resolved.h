@@ -42,7 +42,8 @@ typedef struct rugo__banded_piece {
 enum {
     RUGO__RESOLVED_CROSSINGS = 1, /* crossings of the curves */
     RUGO__RESOLVED_MINIMA = 2,    /* minima of φ with φ <= cutoff */
-    RUGO__RESOLVED_SADDLES = 4    /* stationary pairs of the distance with indefinite Hessian, distance <= saddle_cutoff */
+    RUGO__RESOLVED_SADDLES =
+        4 /* stationary pairs of the distance with indefinite Hessian, distance <= saddle_cutoff */
 };
 
 /* The results of the two pieces at resolution delta > 0 (`want`: a set of the flags above). cutoff
@@ -54,8 +55,8 @@ void rugo__narrow_resolved(const rugo__banded_piece* f, const rugo__banded_piece
 /* Newton on the gradient of φ from (s, t) (the pieces' own domain; φ must not rise): 1 and the minimum
  * of φ it converged to, with *phi; 0 where it did not converge, leaving s and t. The round-off queries
  * move the distance's minima to the band-adjusted ones this way. */
-int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s, rugo_real* t,
-                              rugo_real* phi);
+int rugo__polish_band_minimum(const rugo__banded_piece* f, const rugo__banded_piece* g, rugo_real* s,
+                              rugo_real* t, rugo_real* phi);
 
 /* A smooth piece (λ = 0) from four Bezier points. */
 void rugo__banded_piece_smooth(const rugo_vec2 p[4], rugo__banded_piece* out);

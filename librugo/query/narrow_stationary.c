@@ -66,7 +66,7 @@ static void stat_system(const pair_eval* e, int mode, rugo_real v[2], rugo_real 
 /* Newton on the stationary system in the given form, J u = -H. Same contract as newton_cross; *res
  * is the residual in units of its round-off level (0 when converged). */
 int rugo__newton_stat(narrow_ctx* c, int mode, const box* lim, rugo_real* s, rugo_real* t, rugo_real* res,
-                       const pair_eval* start, pair_eval* last) {
+                      const pair_eval* start, pair_eval* last) {
     rugo_real x = *s, y = *t, bx = x, by = y, bres = INFINITY;
     int conv = 0, tiny = 0;
     for (int it = 0;; ++it) {

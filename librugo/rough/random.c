@@ -15,7 +15,8 @@ static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 void rugo_rng_seed(rugo_rng* rng, uint64_t seed) {
     if (rng == NULL) return;
     uint64_t x = seed;
-    for (int i = 0; i < 4; ++i) rng->state[i] = splitmix64(&x);
+    for (int i = 0; i < 4; ++i)
+        rng->state[i] = splitmix64(&x);
     rng->spare = 0.0;
     rng->has_spare = false;
 }

@@ -90,7 +90,8 @@ rugo_status rugo_tolerances_constant(rugo_real value, int n, rugo_real* out) {
     rugo_status st = check_count(n);
     if (st == RUGO_OK) st = check_value(value);
     if (st != RUGO_OK) return st;
-    for (int i = 0; i < n; ++i) out[i] = value;
+    for (int i = 0; i < n; ++i)
+        out[i] = value;
     return RUGO_OK;
 }
 
@@ -101,18 +102,21 @@ rugo_status rugo_tolerances_pattern(const rugo_real* pattern, int period, int n,
     if (period < 1 || period > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_BAD_ARGUMENT;
     st = check_values(pattern, period, NULL);
     if (st != RUGO_OK) return st;
-    for (int i = 0; i < n; ++i) out[i] = pattern[i % period];
+    for (int i = 0; i < n; ++i)
+        out[i] = pattern[i % period];
     return RUGO_OK;
 }
 
-rugo_status rugo_tolerances_blocks(const rugo_real* values, int count, int block_length, int n, rugo_real* out) {
+rugo_status rugo_tolerances_blocks(const rugo_real* values, int count, int block_length, int n,
+                                   rugo_real* out) {
     if (values == NULL || out == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_status st = check_count(n);
     if (st != RUGO_OK) return st;
     if (count < 1 || count > RUGO_MAX_CONTROL_POINTS || block_length < 1) return RUGO_ERR_BAD_ARGUMENT;
     st = check_values(values, count, NULL);
     if (st != RUGO_OK) return st;
-    for (int i = 0; i < n; ++i) out[i] = values[(i / block_length) % count];
+    for (int i = 0; i < n; ++i)
+        out[i] = values[(i / block_length) % count];
     return RUGO_OK;
 }
 
@@ -131,7 +135,8 @@ rugo_status rugo_tolerances_random(rugo_real lo, rugo_real hi, uint64_t seed, in
     if (lo < 0.0) return RUGO_ERR_NEGATIVE_TOLERANCE;
     rugo_rng rng;
     rugo_rng_seed(&rng, seed);
-    for (int i = 0; i < n; ++i) out[i] = uniform_closed(&rng, lo, hi);
+    for (int i = 0; i < n; ++i)
+        out[i] = uniform_closed(&rng, lo, hi);
     return RUGO_OK;
 }
 
@@ -141,9 +146,12 @@ rugo_status rugo_tolerances_preset(rugo_tolerance_preset p, uint64_t seed, int n
     rugo_status st = check_count(n);
     if (st != RUGO_OK) return st;
     switch (p) {
-    case RUGO_PRESET_TIPO_1: return rugo_tolerances_constant(TIPO_1_VALUE, n, out);
-    case RUGO_PRESET_TIPO_3: return rugo_tolerances_pattern(TIPO_3_PATTERN, 4, n, out);
-    case RUGO_PRESET_TIPO_5: return rugo_tolerances_blocks(TIPO_5_VALUES, 4, TIPO_5_BLOCK, n, out);
+    case RUGO_PRESET_TIPO_1:
+        return rugo_tolerances_constant(TIPO_1_VALUE, n, out);
+    case RUGO_PRESET_TIPO_3:
+        return rugo_tolerances_pattern(TIPO_3_PATTERN, 4, n, out);
+    case RUGO_PRESET_TIPO_5:
+        return rugo_tolerances_blocks(TIPO_5_VALUES, 4, TIPO_5_BLOCK, n, out);
     case RUGO_PRESET_TIPO_2: {
         rugo_rng rng;
         rugo_rng_seed(&rng, seed);
@@ -151,11 +159,13 @@ rugo_status rugo_tolerances_preset(rugo_tolerance_preset p, uint64_t seed, int n
         while (i < n) {
             int length = 1 + (int)rugo_rng_below(&rng, TIPO_2_MAX_BLOCK);
             rugo_real value = uniform_closed(&rng, TIPO_2_LO, TIPO_2_HI);
-            for (int k = 0; k < length && i < n; ++k) out[i++] = value;
+            for (int k = 0; k < length && i < n; ++k)
+                out[i++] = value;
         }
         return RUGO_OK;
     }
-    case RUGO_PRESET_COUNT: break;
+    case RUGO_PRESET_COUNT:
+        break;
     }
     return RUGO_ERR_BAD_ARGUMENT;
 }
@@ -179,7 +189,8 @@ rugo_roughen_def rugo_default_roughen_def(void) {
 
 static int level_of_count(int n) {
     int j = 0;
-    while ((1 << j) < n) ++j;
+    while ((1 << j) < n)
+        ++j;
     return j;
 }
 
@@ -189,14 +200,16 @@ static int level_of_count(int n) {
 static rugo_status check_roughen_def(const rugo_roughen_def* def) {
     if (def->cookie != ROUGHEN_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
     if (def->points == NULL || def->tolerances == NULL) return RUGO_ERR_NULL_ARGUMENT;
-    if (def->method != RUGO_ROUGHEN_WAVELET && def->method != RUGO_ROUGHEN_LOCAL) return RUGO_ERR_BAD_ARGUMENT;
+    if (def->method != RUGO_ROUGHEN_WAVELET && def->method != RUGO_ROUGHEN_LOCAL)
+        return RUGO_ERR_BAD_ARGUMENT;
     if (def->levels < 1) return RUGO_ERR_BAD_ARGUMENT;
     if ((int)def->filter < 0 || (int)def->filter >= (int)RUGO_FILTER_COUNT) return RUGO_ERR_BAD_FILTER;
     if (def->count < 4) return RUGO_ERR_TOO_FEW_POINTS;
     if (def->count > RUGO_MAX_CONTROL_POINTS) return RUGO_ERR_TOO_MANY_POINTS;
     if (!rugo__is_power_of_two(def->count)) return RUGO_ERR_NOT_POWER_OF_TWO;
     /* count << levels <= RUGO_MAX_CONTROL_POINTS, written so that nothing overflows. */
-    if (def->levels > 30 || def->count > (RUGO_MAX_CONTROL_POINTS >> def->levels)) return RUGO_ERR_BAD_ARGUMENT;
+    if (def->levels > 30 || def->count > (RUGO_MAX_CONTROL_POINTS >> def->levels))
+        return RUGO_ERR_BAD_ARGUMENT;
     if (!(isfinite(def->q) && def->q > 0.0)) return RUGO_ERR_BAD_QUANTILE;
     for (int i = 0; i < def->count; ++i)
         if (!rugo__v2_finite(def->points[i])) return RUGO_ERR_NOT_FINITE;
@@ -277,7 +290,8 @@ static void roughen_local(const rugo_roughen_def* def, rugo_rng* rng, rugo_real 
                 delta[idx] = rugo_v2_add(delta[idx], rugo_v2_scale(w[i] / norm2, df));
             }
         }
-        for (int i = 0; i < m; ++i) nxt[i] = rugo_v2_add(nxt[i], delta[i]);
+        for (int i = 0; i < m; ++i)
+            nxt[i] = rugo_v2_add(nxt[i], delta[i]);
         rugo_vec2* tmp = cur;
         cur = nxt;
         nxt = tmp;

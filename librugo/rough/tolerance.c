@@ -63,7 +63,7 @@ struct rugo_tolerances {
     int finest;   /* J */
     int coarsest; /* J_min */
     rugo_real* block;
-    rugo_real* own;   /* level j at offset(j) */
+    rugo_real* own; /* level j at offset(j) */
     rugo_real* total;
     rugo_real* bound;
 };
@@ -176,7 +176,8 @@ static rugo_real finest_bound(const rugo_real* lambda, int count, int segment, r
     return best + 256.0 * DBL_EPSILON * scale;
 }
 
-rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment, rugo_real minimum) {
+rugo_real rugo_tolerance_bound_on_segment(const rugo_real* lambda, int count, int segment,
+                                          rugo_real minimum) {
     if (lambda == NULL || count < 1) return NAN;
     return finest_bound(lambda, count, rugo__wrap(segment, count), minimum);
 }
@@ -216,12 +217,14 @@ static rugo_real estimate_detail(rugo_contour coarse, rugo_contour fine, int k, 
         for (int i = 0; i < DETAIL_SAMPLES_PER_HALF; ++i) {
             const rugo_real tf = ((rugo_real)i + 0.5) / (rugo_real)DETAIL_SAMPLES_PER_HALF;
             const rugo_real u = ((rugo_real)half + tf) * 0.5;
-            const rugo_vec2 g = rugo_v2_sub(rugo_contour_point(fine, 2 * k + half, tf), rugo_contour_point(coarse, k, u));
+            const rugo_vec2 g =
+                rugo_v2_sub(rugo_contour_point(fine, 2 * k + half, tf), rugo_contour_point(coarse, k, u));
             w[half * DETAIL_SAMPLES_PER_HALF + i] = rugo_v2_dot(g, rugo_contour_normal(coarse, k, u));
         }
     sort_reals(w, DETAIL_SAMPLES);
     rugo_real sum = 0.0;
-    for (int i = 0; i < extremes; ++i) sum += w[i] * w[i] + w[DETAIL_SAMPLES - 1 - i] * w[DETAIL_SAMPLES - 1 - i];
+    for (int i = 0; i < extremes; ++i)
+        sum += w[i] * w[i] + w[DETAIL_SAMPLES - 1 - i] * w[DETAIL_SAMPLES - 1 - i];
     return sqrt(sum / (rugo_real)(2 * extremes));
 }
 
@@ -278,7 +281,8 @@ static rugo_real cell_distance_bound(rugo_contour coarse, rugo_contour finest, i
     sub[1] = blossom(q, a, a, b);
     sub[2] = blossom(q, a, b, b);
     sub[3] = blossom(q, b, b, b);
-    for (int l = 0; l < 4; ++l) d[l] = rugo_v2_sub(p[l], sub[l]);
+    for (int l = 0; l < 4; ++l)
+        d[l] = rugo_v2_sub(p[l], sub[l]);
     rugo_real mag = coord_magnitude(p);
     const rugo_real mq = coord_magnitude(q);
     if (mq > mag) mag = mq;
@@ -287,11 +291,13 @@ static rugo_real cell_distance_bound(rugo_contour coarse, rugo_contour finest, i
     return hull_bound(d, BOUND_SPLITS) + 64.0 * DBL_EPSILON * mag;
 }
 
-static rugo_real coarse_bound(rugo_contour coarse, rugo_contour finest, int shift, int k, const rugo_real* finest_beta) {
+static rugo_real coarse_bound(rugo_contour coarse, rugo_contour finest, int shift, int k,
+                              const rugo_real* finest_beta) {
     const int cells = 1 << shift;
     rugo_real best = 0.0;
     for (int s = 0; s < cells; ++s) {
-        const rugo_real value = cell_distance_bound(coarse, finest, shift, k, s) + finest_beta[(k << shift) + s];
+        const rugo_real value =
+            cell_distance_bound(coarse, finest, shift, k, s) + finest_beta[(k << shift) + s];
         if (value > best) best = value;
     }
     return best;
@@ -301,8 +307,8 @@ static rugo_real coarse_bound(rugo_contour coarse, rugo_contour finest, int shif
  * refines (shift >= 1: each finest half lies in one coarse piece). On each finest half both are cubic
  * in the same variable: the largest |Bernstein coefficient| of their difference bounds it, and the
  * clamp at a common minimum only shrinks it (|max(p, m) - max(q, m)| <= |p - q|). */
-static rugo_real cell_band_bound(const rugo_real* coarse_lambda, int coarse_count, const rugo_real* finest_lambda,
-                                 int finest_count, int shift, int k, int s) {
+static rugo_real cell_band_bound(const rugo_real* coarse_lambda, int coarse_count,
+                                 const rugo_real* finest_lambda, int finest_count, int shift, int k, int s) {
     const int i = (k << shift) + s;
     const rugo_real inv = 1.0 / (rugo_real)(1 << shift);
     rugo_real best = 0.0, scale = 0.0;
@@ -310,7 +316,8 @@ static rugo_real cell_band_bound(const rugo_real* coarse_lambda, int coarse_coun
         int kf, kc;
         rugo_real uf, uc;
         piece_of(i, half == 0 ? 0.0 : 0.5, &kf, &uf);
-        const rugo_real t0 = ((rugo_real)s + 0.5 * (rugo_real)half) * inv; /* coarse t where this half starts */
+        const rugo_real t0 =
+            ((rugo_real)s + 0.5 * (rugo_real)half) * inv; /* coarse t where this half starts */
         piece_of(k, t0, &kc, &uc); /* the half never straddles t = 1/2, a cell boundary */
         rugo_real lf[4], lc[4], bf[4], bc[4];
         piece_values(finest_lambda, finest_count, kf, lf, &scale);
@@ -325,15 +332,17 @@ static rugo_real cell_band_bound(const rugo_real* coarse_lambda, int coarse_coun
     return best + 512.0 * DBL_EPSILON * scale;
 }
 
-rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda, rugo_contour finest,
-                                       const rugo_real* finest_lambda, rugo_real* per_segment, rugo_real* max_error) {
+rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coarse_lambda,
+                                       rugo_contour finest, const rugo_real* finest_lambda,
+                                       rugo_real* per_segment, rugo_real* max_error) {
     if (max_error != NULL) *max_error = NAN;
     if (coarse.points == NULL || finest.points == NULL || coarse_lambda == NULL || finest_lambda == NULL ||
         max_error == NULL)
         return RUGO_ERR_NULL_ARGUMENT;
     if (coarse.count < 4 || finest.count < coarse.count) return RUGO_ERR_BAD_ARGUMENT;
     int shift = 0;
-    while (shift < 30 && (coarse.count << shift) < finest.count) ++shift;
+    while (shift < 30 && (coarse.count << shift) < finest.count)
+        ++shift;
     if ((coarse.count << shift) != finest.count) return RUGO_ERR_BAD_ARGUMENT;
     /* Checked up front: the bounds below take maxima of distances, which would drop a NaN point. */
     for (int i = 0; i < coarse.count; ++i)
@@ -344,8 +353,9 @@ rugo_status rugo_tolerance_level_error(rugo_contour coarse, const rugo_real* coa
     for (int k = 0; k < coarse.count; ++k) {
         rugo_real e = 0.0;
         for (int s = 0; s < (1 << shift); ++s) {
-            const rugo_real v = cell_distance_bound(coarse, finest, shift, k, s) +
-                                cell_band_bound(coarse_lambda, coarse.count, finest_lambda, finest.count, shift, k, s);
+            const rugo_real v =
+                cell_distance_bound(coarse, finest, shift, k, s) +
+                cell_band_bound(coarse_lambda, coarse.count, finest_lambda, finest.count, shift, k, s);
             if (!(v <= e)) e = v; /* NaN propagates */
         }
         if (!isfinite(e)) return RUGO_ERR_NOT_FINITE;
@@ -412,7 +422,8 @@ rugo_status rugo_tolerances_create(const rugo_tolerance_def* def, rugo_tolerance
     rugo_real* bound_J = t->bound + level_offset(t, J);
     memcpy(own_J, def->finest, (size_t)n * sizeof(rugo_real));
     memcpy(total_J, def->finest, (size_t)n * sizeof(rugo_real));
-    for (int k = 0; k < n; ++k) bound_J[k] = finest_bound(def->finest, n, k, def->minimum);
+    for (int k = 0; k < n; ++k)
+        bound_J[k] = finest_bound(def->finest, n, k, def->minimum);
 
     rugo_contour finest;
     rugo_pyramid_level(def->pyramid, J, &finest);
@@ -519,15 +530,19 @@ rugo_status rugo_friction_calibrate(rugo_real lambda_min, rugo_real lambda_max, 
 
 rugo_real rugo_mix(rugo_mix_rule rule, rugo_real a, rugo_real b) {
     switch (rule) {
-    case RUGO_MIX_MAX: return a > b ? a : b;
-    case RUGO_MIX_MIN: return a < b ? a : b;
-    case RUGO_MIX_MEAN: return 0.5 * a + 0.5 * b; /* no overflow for huge a + b */
+    case RUGO_MIX_MAX:
+        return a > b ? a : b;
+    case RUGO_MIX_MIN:
+        return a < b ? a : b;
+    case RUGO_MIX_MEAN:
+        return 0.5 * a + 0.5 * b; /* no overflow for huge a + b */
     case RUGO_MIX_GEOMETRIC: {
         const rugo_real g = sqrt(a * b);
         /* a b overflows (or underflows) only for extreme values; then the product of the roots */
         return isfinite(g) && (g > 0.0 || a == 0.0 || b == 0.0) ? g : sqrt(a) * sqrt(b);
     }
-    default: return NAN;
+    default:
+        return NAN;
     }
 }
 
@@ -553,7 +568,7 @@ rugo_real rugo_restitution_in_band(const rugo_restitution* r, rugo_real delta, r
     if (r == NULL || isnan(delta) || isnan(lambda)) return NAN;
     if (!(lambda > 0.0) || !(delta > 0.0)) return r->epsilon;
     if (delta >= lambda) return r->epsilon_max; /* exactly ε_max at the band's edge and beyond */
-    const rugo_real x = delta / lambda;          /* in [0, 1): the ratio form avoids overflow of λ² */
+    const rugo_real x = delta / lambda;         /* in [0, 1): the ratio form avoids overflow of λ² */
     const rugo_real e = (r->epsilon_max - r->epsilon) * x * x + r->epsilon;
     return e < r->epsilon_max ? e : r->epsilon_max; /* round-off must not break monotonicity at δ = λ */
 }

@@ -18,7 +18,9 @@
 #include <string.h>
 
 /* The format stores binary64 bit patterns; a host with another double cannot read or write them. */
-typedef char rugo__baked_needs_ieee_double[(DBL_MANT_DIG == 53 && DBL_MAX_EXP == 1024 && sizeof(double) == 8) ? 1 : -1];
+typedef char rugo__baked_needs_ieee_double[(DBL_MANT_DIG == 53 && DBL_MAX_EXP == 1024 && sizeof(double) == 8)
+                                               ? 1
+                                               : -1];
 
 static const unsigned char MAGIC[RUGO_BAKED_MAGIC_SIZE] = {'R', 'U', 'G', 'O', 'B', 'A', 'K', 'E'};
 
@@ -65,10 +67,12 @@ void rugo__baked_clear_detail(rugo_baked_error* d) {
 /* ---- little-endian encoding ------------------------------------------------------------------------ */
 
 static void put_u32(unsigned char* p, uint32_t v) {
-    for (int i = 0; i < 4; ++i) p[i] = (unsigned char)(v >> (8 * i));
+    for (int i = 0; i < 4; ++i)
+        p[i] = (unsigned char)(v >> (8 * i));
 }
 static void put_u64(unsigned char* p, uint64_t v) {
-    for (int i = 0; i < 8; ++i) p[i] = (unsigned char)(v >> (8 * i));
+    for (int i = 0; i < 8; ++i)
+        p[i] = (unsigned char)(v >> (8 * i));
 }
 /* Written out, not as loops: compilers recognise these forms as one load on little-endian hosts. */
 static uint32_t get_u32(const unsigned char* p) {
@@ -142,9 +146,11 @@ static uint64_t file_checksum(const unsigned char* f, size_t size) {
     lane[1] = v1;
     lane[2] = v2;
     lane[3] = v3;
-    for (; i < words; ++i) lane[i % 4] = ck_round(lane[i % 4], ck_word(f, size, i));
+    for (; i < words; ++i)
+        lane[i % 4] = ck_round(lane[i % 4], ck_word(f, size, i));
     uint64_t h = (uint64_t)size;
-    for (int l = 0; l < 4; ++l) h = ck_round(h, lane[l]);
+    for (int l = 0; l < 4; ++l)
+        h = ck_round(h, lane[l]);
     h ^= h >> 33;
     h *= CK_P2;
     h ^= h >> 29;
@@ -186,7 +192,8 @@ static layout make_layout(int J, int Jmin) {
 static int levels_ok(int J, int Jmin) { return Jmin >= 2 && J >= Jmin && J <= 20; }
 
 bool rugo_is_baked(const void* buffer, size_t size) {
-    return buffer != NULL && size >= RUGO_BAKED_MAGIC_SIZE && memcmp(buffer, MAGIC, RUGO_BAKED_MAGIC_SIZE) == 0;
+    return buffer != NULL && size >= RUGO_BAKED_MAGIC_SIZE &&
+           memcmp(buffer, MAGIC, RUGO_BAKED_MAGIC_SIZE) == 0;
 }
 
 rugo_status rugo_shape_bake_size(const rugo_shape* shape, size_t* size) {
@@ -238,7 +245,8 @@ rugo_status rugo_shape_bake(const rugo_shape* shape, void* buffer, size_t capaci
     put_u32(p + 4, (uint32_t)Jmin);
     put_u32(p + 8, (uint32_t)rugo_pyramid_filter(pyr));
     put_u32(p + 12, (uint32_t)rugo_mobb_tree_method(tree));
-    put_u32(p + 16, (rugo_shape_is_rough(shape) ? FLAG_ROUGH : 0u) | (rugo_shape_was_reversed(shape) ? FLAG_REVERSED : 0u));
+    put_u32(p + 16, (rugo_shape_is_rough(shape) ? FLAG_ROUGH : 0u) |
+                        (rugo_shape_was_reversed(shape) ? FLAG_REVERSED : 0u));
     put_u32(p + 20, 0);
     const rugo_mass_properties m = rugo_shape_mass(shape);
     put_f64(p + 24, m.area);
@@ -306,7 +314,8 @@ static void fail(reader* r, size_t offset, const char* field, const char* messag
     if (failed(r)) return;
     r->st = RUGO_ERR_BAD_FORMAT;
     if (r->detail != NULL) {
-        rugo__baked_detail(r->detail, offset, field, "%s (%.17g) at byte %lu", message, value, (unsigned long)offset);
+        rugo__baked_detail(r->detail, offset, field, "%s (%.17g) at byte %lu", message, value,
+                           (unsigned long)offset);
     }
 }
 
@@ -355,10 +364,11 @@ static int axes_status(const double v[8]) {
 }
 
 static rugo_obb read_obb(reader* r, size_t offset, const char* array, size_t index) {
-    static const char* const names[8] = {".center.x", ".center.y", ".axis[0].x", ".axis[0].y",
+    static const char* const names[8] = {".center.x",  ".center.y",  ".axis[0].x", ".axis[0].y",
                                          ".axis[1].x", ".axis[1].y", ".half[0]",   ".half[1]"};
     double v[8];
-    for (int i = 0; i < 8; ++i) v[i] = read_indexed(r, offset + 8 * (size_t)i, array, index, names[i], i >= 6);
+    for (int i = 0; i < 8; ++i)
+        v[i] = read_indexed(r, offset + 8 * (size_t)i, array, index, names[i], i >= 6);
     rugo_obb b;
     b.center = rugo_v2(v[0], v[1]);
     b.axis[0] = rugo_v2(v[2], v[3]);
@@ -458,54 +468,58 @@ static void check_arrays(reader* r, const layout* L) {
 static rugo_status check_header(const unsigned char* f, size_t size, size_t* payload, rugo_baked_error* d) {
     if (size < RUGO_BAKED_MAGIC_SIZE || memcmp(f, MAGIC, RUGO_BAKED_MAGIC_SIZE) != 0) {
         if (size < RUGO_BAKED_MAGIC_SIZE && memcmp(f, MAGIC, size) == 0) {
-            rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
+            rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size,
+                               HEADER_SIZE);
             return RUGO_ERR_TRUNCATED;
         }
         rugo__baked_detail(d, 0, "magic", "not a baked shape file (the first 8 bytes are not \"RUGOBAKE\")");
         return RUGO_ERR_BAD_FORMAT;
     }
     if (size < HEADER_SIZE) {
-        rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size, HEADER_SIZE);
+        rugo__baked_detail(d, size, "header", "only %lu bytes, a header has %d", (unsigned long)size,
+                           HEADER_SIZE);
         return RUGO_ERR_TRUNCATED;
     }
     const uint32_t version = get_u32(f + H_VERSION);
     if (version != RUGO_BAKED_VERSION) {
         rugo__baked_detail(d, H_VERSION, "version", "format version %lu; this library reads version %d",
-                   (unsigned long)version, RUGO_BAKED_VERSION);
+                           (unsigned long)version, RUGO_BAKED_VERSION);
         return RUGO_ERR_BAD_VERSION;
     }
     const uint32_t hsize = get_u32(f + H_HEADER_SIZE);
     if (hsize != HEADER_SIZE) {
-        rugo__baked_detail(d, H_HEADER_SIZE, "header_size", "%lu, must be %d", (unsigned long)hsize, HEADER_SIZE);
+        rugo__baked_detail(d, H_HEADER_SIZE, "header_size", "%lu, must be %d", (unsigned long)hsize,
+                           HEADER_SIZE);
         return RUGO_ERR_BAD_FORMAT;
     }
     for (size_t i = H_RESERVED; i < HEADER_SIZE; ++i)
         if (f[i] != 0) {
-            rugo__baked_detail(d, i, "reserved", "byte %lu of the header is %u, must be 0", (unsigned long)i, (unsigned)f[i]);
+            rugo__baked_detail(d, i, "reserved", "byte %lu of the header is %u, must be 0", (unsigned long)i,
+                               (unsigned)f[i]);
             return RUGO_ERR_BAD_FORMAT;
         }
     const uint64_t psize = get_u64(f + H_PAYLOAD_SIZE);
     if (psize > (uint64_t)(RUGO_MAX_BAKED_BYTES - HEADER_SIZE)) {
-        rugo__baked_detail(d, H_PAYLOAD_SIZE, "payload_size", "%.0f bytes, beyond the limit of %lu", (double)psize,
-                   (unsigned long)RUGO_MAX_BAKED_BYTES);
+        rugo__baked_detail(d, H_PAYLOAD_SIZE, "payload_size", "%.0f bytes, beyond the limit of %lu",
+                           (double)psize, (unsigned long)RUGO_MAX_BAKED_BYTES);
         return RUGO_ERR_TOO_LARGE;
     }
     if (psize > (uint64_t)(size - HEADER_SIZE)) {
         rugo__baked_detail(d, size, "payload_size", "the header gives %lu payload bytes, the file has %lu",
-                   (unsigned long)psize, (unsigned long)(size - HEADER_SIZE));
+                           (unsigned long)psize, (unsigned long)(size - HEADER_SIZE));
         return RUGO_ERR_TRUNCATED;
     }
     if (psize < (uint64_t)(size - HEADER_SIZE)) {
         rugo__baked_detail(d, HEADER_SIZE + (size_t)psize, "payload_size", "%lu bytes after the payload",
-                   (unsigned long)(size - HEADER_SIZE - (size_t)psize));
+                           (unsigned long)(size - HEADER_SIZE - (size_t)psize));
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint64_t stored = get_u64(f + H_CHECKSUM), actual = file_checksum(f, size);
     if (stored != actual) {
         rugo__baked_detail(d, H_CHECKSUM, "checksum",
-                   "stored 0x%08lx%08lx, computed 0x%08lx%08lx: the file is corrupted", (unsigned long)(stored >> 32),
-                   (unsigned long)(stored & 0xFFFFFFFFu), (unsigned long)(actual >> 32),
-                   (unsigned long)(actual & 0xFFFFFFFFu));
+                           "stored 0x%08lx%08lx, computed 0x%08lx%08lx: the file is corrupted",
+                           (unsigned long)(stored >> 32), (unsigned long)(stored & 0xFFFFFFFFu),
+                           (unsigned long)(actual >> 32), (unsigned long)(actual & 0xFFFFFFFFu));
         return RUGO_ERR_CHECKSUM;
     }
     *payload = (size_t)psize;
@@ -531,20 +545,22 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     r.st = RUGO_OK;
     /* Offsets in messages are file offsets: the reader works in payload offsets, so shift on output. */
     if (psize < FIXED_SIZE) {
-        rugo__baked_detail(detail, size, "payload", "%lu bytes, the fixed part alone has %d", (unsigned long)psize, FIXED_SIZE);
+        rugo__baked_detail(detail, size, "payload", "%lu bytes, the fixed part alone has %d",
+                           (unsigned long)psize, FIXED_SIZE);
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint32_t J = get_u32(r.file + 0), Jmin = get_u32(r.file + 4);
     if (J > 20 || Jmin > 20 || !levels_ok((int)J, (int)Jmin)) {
-        rugo__baked_detail(detail, HEADER_SIZE, "levels",
-                   "finest %lu, coarsest %lu: need 2 <= coarsest <= finest <= 20 (2^20 = RUGO_MAX_CONTROL_POINTS)",
-                   (unsigned long)J, (unsigned long)Jmin);
+        rugo__baked_detail(
+            detail, HEADER_SIZE, "levels",
+            "finest %lu, coarsest %lu: need 2 <= coarsest <= finest <= 20 (2^20 = RUGO_MAX_CONTROL_POINTS)",
+            (unsigned long)J, (unsigned long)Jmin);
         return RUGO_ERR_BAD_FORMAT;
     }
     const layout L = make_layout((int)J, (int)Jmin);
     if (psize != L.end) {
         rugo__baked_detail(detail, H_PAYLOAD_SIZE, "payload_size", "%lu bytes, levels %lu..%lu need %lu",
-                   (unsigned long)psize, (unsigned long)Jmin, (unsigned long)J, (unsigned long)L.end);
+                           (unsigned long)psize, (unsigned long)Jmin, (unsigned long)J, (unsigned long)L.end);
         return RUGO_ERR_BAD_FORMAT;
     }
     const uint32_t filter = get_u32(r.file + 8), method = get_u32(r.file + 12), flags = get_u32(r.file + 16);
@@ -553,11 +569,13 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
         return RUGO_ERR_BAD_FORMAT;
     }
     if (method != (uint32_t)RUGO_BOXES_MULTIRES && method != (uint32_t)RUGO_BOXES_OF_BOXES) {
-        rugo__baked_detail(detail, HEADER_SIZE + 12, "box_method", "unknown box method %lu", (unsigned long)method);
+        rugo__baked_detail(detail, HEADER_SIZE + 12, "box_method", "unknown box method %lu",
+                           (unsigned long)method);
         return RUGO_ERR_BAD_FORMAT;
     }
     if ((flags & ~(FLAG_ROUGH | FLAG_REVERSED)) != 0 || get_u32(r.file + 20) != 0) {
-        rugo__baked_detail(detail, HEADER_SIZE + 16, "flags", "unknown flag bits 0x%lx", (unsigned long)flags);
+        rugo__baked_detail(detail, HEADER_SIZE + 16, "flags", "unknown flag bits 0x%lx",
+                           (unsigned long)flags);
         return RUGO_ERR_BAD_FORMAT;
     }
 
@@ -582,7 +600,8 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     parts.restitution.epsilon = read_real(&r, 80, "restitution.epsilon", 1);
     parts.restitution.epsilon_max = read_real(&r, 88, "restitution.epsilon_max", 1);
     if (!failed(&r) && rugo_restitution_check(&parts.restitution) != RUGO_OK)
-        fail(&r, 80, "restitution", "needs 0 <= epsilon <= epsilon_max <= 1, epsilon", parts.restitution.epsilon);
+        fail(&r, 80, "restitution", "needs 0 <= epsilon <= epsilon_max <= 1, epsilon",
+             parts.restitution.epsilon);
     parts.root = read_obb(&r, 96, "tree.root", (size_t)-1);
     if (failed(&r)) {
         if (detail != NULL) detail->offset += HEADER_SIZE;
@@ -623,12 +642,14 @@ rugo_status rugo_shape_load_baked(const void* buffer, size_t size, const rugo_al
     }
     if (st != RUGO_OK) {
         if (st == RUGO_ERR_BAD_SIZE)
-            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
-                       "the finest level's size is outside [%g, %g]", RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE);
+            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)),
+                               "pyramid.points", "the finest level's size is outside [%g, %g]",
+                               RUGO_SHAPE_MIN_SIZE, RUGO_SHAPE_MAX_SIZE);
         else
-            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)), "pyramid.points",
-                       "the finest level is not a valid counter-clockwise outline (%s)",
-                       st == RUGO_ERR_BAD_ARGUMENT ? "clockwise" : rugo_status_string(st));
+            rugo__baked_detail(detail, HEADER_SIZE + L.points + 16 * (L.per - ((size_t)1 << J)),
+                               "pyramid.points",
+                               "the finest level is not a valid counter-clockwise outline (%s)",
+                               st == RUGO_ERR_BAD_ARGUMENT ? "clockwise" : rugo_status_string(st));
         return RUGO_ERR_BAD_FORMAT;
     }
     return RUGO_OK;

@@ -38,8 +38,9 @@ static int write_all(FILE* fp, const unsigned char* data, size_t size, const rug
     return 0;
 }
 
-rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path, const rugo_allocator* allocator,
-                                        const rugo_baked_write_hook* hook, rugo_baked_error* detail) {
+rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* path,
+                                        const rugo_allocator* allocator, const rugo_baked_write_hook* hook,
+                                        rugo_baked_error* detail) {
     rugo__baked_clear_detail(detail);
     if (shape == NULL || path == NULL) {
         rugo__baked_detail(detail, 0, NULL, "NULL shape or path");
@@ -49,7 +50,8 @@ rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* pat
     size_t size = 0;
     rugo_status st = rugo_shape_bake_size(shape, &size);
     if (st != RUGO_OK) {
-        rugo__baked_detail(detail, 0, NULL, "the shape needs %lu bytes, beyond the limit", (unsigned long)size);
+        rugo__baked_detail(detail, 0, NULL, "the shape needs %lu bytes, beyond the limit",
+                           (unsigned long)size);
         return st;
     }
     unsigned char* bytes = (unsigned char*)rugo__alloc_array(&al, size, 1);
@@ -115,7 +117,8 @@ rugo_status rugo_shape_write_baked_file(const rugo_shape* shape, const char* pat
     {
         /* Make the rename itself durable: fsync the directory (best effort; not all systems allow it). */
         size_t cut = plen;
-        while (cut > 0 && path[cut - 1] != '/') --cut;
+        while (cut > 0 && path[cut - 1] != '/')
+            --cut;
         if (cut == 0) {
             tmp[0] = '.';
             tmp[1] = '\0';
@@ -158,7 +161,8 @@ rugo_status rugo_shape_read_baked_file(const char* path, const rugo_allocator* a
     for (;;) {
         if (len == cap) {
             if (cap == most) {
-                rugo__baked_detail(detail, cap, path, "larger than the limit of %lu bytes", (unsigned long)RUGO_MAX_BAKED_BYTES);
+                rugo__baked_detail(detail, cap, path, "larger than the limit of %lu bytes",
+                                   (unsigned long)RUGO_MAX_BAKED_BYTES);
                 st = RUGO_ERR_TOO_LARGE;
                 break;
             }

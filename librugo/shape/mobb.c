@@ -93,7 +93,8 @@ static inline rugo_real max_of(rugo_real a, rugo_real b) { return b > a ? b : a;
  * rather than && of conditions and sqrt of sums of squares rather than hypot: no jumps and no library
  * calls, so that block_axes' loop vectorises. In the plain range the squares neither overflow nor lose
  * the digits that count (|a - c|, |2b| <= trace, and past the test |b| > 1e-12 trace). NaN gives 0. */
-static inline rugo_real plain_major_axis(rugo_real a, rugo_real b, rugo_real c, rugo_real* ex, rugo_real* ey) {
+static inline rugo_real plain_major_axis(rugo_real a, rugo_real b, rugo_real c, rugo_real* ex,
+                                         rugo_real* ey) {
     rugo_real trace = a + c, p = a - c, b2 = 2.0 * b;
     rugo_real d = sqrt(p * p + b2 * b2);
     rugo_real plain = trace > 1.0 / PLAIN_SQRT_RANGE ? 1.0 : 0.0;
@@ -137,7 +138,8 @@ static void axes_from_covariance(rugo_real a, rugo_real b, rugo_real c, rugo_vec
  * far-from-origin data precise. */
 static void points_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]) {
     rugo_vec2 o = points[0], mean = rugo_v2(0.0, 0.0);
-    for (int i = 0; i < n; ++i) mean = rugo_v2_add(mean, rugo_v2_sub(points[i], o));
+    for (int i = 0; i < n; ++i)
+        mean = rugo_v2_add(mean, rugo_v2_sub(points[i], o));
     mean = rugo_v2_scale(1.0 / (rugo_real)n, mean);
     rugo_real a = 0.0, b = 0.0, c = 0.0;
     for (int i = 0; i < n; ++i) {
@@ -161,13 +163,15 @@ void rugo_covariance_axes(const rugo_vec2* points, int n, rugo_vec2 axis[2]) {
 /* Extent interval [lo, hi] of a box along unit axis e, relative to the point o. */
 static inline void box_interval(const rugo_obb* b, rugo_vec2 o, rugo_vec2 e, rugo_real* lo, rugo_real* hi) {
     rugo_real m = rugo_v2_dot(rugo_v2_sub(b->center, o), e);
-    rugo_real r = b->half[0] * fabs(rugo_v2_dot(b->axis[0], e)) + b->half[1] * fabs(rugo_v2_dot(b->axis[1], e));
+    rugo_real r =
+        b->half[0] * fabs(rugo_v2_dot(b->axis[0], e)) + b->half[1] * fabs(rugo_v2_dot(b->axis[1], e));
     *lo = m - r;
     *hi = m + r;
 }
 
 /* The box with axes `axis`, whose extents relative to o are [lo_i, hi_i] along axis i. */
-static rugo_obb box_from_intervals(const rugo_vec2 axis[2], rugo_vec2 o, const rugo_real lo[2], const rugo_real hi[2]) {
+static rugo_obb box_from_intervals(const rugo_vec2 axis[2], rugo_vec2 o, const rugo_real lo[2],
+                                   const rugo_real hi[2]) {
     rugo_obb r;
     r.axis[0] = axis[0];
     r.axis[1] = axis[1];
@@ -212,8 +216,8 @@ static inline void grow_to_contain(rugo_obb* box, const rugo_obb* b) {
  * whose axis[1] = perp(axis[0]) (the tree's are): then |axis[1]·e| = |axis[0]·perp(e)| and
  * |axis[1]·perp(e)| = |axis[0]·e|, the very same products, so box_interval's numbers come out of two
  * dot products instead of four. */
-static inline void tree_box_interval(const rugo_obb* b, rugo_vec2 o, rugo_vec2 e, rugo_real* m0, rugo_real* r0,
-                                     rugo_real* m1, rugo_real* r1) {
+static inline void tree_box_interval(const rugo_obb* b, rugo_vec2 o, rugo_vec2 e, rugo_real* m0,
+                                     rugo_real* r0, rugo_real* m1, rugo_real* r1) {
     rugo_vec2 d = rugo_v2_sub(b->center, o), f = rugo_v2_perp(e);
     rugo_real c0 = fabs(rugo_v2_dot(b->axis[0], e)), c1 = fabs(rugo_v2_dot(b->axis[0], f));
     *m0 = rugo_v2_dot(d, e);
@@ -224,7 +228,8 @@ static inline void tree_box_interval(const rugo_obb* b, rugo_vec2 o, rugo_vec2 e
 
 /* `box` grown (axes fixed; sides and centre move) until it also contains a and b: one enclosure of
  * three intervals per axis, measured from box's centre. zero: +0 (see projection_extremes). */
-static inline rugo_obb box_grown_by_pair(const rugo_obb* box, const rugo_obb* a, const rugo_obb* b, rugo_real zero) {
+static inline rugo_obb box_grown_by_pair(const rugo_obb* box, const rugo_obb* a, const rugo_obb* b,
+                                         rugo_real zero) {
     rugo_real am0, ar0, am1, ar1, bm0, br0, bm1, br1;
     tree_box_interval(a, box->center, box->axis[0], &am0, &ar0, &am1, &ar1);
     tree_box_interval(b, box->center, box->axis[0], &bm0, &br0, &bm1, &br1);
@@ -238,7 +243,8 @@ static inline rugo_obb box_grown_by_pair(const rugo_obb* box, const rugo_obb* a,
 rugo_obb rugo_obb_enclose(rugo_obb box_with_axes, const rugo_obb* b) {
     if (b == NULL) return box_with_axes;
     rugo_real lo[2], hi[2];
-    for (int i = 0; i < 2; ++i) box_interval(b, b->center, box_with_axes.axis[i], &lo[i], &hi[i]);
+    for (int i = 0; i < 2; ++i)
+        box_interval(b, b->center, box_with_axes.axis[i], &lo[i], &hi[i]);
     return box_from_intervals(box_with_axes.axis, b->center, lo, hi);
 }
 
@@ -264,7 +270,8 @@ static rugo_real projected_radius(const rugo_obb* b, rugo_vec2 l) {
 bool rugo_obb_overlap(const rugo_obb* a, const rugo_obb* b) {
     if (a == NULL || b == NULL) return false;
     rugo_vec2 t = rugo_v2_sub(b->center, a->center);
-    rugo_real position = fmax(fmax(fabs(a->center.x), fabs(a->center.y)), fmax(fabs(b->center.x), fabs(b->center.y)));
+    rugo_real position =
+        fmax(fmax(fabs(a->center.x), fabs(a->center.y)), fmax(fabs(b->center.x), fabs(b->center.y)));
     const rugo_vec2 axes[4] = {a->axis[0], a->axis[1], b->axis[0], b->axis[1]};
     for (int i = 0; i < 4; ++i) {
         rugo_real dist = fabs(rugo_v2_dot(t, axes[i]));
@@ -381,7 +388,8 @@ static void block_two_samples(seg_block* s, int i) {
 
 /* Step 2: the major axes (plain_major_axis, vectorisable; the rare others afterwards). */
 static void block_axes(seg_block* s, int count) {
-    for (int i = 0; i < count; ++i) s->plain[i] = plain_major_axis(s->a[i], s->b[i], s->c[i], &s->ex[i], &s->ey[i]);
+    for (int i = 0; i < count; ++i)
+        s->plain[i] = plain_major_axis(s->a[i], s->b[i], s->c[i], &s->ex[i], &s->ey[i]);
     for (int i = 0; i < count; ++i)
         if (!(s->plain[i] > 0.0)) {
             rugo_vec2 axis[2];
@@ -406,8 +414,8 @@ static void block_axes(seg_block* s, int count) {
  * could narrow it, and real roots keep their discriminant. h(t) = ((α/6 t + β/4) t + γ/2) t,
  * h(0) = 0. `zero` is +0 computed at run time: given the constant, compilers turn the clamps into
  * jumps, which mispredict often here; with a variable they are one maxsd/minsd each. */
-static inline void projection_extremes(rugo_real alpha, rugo_real beta, rugo_real gamma, rugo_real zero, rugo_real* lo,
-                                       rugo_real* hi) {
+static inline void projection_extremes(rugo_real alpha, rugo_real beta, rugo_real gamma, rugo_real zero,
+                                       rugo_real* lo, rugo_real* hi) {
     rugo_real one = zero + 1.0;
     rugo_real a6 = alpha * (1.0 / 6.0), b4 = 0.25 * beta, g2 = 0.5 * gamma;
     rugo_real s2 = sqrt(max_of(beta * beta - 4.0 * alpha * gamma, zero));
@@ -450,7 +458,8 @@ static void block_lengths(const seg_block* s, int count, rugo_real* lengths) {
         rugo_real sum = 0.0;
         for (int g = 0; g < 4; ++g) {
             rugo_real t = GL4_X[g];
-            rugo_real dx = (s->vx[i] * t + s->wx[i]) * t + s->rx[i], dy = (s->vy[i] * t + s->wy[i]) * t + s->ry[i];
+            rugo_real dx = (s->vx[i] * t + s->wx[i]) * t + s->rx[i],
+                      dy = (s->vy[i] * t + s->wy[i]) * t + s->ry[i];
             sum += GL4_W[g] * sqrt(dx * dx + dy * dy);
         }
         lengths[i] = 0.5 * sum;
@@ -467,15 +476,16 @@ static inline int five_samples(rugo_real length, rugo_real min_length) {
 /* Steps 1-3 for segments k0 .. k0 + count - 1 of c (count <= SEG_BLOCK, k0 in [0, c.count)). When
  * `lengths` is not NULL it receives their arc lengths (block_lengths). zero: +0 (see
  * projection_extremes). */
-static void segment_block(rugo_contour c, int k0, int count, rugo_real min_length, rugo_real zero, seg_block* s,
-                          rugo_real* lengths) {
+static void segment_block(rugo_contour c, int k0, int count, rugo_real min_length, rugo_real zero,
+                          seg_block* s, rugo_real* lengths) {
     /* The control points c_{k0-1} .. c_{k0+count+1}, wrapped around, in a row. */
     rugo_vec2 q[SEG_BLOCK + 3];
     const int m = c.count;
     if (k0 >= 1 && k0 + count + 1 < m) {
         memcpy(q, c.points + (k0 - 1), (size_t)(count + 3) * sizeof *q);
     } else {
-        for (int i = 0; i < count + 3; ++i) q[i] = c.points[rugo__wrap(k0 - 1 + i, m)];
+        for (int i = 0; i < count + 3; ++i)
+            q[i] = c.points[rugo__wrap(k0 - 1 + i, m)];
     }
     block_coefficients(q, count, s);
     /* l_min is compared with rugo_contour_segment_length itself: the same decision as rugo_segment_box's
@@ -603,7 +613,9 @@ static rugo_obb box_enclosing_three(rugo_vec2 e, const rugo_obb* a, const rugo_o
     return box_from_extents(e, a->center, lo0, hi0, lo1, hi1, zero);
 }
 
-static rugo_real value_or_zero(const rugo_real* values, int k) { return values != NULL && values[k] > 0.0 ? values[k] : 0.0; }
+static rugo_real value_or_zero(const rugo_real* values, int k) {
+    return values != NULL && values[k] > 0.0 ? values[k] : 0.0;
+}
 
 /* The tree's boxes of segments k0 .. k0 + count - 1 (count <= SEG_BLOCK, within the level) of a level's
  * contour c into s (block_tree_boxes; block_tree_box reads them), padded, segment k thickened by
@@ -612,7 +624,8 @@ static rugo_real value_or_zero(const rugo_real* values, int k) { return values !
 static void level_boxes(rugo_contour c, int k0, int count, const rugo_real* bound, const rugo_real* total,
                         rugo_real min_length, rugo_real zero, seg_block* s, rugo_real* lengths) {
     rugo_real band[SEG_BLOCK];
-    for (int i = 0; i < count; ++i) band[i] = max_of(value_or_zero(bound, k0 + i), value_or_zero(total, k0 + i));
+    for (int i = 0; i < count; ++i)
+        band[i] = max_of(value_or_zero(bound, k0 + i), value_or_zero(total, k0 + i));
     segment_block(c, k0, count, min_length, zero, s, lengths);
     block_tree_boxes(s, count, band, zero);
 }
@@ -620,7 +633,8 @@ static void level_boxes(rugo_contour c, int k0, int count, const rugo_real* boun
 /* A tree with room for its nodes, header and nodes in one block (the header padded to whole boxes, so
  * the nodes are aligned like any rugo_obb array). Fields other than the levels, method and allocator
  * are zero. NULL when out of memory. */
-static rugo_mobb_tree* tree_alloc(const rugo_allocator* alloc, int finest, int coarsest, rugo_box_method method) {
+static rugo_mobb_tree* tree_alloc(const rugo_allocator* alloc, int finest, int coarsest,
+                                  rugo_box_method method) {
     const size_t header = (sizeof(rugo_mobb_tree) + sizeof(rugo_obb) - 1) / sizeof(rugo_obb);
     const size_t count = level_offset(finest + 1, coarsest);
     rugo_obb* block = (rugo_obb*)rugo__alloc_array(alloc, header + count, sizeof(rugo_obb));
@@ -640,7 +654,8 @@ rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree*
     *out = NULL;
     if (def == NULL || def->pyramid == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (def->cookie != MOBB_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
-    if (def->method != RUGO_BOXES_MULTIRES && def->method != RUGO_BOXES_OF_BOXES) return RUGO_ERR_BAD_ARGUMENT;
+    if (def->method != RUGO_BOXES_MULTIRES && def->method != RUGO_BOXES_OF_BOXES)
+        return RUGO_ERR_BAD_ARGUMENT;
     if (!isfinite(def->min_length) || def->min_length < 0.0) return RUGO_ERR_BAD_ARGUMENT;
 
     const rugo_pyramid* pyr = def->pyramid;
@@ -683,8 +698,10 @@ rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree*
         for (size_t k0 = 0; k0 < n; k0 += SEG_BLOCK) {
             int count = n - k0 < SEG_BLOCK ? (int)(n - k0) : SEG_BLOCK;
             rugo_real lengths[SEG_BLOCK];
-            level_boxes(c, (int)k0, count, tl.bound, tl.total, min_length, zero, &s, mom != NULL ? lengths : NULL);
-            for (int i = 0; i < count; ++i) leaves[k0 + (size_t)i] = block_tree_box(&s, i);
+            level_boxes(c, (int)k0, count, tl.bound, tl.total, min_length, zero, &s,
+                        mom != NULL ? lengths : NULL);
+            for (int i = 0; i < count; ++i)
+                leaves[k0 + (size_t)i] = block_tree_box(&s, i);
             if (mom != NULL)
                 for (int i = 0; i < count; ++i) {
                     centre_moments* mk = &mom[k0 + (size_t)i];
@@ -730,7 +747,8 @@ rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree*
                  * Fig. 4.6 (a) boxes then include the level's segment; the thickening by λ^j_k is
                  * beyond the thesis, required by invariant (ii) so that queries stopped at level j
                  * (levels of detail) stay conservative. In steps over the block, as the leaves'. */
-                rugo_real sxx[SEG_BLOCK], sxy[SEG_BLOCK], syy[SEG_BLOCK], ex[SEG_BLOCK], ey[SEG_BLOCK], plain[SEG_BLOCK];
+                rugo_real sxx[SEG_BLOCK], sxy[SEG_BLOCK], syy[SEG_BLOCK], ex[SEG_BLOCK], ey[SEG_BLOCK],
+                    plain[SEG_BLOCK];
                 for (int i = 0; i < count; ++i) {
                     size_t k = k0 + (size_t)i;
                     mom[k] = merge_moments(&mom[2 * k], &mom[2 * k + 1]); /* k <= 2k: in place */
@@ -738,13 +756,15 @@ rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree*
                     sxy[i] = mom[k].sxy;
                     syy[i] = mom[k].syy;
                 }
-                for (int i = 0; i < count; ++i) plain[i] = plain_major_axis(sxx[i], sxy[i], syy[i], &ex[i], &ey[i]);
+                for (int i = 0; i < count; ++i)
+                    plain[i] = plain_major_axis(sxx[i], sxy[i], syy[i], &ex[i], &ey[i]);
                 for (int i = 0; i < count; ++i) {
                     size_t k = k0 + (size_t)i;
                     rugo_vec2 axis[2] = {rugo_v2(ex[i], ey[i]), rugo_v2(0.0, 0.0)};
                     if (!(plain[i] > 0.0)) axes_from_covariance(sxx[i], sxy[i], syy[i], axis);
                     rugo_obb own = block_tree_box(&s, i);
-                    level[k] = padded(box_enclosing_three(axis[0], &below[2 * k], &below[2 * k + 1], &own, zero));
+                    level[k] =
+                        padded(box_enclosing_three(axis[0], &below[2 * k], &below[2 * k + 1], &own, zero));
                 }
             }
         }
@@ -780,7 +800,8 @@ rugo_status rugo_mobb_tree_create(const rugo_mobb_tree_def* def, rugo_mobb_tree*
         root.center = top[0].center;
         root.half[0] = root.half[1] = 0.0;
         root = rugo_obb_enclose(root, &top[0]);
-        for (size_t k = 1; k < m; ++k) grow_to_contain(&root, &top[k]);
+        for (size_t k = 1; k < m; ++k)
+            grow_to_contain(&root, &top[k]);
         tree->root = padded(root);
     }
 
@@ -821,15 +842,17 @@ rugo_real rugo_mobb_tree_level_area(const rugo_mobb_tree* tree, int level) {
     const rugo_obb* nodes = tree->nodes + level_offset(level, tree->coarsest);
     size_t m = (size_t)1 << level;
     rugo_real sum = 0.0;
-    for (size_t k = 0; k < m; ++k) sum += rugo_obb_area(&nodes[k]);
+    for (size_t k = 0; k < m; ++k)
+        sum += rugo_obb_area(&nodes[k]);
     return sum;
 }
 
 /* ---- internal (baked shapes): a tree from stored boxes (shape_internal.h) ------------------------- */
 
 /* Stored boxes are decoded as 8 doubles each straight into the node array, in rugo_obb's member order. */
-#define RUGO__OBB_IS_EIGHT_DOUBLES \
-    (sizeof(rugo_obb) == 8 * sizeof(double) && offsetof(rugo_obb, axis) == 16 && offsetof(rugo_obb, half) == 48)
+#define RUGO__OBB_IS_EIGHT_DOUBLES                                                                           \
+    (sizeof(rugo_obb) == 8 * sizeof(double) && offsetof(rugo_obb, axis) == 16 &&                             \
+     offsetof(rugo_obb, half) == 48)
 typedef char rugo__obb_is_eight_doubles[RUGO__OBB_IS_EIGHT_DOUBLES ? 1 : -1];
 
 rugo_status rugo__mobb_tree_from_nodes(int finest, int coarsest, rugo_box_method method,

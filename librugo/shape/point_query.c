@@ -139,7 +139,8 @@ static rugo_real joint_distance2(rugo_contour c, int j, rugo_vec2 p) {
 
 /* Fills segs with the segments of `level` whose boxes come within r2 of p, in increasing order;
  * returns their number, or -1 when there are more than MAX_CANDIDATES. */
-static int near_segments(const rugo_mobb_tree* tree, int jmin, int level, rugo_vec2 p, rugo_real r2, int* segs) {
+static int near_segments(const rugo_mobb_tree* tree, int jmin, int level, rugo_vec2 p, rugo_real r2,
+                         int* segs) {
     int count = 0, l, k;
     node_walk w;
     walk_start(&w, jmin);
@@ -155,7 +156,8 @@ static int near_segments(const rugo_mobb_tree* tree, int jmin, int level, rugo_v
     return count;
 }
 
-static rugo_curve_point level_closest_point(const rugo_shape* shape, int level, rugo_contour curve, rugo_vec2 p) {
+static rugo_curve_point level_closest_point(const rugo_shape* shape, int level, rugo_contour curve,
+                                            rugo_vec2 p) {
     const rugo_mobb_tree* tree = rugo_shape_tree(shape);
     const int jmin = rugo_shape_coarsest_level(shape);
     const rugo_real m = point_pad(rugo_mobb_tree_root(tree), p);

@@ -17,7 +17,6 @@
 /* "RUGS": catches defs that did not come from rugo_default_shape_def. */
 #define SHAPE_DEF_COOKIE 0x52554753
 
-
 struct rugo_shape {
     rugo_allocator allocator;
     rugo_pyramid* pyramid;
@@ -112,7 +111,8 @@ static rugo_status simple_coarsest(const rugo_pyramid* p, const rugo_allocator* 
 /* FNV-1a over n bytes. */
 static uint64_t hash_bytes(uint64_t h, const void* v, size_t n) {
     const unsigned char* b = (const unsigned char*)v;
-    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    for (size_t i = 0; i < n; ++i)
+        h = (h ^ b[i]) * 1099511628211ull;
     return h;
 }
 
@@ -126,8 +126,8 @@ static void store_derived(rugo_shape* s) {
         s->level_error[j] = e;
     }
     uint64_t h = 14695981039346656037ull;
-    const rugo_real head[] = {(rugo_real)s->coarsest, (rugo_real)s->finest, (rugo_real)s->reversed,
-                              s->friction.alpha, s->friction.lambda_min, s->friction.base,
+    const rugo_real head[] = {(rugo_real)s->coarsest, (rugo_real)s->finest,      (rugo_real)s->reversed,
+                              s->friction.alpha,      s->friction.lambda_min,    s->friction.base,
                               s->restitution.epsilon, s->restitution.epsilon_max};
     h = hash_bytes(h, head, sizeof head);
     for (int j = s->coarsest; j <= s->finest; ++j) {
@@ -283,7 +283,8 @@ rugo_status rugo_shape_tolerance_level(const rugo_shape* s, int level, rugo_tole
 }
 
 const rugo_mobb_tree* rugo_shape_tree(const rugo_shape* s) { return s ? s->tree : NULL; }
-rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment, rugo_real* max_error) {
+rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* per_segment,
+                                   rugo_real* max_error) {
     if (max_error != NULL) *max_error = NAN;
     if (s == NULL || max_error == NULL) return RUGO_ERR_NULL_ARGUMENT;
     rugo_contour coarse, finest;
@@ -295,7 +296,8 @@ rugo_status rugo_shape_level_error(const rugo_shape* s, int level, rugo_real* pe
     if (st != RUGO_OK) return st;
     if (level == s->finest) { /* the same curve and band */
         if (per_segment != NULL)
-            for (int k = 0; k < coarse.count; ++k) per_segment[k] = 0.0;
+            for (int k = 0; k < coarse.count; ++k)
+                per_segment[k] = 0.0;
         *max_error = 0.0;
         return RUGO_OK;
     }
@@ -311,7 +313,8 @@ int rugo_shape_level_for_error(const rugo_shape* s, rugo_real budget) {
     if (s == NULL) return -1;
     int level = s->finest;
     if (!(budget >= 0.0)) return level;
-    while (level > s->coarsest && s->level_error[level - 1] <= budget) --level;
+    while (level > s->coarsest && s->level_error[level - 1] <= budget)
+        --level;
     return level;
 }
 
@@ -399,7 +402,8 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
                                    parts->local, &al, &s->pyramid);
     if (st == RUGO_OK) st = check_size(s->pyramid, J);
     if (st == RUGO_OK)
-        st = rugo__mobb_tree_from_nodes(J, Jmin, parts->box_method, parts->nodes, &parts->root, &al, &s->tree);
+        st =
+            rugo__mobb_tree_from_nodes(J, Jmin, parts->box_method, parts->nodes, &parts->root, &al, &s->tree);
     if (st == RUGO_OK) {
         /* own, total, bound and the band bounds: one block of 4 per, freed through tol_block. */
         s->tol_block = (rugo_real*)rugo__alloc_array(&al, 4 * per, sizeof(rugo_real));
@@ -414,7 +418,8 @@ rugo_status rugo__shape_create_from_parts(const rugo__shape_parts* parts, rugo_s
     rugo__decode_f64_le(s->band_bound, parts->band_bound, per);
     rugo_real excess[31];
     rugo__decode_f64_le(excess, parts->band_excess, (size_t)(J - Jmin + 1));
-    for (int j = Jmin; j <= J; ++j) s->band_excess[j] = excess[j - Jmin];
+    for (int j = Jmin; j <= J; ++j)
+        s->band_excess[j] = excess[j - Jmin];
     store_derived(s);
     *out = s;
     return RUGO_OK;

@@ -22,7 +22,9 @@ typedef struct mat2 {
     rugo_real xx, xy, yy; /* symmetric */
 } mat2;
 
-static rugo_vec2 mat2_mul(mat2 m, rugo_vec2 v) { return rugo_v2(m.xx * v.x + m.xy * v.y, m.xy * v.x + m.yy * v.y); }
+static rugo_vec2 mat2_mul(mat2 m, rugo_vec2 v) {
+    return rugo_v2(m.xx * v.x + m.xy * v.y, m.xy * v.x + m.yy * v.y);
+}
 
 static int input_finite(const rugo__impulse_input* in) {
     return isfinite(in->inv_mass_a) && isfinite(in->inv_inertia_a) && isfinite(in->inv_mass_b) &&
@@ -93,7 +95,8 @@ rugo_status rugo__collision_impulse(const rugo__impulse_input* in, rugo__impulse
     if (mu > 0.0 && det > 1e-14 * (k.xx + k.yy) * (k.xx + k.yy)) {
         /* 1. sticking */
         rugo_vec2 target = rugo_v2_add(v, rugo_v2_scale(eps * vn, n));
-        rugo_vec2 j = rugo_v2_scale(-1.0 / det, rugo_v2(k.yy * target.x - k.xy * target.y, -k.xy * target.x + k.xx * target.y));
+        rugo_vec2 j = rugo_v2_scale(
+            -1.0 / det, rugo_v2(k.yy * target.x - k.xy * target.y, -k.xy * target.x + k.xx * target.y));
         rugo_real jn = rugo_v2_dot(j, n);
         rugo_real jt = rugo_v2_dot(j, rugo_v2_perp(n));
         if (jn >= 0.0 && fabs(jt) <= mu * jn && energy_change(k, v, j) <= slack) {

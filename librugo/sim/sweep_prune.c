@@ -33,8 +33,8 @@ typedef struct pair_entry {
 
 struct rugo__sweep_prune {
     rugo_allocator allocator;
-    int n;     /* boxes of the last successful update */
-    int valid; /* 0: the next update runs the general algorithm */
+    int n;                  /* boxes of the last successful update */
+    int valid;              /* 0: the next update runs the general algorithm */
     rugo__array axis[2];    /* endpoint: 2 n per axis */
     rugo__array active;     /* int: the active list of the sweep, n */
     rugo__array active_pos; /* int: each box's place in it, n */
@@ -105,7 +105,8 @@ void rugo__sweep_prune_destroy(rugo__sweep_prune* sap) {
 
 static void table_clear(rugo__sweep_prune* sap) {
     int* buckets = (int*)sap->buckets.data;
-    for (int i = 0; i < sap->h; ++i) buckets[i] = -1;
+    for (int i = 0; i < sap->h; ++i)
+        buckets[i] = -1;
     sap->pool_used = 0;
     sap->free_head = -1;
     sap->live = 0;
@@ -220,7 +221,8 @@ static rugo_status coherent(rugo__sweep_prune* sap, const rugo_aabb* boxes, int 
         endpoint* e = (endpoint*)sap->axis[ax].data;
         for (int k = 0; k < 2 * n; ++k) {
             const rugo_aabb* b = &boxes[e[k].id];
-            e[k].value = ax == 0 ? (e[k].end ? b->upper.x : b->lower.x) : (e[k].end ? b->upper.y : b->lower.y);
+            e[k].value =
+                ax == 0 ? (e[k].end ? b->upper.x : b->lower.x) : (e[k].end ? b->upper.y : b->lower.y);
         }
         for (int k = 1; k < 2 * n; ++k) {
             endpoint cur = e[k];
@@ -259,7 +261,8 @@ rugo_status rugo__sweep_prune_update(rugo__sweep_prune* sap, const rugo_aabb* bo
     for (int i = 0; i < n; ++i)
         if (!rugo__v2_finite(boxes[i].lower) || !rugo__v2_finite(boxes[i].upper)) return RUGO_ERR_NOT_FINITE;
     for (int i = 0; i < n; ++i)
-        if (boxes[i].lower.x > boxes[i].upper.x || boxes[i].lower.y > boxes[i].upper.y) return RUGO_ERR_BAD_ARGUMENT;
+        if (boxes[i].lower.x > boxes[i].upper.x || boxes[i].lower.y > boxes[i].upper.y)
+            return RUGO_ERR_BAD_ARGUMENT;
 
     rugo_status st = reserve_boxes(sap, n);
     if (st != RUGO_OK) return st;

@@ -54,10 +54,12 @@ rugo_status rugo_world_create(const rugo_world_def* def, rugo_world** out) {
     /* a step's velocity change by gravity, g h, must be a double too */
     if (!rugo__v2_finite(rugo_v2_scale(def->time_step, def->gravity))) return RUGO_ERR_NOT_FINITE;
     if (!(def->time_step > 0.0) || !(def->penetration_tolerance > 0.0)) return RUGO_ERR_BAD_ARGUMENT;
-    if (def->integrator != RUGO_INTEGRATE_SYMPLECTIC_EULER && def->integrator != RUGO_INTEGRATE_EXPLICIT_EULER)
+    if (def->integrator != RUGO_INTEGRATE_SYMPLECTIC_EULER &&
+        def->integrator != RUGO_INTEGRATE_EXPLICIT_EULER)
         return RUGO_ERR_BAD_ARGUMENT;
     if (def->max_bisections < 0 || def->max_bisections > 30) return RUGO_ERR_BAD_ARGUMENT;
-    if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS) return RUGO_ERR_BAD_ARGUMENT;
+    if (def->max_contacts_per_pair < 1 || def->max_contacts_per_pair > MAX_PAIR_CONTACTS)
+        return RUGO_ERR_BAD_ARGUMENT;
     if (!isfinite(def->resolution)) return RUGO_ERR_NOT_FINITE;
     if (def->lod > 0 || (def->resolution < 0.0 && def->resolution != RUGO_RESOLUTION_AUTO) ||
         (unsigned)def->contact_rule > (unsigned)RUGO_CONTACT_THESIS)
@@ -107,9 +109,9 @@ rugo_status rugo_world_add_body(rugo_world* w, const rugo_body_def* def, int* id
     if (def->cookie != BODY_DEF_COOKIE) return RUGO_ERR_BAD_ARGUMENT;
     if (def->shape == NULL) return RUGO_ERR_NULL_ARGUMENT;
     if (def->type != RUGO_BODY_STATIC && def->type != RUGO_BODY_DYNAMIC) return RUGO_ERR_BAD_ARGUMENT;
-    if (!rugo__v2_finite(def->transform.p) || !isfinite(def->transform.q.c) || !isfinite(def->transform.q.s) ||
-        !rugo__v2_finite(def->linear_velocity) || !isfinite(def->angular_velocity) || !isfinite(def->density) ||
-        !isfinite(def->rolling_resistance))
+    if (!rugo__v2_finite(def->transform.p) || !isfinite(def->transform.q.c) ||
+        !isfinite(def->transform.q.s) || !rugo__v2_finite(def->linear_velocity) ||
+        !isfinite(def->angular_velocity) || !isfinite(def->density) || !isfinite(def->rolling_resistance))
         return RUGO_ERR_NOT_FINITE;
     if (def->rolling_resistance < 0.0) return RUGO_ERR_BAD_ARGUMENT;
     if (!rot_ok(def->transform.q)) return RUGO_ERR_BAD_ARGUMENT;

@@ -38,12 +38,14 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
     int lev_s = s_is_a ? c->level_a : c->level_b, lev_o = s_is_a ? c->level_b : c->level_a;
     if (seg < 0) return 0;
     rugo_contour cs, co;
-    if (rugo_shape_level(S->shape, lev_s, &cs) != RUGO_OK || rugo_shape_level(O->shape, lev_o, &co) != RUGO_OK)
+    if (rugo_shape_level(S->shape, lev_s, &cs) != RUGO_OK ||
+        rugo_shape_level(O->shape, lev_o, &co) != RUGO_OK)
         return 0;
     rugo_vec2 n_out = s_is_a ? c->normal : rugo_v2_scale(-1.0, c->normal); /* from S toward O */
     rugo_vec2 tau = rugo_v2_perp(c->normal);
     rugo_vec2 p0 = s_is_a ? c->point_a : c->point_b;
-    rugo_real band = (c->tolerance_a > 0.0 ? c->tolerance_a : 0.0) + (c->tolerance_b > 0.0 ? c->tolerance_b : 0.0);
+    rugo_real band =
+        (c->tolerance_a > 0.0 ? c->tolerance_a : 0.0) + (c->tolerance_b > 0.0 ? c->tolerance_b : 0.0);
     rugo_real umin = 0.0, umax = 0.0;
     int found[2] = {0, 0};
     rugo_vec2 qs[2], qo[2];
@@ -56,7 +58,8 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
             if (rugo_v2_dot(ns, n_out) < FACE_COS) continue;
             rugo_vec2 q = rugo_transform_point(S->xf, rugo_contour_point(cs, j, t));
             rugo_curve_point cp; /* rugo_contour_closest_point on co, through the tree */
-            if (rugo_shape_closest_point(O->shape, lev_o, rugo_inv_transform_point(O->xf, q), &cp) != RUGO_OK) continue;
+            if (rugo_shape_closest_point(O->shape, lev_o, rugo_inv_transform_point(O->xf, q), &cp) != RUGO_OK)
+                continue;
             rugo_vec2 no = rugo_rotate(O->xf.q, rugo_contour_normal(co, cp.segment, cp.t));
             if (rugo_v2_dot(no, n_out) > -FACE_COS) continue;
             rugo_vec2 cw = rugo_transform_point(O->xf, cp.point);
@@ -65,7 +68,10 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
             rugo_real u = rugo_v2_dot(rugo_v2_sub(q, p0), tau);
             int side = u < 0.0 ? 0 : 1;
             if ((side == 0 && u < umin) || (side == 1 && u > umax)) {
-                if (side == 0) umin = u; else umax = u;
+                if (side == 0)
+                    umin = u;
+                else
+                    umax = u;
                 found[side] = 1;
                 qs[side] = q;
                 qo[side] = cw;
@@ -89,7 +95,8 @@ static int probe_supports(const rugo_world* w, int ia, int ib, const rugo_contac
 
 /* Broad phase and contacts at the current poses into w->contacts. */
 rugo_status rugo__gather_contacts(rugo_world* w) {
-    for (int i = 0; i < w->count; ++i) rugo__world_boxes(w)[i] = body_aabb(&rugo__world_bodies(w)[i]);
+    for (int i = 0; i < w->count; ++i)
+        rugo__world_boxes(w)[i] = body_aabb(&rugo__world_bodies(w)[i]);
     rugo_status st = rugo__sweep_prune_update(w->sap, rugo__world_boxes(w), w->count);
     if (st != RUGO_OK) return st;
     int npairs = 0;

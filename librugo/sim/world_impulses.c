@@ -4,9 +4,11 @@
  * contacts the other parts gathered. */
 #include "sim/world_internal.h"
 
-#define CONTACT_SWEEPS 4  /* enough for small stacks; each sweep after the first is usually empty */
+#define CONTACT_SWEEPS 4 /* enough for small stacks; each sweep after the first is usually empty */
 
-static rugo_vec2 point_velocity(const body* b, rugo_vec2 r) { return rugo_v2_add(b->v, rugo_v2_scale(b->w, rugo_v2_perp(r))); }
+static rugo_vec2 point_velocity(const body* b, rugo_vec2 r) {
+    return rugo_v2_add(b->v, rugo_v2_scale(b->w, rugo_v2_perp(r)));
+}
 
 /* Relative normal velocity (SPEC 10 sign: < 0 approaching) of a contact's midpoint. */
 static rugo_real contact_vn(const rugo_world* w, const world_contact* wc, rugo_vec2* point) {
@@ -47,7 +49,8 @@ static rugo_real contact_restitution(const rugo_world* w, const body* A, const b
  * impulse times the bands at the contact, never more than stops the relative turning (so it never adds
  * energy). A smooth contact (λ = 0) rolls freely. */
 static void resist_rolling(body* A, body* B, rugo_real impulse_normal, rugo_real lam) {
-    const rugo_real k = A->rolling_resistance > B->rolling_resistance ? A->rolling_resistance : B->rolling_resistance;
+    const rugo_real k =
+        A->rolling_resistance > B->rolling_resistance ? A->rolling_resistance : B->rolling_resistance;
     const rugo_real ii = A->inv_inertia + B->inv_inertia;
     const rugo_real rel = B->w - A->w;
     if (!(k > 0.0) || !(lam > 0.0) || !(ii > 0.0) || rel == 0.0) return;

@@ -20,8 +20,8 @@ typedef struct body {
     rugo_vec2 v;
     rugo_real w;
     rugo_real mass, inertia, inv_mass, inv_inertia;
-    rugo_obb root;     /* local */
-    rugo_real size;    /* root half-diagonal */
+    rugo_obb root;  /* local */
+    rugo_real size; /* root half-diagonal */
     rugo_restitution restitution;
     rugo_real rolling_resistance; /* rugo_body_def.rolling_resistance */
     void* user_data;

@@ -119,7 +119,7 @@ ld lhypot(ld x, ld y) { return std::sqrt(x * x + y * y); }
  * Shapes */
 
 struct Corner {
-    double u;            /* global parameter of the corner point */
+    double u;              /* global parameter of the corner point */
     rugo_vec2 n_in, n_out; /* outward normals of the arriving and leaving flanks (local frame) */
     bool convex;
 };
@@ -134,7 +134,8 @@ struct Body {
     std::vector<Corner> corners;
 };
 
-bool make_body(Body& b, const std::string& name, const std::vector<rugo_vec2>& p, const std::vector<double>* tol) {
+bool make_body(Body& b, const std::string& name, const std::vector<rugo_vec2>& p,
+               const std::vector<double>* tol) {
     b.name = name;
     rugo_shape_def d = rugo_default_shape_def();
     d.points = p.data();
@@ -156,7 +157,8 @@ bool make_body(Body& b, const std::string& name, const std::vector<rugo_vec2>& p
         rugo_tolerance_level tl;
         rugo_shape_tolerance_level(b.shape, J, &tl);
         b.lam.assign(tl.total, tl.total + tl.count);
-        for (double v : b.lam) b.lam_max = std::max(b.lam_max, v);
+        for (double v : b.lam)
+            b.lam_max = std::max(b.lam_max, v);
         b.lam_max *= 1.3; /* the cubic interpolation overshoots by less than this */
     }
     rugo_vec2 lo, hi;
@@ -194,13 +196,13 @@ bool make_body(Body& b, const std::string& name, const std::vector<rugo_vec2>& p
 struct Side {
     const Body* body = nullptr;
     int n = 0, K = 16;
-    std::vector<ld> cx, cy;  /* world control points */
+    std::vector<ld> cx, cy; /* world control points */
     const double* lam = nullptr;
     ld lam_max = 0;
-    std::vector<ld> sx, sy;  /* samples u = i / K */
+    std::vector<ld> sx, sy; /* samples u = i / K */
     std::vector<double> fx, fy;
-    ld h = 0;                /* largest distance between consecutive samples */
-    ld speed_ref = 0;        /* a typical speed |f'| (length per unit parameter) */
+    ld h = 0;         /* largest distance between consecutive samples */
+    ld speed_ref = 0; /* a typical speed |f'| (length per unit parameter) */
 };
 
 struct Ev {
@@ -228,9 +230,10 @@ Ev eval(const Side& c, ld u) {
     if (j >= c.n) j = c.n - 1;
     const ld t = u - (ld)j, mt = 1 - t;
     const int i0 = wrap_i(j - 1, c.n), i1 = j, i2 = wrap_i(j + 1, c.n), i3 = wrap_i(j + 2, c.n);
-    const ld b0 = mt * mt * mt / 6, b1 = (3 * t * t * t - 6 * t * t + 4) / 6, b2 = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6,
-             b3 = t * t * t / 6;
-    const ld d0 = -mt * mt / 2, d1 = (3 * t * t - 4 * t) / 2, d2 = (-3 * t * t + 2 * t + 1) / 2, d3 = t * t / 2;
+    const ld b0 = mt * mt * mt / 6, b1 = (3 * t * t * t - 6 * t * t + 4) / 6,
+             b2 = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, b3 = t * t * t / 6;
+    const ld d0 = -mt * mt / 2, d1 = (3 * t * t - 4 * t) / 2, d2 = (-3 * t * t + 2 * t + 1) / 2,
+             d3 = t * t / 2;
     const ld e0 = mt, e1 = 3 * t - 2, e2 = -3 * t + 1, e3 = t;
     Ev r;
     r.x = b0 * c.cx[(size_t)i0] + b1 * c.cx[(size_t)i1] + b2 * c.cx[(size_t)i2] + b3 * c.cx[(size_t)i3];
@@ -257,8 +260,8 @@ Lam lam_piece(const Side& c, long k, ld u) {
              l3 = c.lam[wrap_i(k + 2, c.n)];
     const ld w1 = w - 1, w2 = w - 2, w3 = w - 3;
     r.v = -(w1 * w2 * w3) / 6 * l0 + (w * w2 * w3) / 2 * l1 - (w * w1 * w3) / 2 * l2 + (w * w1 * w2) / 6 * l3;
-    r.d1 = -(3 * w * w - 12 * w + 11) / 6 * l0 + (3 * w * w - 10 * w + 6) / 2 * l1 - (3 * w * w - 8 * w + 3) / 2 * l2 +
-           (3 * w * w - 6 * w + 2) / 6 * l3;
+    r.d1 = -(3 * w * w - 12 * w + 11) / 6 * l0 + (3 * w * w - 10 * w + 6) / 2 * l1 -
+           (3 * w * w - 8 * w + 3) / 2 * l2 + (3 * w * w - 6 * w + 2) / 6 * l3;
     r.d2 = -(6 * w - 12) / 6 * l0 + (6 * w - 10) / 2 * l1 - (6 * w - 8) / 2 * l2 + (6 * w - 6) / 6 * l3;
     if (r.v < 0) r = {0, 0, 0};
     return r;
@@ -377,8 +380,8 @@ struct MinRes {
 
 /* Damped Newton (Levenberg-Marquardt) for a local minimum in the box [slo, shi] x [tlo, thi] (one smooth
  * piece of each λ), projected at the bounds. */
-MinRes lm_cell(const Side& A, const Side& B, bool band, ld s0, ld t0, long ka, long kb, ld slo, ld shi, ld tlo, ld thi,
-               ld dtiny) {
+MinRes lm_cell(const Side& A, const Side& B, bool band, ld s0, ld t0, long ka, long kb, ld slo, ld shi,
+               ld tlo, ld thi, ld dtiny) {
     ld s = std::min(shi, std::max(slo, s0)), t = std::min(thi, std::max(tlo, t0));
     Obj o = objective(A, B, s, t, band, ka, kb);
     ld mu = 1e-12L * (std::fabs(o.hss) + std::fabs(o.htt) + 1e-30L);
@@ -450,7 +453,8 @@ MinRes minimize2(const Side& A, const Side& B, bool band, ld s0, ld t0, ld dtiny
             ld s = s0, t = t0;
             MinRes r;
             for (int mv = 0; mv < 16; ++mv) {
-                r = lm_cell(A, B, true, s, t, ka, kb, (ld)ka + 0.5L, (ld)ka + 1.5L, (ld)kb + 0.5L, (ld)kb + 1.5L, dtiny);
+                r = lm_cell(A, B, true, s, t, ka, kb, (ld)ka + 0.5L, (ld)ka + 1.5L, (ld)kb + 0.5L,
+                            (ld)kb + 1.5L, dtiny);
                 if (r.attached) break;
                 bool moved = false;
                 if (r.s <= (ld)ka + 0.5L && r.gs > 0) {
@@ -543,7 +547,8 @@ void min_1d(const Side& Q, bool band, ld px, ld py, ld ta, ld tb, ld* tout, ld* 
             }
         }
         t = (a + b) / 2;
-        ld fa = val(ta, nullptr, nullptr, nullptr), fb = val(tb, nullptr, nullptr, nullptr), ft = val(t, nullptr, nullptr, nullptr);
+        ld fa = val(ta, nullptr, nullptr, nullptr), fb = val(tb, nullptr, nullptr, nullptr),
+           ft = val(t, nullptr, nullptr, nullptr);
         if (fa < ft) t = ta;
         if (fb < std::min(fa, ft)) t = tb;
     }
@@ -560,8 +565,10 @@ bool stationary(const Side& A, const Side& B, ld* s, ld* t, ld reach) {
         const Ev f = eval(A, *s), q = eval(B, *t);
         const ld rx = f.x - q.x, ry = f.y - q.y;
         const ld F1 = rx * f.dx + ry * f.dy, F2 = rx * q.dx + ry * q.dy;
-        const ld j11 = f.dx * f.dx + f.dy * f.dy + rx * f.ddx + ry * f.ddy, j12 = -(q.dx * f.dx + q.dy * f.dy);
-        const ld j21 = f.dx * q.dx + f.dy * q.dy, j22 = -(q.dx * q.dx + q.dy * q.dy) + rx * q.ddx + ry * q.ddy;
+        const ld j11 = f.dx * f.dx + f.dy * f.dy + rx * f.ddx + ry * f.ddy,
+                 j12 = -(q.dx * f.dx + q.dy * f.dy);
+        const ld j21 = f.dx * q.dx + f.dy * q.dy,
+                 j22 = -(q.dx * q.dx + q.dy * q.dy) + rx * q.ddx + ry * q.ddy;
         const ld det = j11 * j22 - j12 * j21;
         if (det == 0) break;
         const ld ds = -(F1 * j22 - j12 * F2) / det, dt = -(j11 * F2 - j21 * F1) / det;
@@ -645,7 +652,8 @@ void build_near(const Side& P, const Side& Q, ld reach, Near& nr) {
     }
     const double hcell = std::max((double)reach, 1e-9 * (hix - lox + hiy - loy));
     const double R = (double)reach * (1 + 1e-12);
-    const int gx = std::min(4096, (int)((hix - lox) / hcell) + 1), gy = std::min(4096, (int)((hiy - loy) / hcell) + 1);
+    const int gx = std::min(4096, (int)((hix - lox) / hcell) + 1),
+              gy = std::min(4096, (int)((hiy - loy) / hcell) + 1);
     const double cw = (hix - lox) / gx + 1e-300, chh = (hiy - loy) / gy + 1e-300;
     std::vector<int> start((size_t)(gx * gy + 1), 0), items((size_t)nq);
     auto cell_of = [&](double x, double y, int* cx, int* cy) {
@@ -657,7 +665,8 @@ void build_near(const Side& P, const Side& Q, ld reach, Near& nr) {
         cell_of(Q.fx[(size_t)j], Q.fy[(size_t)j], &cx, &cy);
         start[(size_t)(cy * gx + cx) + 1]++;
     }
-    for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    for (size_t k = 1; k < start.size(); ++k)
+        start[k] += start[k - 1];
     {
         std::vector<int> fill(start.begin(), start.end() - 1);
         for (int j = 0; j < nq; ++j) {
@@ -850,14 +859,14 @@ struct Reference {
     Side A, B;
     ld size = 0, reach = 0;
     Near nab, nba;
-    Profile dA, dB;              /* distance profiles (also give the signed distances) */
-    Profile fA, fB;              /* band profiles (empty for smooth pairs: the distance ones serve) */
+    Profile dA, dB; /* distance profiles (also give the signed distances) */
+    Profile fA, fB; /* band profiles (empty for smooth pairs: the distance ones serve) */
     bool banded = false;
     std::vector<Crossing> xs;
     std::vector<Region> regions;
-    bool contained = false;      /* one curve inside the other, no crossing */
-    int anomalies = 0;           /* crossings without an overlap region, etc. */
-    ld min_d = 0;                /* smallest distance between the curves (over valley points) */
+    bool contained = false; /* one curve inside the other, no crossing */
+    int anomalies = 0;      /* crossings without an overlap region, etc. */
+    ld min_d = 0;           /* smallest distance between the curves (over valley points) */
     /* minima per objective: [0] band φ, [1] distance */
     std::vector<RMin> mins[2];
     std::vector<int> node_min[2]; /* A-profile chain minimum node -> index into mins (or -1) */
@@ -893,15 +902,17 @@ void negative_run(const Profile& pr, int N, int i, int* lo, int* hi) {
     };
     *lo = *hi = i;
     if (!(sig_of(i) < 0)) return;
-    while (*lo > i - N && sig_of(*lo - 1) < 0) --*lo;
-    while (*hi < i + N && sig_of(*hi + 1) < 0) ++*hi;
+    while (*lo > i - N && sig_of(*lo - 1) < 0)
+        --*lo;
+    while (*hi < i + N && sig_of(*hi + 1) < 0)
+        ++*hi;
 }
 
 void compute_minima(Reference& R, int which, ld margin, ld delta);
 
 /* Everything of one pose that does not depend on the rule. */
-void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body& b, rugo_transform xb, ld margin,
-                     ld delta, int K) {
+void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body& b, rugo_transform xb,
+                     ld margin, ld delta, int K) {
     place_side(R.A, a, xa, K);
     place_side(R.B, b, xb, K);
     R.size = std::min(a.size, b.size);
@@ -920,8 +931,10 @@ void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body&
     }
     const int NA = (int)R.A.sx.size(), NB = (int)R.B.sx.size();
     R.min_d = 1e30L;
-    for (const Node& n : R.dA.nodes) R.min_d = std::min(R.min_d, n.d);
-    for (const Node& n : R.dB.nodes) R.min_d = std::min(R.min_d, n.d);
+    for (const Node& n : R.dA.nodes)
+        R.min_d = std::min(R.min_d, n.d);
+    for (const Node& n : R.dB.nodes)
+        R.min_d = std::min(R.min_d, n.d);
     /* crossings of the sample polylines, refined */
     R.xs.clear();
     R.anomalies = 0;
@@ -930,8 +943,10 @@ void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body&
         const int i2 = (i + 1) % NA;
         for (int k = R.nab.off[(size_t)i]; k < R.nab.off[(size_t)i + 1]; ++k) {
             const int j = R.nab.idx[(size_t)k], j2 = (j + 1) % NB;
-            const ld ax = R.A.sx[(size_t)i], ay = R.A.sy[(size_t)i], bx = R.A.sx[(size_t)i2], by = R.A.sy[(size_t)i2];
-            const ld cx = R.B.sx[(size_t)j], cy = R.B.sy[(size_t)j], dx = R.B.sx[(size_t)j2], dy = R.B.sy[(size_t)j2];
+            const ld ax = R.A.sx[(size_t)i], ay = R.A.sy[(size_t)i], bx = R.A.sx[(size_t)i2],
+                     by = R.A.sy[(size_t)i2];
+            const ld cx = R.B.sx[(size_t)j], cy = R.B.sy[(size_t)j], dx = R.B.sx[(size_t)j2],
+                     dy = R.B.sy[(size_t)j2];
             if (lhypot(cx - ax, cy - ay) > hx) continue;
             const ld ux = bx - ax, uy = by - ay, vx = dx - cx, vy = dy - cy;
             const ld den = ux * vy - uy * vx;
@@ -998,7 +1013,8 @@ void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body&
             int lo, hi, lo2, hi2;
             negative_run(pr, NP, wrap_i(std::lround(s * P.K), NP), &lo, &hi);
             negative_run(other, NQ, wrap_i(std::lround(t * Q.K), NQ), &lo2, &hi2);
-            ld ps_lo = (ld)(lo - 1) / P.K, ps_hi = (ld)(hi + 1) / P.K, qt_lo = (ld)(lo2 - 1) / Q.K, qt_hi = (ld)(hi2 + 1) / Q.K;
+            ld ps_lo = (ld)(lo - 1) / P.K, ps_hi = (ld)(hi + 1) / P.K, qt_lo = (ld)(lo2 - 1) / Q.K,
+               qt_hi = (ld)(hi2 + 1) / Q.K;
             /* keep the deepest point inside its ranges */
             const ld sw = wrap_u(s, P.n), tw = wrap_u(t, Q.n);
             if (!in_cyclic(sw, ps_lo, ps_hi, P.n)) {
@@ -1029,9 +1045,11 @@ void build_reference(Reference& R, const Body& a, rugo_transform xa, const Body&
     }
     /* group candidates whose ranges meet on both curves */
     std::vector<int> grp(cands.size());
-    for (size_t k = 0; k < cands.size(); ++k) grp[k] = (int)k;
+    for (size_t k = 0; k < cands.size(); ++k)
+        grp[k] = (int)k;
     auto root = [&](int x) {
-        while (grp[(size_t)x] != x) x = grp[(size_t)x] = grp[(size_t)grp[(size_t)x]];
+        while (grp[(size_t)x] != x)
+            x = grp[(size_t)x] = grp[(size_t)grp[(size_t)x]];
         return x;
     };
     for (size_t p = 0; p < cands.size(); ++p)
@@ -1144,7 +1162,8 @@ void compute_minima(Reference& R, int which, ld margin, ld delta) {
             /* candidate: the node's φ within reach of the threshold */
             const ld phin = band ? n.v : n.d - lam_at(P, sp).v - lam_at(Q, n.t).v;
             if (phin > cand) continue;
-            MinRes r = side == 0 ? minimize2(R.A, R.B, band, sp, n.t, dtiny) : minimize2(R.A, R.B, band, n.t, sp, dtiny);
+            MinRes r = side == 0 ? minimize2(R.A, R.B, band, sp, n.t, dtiny)
+                                 : minimize2(R.A, R.B, band, n.t, sp, dtiny);
             r.s = wrap_u(r.s, R.A.n);
             r.t = wrap_u(r.t, R.B.n);
             int found = -1;
@@ -1157,7 +1176,8 @@ void compute_minima(Reference& R, int which, ld margin, ld delta) {
                  * a range of parameters, where the minimizer stops anywhere) */
                 const Ev qa = eval(R.A, r.s), qb = eval(R.B, r.t);
                 const RMin& o2 = out[(size_t)m];
-                if (lhypot(qa.x - o2.ax, qa.y - o2.ay) < 1e-9L * R.size && lhypot(qb.x - o2.bx, qb.y - o2.by) < 1e-9L * R.size)
+                if (lhypot(qa.x - o2.ax, qa.y - o2.ay) < 1e-9L * R.size &&
+                    lhypot(qb.x - o2.bx, qb.y - o2.by) < 1e-9L * R.size)
                     found = m;
             }
             if (found < 0) {
@@ -1176,7 +1196,8 @@ void compute_minima(Reference& R, int which, ld margin, ld delta) {
                     if (ds < 2.0L / R.A.K && dt < 2.0L / R.B.K) at_crossing = true;
                 }
                 for (const Region& g : R.regions)
-                    if (in_cyclic(r.s, g.s_lo, g.s_hi, R.A.n) && in_cyclic(r.t, g.t_lo, g.t_hi, R.B.n)) at_crossing = true;
+                    if (in_cyclic(r.s, g.s_lo, g.s_hi, R.A.n) && in_cyclic(r.t, g.t_lo, g.t_hi, R.B.n))
+                        at_crossing = true;
                 m.attached = r.attached || (r.d < 1e-9L * R.size && at_crossing);
                 m.from_b_only = side == 1;
                 const Ev ea = eval(R.A, r.s), eb = eval(R.B, r.t);
@@ -1326,8 +1347,8 @@ bool connected(const Reference& R, bool band, const RMin& m, ld cs, ld ct, ld le
     return true;
 }
 
-void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_contact* cs, int count, int rep_state,
-              Outcome& o) {
+void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_contact* cs, int count,
+              int rep_state, Outcome& o) {
     const ld eps = 1e-12L * R.size;
     const bool band = rule == RULE_BAND;
     const int which = band ? 0 : 1;
@@ -1344,7 +1365,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
     o.anomalies = R.anomalies;
     /* the reference state */
     ld max_depth = 0;
-    for (const Region& g : R.regions) max_depth = std::max(max_depth, g.depth);
+    for (const Region& g : R.regions)
+        max_depth = std::max(max_depth, g.depth);
     bool strict = false, loose = false, any = false;
     for (const RMin& m : mins) {
         if (!m.facing || m.attached) continue;
@@ -1353,7 +1375,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
         loose |= m.phi <= margin + delta + eps;
     }
     ld min_d = R.min_d;
-    for (const RMin& m : R.mins[1]) min_d = std::min(min_d, m.d);
+    for (const RMin& m : R.mins[1])
+        min_d = std::min(min_d, m.d);
     const bool crossing = !R.regions.empty() || R.contained || !R.xs.empty();
     o.ref_state = crossing ? RUGO_STATE_INTERSECTING : any ? RUGO_STATE_CONTACT : RUGO_STATE_APART;
     o.rep_state = rep_state;
@@ -1386,8 +1409,9 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
         const rugo_contact& c = cs[k];
         const ld s = (ld)c.segment_a + (ld)c.t_a, t = (ld)c.segment_b + (ld)c.t_b;
         const Ev ea = eval(R.A, s), eb = eval(R.B, t);
-        o.max_oncurve = std::max(o.max_oncurve, (double)std::max(lhypot((ld)c.point_a.x - ea.x, (ld)c.point_a.y - ea.y),
-                                                                 lhypot((ld)c.point_b.x - eb.x, (ld)c.point_b.y - eb.y)));
+        o.max_oncurve =
+            std::max(o.max_oncurve, (double)std::max(lhypot((ld)c.point_a.x - ea.x, (ld)c.point_a.y - ea.y),
+                                                     lhypot((ld)c.point_b.x - eb.x, (ld)c.point_b.y - eb.y)));
         o.max_lam = std::max(o.max_lam, (double)std::max(std::fabs((ld)c.tolerance_a - lam_at(R.A, s).v),
                                                          std::fabs((ld)c.tolerance_b - lam_at(R.B, t).v)));
         const ld obj_rep = band ? (ld)c.separation - (ld)c.tolerance_a - (ld)c.tolerance_b : (ld)c.separation;
@@ -1418,7 +1442,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
             /* near an overlap region, a touching below the resolution is allowed */
             bool near_region = false;
             for (const Region& rg : R.regions)
-                if (in_cyclic(wrap_u(s, R.A.n), rg.s_lo - 2.0L / K, rg.s_hi + 2.0L / K, R.A.n)) near_region = true;
+                if (in_cyclic(wrap_u(s, R.A.n), rg.s_lo - 2.0L / K, rg.s_hi + 2.0L / K, R.A.n))
+                    near_region = true;
             if (near_region && std::fabs((ld)c.separation) <= delta + eps) continue;
             ++o.spurious;
             note("spurious contact: no minimum under it (separation %.3g, s %.6g)", c.separation, (double)s);
@@ -1441,13 +1466,16 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
         o.max_excess = std::max(o.max_excess, (double)(obj_true - (obj_rep - e)));
         const double na = angle_between(c.normal.x, c.normal.y, m.nx, m.ny);
         o.normal_err.push_back(na);
-        if (std::fabs(e) > delta + eps) note("separation error %.3g (minimum at s = %.9g)", (double)e, (double)m.s);
+        if (std::fabs(e) > delta + eps)
+            note("separation error %.3g (minimum at s = %.9g)", (double)e, (double)m.s);
         if (!m.facing) {
             ++o.spurious;
-            note("spurious contact: its minimum does not face (separation %.3g, s %.6g)", c.separation, (double)m.s);
+            note("spurious contact: its minimum does not face (separation %.3g, s %.6g)", c.separation,
+                 (double)m.s);
         } else if (m.phi > margin + delta + eps && !m.attached) {
             ++o.spurious;
-            note("spurious contact: its minimum is above the threshold by %.3g (s %.6g)", (double)(m.phi - margin), (double)m.s);
+            note("spurious contact: its minimum is above the threshold by %.3g (s %.6g)",
+                 (double)(m.phi - margin), (double)m.s);
         }
         covered[(size_t)mi] = 1;
         /* the normal's bound from δ: the directions along the minimum's δ-stretch, and the tilt an
@@ -1460,7 +1488,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
                 const Node& n = pr.nodes[(size_t)a];
                 const Ev pa = eval(R.A, (ld)n.i / K), pb = eval(R.B, n.t);
                 const ld vx = pb.x - pa.x, vy = pb.y - pa.y;
-                if (lhypot(vx, vy) > 1e-7L * R.size) spread = std::max(spread, angle_between(vx, vy, m.nx, m.ny));
+                if (lhypot(vx, vy) > 1e-7L * R.size)
+                    spread = std::max(spread, angle_between(vx, vy, m.nx, m.ny));
             }
             const double tilt = (double)std::asin(std::min((ld)1, 2 * delta / std::max(m.d, (ld)1e-300)));
             if (na > spread + tilt + 1e-6) ++o.normal_over;
@@ -1483,7 +1512,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
             const double err = (double)std::fabs((ld)cs[best].separation + g.depth);
             o.max_region_err = std::max(o.max_region_err, err);
             o.max_region_normal =
-                std::max(o.max_region_normal, angle_between(cs[best].normal.x, cs[best].normal.y, g.ax - g.bx, g.ay - g.by));
+                std::max(o.max_region_normal,
+                         angle_between(cs[best].normal.x, cs[best].normal.y, g.ax - g.bx, g.ay - g.by));
             if (err > delta + eps) note("overlap depth error %.3g (depth %.3g)", err, (double)g.depth);
         } else {
             bool any_c = !rc.empty();
@@ -1505,7 +1535,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
         if (!m.facing || m.attached || m.phi > margin - delta - eps) continue;
         bool near_overlap = R.contained;
         for (const Region& g : R.regions)
-            if (in_cyclic(m.s, g.s_lo - 4.0L / K - R.reach / R.A.speed_ref, g.s_hi + 4.0L / K + R.reach / R.A.speed_ref, R.A.n))
+            if (in_cyclic(m.s, g.s_lo - 4.0L / K - R.reach / R.A.speed_ref,
+                          g.s_hi + 4.0L / K + R.reach / R.A.speed_ref, R.A.n))
                 near_overlap = true;
         if (near_overlap) {
             ++o.near_overlap;
@@ -1516,7 +1547,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
         stretch(pr, m, m.f + delta + eps, st);
         bool ok = false;
         for (int k = 0; k < count && !ok; ++k)
-            if (cnode[(size_t)k] >= 0 && std::binary_search(st.begin(), st.end(), cnode[(size_t)k])) ok = true;
+            if (cnode[(size_t)k] >= 0 && std::binary_search(st.begin(), st.end(), cnode[(size_t)k]))
+                ok = true;
         /* a contact at the minimum's own points (to 1e-7 of the size, the location a corner's minimum
          * has: the distance is flat in the parameter where the speed vanishes) */
         const ld near = std::max(delta, 1e-7L * R.size);
@@ -1524,8 +1556,8 @@ void evaluate(const Reference& R, int rule, ld delta, ld margin, const rugo_cont
             ok = lhypot((ld)cs[k].point_a.x - m.ax, (ld)cs[k].point_a.y - m.ay) <= near &&
                  lhypot((ld)cs[k].point_b.x - m.bx, (ld)cs[k].point_b.y - m.by) <= near;
         for (int k = 0; k < count && !ok; ++k)
-            ok = connected(R, band, m, (ld)cs[k].segment_a + (ld)cs[k].t_a, (ld)cs[k].segment_b + (ld)cs[k].t_b,
-                           m.f + delta + eps);
+            ok = connected(R, band, m, (ld)cs[k].segment_a + (ld)cs[k].t_a,
+                           (ld)cs[k].segment_b + (ld)cs[k].t_b, m.f + delta + eps);
         if (ok) {
             ++o.via_stretch;
             continue;
@@ -1572,21 +1604,33 @@ bool build_world(World& w) {
         std::vector<rugo_vec2> p = rough_pts(ellipse_pts(32, 0.5, 0.4), 0.004, 11);
         std::vector<double> lam(p.size());
         rugo_tolerances_preset(RUGO_PRESET_TIPO_2, 5, (int)lam.size(), lam.data());
-        for (double& v : lam) v *= 0.06;
+        for (double& v : lam)
+            v *= 0.06;
         ok &= !p.empty() && make_body(b[5], "rough_tipo2", p, &lam);
     }
     {
         std::vector<rugo_vec2> p = rough_pts(bean_pts(32, 0.45), 0.004, 12);
         std::vector<double> lam(p.size());
         rugo_tolerances_preset(RUGO_PRESET_TIPO_5, 0, (int)lam.size(), lam.data());
-        for (double& v : lam) v *= 0.06;
+        for (double& v : lam)
+            v *= 0.06;
         ok &= !p.empty() && make_body(b[6], "rough_tipo5", p, &lam);
     }
     ok &= make_body(b[7], "rbox_a", rbox_pts(64, 1.0, 0.6), nullptr);
     ok &= make_body(b[8], "rbox_b", rbox_pts(64, 0.5, 0.5), nullptr);
-    ok &= make_body(b[9], "triangle_334", sharp_pts({rugo_v2(-0.5, -0.35), rugo_v2(0.5, -0.35), rugo_v2(0.05, 0.45)}, {3, 3, 4}, 18), nullptr);
-    ok &= make_body(b[10], "box_4pt", sharp_pts({rugo_v2(-0.3, -0.2), rugo_v2(0.3, -0.2), rugo_v2(0.3, 0.2), rugo_v2(-0.3, 0.2)}, {4, 4, 4, 4}, 12), nullptr);
-    ok &= make_body(b[11], "box_3pt", sharp_pts({rugo_v2(-0.25, -0.25), rugo_v2(0.25, -0.25), rugo_v2(0.25, 0.25), rugo_v2(-0.25, 0.25)}, {3, 3, 3, 3}, 13), nullptr);
+    ok &= make_body(
+        b[9], "triangle_334",
+        sharp_pts({rugo_v2(-0.5, -0.35), rugo_v2(0.5, -0.35), rugo_v2(0.05, 0.45)}, {3, 3, 4}, 18), nullptr);
+    ok &=
+        make_body(b[10], "box_4pt",
+                  sharp_pts({rugo_v2(-0.3, -0.2), rugo_v2(0.3, -0.2), rugo_v2(0.3, 0.2), rugo_v2(-0.3, 0.2)},
+                            {4, 4, 4, 4}, 12),
+                  nullptr);
+    ok &= make_body(
+        b[11], "box_3pt",
+        sharp_pts({rugo_v2(-0.25, -0.25), rugo_v2(0.25, -0.25), rugo_v2(0.25, 0.25), rugo_v2(-0.25, 0.25)},
+                  {3, 3, 3, 3}, 13),
+        nullptr);
     ok &= make_body(b[12], "disc", disc_pts(64, 0.4), nullptr);
     ok &= make_body(b[13], "bowl_1e-2", bowl_pts(128, 0.4 * (1 + 1e-2)), nullptr);
     ok &= make_body(b[14], "bowl_1e-3", bowl_pts(128, 0.4 * (1 + 1e-3)), nullptr);
@@ -1598,20 +1642,42 @@ bool build_world(World& w) {
     w.bowl_gap[14] = 0.4e-3;
     w.bowl_gap[15] = 0.4e-4;
     w.local.resize(b.size());
-    for (size_t i = 0; i < b.size(); ++i) place_side(w.local[i], b[i], rugo_identity_transform(), 4);
+    for (size_t i = 0; i < b.size(); ++i)
+        place_side(w.local[i], b[i], rugo_identity_transform(), 4);
     w.kinds = {
-        {"ellipse", {{0, 1, 0, 0, MODE_GENERIC}, {1, 0, 0, 0, MODE_GENERIC}, {0, 0, 0, 0, MODE_GENERIC}}, false},
-        {"concave", {{2, 4, 0, 0, MODE_GENERIC}, {3, 4, 0, 0, MODE_GENERIC}, {2, 1, 0, 0, MODE_GENERIC}, {3, 2, 0, 0, MODE_GENERIC}}, false},
+        {"ellipse",
+         {{0, 1, 0, 0, MODE_GENERIC}, {1, 0, 0, 0, MODE_GENERIC}, {0, 0, 0, 0, MODE_GENERIC}},
+         false},
+        {"concave",
+         {{2, 4, 0, 0, MODE_GENERIC},
+          {3, 4, 0, 0, MODE_GENERIC},
+          {2, 1, 0, 0, MODE_GENERIC},
+          {3, 2, 0, 0, MODE_GENERIC}},
+         false},
         {"rough", {{5, 6, 0, 0, MODE_GENERIC}, {6, 5, 0, 0, MODE_GENERIC}, {5, 1, 0, 0, MODE_GENERIC}}, true},
-        {"straight", {{7, 8, 0, 0, MODE_GENERIC}, {8, 1, 0, 0, MODE_GENERIC}, {7, 7, 0, 0, MODE_GENERIC}}, false},
-        {"corners", {{9, 8, 0.6, 0, MODE_GENERIC}, {10, 1, 0.6, 0, MODE_GENERIC}, {11, 9, 0.5, 0.5, MODE_GENERIC}, {9, 10, 0.5, 0.5, MODE_GENERIC}}, false},
-        {"conforming", {{13, 12, 0, 0, MODE_BOWL}, {14, 12, 0, 0, MODE_BOWL}, {15, 12, 0, 0, MODE_BOWL}, {16, 8, 0, 0, MODE_FLAT}, {16, 11, 0, 0, MODE_FLAT}}, false},
+        {"straight",
+         {{7, 8, 0, 0, MODE_GENERIC}, {8, 1, 0, 0, MODE_GENERIC}, {7, 7, 0, 0, MODE_GENERIC}},
+         false},
+        {"corners",
+         {{9, 8, 0.6, 0, MODE_GENERIC},
+          {10, 1, 0.6, 0, MODE_GENERIC},
+          {11, 9, 0.5, 0.5, MODE_GENERIC},
+          {9, 10, 0.5, 0.5, MODE_GENERIC}},
+         false},
+        {"conforming",
+         {{13, 12, 0, 0, MODE_BOWL},
+          {14, 12, 0, 0, MODE_BOWL},
+          {15, 12, 0, 0, MODE_BOWL},
+          {16, 8, 0, 0, MODE_FLAT},
+          {16, 11, 0, 0, MODE_FLAT}},
+         false},
     };
     return true;
 }
 
 void destroy_world(World& w) {
-    for (Body& b : w.bodies) rugo_shape_destroy(b.shape);
+    for (Body& b : w.bodies)
+        rugo_shape_destroy(b.shape);
 }
 
 /* The pose's gap as placing measures it: the smallest band-adjusted distance (facing minima; overlap
@@ -1630,8 +1696,8 @@ ld pose_measure(const Reference& R, bool dist) {
 rugo_rot rot_of(double a) { return rugo_rot_from_angle(a); }
 
 /* A pose of pair p near the target gap g (see the top of this file), placed by the reference alone. */
-bool place_pose(const World& w, const PairSpec& ps, Rng& rng, ld delta, ld margin, ld g, bool dist, rugo_transform* xa,
-                rugo_transform* xb, ld* achieved) {
+bool place_pose(const World& w, const PairSpec& ps, Rng& rng, ld delta, ld margin, ld g, bool dist,
+                rugo_transform* xa, rugo_transform* xb, ld* achieved) {
     const Body& A = w.bodies[(size_t)ps.a];
     const Body& B = w.bodies[(size_t)ps.b];
     const Side& la = w.local[(size_t)ps.a];
@@ -1667,7 +1733,8 @@ bool place_pose(const World& w, const PairSpec& ps, Rng& rng, ld delta, ld margi
                 if (!cv.empty() && rng.uni() < pc) {
                     const Corner& k = *cv[(size_t)rng.below((int)cv.size())];
                     const double wv = rng.range(0.1, 0.9);
-                    const double x = (1 - wv) * k.n_in.x + wv * k.n_out.x, y = (1 - wv) * k.n_in.y + wv * k.n_out.y;
+                    const double x = (1 - wv) * k.n_in.x + wv * k.n_out.x,
+                                 y = (1 - wv) * k.n_in.y + wv * k.n_out.y;
                     const double l = std::hypot(x, y);
                     *u = k.u;
                     *nrm = rugo_v2(x / l, y / l);
@@ -1725,8 +1792,10 @@ struct Cell {
     double delta_rel = 0;
     int rule = 0;
     long poses = 0, failed_place = 0, required = 0, missed = 0, contacts = 0, spurious = 0, via_stretch = 0;
-    long regions = 0, region_missed = 0, shallow_no_contact = 0, state_bad = 0, state_tolerated = 0, normal_over = 0;
-    long unmatched_overlap = 0, anomalies = 0, near_overlap = 0, errors_over = 0, status_errors = 0, by_descent = 0;
+    long regions = 0, region_missed = 0, shallow_no_contact = 0, state_bad = 0, state_tolerated = 0,
+         normal_over = 0;
+    long unmatched_overlap = 0, anomalies = 0, near_overlap = 0, errors_over = 0, status_errors = 0,
+         by_descent = 0;
     std::vector<double> sep, nrm, times;
     double max_excess = 0, max_oncurve = 0, max_lam = 0, max_region_err = 0, max_region_normal = 0;
     double delta_abs_min = 1e300; /* δ of the smallest shape of the kind (for units) */
@@ -1741,19 +1810,20 @@ double quantile(std::vector<double> v, double q) {
 
 double vmax(const std::vector<double>& v) {
     double m = 0;
-    for (double x : v) m = sample_max(m, x);
+    for (double x : v)
+        m = sample_max(m, x);
     return m;
 }
 
 struct Options {
     bool quick = false, verbose = false;
-    int poses = 0;          /* per kind and δ */
+    int poses = 0; /* per kind and δ */
     uint64_t seed = 20;
     std::string kind, out = "out/bench_accuracy";
     double only_delta = -1;
     int only_rule = -1;
-    int ref_check = 0;      /* poses re-run with K = 48 */
-    int only_pose = -1;     /* --pose P: only that pose (the earlier ones are placed, not queried) */
+    int ref_check = 0;  /* poses re-run with K = 48 */
+    int only_pose = -1; /* --pose P: only that pose (the earlier ones are placed, not queried) */
     int K = 16;
 };
 
@@ -1800,7 +1870,8 @@ SelfCheck reference_checks(const World& w, int K) {
         place_side(s, b, rugo_identity_transform(), 2);
         const int n = (int)b.lam.size();
         double lmax = 0;
-        for (double v : b.lam) lmax = std::max(lmax, v);
+        for (double v : b.lam)
+            lmax = std::max(lmax, v);
         for (int k = 0; k < 4000; ++k) {
             const int seg = rng.below(n);
             double t = rng.uni();
@@ -1813,7 +1884,8 @@ SelfCheck reference_checks(const World& w, int K) {
                 const ld hh = 1e-7L, u = (ld)seg + (ld)t;
                 const ld fd = (lam_at(s, u + hh).v - lam_at(s, u - hh).v) / (2 * hh);
                 const Lam l = lam_at(s, u);
-                if (l.v > 1e-3L * lmax) sc.worst_lam_d1 = sample_max(sc.worst_lam_d1, (double)std::fabs(fd - l.d1) / lmax);
+                if (l.v > 1e-3L * lmax)
+                    sc.worst_lam_d1 = sample_max(sc.worst_lam_d1, (double)std::fabs(fd - l.d1) / lmax);
             }
         }
     }
@@ -1839,8 +1911,9 @@ SelfCheck reference_checks(const World& w, int K) {
     const std::vector<rugo_vec2> dp = sym_disc(n, rho);
     Body da, db, dla, dlb, slab;
     std::vector<double> l1((size_t)n, 0.01), l2((size_t)n, 0.02);
-    bool ok = make_body(da, "disc", dp, nullptr) && make_body(db, "disc", dp, nullptr) && make_body(dla, "disc_l01", dp, &l1) &&
-              make_body(dlb, "disc_l02", dp, &l2) && make_body(slab, "slab", rbox_pts(128, 2.0, 0.4), nullptr);
+    bool ok = make_body(da, "disc", dp, nullptr) && make_body(db, "disc", dp, nullptr) &&
+              make_body(dla, "disc_l01", dp, &l1) && make_body(dlb, "disc_l02", dp, &l2) &&
+              make_body(slab, "slab", rbox_pts(128, 2.0, 0.4), nullptr);
     if (!ok) {
         sc.ok = false;
         return sc;
@@ -1864,8 +1937,8 @@ SelfCheck reference_checks(const World& w, int K) {
                         best = m.f;
                         bn = (ld)angle_between(m.nx, m.ny, 1, 0);
                     }
-                std::snprintf(what, sizeof what, "two discs %s gap %g: smallest %s", banded ? "(bands 0.01, 0.02)" : "", g,
-                              banded ? "φ" : "distance");
+                std::snprintf(what, sizeof what, "two discs %s gap %g: smallest %s",
+                              banded ? "(bands 0.01, 0.02)" : "", g, banded ? "φ" : "distance");
                 check_known(what, best, banded ? want - 0.03L : want, 1e-15 * size, sc);
                 sc.worst_normal = sample_max(sc.worst_normal, (double)bn);
                 if (!(bn <= 1e-12)) sc.ok = false;
@@ -1877,15 +1950,18 @@ SelfCheck reference_checks(const World& w, int K) {
                 std::snprintf(what, sizeof what, "two discs overlap %g: depth", -g);
                 if (R.regions.size() != 1) {
                     sc.ok = false;
-                    std::printf("  reference check FAILED: two discs overlap %g: %zu regions\n", -g, R.regions.size());
+                    std::printf("  reference check FAILED: two discs overlap %g: %zu regions\n", -g,
+                                R.regions.size());
                 } else {
                     check_known(what, R.regions[0].depth, -want, 1e-15 * size, sc);
                     sc.worst_normal =
-                        sample_max(sc.worst_normal, angle_between(R.regions[0].ax - R.regions[0].bx, R.regions[0].ay - R.regions[0].by, 1, 0));
+                        sample_max(sc.worst_normal, angle_between(R.regions[0].ax - R.regions[0].bx,
+                                                                  R.regions[0].ay - R.regions[0].by, 1, 0));
                 }
                 if (g == -1e-4 && R.xs.size() != 2) {
                     sc.ok = false;
-                    std::printf("  reference check FAILED: two discs overlap 1e-4: %zu crossings\n", R.xs.size());
+                    std::printf("  reference check FAILED: two discs overlap 1e-4: %zu crossings\n",
+                                R.xs.size());
                 }
             }
         }
@@ -1910,14 +1986,15 @@ SelfCheck reference_checks(const World& w, int K) {
         sc.worst_normal = sample_max(sc.worst_normal, (double)bn);
         if (!(bn <= 1e-12)) sc.ok = false;
     }
-    for (Body* b : {&da, &db, &dla, &dlb, &slab}) rugo_shape_destroy(b->shape);
+    for (Body* b : {&da, &db, &dla, &dlb, &slab})
+        rugo_shape_destroy(b->shape);
     return sc;
 }
 
 /* The reference at K against the reference at 3K on one pose: the minima within the threshold and the
  * overlap depths, matched both ways. Returns the largest difference (length units); counts unmatched. */
-double compare_densities(const Body& a, rugo_transform xa, const Body& b, rugo_transform xb, ld margin, ld delta, int K,
-                         int* unmatched) {
+double compare_densities(const Body& a, rugo_transform xa, const Body& b, rugo_transform xb, ld margin,
+                         ld delta, int K, int* unmatched) {
     Reference r1, r2;
     build_reference(r1, a, xa, b, xb, margin, delta, K);
     build_reference(r2, a, xa, b, xb, margin, delta, 3 * K);
@@ -1930,7 +2007,8 @@ double compare_densities(const Body& a, rugo_transform xa, const Body& b, rugo_t
                 if (!m.facing || m.attached || m.phi > margin) continue;
                 ld best = 1e30L;
                 for (const RMin& x : q) {
-                    if (std::fabs(x.s - m.s) > 2.0L / K && std::fabs(x.s - m.s) < (ld)r1.A.n - 2.0L / K) continue;
+                    if (std::fabs(x.s - m.s) > 2.0L / K && std::fabs(x.s - m.s) < (ld)r1.A.n - 2.0L / K)
+                        continue;
                     best = std::min(best, std::fabs(x.f - m.f));
                 }
                 if (best > 1e-12L * r1.size) {
@@ -1946,7 +2024,8 @@ double compare_densities(const Body& a, rugo_transform xa, const Body& b, rugo_t
         const std::vector<Region>& q = dir == 0 ? r2.regions : r1.regions;
         for (const Region& g : p) {
             ld best = 1e30L;
-            for (const Region& x : q) best = std::min(best, std::fabs(x.depth - g.depth));
+            for (const Region& x : q)
+                best = std::min(best, std::fabs(x.depth - g.depth));
             if (best > 1e-12L * r1.size)
                 ++*unmatched;
             else
@@ -1989,7 +2068,8 @@ void box2d_pose(const Reference& R, ld margin, const polygon_baseline::PolyBody&
         int points = 0;
         const double t0 = now_ns();
         box2d_pairs(PA, ba, PB, bb, pairs);
-        for (const auto& pr : pairs) box2d_collide(PA, ba, PB, bb, pr.first, pr.second, &got, &points);
+        for (const auto& pr : pairs)
+            box2d_collide(PA, ba, PB, bb, pr.first, pr.second, &got, &points);
         best = std::min(best, now_ns() - t0);
     }
     cell.times.push_back(best);
@@ -2026,7 +2106,8 @@ void box2d_pose(const Reference& R, ld margin, const polygon_baseline::PolyBody&
             /* spurious only where the curves are apart beyond the margin there (nearest samples of B to
              * the contact's point on A; the samples are within h of the curve) */
             ld g = 1e30L;
-            for (size_t j = 0; j < R.B.sx.size(); ++j) g = std::min(g, lhypot(R.B.sx[j] - (ld)c.ax, R.B.sy[j] - (ld)c.ay));
+            for (size_t j = 0; j < R.B.sx.size(); ++j)
+                g = std::min(g, lhypot(R.B.sx[j] - (ld)c.ax, R.B.sy[j] - (ld)c.ay));
             if (g > margin + R.B.h + 0.01L * R.size) ++cell.spurious;
         }
     }
@@ -2044,16 +2125,19 @@ void box2d_pose(const Reference& R, ld margin, const polygon_baseline::PolyBody&
 
 /* A reproducer's data (--pose): both shapes' finest control points (and λ per segment) as the shapes hold
  * them, the transforms and the query's lengths, all as %a, into OUTDIR/repro.txt. */
-void write_repro(const std::string& dir, const Body& A, rugo_transform xa, const Body& B, rugo_transform xb, double delta,
-                 double margin) {
+void write_repro(const std::string& dir, const Body& A, rugo_transform xa, const Body& B, rugo_transform xb,
+                 double delta, double margin) {
     const std::string path = dir + "/repro.txt";
     FILE* f = std::fopen(path.c_str(), "w");
     if (!f) return;
-    std::fprintf(f, "# rugo_collide_shapes(A, xa, B, xb, query): lod 0, resolution %a, margin %a (rule as given)\n", delta,
-                 margin);
-    std::fprintf(f, "xa %a %a %a %a\nxb %a %a %a %a\n", xa.p.x, xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y, xb.q.c, xb.q.s);
+    std::fprintf(
+        f, "# rugo_collide_shapes(A, xa, B, xb, query): lod 0, resolution %a, margin %a (rule as given)\n",
+        delta, margin);
+    std::fprintf(f, "xa %a %a %a %a\nxb %a %a %a %a\n", xa.p.x, xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y,
+                 xb.q.c, xb.q.s);
     for (const Body* b : {&A, &B}) {
-        std::fprintf(f, "shape %s %zu points%s\n", b->name.c_str(), b->pts.size(), b->lam.empty() ? "" : " with tolerances");
+        std::fprintf(f, "shape %s %zu points%s\n", b->name.c_str(), b->pts.size(),
+                     b->lam.empty() ? "" : " with tolerances");
         for (size_t i = 0; i < b->pts.size(); ++i) {
             std::fprintf(f, "%a %a", b->pts[i].x, b->pts[i].y);
             if (!b->lam.empty()) std::fprintf(f, " %a", b->lam[i]);
@@ -2073,17 +2157,20 @@ int run(const Options& opt) {
         std::fprintf(stderr, "cannot create %s\n", opt.out.c_str());
         return 2;
     }
-    std::printf("bench_accuracy: %s run, K = %d samples per segment, seed %llu\n", opt.quick ? "quick" : "full", opt.K,
-                (unsigned long long)opt.seed);
+    std::printf("bench_accuracy: %s run, K = %d samples per segment, seed %llu\n",
+                opt.quick ? "quick" : "full", opt.K, (unsigned long long)opt.seed);
     /* the reference's own accuracy */
     const double t0 = now_ns();
     const SelfCheck sc = reference_checks(w, opt.K);
-    std::printf("reference checks (%.1f s): known answers (two discs at gaps 1e-3 .. 1e-12 with and without bands, overlaps 1e-4 "
-                "and 1e-9, a disc over a line at 1e-3 .. 1e-10): worst error %.2e (size ~1.1), normal %.2e rad; λ against "
-                "rugo_tolerance_at %.2e of λ_max, λ' against differences %.2e; points against rugo_contour_point %.2e of the "
+    std::printf("reference checks (%.1f s): known answers (two discs at gaps 1e-3 .. 1e-12 with and without "
+                "bands, overlaps 1e-4 "
+                "and 1e-9, a disc over a line at 1e-3 .. 1e-10): worst error %.2e (size ~1.1), normal %.2e "
+                "rad; λ against "
+                "rugo_tolerance_at %.2e of λ_max, λ' against differences %.2e; points against "
+                "rugo_contour_point %.2e of the "
                 "size: %s\n",
-                (now_ns() - t0) * 1e-9, sc.worst_known, sc.worst_normal, sc.worst_lam, sc.worst_lam_d1, sc.worst_eval,
-                sc.ok ? "ok" : "FAILED");
+                (now_ns() - t0) * 1e-9, sc.worst_known, sc.worst_normal, sc.worst_lam, sc.worst_lam_d1,
+                sc.worst_eval, sc.ok ? "ok" : "FAILED");
     sample_expect("reference known answers and consistency", sc.ok);
     std::vector<Cell> cells;
     auto cell_of = [&](const std::string& kind, double dr, int rule) -> Cell& {
@@ -2099,8 +2186,10 @@ int run(const Options& opt) {
     const std::string pose_csv = opt.out + "/bench_accuracy_poses.csv";
     FILE* pf = std::fopen(pose_csv.c_str(), "w");
     if (!pf) return 2;
-    std::fprintf(pf, "kind,pair_a,pair_b,delta_rel,delta,margin,rule,pose,target,gap,ref_state,rep_state,state_flag,required,missed,"
-                     "contacts,spurious,max_sep_err,max_excess,max_normal_rad,regions,region_missed,max_region_err,time_ns,first_problem,"
+    std::fprintf(pf, "kind,pair_a,pair_b,delta_rel,delta,margin,rule,pose,target,gap,ref_state,rep_state,"
+                     "state_flag,required,missed,"
+                     "contacts,spurious,max_sep_err,max_excess,max_normal_rad,regions,region_missed,max_"
+                     "region_err,time_ns,first_problem,"
                      "xa_px,xa_py,xa_c,xa_s,xb_px,xb_py,xb_c,xb_s\n");
     rugo_collide_context* ctx = nullptr;
     rugo_collide_context_create(nullptr, &ctx);
@@ -2111,7 +2200,8 @@ int run(const Options& opt) {
     const int n_m = opt.quick ? 2 : 4;
     for (size_t i = 0; i < w.bodies.size(); ++i) {
         polys[i].resize((size_t)n_m);
-        for (int k = 0; k < n_m; ++k) polygon_baseline::build_poly(w.bodies[i].pts, kPolyM[k], true, polys[i][(size_t)k]);
+        for (int k = 0; k < n_m; ++k)
+            polygon_baseline::build_poly(w.bodies[i].pts, kPolyM[k], true, polys[i][(size_t)k]);
     }
     std::vector<BoxCell> bcells;
     auto bcell_of = [&](const std::string& kind, int m) -> BoxCell& {
@@ -2152,7 +2242,8 @@ int run(const Options& opt) {
                 rugo_transform xa, xb;
                 ld achieved = 0;
                 if (!place_pose(w, ps, rng, delta, margin, g, dist, &xa, &xb, &achieved)) {
-                    for (int rule = 0; rule < 2; ++rule) cell_of(kind.name, kDeltas[di], rule).failed_place++;
+                    for (int rule = 0; rule < 2; ++rule)
+                        cell_of(kind.name, kDeltas[di], rule).failed_place++;
                     continue;
                 }
                 if (opt.only_pose >= 0 && p != opt.only_pose) continue;
@@ -2161,11 +2252,13 @@ int run(const Options& opt) {
                 build_reference(R, A, xa, B, xb, margin, delta, opt.K);
                 if (opt.ref_check > 0 && p < opt.ref_check) {
                     int um = 0;
-                    ref_worst = std::max(ref_worst, compare_densities(A, xa, B, xb, margin, delta, opt.K, &um));
+                    ref_worst =
+                        std::max(ref_worst, compare_densities(A, xa, B, xb, margin, delta, opt.K, &um));
                     ref_unmatched += um;
                     ++ref_checked;
                     if (um > 0 && opt.verbose)
-                        std::printf("  K check: %s pose %d delta %g: %d unmatched\n", kind.name.c_str(), p, kDeltas[di], um);
+                        std::printf("  K check: %s pose %d delta %g: %d unmatched\n", kind.name.c_str(), p,
+                                    kDeltas[di], um);
                 }
 #ifdef RUGO_BENCH_WITH_BOX2D
                 if (kDeltas[di] == 1e-3)
@@ -2206,7 +2299,8 @@ int run(const Options& opt) {
                         o.first = std::string("query error: ") + rugo_status_string(st);
                     }
                     evaluate(R, rule, delta, margin, buf.data(), out.count, out.state, o);
-                    if (out.stats.contacts_found > out.capacity && o.first.empty()) o.first = "contacts beyond capacity";
+                    if (out.stats.contacts_found > out.capacity && o.first.empty())
+                        o.first = "contacts beyond capacity";
                     const double unit = delta > 0 ? delta : msize;
                     ++cell.poses;
                     cell.required += o.required;
@@ -2230,7 +2324,8 @@ int run(const Options& opt) {
                         mse = std::max(mse, e);
                         if (e > delta + 1e-12 * msize) ++cell.errors_over;
                     }
-                    for (double a : o.normal_err) cell.nrm.push_back(a);
+                    for (double a : o.normal_err)
+                        cell.nrm.push_back(a);
                     cell.times.push_back(o.time_ns);
                     cell.max_excess = sample_max(cell.max_excess, o.max_excess / unit);
                     cell.max_oncurve = sample_max(cell.max_oncurve, o.max_oncurve / unit);
@@ -2241,95 +2336,120 @@ int run(const Options& opt) {
                     std::string first = o.first;
                     for (char& ch : first)
                         if (ch == ',') ch = ';';
-                    std::fprintf(pf, "%s,%s,%s,%g,%a,%a,%s,%d,%s,%a,%s,%s,%s,%d,%d,%d,%d,%.3e,%.3e,%.3e,%d,%d,%.3e,%.0f,%s,%a,%a,%a,%a,%a,%a,%a,%a\n",
-                                 kind.name.c_str(), A.name.c_str(), B.name.c_str(), kDeltas[di], delta, margin,
-                                 rule == 0 ? "band" : "thesis", p, dist ? "dist" : "phi", (double)achieved, state_name(o.ref_state),
-                                 state_name(o.rep_state), flag, o.required, o.missed, o.contacts, o.spurious, mse, o.max_excess,
-                                 vmax(o.normal_err), o.regions, o.region_missed, o.max_region_err, o.time_ns, first.c_str(), xa.p.x,
-                                 xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y, xb.q.c, xb.q.s);
+                    std::fprintf(pf,
+                                 "%s,%s,%s,%g,%a,%a,%s,%d,%s,%a,%s,%s,%s,%d,%d,%d,%d,%.3e,%.3e,%.3e,%d,%d,%."
+                                 "3e,%.0f,%s,%a,%a,%a,%a,%a,%a,%a,%a\n",
+                                 kind.name.c_str(), A.name.c_str(), B.name.c_str(), kDeltas[di], delta,
+                                 margin, rule == 0 ? "band" : "thesis", p, dist ? "dist" : "phi",
+                                 (double)achieved, state_name(o.ref_state), state_name(o.rep_state), flag,
+                                 o.required, o.missed, o.contacts, o.spurious, mse, o.max_excess,
+                                 vmax(o.normal_err), o.regions, o.region_missed, o.max_region_err, o.time_ns,
+                                 first.c_str(), xa.p.x, xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y, xb.q.c,
+                                 xb.q.s);
                     if (opt.verbose && !o.first.empty())
-                        std::printf("  %s %s/%s delta %g %s pose %d: %s\n", kind.name.c_str(), A.name.c_str(), B.name.c_str(),
-                                    kDeltas[di], rule == 0 ? "band" : "thesis", p, o.first.c_str());
+                        std::printf("  %s %s/%s delta %g %s pose %d: %s\n", kind.name.c_str(), A.name.c_str(),
+                                    B.name.c_str(), kDeltas[di], rule == 0 ? "band" : "thesis", p,
+                                    o.first.c_str());
                     if (opt.verbose && !o.first.empty()) {
-                        std::printf("    state %s (reference %s); xa %a %a %a %a xb %a %a %a %a\n", state_name(out.state),
-                                    state_name(o.ref_state), xa.p.x, xa.p.y, xa.q.c, xa.q.s, xb.p.x, xb.p.y, xb.q.c, xb.q.s);
+                        std::printf("    state %s (reference %s); xa %a %a %a %a xb %a %a %a %a\n",
+                                    state_name(out.state), state_name(o.ref_state), xa.p.x, xa.p.y, xa.q.c,
+                                    xa.q.s, xb.p.x, xb.p.y, xb.q.c, xb.q.s);
                         for (int k = 0; k < out.count; ++k)
-                            std::printf("    contact %d: s %.9f t %.9f separation %.9g band-adjusted %.9g region %d\n", k,
-                                        buf[(size_t)k].segment_a + buf[(size_t)k].t_a, buf[(size_t)k].segment_b + buf[(size_t)k].t_b,
+                            std::printf("    contact %d: s %.9f t %.9f separation %.9g band-adjusted %.9g "
+                                        "region %d\n",
+                                        k, buf[(size_t)k].segment_a + buf[(size_t)k].t_a,
+                                        buf[(size_t)k].segment_b + buf[(size_t)k].t_b,
                                         buf[(size_t)k].separation,
-                                        buf[(size_t)k].separation - buf[(size_t)k].tolerance_a - buf[(size_t)k].tolerance_b,
+                                        buf[(size_t)k].separation - buf[(size_t)k].tolerance_a -
+                                            buf[(size_t)k].tolerance_b,
                                         buf[(size_t)k].region);
                         const int which = (rule == RULE_BAND) ? 0 : 1;
                         for (const RMin& m : R.mins[which])
                             if (m.facing && !m.attached && m.phi <= margin)
-                                std::printf("    reference minimum: s %.9f t %.9f objective %.9g\n", (double)m.s, (double)m.t,
-                                            (double)m.f);
+                                std::printf("    reference minimum: s %.9f t %.9f objective %.9g\n",
+                                            (double)m.s, (double)m.t, (double)m.f);
                     }
                 }
             }
-            std::fprintf(stderr, "  %s delta %g: %d poses in %.1f s\n", kind.name.c_str(), kDeltas[di], opt.poses,
-                         (now_ns() - cell_start) * 1e-9);
+            std::fprintf(stderr, "  %s delta %g: %d poses in %.1f s\n", kind.name.c_str(), kDeltas[di],
+                         opt.poses, (now_ns() - cell_start) * 1e-9);
         }
     }
     std::fclose(pf);
     rugo_collide_context_destroy(ctx);
     if (opt.ref_check > 0)
-        std::printf("reference at K = %d against K = %d on %ld poses: minima and overlap depths agree within %.2e (%d unmatched)\n",
+        std::printf("reference at K = %d against K = %d on %ld poses: minima and overlap depths agree within "
+                    "%.2e (%d unmatched)\n",
                     opt.K, 3 * opt.K, ref_checked, ref_worst, ref_unmatched);
     /* the table */
     const std::string csv = opt.out + "/bench_accuracy.csv";
     FILE* cf = std::fopen(csv.c_str(), "w");
     if (!cf) return 2;
-    std::fprintf(cf, "kind,delta_rel,rule,poses,failed_placements,required,missed,covered_by_stretch,near_overlap,contacts,spurious,"
-                     "sep_err_max,sep_err_p95,sep_err_over_delta,excess_max,normal_max_rad,normal_p95_rad,normal_over_bound,regions,"
-                     "region_missed,shallow_without_contact,region_err_max,region_normal_max_rad,unmatched_overlap_contacts,"
-                     "state_mismatches,state_tolerated,oncurve_max,lambda_err_max,reference_anomalies,time_median_us,query_errors,"
+    std::fprintf(cf, "kind,delta_rel,rule,poses,failed_placements,required,missed,covered_by_stretch,near_"
+                     "overlap,contacts,spurious,"
+                     "sep_err_max,sep_err_p95,sep_err_over_delta,excess_max,normal_max_rad,normal_p95_rad,"
+                     "normal_over_bound,regions,"
+                     "region_missed,shallow_without_contact,region_err_max,region_normal_max_rad,unmatched_"
+                     "overlap_contacts,"
+                     "state_mismatches,state_tolerated,oncurve_max,lambda_err_max,reference_anomalies,time_"
+                     "median_us,query_errors,"
                      "minima_by_descent\n");
-    std::printf("\nErrors in units of δ (δ = 0: of the smaller shape's size); normals in radians; times: median per query.\n");
-    std::printf("%-10s %6s %6s %5s %5s %6s %5s %6s %9s %9s %5s %9s %8s %8s %5s %5s %9s %6s %8s\n", "kind", "δ", "rule", "poses",
-                "req", "missed", "spur", "cont", "sep max", "sep p95", ">δ", "excess", "nrm max", "nrm p95", "regs", "rmiss",
-                "depth err", "states", "µs");
+    std::printf("\nErrors in units of δ (δ = 0: of the smaller shape's size); normals in radians; times: "
+                "median per query.\n");
+    std::printf("%-10s %6s %6s %5s %5s %6s %5s %6s %9s %9s %5s %9s %8s %8s %5s %5s %9s %6s %8s\n", "kind",
+                "δ", "rule", "poses", "req", "missed", "spur", "cont", "sep max", "sep p95", ">δ", "excess",
+                "nrm max", "nrm p95", "regs", "rmiss", "depth err", "states", "µs");
     bool fail = false;
     for (const Cell& c : cells) {
         const double tmed = quantile(c.times, 0.5) * 1e-3;
-        std::fprintf(cf, "%s,%g,%s,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.3e,%.3e,%ld,%.3e,%.3e,%.3e,%ld,%ld,%ld,%ld,%.3e,%.3e,%ld,%ld,%ld,%.3e,%.3e,%ld,%.2f,%ld,%ld\n",
-                     c.kind.c_str(), c.delta_rel, c.rule == 0 ? "band" : "thesis", c.poses, c.failed_place, c.required, c.missed,
-                     c.via_stretch, c.near_overlap, c.contacts, c.spurious, vmax(c.sep), quantile(c.sep, 0.95), c.errors_over,
-                     c.max_excess, vmax(c.nrm), quantile(c.nrm, 0.95), c.normal_over, c.regions, c.region_missed,
-                     c.shallow_no_contact, c.max_region_err, c.max_region_normal, c.unmatched_overlap, c.state_bad, c.state_tolerated,
-                     c.max_oncurve, c.max_lam, c.anomalies, tmed, c.status_errors, c.by_descent);
-        std::printf("%-10s %6g %6s %5ld %5ld %6ld %5ld %6ld %9.3g %9.3g %5ld %9.3g %8.2g %8.2g %5ld %5ld %9.3g %6ld %8.1f\n",
-                    c.kind.c_str(), c.delta_rel, c.rule == 0 ? "band" : "thesis", c.poses, c.required, c.missed, c.spurious,
-                    c.contacts, vmax(c.sep), quantile(c.sep, 0.95), c.errors_over, c.max_excess, vmax(c.nrm), quantile(c.nrm, 0.95),
-                    c.regions, c.region_missed + c.shallow_no_contact, c.max_region_err, c.state_bad, tmed);
+        std::fprintf(cf,
+                     "%s,%g,%s,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%.3e,%.3e,%ld,%.3e,%.3e,%.3e,%ld,%ld,%ld,%ld,%"
+                     ".3e,%.3e,%ld,%ld,%ld,%.3e,%.3e,%ld,%.2f,%ld,%ld\n",
+                     c.kind.c_str(), c.delta_rel, c.rule == 0 ? "band" : "thesis", c.poses, c.failed_place,
+                     c.required, c.missed, c.via_stretch, c.near_overlap, c.contacts, c.spurious, vmax(c.sep),
+                     quantile(c.sep, 0.95), c.errors_over, c.max_excess, vmax(c.nrm), quantile(c.nrm, 0.95),
+                     c.normal_over, c.regions, c.region_missed, c.shallow_no_contact, c.max_region_err,
+                     c.max_region_normal, c.unmatched_overlap, c.state_bad, c.state_tolerated, c.max_oncurve,
+                     c.max_lam, c.anomalies, tmed, c.status_errors, c.by_descent);
+        std::printf("%-10s %6g %6s %5ld %5ld %6ld %5ld %6ld %9.3g %9.3g %5ld %9.3g %8.2g %8.2g %5ld %5ld "
+                    "%9.3g %6ld %8.1f\n",
+                    c.kind.c_str(), c.delta_rel, c.rule == 0 ? "band" : "thesis", c.poses, c.required,
+                    c.missed, c.spurious, c.contacts, vmax(c.sep), quantile(c.sep, 0.95), c.errors_over,
+                    c.max_excess, vmax(c.nrm), quantile(c.nrm, 0.95), c.regions,
+                    c.region_missed + c.shallow_no_contact, c.max_region_err, c.state_bad, tmed);
         if (c.missed > 0 || c.errors_over > 0 || c.status_errors > 0) fail = true;
     }
     std::fclose(cf);
-    std::printf("(%s and %s written; %.1f s)\n", csv.c_str(), pose_csv.c_str(), (now_ns() - run_start) * 1e-9);
+    std::printf("(%s and %s written; %.1f s)\n", csv.c_str(), pose_csv.c_str(),
+                (now_ns() - run_start) * 1e-9);
 #ifdef RUGO_BENCH_WITH_BOX2D
     {
         const std::string bcsv = opt.out + "/bench_accuracy_box2d.csv";
         FILE* bf = std::fopen(bcsv.c_str(), "w");
         if (!bf) return 2;
-        std::fprintf(bf, "kind,m,poses,unbuilt,targets,missed,spurious,sep_err_max,sep_err_p95,normal_max_rad,normal_p95_rad,"
+        std::fprintf(bf, "kind,m,poses,unbuilt,targets,missed,spurious,sep_err_max,sep_err_p95,normal_max_"
+                         "rad,normal_p95_rad,"
                          "time_median_us\n");
-        std::printf("\nBox2D 2.4.1 polygon compounds of the same outlines (m vertices) on the δ = 1e-3 poses, against the "
+        std::printf("\nBox2D 2.4.1 polygon compounds of the same outlines (m vertices) on the δ = 1e-3 "
+                    "poses, against the "
                     "curve distance; errors in units of the smaller shape's size\n");
-        std::printf("%-10s %5s %5s %5s %6s %5s %9s %9s %8s %8s %8s\n", "kind", "m", "poses", "req", "missed", "spur",
-                    "sep max", "sep p95", "nrm max", "nrm p95", "µs");
+        std::printf("%-10s %5s %5s %5s %6s %5s %9s %9s %8s %8s %8s\n", "kind", "m", "poses", "req", "missed",
+                    "spur", "sep max", "sep p95", "nrm max", "nrm p95", "µs");
         for (const BoxCell& c : bcells) {
             const double tmed = quantile(c.times, 0.5) * 1e-3;
-            std::fprintf(bf, "%s,%d,%ld,%ld,%ld,%ld,%ld,%.3e,%.3e,%.3e,%.3e,%.2f\n", c.kind.c_str(), c.m, c.poses, c.unbuilt,
-                         c.targets, c.missed, c.spurious, vmax(c.sep), quantile(c.sep, 0.95), vmax(c.nrm),
-                         quantile(c.nrm, 0.95), tmed);
-            std::printf("%-10s %5d %5ld %5ld %6ld %5ld %9.3g %9.3g %8.2g %8.2g %8.1f%s\n", c.kind.c_str(), c.m, c.poses,
-                        c.targets, c.missed, c.spurious, vmax(c.sep), quantile(c.sep, 0.95), vmax(c.nrm), quantile(c.nrm, 0.95),
-                        tmed, c.unbuilt ? " (some outlines not decomposed)" : "");
+            std::fprintf(bf, "%s,%d,%ld,%ld,%ld,%ld,%ld,%.3e,%.3e,%.3e,%.3e,%.2f\n", c.kind.c_str(), c.m,
+                         c.poses, c.unbuilt, c.targets, c.missed, c.spurious, vmax(c.sep),
+                         quantile(c.sep, 0.95), vmax(c.nrm), quantile(c.nrm, 0.95), tmed);
+            std::printf("%-10s %5d %5ld %5ld %6ld %5ld %9.3g %9.3g %8.2g %8.2g %8.1f%s\n", c.kind.c_str(),
+                        c.m, c.poses, c.targets, c.missed, c.spurious, vmax(c.sep), quantile(c.sep, 0.95),
+                        vmax(c.nrm), quantile(c.nrm, 0.95), tmed,
+                        c.unbuilt ? " (some outlines not decomposed)" : "");
         }
         std::fclose(bf);
     }
 #endif
-    if (opt.quick || opt.only_pose >= 0) sample_expect("no missed minimum and no separation error above δ", !fail);
+    if (opt.quick || opt.only_pose >= 0)
+        sample_expect("no missed minimum and no separation error above δ", !fail);
     destroy_world(w);
     return sample_finish();
 }

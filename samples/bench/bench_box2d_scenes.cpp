@@ -40,9 +40,9 @@
 // Default: N = 16, 64, 256, 1024 at S = 64, and S = 32, 64, 128, 512 at N = 256 (--grid: every pair);
 // 300 steps of which 60 warm-up (--steps-large K: K steps for N >= 1024 or S >= 512; warm-up at most
 // half the steps). --max-n caps N; --variants picks a(uto), f(inest), p(olygon), c(ircle); --repeat
-// keeps the best time of R runs, the variants' runs alternating. --max-proxies and --no-ccd change the bridge's proxy cap
-// (BridgeDef::maxProxies) and Box2D's continuous collision for an experiment; --reuse D sets
-// BridgeDef::reuseDistance (metres; 0: query every step) and --resolution F BridgeDef::queryResolution
+// keeps the best time of R runs, the variants' runs alternating. --max-proxies and --no-ccd change the
+// bridge's proxy cap (BridgeDef::maxProxies) and Box2D's continuous collision for an experiment; --reuse D
+// sets BridgeDef::reuseDistance (metres; 0: query every step) and --resolution F BridgeDef::queryResolution
 // (a fraction of the error budget; 0: round-off); --alloc-trace prints
 // the callers of the counted allocations; --verbose each new worst level-of-detail pair.
 // --quick (the test suite): N = 16, S = 32, 60 steps; checks that every variant runs, stays in the
@@ -193,36 +193,36 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept { __libc_free(p)
 namespace {
 
 // The scene: the scene table's "rock_pile" (pile_scene.hpp).
+using pile::kAuto;
 using pile::kBudget;
+using pile::kCircle;
+using pile::kFinest;
+using pile::kPolygon;
 using pile::kPosIt;
 using pile::kRadius;
 using pile::kShapes;
+using pile::kVariantName;
+using pile::kVariants;
 using pile::kVelIt;
 using pile::Layout;
 using pile::ShapeSet;
 using pile::Variant;
-using pile::kAuto;
-using pile::kCircle;
-using pile::kFinest;
-using pile::kPolygon;
-using pile::kVariantName;
-using pile::kVariants;
 const char kVariantLetter[kVariants] = {'a', 'f', 'p', 'c'};
 
 struct Stats {
-    double ms = 0.0;             // per timed step
-    double allocOwn = -1.0;      // per timed step (-1: not counted)
+    double ms = 0.0;        // per timed step
+    double allocOwn = -1.0; // per timed step (-1: not counted)
     double allocBox2d = -1.0;
     long stepsWithOwnAlloc = 0;
-    double contacts = 0.0;       // touching, enabled b2Contacts, mean over timed steps
-    double worldContacts = 0.0;  // every b2Contact in the world (fat AABBs overlapping), mean
-    double points = 0.0;         // manifold points, mean
+    double contacts = 0.0;      // touching, enabled b2Contacts, mean over timed steps
+    double worldContacts = 0.0; // every b2Contact in the world (fat AABBs overlapping), mean
+    double points = 0.0;        // manifold points, mean
     std::size_t bytesPerBody = 0, bytesPerShape = 0;
-    int proxies = 0;             // per body: proxies (bridge) or pieces (polygon) or 1
-    int level = -1;              // bridge: mean absolute contact level (rounded), -1 otherwise
-    double maxBudgetRatio = -1.0; // auto only: max |s_auto - s_finest| / (budget_A + budget_B)
+    int proxies = 0;                     // per body: proxies (bridge) or pieces (polygon) or 1
+    int level = -1;                      // bridge: mean absolute contact level (rounded), -1 otherwise
+    double maxBudgetRatio = -1.0;        // auto only: max |s_auto - s_finest| / (budget_A + budget_B)
     double maxBudgetRatioShallow = -1.0; // the same over pairs whose finest-level penetration is <= 1 cm
-    double maxBudgetDiff = 0.0;   // m
+    double maxBudgetDiff = 0.0;          // m
     // Pairs whose curves are apart at both levels (CONTACT): the band gap, the smallest
     // |a - b| - λ_A - λ_B over dense samples near the contacts, at the auto level against the finest,
     // relative to the budget (the quantity rugo_shape_level_error certifies), and how far the reported
@@ -231,9 +231,9 @@ struct Stats {
     double maxContactAboveGap = 0.0;
     long gapPairs = 0;
     long budgetPairs = 0, overBudget = 0;
-    double deepest = 0.0;         // m: deepest manifold penetration of a touching contact, timed steps
-    double keFinal = 0.0;        // J, kinetic energy at the end (settling)
-    std::uint64_t hash = 0;      // FNV-1a of every body's final position and angle (float bits)
+    double deepest = 0.0;   // m: deepest manifold penetration of a touching contact, timed steps
+    double keFinal = 0.0;   // J, kinetic energy at the end (settling)
+    std::uint64_t hash = 0; // FNV-1a of every body's final position and angle (float bits)
     bool contained = true;
     rugo::BridgeStats bs;
 };
@@ -250,9 +250,10 @@ rugo_transform ToRugo(const b2Transform& x) {
 
 // The deepest band-adjusted separation between a rough body and another rough body / a box, at a
 // relative level; margin so that apart pairs still report their closest points. false: no contact.
-bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2Transform& xa, const rugo_shape* b,
-                       const b2Transform& xb, const b2PolygonShape* box, int level, std::vector<rugo_contact>* buf, double* s,
-                       rugo_contact_state* stateOut, int* countOut) {
+bool DeepestSeparation(rugo_collide_context* ctx, const rugo_shape* a, const b2Transform& xa,
+                       const rugo_shape* b, const b2Transform& xb, const b2PolygonShape* box, int level,
+                       std::vector<rugo_contact>* buf, double* s, rugo_contact_state* stateOut,
+                       int* countOut) {
     rugo_contact_query q = rugo_default_contact_query();
     q.lod = level;
     q.margin = 0.05;
@@ -350,7 +351,8 @@ double BandGap(const rugo_shape* a, const b2Transform& xa, const rugo_shape* b, 
         ga.x = ToRugo(xa);
         GapSamples(ga, k.segment_a, &pa, &la);
         if (box) {
-            for (size_t u = 0; u < pa.size(); ++u) gap = std::min(gap, SignedDistanceToBox(pa[u], *box, xb) - la[u]);
+            for (size_t u = 0; u < pa.size(); ++u)
+                gap = std::min(gap, SignedDistanceToBox(pa[u], *box, xb) - la[u]);
             continue;
         }
         GapSide gb;
@@ -381,15 +383,16 @@ struct Options {
     int warmup = 60, repeat = 1, maxN = 1 << 30, stepsLarge = 0;
     int checkEvery = 30;
     std::string variants = "afpc";
-    int maxProxies = 0;          // BridgeDef::maxProxies override (0: the default)
-    double reuse = -1.0;         // BridgeDef::reuseDistance override (< 0: the default)
-    double resolution = -1.0;    // BridgeDef::queryResolution override (< 0: the default)
-    bool continuous = true;      // b2World::SetContinuousPhysics
+    int maxProxies = 0;       // BridgeDef::maxProxies override (0: the default)
+    double reuse = -1.0;      // BridgeDef::reuseDistance override (< 0: the default)
+    double resolution = -1.0; // BridgeDef::queryResolution override (< 0: the default)
+    bool continuous = true;   // b2World::SetContinuousPhysics
     bool allocTrace = false;
     bool verbose = false;
 };
 
-Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, const Options& opt, int steps, int warmup) {
+Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, const Options& opt, int steps,
+               int warmup) {
     Stats st;
     scene_table::Args args;
     args.variant = var;
@@ -412,7 +415,8 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
     b2World* const world = run.world.get();
     if (bridge) {
         long levelSum = 0;
-        for (const b2Body* b : bodies) levelSum += bridge->GetLevel(b);
+        for (const b2Body* b : bodies)
+            levelSum += bridge->GetLevel(b);
         st.level = static_cast<int>(std::lround(static_cast<double>(levelSum) / n));
     }
 
@@ -436,13 +440,15 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
                 }
         st.bytesPerShape = shared / kShapes;
     } else {
-        // Box2D clones every fixture's shape: nothing is shared; per fixture as the bridge counts its proxies.
+        // Box2D clones every fixture's shape: nothing is shared; per fixture as the bridge counts its
+        // proxies.
         const std::size_t perFixture = sizeof(b2Fixture) + sizeof(b2FixtureProxy) + sizeof(b2TreeNode);
         std::size_t bytes = 0;
         int fx = 0;
         for (const b2Body* b : bodies)
             for (const b2Fixture* f = b->GetFixtureList(); f; f = f->GetNext()) {
-                bytes += perFixture + (f->GetType() == b2Shape::e_circle ? sizeof(b2CircleShape) : sizeof(b2PolygonShape));
+                bytes += perFixture +
+                         (f->GetType() == b2Shape::e_circle ? sizeof(b2CircleShape) : sizeof(b2PolygonShape));
                 ++fx;
             }
         st.bytesPerBody = bytes / static_cast<std::size_t>(n);
@@ -482,7 +488,8 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
         // Level-of-detail error check (auto only; outside the timed and counted window): for every body
         // pair with a submitted contact, the deepest band-adjusted separation at the pair's level against
         // the same at the finest level, same poses.
-        if (var == kAuto && opt.checkEvery > 0 && ((step - warmup) % opt.checkEvery == 0 || step == steps - 1)) {
+        if (var == kAuto && opt.checkEvery > 0 &&
+            ((step - warmup) % opt.checkEvery == 0 || step == steps - 1)) {
             std::set<std::pair<const void*, const void*>> done;
             for (b2Contact* c = world->GetContactList(); c; c = c->GetNext()) {
                 if (!c->IsTouching() || !c->IsEnabled()) continue;
@@ -493,29 +500,38 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
                 const b2Body* A = ra ? fa->GetBody() : fb->GetBody();
                 const b2Fixture* other = ra ? fb : fa;
                 const bool bothRough = ra && rb;
-                const void* key2 = bothRough ? static_cast<const void*>(other->GetBody()) : static_cast<const void*>(other);
+                const void* key2 =
+                    bothRough ? static_cast<const void*>(other->GetBody()) : static_cast<const void*>(other);
                 std::pair<const void*, const void*> key(A, key2);
                 if (bothRough && key.second < key.first) std::swap(key.first, key.second);
                 if (!done.insert(key).second) continue;
                 const rugo_shape* sa = bridge->GetShape(A);
                 const int relA = bridge->GetLevel(A) - rugo_shape_finest_level(sa);
                 const rugo_shape* sb = bothRough ? bridge->GetShape(other->GetBody()) : nullptr;
-                const int rel = bothRough ? std::max(relA, bridge->GetLevel(other->GetBody()) - rugo_shape_finest_level(sb)) : relA;
-                const b2PolygonShape* box = bothRough ? nullptr : static_cast<const b2PolygonShape*>(other->GetShape());
+                const int rel =
+                    bothRough
+                        ? std::max(relA, bridge->GetLevel(other->GetBody()) - rugo_shape_finest_level(sb))
+                        : relA;
+                const b2PolygonShape* box =
+                    bothRough ? nullptr : static_cast<const b2PolygonShape*>(other->GetShape());
                 double sAuto = 0.0, sFine = 0.0;
                 rugo_contact_state stAuto = RUGO_STATE_APART, stFine = RUGO_STATE_APART;
                 int nAuto = 0, nFine = 0;
                 const b2Transform& xa = A->GetTransform();
                 const b2Transform& xo = other->GetBody()->GetTransform();
-                if (!DeepestSeparation(ctx, sa, xa, sb, xo, box, rel, &buf, &sAuto, &stAuto, &nAuto)) continue;
-                const double gapAuto = stAuto == RUGO_STATE_CONTACT ? BandGap(sa, xa, sb, xo, box, buf, nAuto) : 0.0;
+                if (!DeepestSeparation(ctx, sa, xa, sb, xo, box, rel, &buf, &sAuto, &stAuto, &nAuto))
+                    continue;
+                const double gapAuto =
+                    stAuto == RUGO_STATE_CONTACT ? BandGap(sa, xa, sb, xo, box, buf, nAuto) : 0.0;
                 if (!DeepestSeparation(ctx, sa, xa, sb, xo, box, 0, &buf, &sFine, &stFine, &nFine)) continue;
                 if (stAuto == RUGO_STATE_CONTACT && stFine == RUGO_STATE_CONTACT) {
                     const double gapFine = BandGap(sa, xa, sb, xo, box, buf, nFine);
                     const double ratio = std::fabs(gapAuto - gapFine) / (bothRough ? 2.0 * kBudget : kBudget);
                     if (ratio > st.maxGapRatio && opt.verbose)
-                        std::fprintf(stderr, "gap check step %d: %s pair, level %d: gap_auto %.5f m, gap_finest %.5f m\n", step,
-                                     bothRough ? "rough-rough" : "rough-box", rel, gapAuto, gapFine);
+                        std::fprintf(
+                            stderr,
+                            "gap check step %d: %s pair, level %d: gap_auto %.5f m, gap_finest %.5f m\n",
+                            step, bothRough ? "rough-rough" : "rough-box", rel, gapAuto, gapFine);
                     st.maxGapRatio = std::max(st.maxGapRatio, ratio);
                     st.maxContactAboveGap = std::max(st.maxContactAboveGap, sFine - gapFine);
                     ++st.gapPairs;
@@ -523,9 +539,11 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
                 const double allowed = bothRough ? 2.0 * kBudget : kBudget;
                 const double diff = std::fabs(sAuto - sFine);
                 if (diff / allowed > st.maxBudgetRatio && opt.verbose)
-                    std::fprintf(stderr, "lod check step %d: %s pair, level %d: s_auto %.5f m (%s), s_finest %.5f m (%s)\n", step,
-                                 bothRough ? "rough-rough" : "rough-box", rel, sAuto, rugo_contact_state_name(stAuto), sFine,
-                                 rugo_contact_state_name(stFine));
+                    std::fprintf(
+                        stderr,
+                        "lod check step %d: %s pair, level %d: s_auto %.5f m (%s), s_finest %.5f m (%s)\n",
+                        step, bothRough ? "rough-rough" : "rough-box", rel, sAuto,
+                        rugo_contact_state_name(stAuto), sFine, rugo_contact_state_name(stFine));
                 st.maxBudgetDiff = std::max(st.maxBudgetDiff, diff);
                 st.maxBudgetRatio = std::max(st.maxBudgetRatio, diff / allowed);
                 // Deep overlaps (a pile's bodies pushed into each other) have no well-defined "deepest
@@ -549,8 +567,11 @@ Stats RunScene(Variant var, int n, const std::shared_ptr<const ShapeSet>& set, c
     for (const b2Body* b : bodies) {
         const b2Vec2 p = b->GetWorldCenter(), v = b->GetLinearVelocity();
         const double w = b->GetAngularVelocity();
-        st.keFinal += 0.5 * b->GetMass() * (v.x * v.x + v.y * v.y) + 0.5 * (b->GetInertia() - b->GetMass() * b2Dot(b->GetLocalCenter(), b->GetLocalCenter())) * w * w;
-        if (std::fabs(p.x) > L.halfWidth + 0.05 || p.y < -0.05 || !std::isfinite(p.x) || !std::isfinite(p.y)) st.contained = false;
+        st.keFinal +=
+            0.5 * b->GetMass() * (v.x * v.x + v.y * v.y) +
+            0.5 * (b->GetInertia() - b->GetMass() * b2Dot(b->GetLocalCenter(), b->GetLocalCenter())) * w * w;
+        if (std::fabs(p.x) > L.halfWidth + 0.05 || p.y < -0.05 || !std::isfinite(p.x) || !std::isfinite(p.y))
+            st.contained = false;
     }
     st.hash = scene_table::HashBodies(SAMPLE_FNV_OFFSET, run);
     if (bridge) st.bs = bridge->GetStats();
@@ -655,11 +676,13 @@ int main(int argc, char** argv) {
         else if (a[0] != '-' && outDir.empty())
             outDir = a;
         else {
-            std::fprintf(stderr, "usage: %s [--quick] [--n LIST] [--s LIST] [--grid] [--steps K] [--warmup W] [--repeat R]\n"
-                                 "          [--max-n CAP] [--steps-large K] [--variants afpc] [--check-every K]\n"
-                                 "          [--max-proxies P] [--reuse D] [--resolution F] [--no-ccd] [--alloc-trace]\n"
-                                 "          [--verbose] [OUTDIR]\n",
-                         argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s [--quick] [--n LIST] [--s LIST] [--grid] [--steps K] [--warmup W] [--repeat R]\n"
+                "          [--max-n CAP] [--steps-large K] [--variants afpc] [--check-every K]\n"
+                "          [--max-proxies P] [--reuse D] [--resolution F] [--no-ccd] [--alloc-trace]\n"
+                "          [--verbose] [OUTDIR]\n",
+                argv[0]);
             return 2;
         }
     }
@@ -686,7 +709,8 @@ int main(int argc, char** argv) {
     std::vector<std::pair<int, int>> configs;
     auto add = [&](int n, int s) {
         if (n < 1 || s < 8 || n > opt.maxN) return;
-        if (std::find(configs.begin(), configs.end(), std::make_pair(n, s)) == configs.end()) configs.emplace_back(n, s);
+        if (std::find(configs.begin(), configs.end(), std::make_pair(n, s)) == configs.end())
+            configs.emplace_back(n, s);
     };
     if (opt.grid) {
         for (int s : opt.ss)
@@ -702,15 +726,20 @@ int main(int argc, char** argv) {
         return a.second != b.second ? a.second < b.second : a.first < b.first;
     });
 
-    Emit("# bench_box2d_scenes: %d distinct rough shapes (mean radius %.2f m) shared by N bodies, 60 Hz, %d/%d iterations,"
+    Emit("# bench_box2d_scenes: %d distinct rough shapes (mean radius %.2f m) shared by N bodies, 60 Hz, "
+         "%d/%d iterations,"
          " sleeping off; error budget %.1f mm; allocation counter %s\n",
          kShapes, kRadius, kVelIt, kPosIt, 1e3 * kBudget,
-         BENCH_COUNT_ALLOCATIONS ? (g_box2dHi > g_box2dLo ? "on (libbox2d.so found)" : "on (libbox2d.so NOT found: all counted as own)")
+         BENCH_COUNT_ALLOCATIONS ? (g_box2dHi > g_box2dLo ? "on (libbox2d.so found)"
+                                                          : "on (libbox2d.so NOT found: all counted as own)")
                                  : "off (AddressSanitizer)");
-    Emit("variant,N,S,steps,ms_per_step,allocs_per_step,box2d_allocs_per_step,steps_with_allocs,bytes_per_body,"
+    Emit("variant,N,S,steps,ms_per_step,allocs_per_step,box2d_allocs_per_step,steps_with_allocs,bytes_per_"
+         "body,"
          "bytes_per_shape,fixtures_per_body,level,contacts,points,world_contacts,deepest_mm,max_budget_ratio,"
-         "max_budget_ratio_shallow,over_budget_pct,max_budget_diff_mm,budget_pairs,queries_per_step,cache_hits_per_step,"
-         "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_above_gap_mm,"
+         "max_budget_ratio_shallow,over_budget_pct,max_budget_diff_mm,budget_pairs,queries_per_step,cache_"
+         "hits_per_step,"
+         "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_"
+         "above_gap_mm,"
          "gap_pairs\n");
     std::fflush(stdout);
 
@@ -730,10 +759,13 @@ int main(int argc, char** argv) {
                 rugo_tolerance_level tl;
                 double bJ = 0.0;
                 if (rugo_shape_tolerance_level(sh, rugo_shape_finest_level(sh), &tl) == RUGO_OK)
-                    for (int i = 0; i < tl.count; ++i) bJ = std::max(bJ, tl.bound[i]);
+                    for (int i = 0; i < tl.count; ++i)
+                        bJ = std::max(bJ, tl.bound[i]);
                 std::size_t pieces = set->pieces[static_cast<size_t>(k)].size();
-                Emit("# S=%d shape %d: bounding radius %.3f m, mass %.4f kg, finest level %d, band max beta %.2f mm;"
-                     " polygon %d vertices (max chord deviation %.2f mm, checked 4x denser), %zu convex pieces\n",
+                Emit("# S=%d shape %d: bounding radius %.3f m, mass %.4f kg, finest level %d, band max beta "
+                     "%.2f mm;"
+                     " polygon %d vertices (max chord deviation %.2f mm, checked 4x denser), %zu convex "
+                     "pieces\n",
                      s, k, set->boundRadius[static_cast<size_t>(k)], set->mass[static_cast<size_t>(k)],
                      rugo_shape_finest_level(sh), 1e3 * bJ, set->polyVertices[static_cast<size_t>(k)],
                      1e3 * set->polyDeviation[static_cast<size_t>(k)], pieces);
@@ -766,12 +798,15 @@ int main(int argc, char** argv) {
             const Stats& st = row.st[v];
             const double ts = row.steps;
             const double all = ts + warmup;
-            Emit("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%.1f,%.1f,%.1f,"
+            Emit("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%."
+                 "1f,%.1f,%.1f,"
                  "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld\n",
                  kVariantName[v], n, s, row.steps, st.ms, st.allocOwn, st.allocBox2d, st.stepsWithOwnAlloc,
-                 st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points, st.worldContacts,
-                 1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
-                 st.budgetPairs > 0 ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs) : 0.0,
+                 st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points,
+                 st.worldContacts, 1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
+                 st.budgetPairs > 0
+                     ? 100.0 * static_cast<double>(st.overBudget) / static_cast<double>(st.budgetPairs)
+                     : 0.0,
                  1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
                  static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
                  static_cast<double>(st.bs.toiEvaluations) / all, st.keFinal, st.hash, st.maxGapRatio,
@@ -803,19 +838,23 @@ int main(int argc, char** argv) {
         const double floorRatio = g->st[kAuto].ms / g->st[kCircle].ms;
         char polyText[64] = "";
         if (g->ran[kPolygon])
-            std::snprintf(polyText, sizeof polyText, ", polygon / circle = %.2f", g->st[kPolygon].ms / g->st[kCircle].ms);
-        Emit("summary: N=%d S=%d: auto is %.2fx faster than finest (goal >= 1.5: %s); auto / circle floor = %.2f, finest / "
-             "circle = %.2f%s (goal auto <= 3: %s); LOD error over all sizes, band gap of pairs apart at both levels: "
-             "max |d gap| / budget %.2f (goal <= 1: %s); deepest reported contact's band-adjusted separation: max |ds| / "
+            std::snprintf(polyText, sizeof polyText, ", polygon / circle = %.2f",
+                          g->st[kPolygon].ms / g->st[kCircle].ms);
+        Emit("summary: N=%d S=%d: auto is %.2fx faster than finest (goal >= 1.5: %s); auto / circle floor = "
+             "%.2f, finest / "
+             "circle = %.2f%s (goal auto <= 3: %s); LOD error over all sizes, band gap of pairs apart at "
+             "both levels: "
+             "max |d gap| / budget %.2f (goal <= 1: %s); deepest reported contact's band-adjusted "
+             "separation: max |ds| / "
              "budget resting %.2f, all %.2f (it sits up to %.2f mm above the band gap at the finest level); "
-             "bridge+librugo allocations per step after warm-up: max %.3f (goal 0: %s), Box2D's own: max %.3f\n",
+             "bridge+librugo allocations per step after warm-up: max %.3f (goal 0: %s), Box2D's own: max "
+             "%.3f\n",
              g->n, g->s, speedup, speedup >= 1.5 ? "met" : "NOT met", floorRatio,
-             g->st[kFinest].ms / g->st[kCircle].ms,
-             polyText,
-             floorRatio <= 3.0 ? "met" : "NOT met", maxGap,
-             maxGap < 0.0 ? "not measured" : (maxGap <= 1.0 ? "met" : "NOT met"), maxShallow, maxRatio, 1e3 * maxAbove,
-             BENCH_COUNT_ALLOCATIONS ? maxOwn : -1.0,
-             BENCH_COUNT_ALLOCATIONS ? (maxOwn == 0.0 ? "met" : "NOT met") : "not measured under ASan", maxB2);
+             g->st[kFinest].ms / g->st[kCircle].ms, polyText, floorRatio <= 3.0 ? "met" : "NOT met", maxGap,
+             maxGap < 0.0 ? "not measured" : (maxGap <= 1.0 ? "met" : "NOT met"), maxShallow, maxRatio,
+             1e3 * maxAbove, BENCH_COUNT_ALLOCATIONS ? maxOwn : -1.0,
+             BENCH_COUNT_ALLOCATIONS ? (maxOwn == 0.0 ? "met" : "NOT met") : "not measured under ASan",
+             maxB2);
     }
 
     if (opt.allocTrace) {
@@ -823,7 +862,8 @@ int main(int argc, char** argv) {
             Dl_info info;
             if (dladdr(g_trace[i], &info) && info.dli_fname)
                 Emit("# allocation %d called from %s+0x%" PRIxPTR " (%s)\n", i, info.dli_fname,
-                     reinterpret_cast<std::uintptr_t>(g_trace[i]) - reinterpret_cast<std::uintptr_t>(info.dli_fbase),
+                     reinterpret_cast<std::uintptr_t>(g_trace[i]) -
+                         reinterpret_cast<std::uintptr_t>(info.dli_fbase),
                      info.dli_sname ? info.dli_sname : "?");
         }
         for (int i = 0; i < g_b2traceCount; ++i) {
@@ -845,7 +885,8 @@ int main(int argc, char** argv) {
     }
 
     if (g_results != nullptr && std::fclose(g_results) != 0) {
-        std::fprintf(stderr, "bench_box2d_scenes: writing %s/bench_box2d_scenes.csv failed\n", outDir.c_str());
+        std::fprintf(stderr, "bench_box2d_scenes: writing %s/bench_box2d_scenes.csv failed\n",
+                     outDir.c_str());
         return 1;
     }
     g_results = nullptr;
@@ -856,21 +897,26 @@ int main(int argc, char** argv) {
         for (int v = 0; v < kVariants; ++v) {
             if (!r.ran[v]) continue;
             char name[128];
-            std::snprintf(name, sizeof name, "%s N=%d S=%d: bodies touch (mean touching contacts > 0)", kVariantName[v], r.n, r.s);
+            std::snprintf(name, sizeof name, "%s N=%d S=%d: bodies touch (mean touching contacts > 0)",
+                          kVariantName[v], r.n, r.s);
             sample_expect(name, r.st[v].contacts > 0.0);
-            std::snprintf(name, sizeof name, "%s N=%d S=%d: time per step measured", kVariantName[v], r.n, r.s);
+            std::snprintf(name, sizeof name, "%s N=%d S=%d: time per step measured", kVariantName[v], r.n,
+                          r.s);
             sample_expect(name, r.st[v].ms > 0.0 && std::isfinite(r.st[v].ms));
             // The small scene of the test suite: nothing outside Box2D allocates once warmed up (the
             // bridge and librugo reserve in Attach). Asserted only there: at S = 512 librugo's pair list
             // may still reach a new high-water mark during the fall (docs/benchmarks.md, "Allocations").
-            if (opt.quick && (v == kAuto || v == kFinest) && BENCH_COUNT_ALLOCATIONS && g_box2dHi > g_box2dLo) {
-                std::snprintf(name, sizeof name, "%s N=%d S=%d: the bridge and librugo allocate nothing in the timed steps",
+            if (opt.quick && (v == kAuto || v == kFinest) && BENCH_COUNT_ALLOCATIONS &&
+                g_box2dHi > g_box2dLo) {
+                std::snprintf(name, sizeof name,
+                              "%s N=%d S=%d: the bridge and librugo allocate nothing in the timed steps",
                               kVariantName[v], r.n, r.s);
                 sample_expect(name, r.st[v].stepsWithOwnAlloc == 0);
             }
             if (v == kAuto && opt.checkEvery > 0) {
-                std::snprintf(name, sizeof name, "%s N=%d S=%d: level-of-detail error measured on contacting pairs", kVariantName[v],
-                              r.n, r.s);
+                std::snprintf(name, sizeof name,
+                              "%s N=%d S=%d: level-of-detail error measured on contacting pairs",
+                              kVariantName[v], r.n, r.s);
                 sample_expect(name, r.st[v].budgetPairs > 0 && std::isfinite(r.st[v].maxBudgetRatio));
             }
         }

@@ -55,14 +55,17 @@ int main(int argc, char** argv) {
         }
         analysis_ns[f] = best_a;
         synthesis_ns[f] = best_s;
-        printf("%s,%d,analysis,%.0f,%.1f\n", rugo_filter_name((rugo_filter)f), N, best_a, N / (best_a / 1000.0));
-        printf("%s,%d,synthesis,%.0f,%.1f\n", rugo_filter_name((rugo_filter)f), N, best_s, N / (best_s / 1000.0));
+        printf("%s,%d,analysis,%.0f,%.1f\n", rugo_filter_name((rugo_filter)f), N, best_a,
+               N / (best_a / 1000.0));
+        printf("%s,%d,synthesis,%.0f,%.1f\n", rugo_filter_name((rugo_filter)f), N, best_s,
+               N / (best_s / 1000.0));
     }
     printf("summary: full decomposition of %d points with %s: %.1f points/us; time relative to cdf4.2:", N,
            rugo_filter_name(RUGO_FILTER_DEFAULT), N / (analysis_ns[RUGO_FILTER_DEFAULT] / 1000.0));
     for (int f = 0; f < RUGO_FILTER_COUNT; ++f)
         printf(" %s %.2fx", rugo_filter_name((rugo_filter)f), analysis_ns[f] / analysis_ns[0]);
-    printf("; synthesis/analysis (cdf4.8) %.2f (checksum %.3g)\n", synthesis_ns[RUGO_FILTER_DEFAULT] / analysis_ns[RUGO_FILTER_DEFAULT], checksum);
+    printf("; synthesis/analysis (cdf4.8) %.2f (checksum %.3g)\n",
+           synthesis_ns[RUGO_FILTER_DEFAULT] / analysis_ns[RUGO_FILTER_DEFAULT], checksum);
     free(src);
     free(data);
     free(scratch);

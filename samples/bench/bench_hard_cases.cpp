@@ -125,8 +125,10 @@ std::vector<rugo_vec2> gear_bottom(int n, double R, double a, int teeth) {
 /* A block of n control points (a power of two) whose top is a bay: the control points of `body`
  * (counter-clockwise, the first at the bottom) from index +half down to -half scaled by `scale` about the
  * origin (clockwise about the bay's centre: the block's boundary seen from the disc), closed by flat tops at
- * the rims' heights and a rectangle W wide reaching down to -H, the rest of the n points at equal spacing along it. */
-std::vector<rugo_vec2> bay_block(const std::vector<rugo_vec2>& body, int half, double scale, double W, double H, int n) {
+ * the rims' heights and a rectangle W wide reaching down to -H, the rest of the n points at equal spacing
+ * along it. */
+std::vector<rugo_vec2> bay_block(const std::vector<rugo_vec2>& body, int half, double scale, double W,
+                                 double H, int n) {
     const int nb = (int)body.size();
     std::vector<rugo_vec2> p;
     for (int k = half; k >= -half; --k) {
@@ -134,8 +136,8 @@ std::vector<rugo_vec2> bay_block(const std::vector<rugo_vec2>& body, int half, d
         p.push_back(rugo_v2(scale * q.x, scale * q.y));
     }
     const rugo_vec2 left = p.back(), right = p.front();
-    const std::vector<rugo_vec2> poly = {left, rugo_v2(-W, left.y), rugo_v2(-W, -H), rugo_v2(W, -H), rugo_v2(W, right.y),
-                                         right};
+    const std::vector<rugo_vec2> poly = {left,           rugo_v2(-W, left.y), rugo_v2(-W, -H),
+                                         rugo_v2(W, -H), rugo_v2(W, right.y), right};
     std::vector<double> cum(poly.size(), 0.0);
     for (size_t i = 1; i < poly.size(); ++i)
         cum[i] = cum[i - 1] + std::hypot(poly[i].x - poly[i - 1].x, poly[i].y - poly[i - 1].y);
@@ -143,14 +145,22 @@ std::vector<rugo_vec2> bay_block(const std::vector<rugo_vec2>& body, int half, d
     size_t e = 0;
     for (int k = 1; k <= rest; ++k) {
         const double s = cum.back() * k / (rest + 1);
-        while (e + 2 < poly.size() && cum[e + 1] <= s) ++e;
+        while (e + 2 < poly.size() && cum[e + 1] <= s)
+            ++e;
         const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
-        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x), poly[e].y + w * (poly[e + 1].y - poly[e].y)));
+        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x),
+                            poly[e].y + w * (poly[e + 1].y - poly[e].y)));
     }
     return p;
 }
 
-enum Check { CHECK_ANALYTIC_MIN, CHECK_COINCIDENT, CHECK_COINCIDENT_BANDS, CHECK_FLAT, CHECK_AGAINST_ROUNDOFF };
+enum Check {
+    CHECK_ANALYTIC_MIN,
+    CHECK_COINCIDENT,
+    CHECK_COINCIDENT_BANDS,
+    CHECK_FLAT,
+    CHECK_AGAINST_ROUNDOFF
+};
 
 struct Case {
     std::string name;
@@ -162,7 +172,7 @@ struct Case {
     double tolerance = -1; /* query.tolerance (-1: the shapes' own bands) */
     double margin = 0;
     Check check = CHECK_AGAINST_ROUNDOFF;
-    double expected = 0;   /* analytic separation (CHECK_ANALYTIC_MIN, CHECK_FLAT) or -2 max λ_k */
+    double expected = 0; /* analytic separation (CHECK_ANALYTIC_MIN, CHECK_FLAT) or -2 max λ_k */
     double roundoff_min = 0;
 };
 
@@ -215,7 +225,8 @@ struct Timed {
 
 /* Each case in turn, `repeats` times, at one resolution; a case whose query took over 0.2 s stops
  * repeating after three. */
-std::vector<Timed> time_all(rugo_collide_context* ctx, const std::vector<Case>& cases, double delta_rel, int repeats) {
+std::vector<Timed> time_all(rugo_collide_context* ctx, const std::vector<Case>& cases, double delta_rel,
+                            int repeats) {
     std::vector<std::vector<double>> t(cases.size());
     std::vector<Timed> out(cases.size());
     for (int rep = 0; rep < repeats; ++rep)
@@ -248,14 +259,16 @@ bool check(const Case& c, const Result& r, double delta_rel) {
     const double tol = delta + eps;
     char what[200] = "";
     bool ok = r.status == RUGO_OK && r.state != RUGO_STATE_APART && r.count > 0;
-    if (!ok) std::snprintf(what, sizeof what, "status %s, state %s, %d contacts", rugo_status_string(r.status),
-                           state_str(r.state), r.count);
+    if (!ok)
+        std::snprintf(what, sizeof what, "status %s, state %s, %d contacts", rugo_status_string(r.status),
+                      state_str(r.state), r.count);
     double err = 0;
     if (ok) switch (c.check) {
         case CHECK_ANALYTIC_MIN:
             err = std::fabs(r.min_sep - c.expected);
             ok = err <= tol;
-            std::snprintf(what, sizeof what, "smallest separation %.17g, analytic %.17g", r.min_sep, c.expected);
+            std::snprintf(what, sizeof what, "smallest separation %.17g, analytic %.17g", r.min_sep,
+                          c.expected);
             break;
         case CHECK_COINCIDENT:
             err = r.max_abs_sep;
@@ -265,13 +278,15 @@ bool check(const Case& c, const Result& r, double delta_rel) {
         case CHECK_COINCIDENT_BANDS:
             err = r.max_abs_sep;
             ok = err <= tol && r.min_band <= c.expected + tol;
-            std::snprintf(what, sizeof what, "largest |separation| %.3e; smallest band-adjusted %.9g, bound %.9g",
-                          r.max_abs_sep, r.min_band, c.expected);
+            std::snprintf(what, sizeof what,
+                          "largest |separation| %.3e; smallest band-adjusted %.9g, bound %.9g", r.max_abs_sep,
+                          r.min_band, c.expected);
             break;
         case CHECK_FLAT:
             err = r.max_flat_err;
             ok = err <= tol;
-            std::snprintf(what, sizeof what, "largest |separation - gap| %.3e (gap %.3e)", r.max_flat_err, c.expected);
+            std::snprintf(what, sizeof what, "largest |separation - gap| %.3e (gap %.3e)", r.max_flat_err,
+                          c.expected);
             break;
         case CHECK_AGAINST_ROUNDOFF:
             err = std::fabs(r.min_sep - c.roundoff_min);
@@ -281,8 +296,8 @@ bool check(const Case& c, const Result& r, double delta_rel) {
             break;
         }
     char name[160];
-    std::snprintf(name, sizeof name, "%s%s at δ = %s: error %.3e <= δ + ε = %.3e", c.name.c_str(), c.far ? " (far)" : "",
-                  delta_rel == kAuto ? "default" : "1e-6 × size", err, tol);
+    std::snprintf(name, sizeof name, "%s%s at δ = %s: error %.3e <= δ + ε = %.3e", c.name.c_str(),
+                  c.far ? " (far)" : "", delta_rel == kAuto ? "default" : "1e-6 × size", err, tol);
     if (!ok) std::printf("  %s\n", what);
     return sample_expect(name, ok) != 0;
 }
@@ -309,7 +324,8 @@ int main(int argc, char** argv) {
     /* shapes */
     const double rdisc = 0.5, grow = 1.0005;
     const int ndisc = 128;
-    const double rho = rdisc * 6.0 / (4.0 + 2.0 * std::cos(2.0 * kPi / ndisc)); /* curve through r at joints */
+    const double rho =
+        rdisc * 6.0 / (4.0 + 2.0 * std::cos(2.0 * kPi / ndisc)); /* curve through r at joints */
     const std::vector<rugo_vec2> disc = disc_bottom(ndisc, rho);
     rugo_shape* s_disc = make_shape(disc, nullptr);
     rugo_shape* s_bay = make_shape(bay_block(disc, 24, grow, 0.8, 0.9, 128), nullptr);
@@ -320,12 +336,17 @@ int main(int argc, char** argv) {
     std::vector<rugo_vec2> rough = rough_pts(bean_pts(64, 0.45), 0.004, 20);
     std::vector<double> lam(rough.size());
     rugo_tolerances_preset(RUGO_PRESET_TIPO_5, 0, (int)lam.size(), lam.data());
-    for (double& v : lam) v *= 0.01;
+    for (double& v : lam)
+        v *= 0.01;
     rugo_shape* s_rough = make_shape(rough, &lam);
-    rugo_shape* s_block = make_shape(sharp_pts({rugo_v2(-0.3, -0.15), rugo_v2(0.3, -0.15), rugo_v2(0.3, 0.15),
-                                                rugo_v2(-0.3, 0.15)}, {4, 4, 4, 4}, 28), nullptr);
-    rugo_shape* s_slab = make_shape(sharp_pts({rugo_v2(-1.0, -0.2), rugo_v2(1.0, -0.2), rugo_v2(1.0, 0.2),
-                                               rugo_v2(-1.0, 0.2)}, {4, 4, 4, 4}, 60), nullptr);
+    rugo_shape* s_block = make_shape(
+        sharp_pts({rugo_v2(-0.3, -0.15), rugo_v2(0.3, -0.15), rugo_v2(0.3, 0.15), rugo_v2(-0.3, 0.15)},
+                  {4, 4, 4, 4}, 28),
+        nullptr);
+    rugo_shape* s_slab =
+        make_shape(sharp_pts({rugo_v2(-1.0, -0.2), rugo_v2(1.0, -0.2), rugo_v2(1.0, 0.2), rugo_v2(-1.0, 0.2)},
+                             {4, 4, 4, 4}, 60),
+                   nullptr);
     if (!s_disc || !s_bay || !s_gear || !s_gear_bay || !s_deep || !s_rough || !s_block || !s_slab) {
         std::fprintf(stderr, "bench_hard_cases: a shape could not be created\n");
         return 2;
@@ -339,12 +360,13 @@ int main(int argc, char** argv) {
     {
         rugo_tolerance_level tl;
         rugo_shape_tolerance_level(s_rough, rugo_shape_finest_level(s_rough), &tl);
-        for (int k = 0; k < tl.count; ++k) lam_max = std::max(lam_max, tl.total[k]);
+        for (int k = 0; k < tl.count; ++k)
+            lam_max = std::max(lam_max, tl.total[k]);
     }
 
     std::vector<Case> cases;
-    auto add = [&](const std::string& name, rugo_shape* a, rugo_transform xa, rugo_shape* b, rugo_transform xb,
-                   double band_rel, double margin_rel, Check ck, double expected) {
+    auto add = [&](const std::string& name, rugo_shape* a, rugo_transform xa, rugo_shape* b,
+                   rugo_transform xb, double band_rel, double margin_rel, Check ck, double expected) {
         for (int far = 0; far < 2; ++far) {
             Case c;
             c.name = name;
@@ -375,22 +397,24 @@ int main(int argc, char** argv) {
     add("coincident_discs", s_disc, I, s_disc, I, 5e-4, 0.0, CHECK_COINCIDENT, 0.0);
     add("coincident_rough", s_rough, I, s_rough, I, -1.0, 0.0, CHECK_COINCIDENT_BANDS, -2.0 * lam_max);
     const double size_box = std::min(root_size(s_block), root_size(s_slab));
-    add("box_on_box", s_slab, I, s_block, rugo_make_transform(0.1, 0.35 + 1e-7 * size_box, 0.0), -1.0, 1e-5, CHECK_FLAT,
-        1e-7 * size_box);
-    add("gear_in_gear", s_gear_bay, I, s_gear, rugo_make_transform(0.0, -(grow - 1.0) * 0.5 * 0.96 + 1e-6, 0.0), 5e-4, 0.0,
-        CHECK_AGAINST_ROUNDOFF, 0.0);
-    add("concentric_arcs", s_deep, I, s_disc, rugo_make_transform(1e-5 * rdisc, -3e-5 * rdisc, 0.0), 5e-4, 0.0,
-        CHECK_AGAINST_ROUNDOFF, 0.0);
+    add("box_on_box", s_slab, I, s_block, rugo_make_transform(0.1, 0.35 + 1e-7 * size_box, 0.0), -1.0, 1e-5,
+        CHECK_FLAT, 1e-7 * size_box);
+    add("gear_in_gear", s_gear_bay, I, s_gear,
+        rugo_make_transform(0.0, -(grow - 1.0) * 0.5 * 0.96 + 1e-6, 0.0), 5e-4, 0.0, CHECK_AGAINST_ROUNDOFF,
+        0.0);
+    add("concentric_arcs", s_deep, I, s_disc, rugo_make_transform(1e-5 * rdisc, -3e-5 * rdisc, 0.0), 5e-4,
+        0.0, CHECK_AGAINST_ROUNDOFF, 0.0);
 
     rugo_collide_context* ctx = nullptr;
     if (rugo_collide_context_create(nullptr, &ctx) != RUGO_OK) return 2;
-    std::printf("bench_hard_cases: %s run, %d repeats (medians; cases alternating)\n", opt.quick ? "quick" : "full",
-                opt.repeats);
+    std::printf("bench_hard_cases: %s run, %d repeats (medians; cases alternating)\n",
+                opt.quick ? "quick" : "full", opt.repeats);
 
     /* the round-off answers (δ = 0), the reference of two checks and the cost before issue 20 */
     const int rep0 = opt.quick ? 1 : std::min(opt.repeats, 3);
     const std::vector<Timed> t0 = time_all(ctx, cases, 0.0, rep0);
-    for (size_t i = 0; i < cases.size(); ++i) cases[i].roundoff_min = t0[i].r.min_sep;
+    for (size_t i = 0; i < cases.size(); ++i)
+        cases[i].roundoff_min = t0[i].r.min_sep;
     const std::vector<Timed> tdef = time_all(ctx, cases, kAuto, opt.repeats);
     const std::vector<Timed> t6 = time_all(ctx, cases, 1e-6, opt.repeats);
 
@@ -401,43 +425,49 @@ int main(int argc, char** argv) {
     const std::string csv = opt.out + "/bench_hard_cases.csv";
     FILE* f = std::fopen(csv.c_str(), "w");
     if (!f) return 2;
-    std::fprintf(f, "case,far,delta_rel,delta,us_median,us_min,repeats,state,contacts,min_separation,box_tests,"
-                    "segment_pairs,newton_iterations,fallbacks\n");
+    std::fprintf(f,
+                 "case,far,delta_rel,delta,us_median,us_min,repeats,state,contacts,min_separation,box_tests,"
+                 "segment_pairs,newton_iterations,fallbacks\n");
     auto row = [&](const Case& c, double dr, const Timed& t) {
         const double d = dr == kAuto ? 1e-4 * c.size : dr * c.size;
-        std::fprintf(f, "%s,%d,%g,%.6e,%.3f,%.3f,%d,%s,%d,%.17g,%ld,%ld,%ld,%ld\n", c.name.c_str(), c.far ? 1 : 0, dr, d,
-                     t.med_us, t.min_us, t.repeats, state_str(t.r.state), t.r.count, t.r.count ? t.r.min_sep : 0.0,
-                     t.r.stats.box_tests, t.r.stats.segment_pairs, t.r.stats.newton_iterations, t.r.stats.fallbacks);
+        std::fprintf(f, "%s,%d,%g,%.6e,%.3f,%.3f,%d,%s,%d,%.17g,%ld,%ld,%ld,%ld\n", c.name.c_str(),
+                     c.far ? 1 : 0, dr, d, t.med_us, t.min_us, t.repeats, state_str(t.r.state), t.r.count,
+                     t.r.count ? t.r.min_sep : 0.0, t.r.stats.box_tests, t.r.stats.segment_pairs,
+                     t.r.stats.newton_iterations, t.r.stats.fallbacks);
     };
 
-    std::printf("\nµs per query (median) and contacts; goals: <= 100 µs at the default δ (1e-4 × size), <= 1000 µs at "
+    std::printf("\nµs per query (median) and contacts; goals: <= 100 µs at the default δ (1e-4 × size), <= "
+                "1000 µs at "
                 "1e-6 × size\n");
-    std::printf("%-18s %4s %12s %9s %12s %5s %9s %5s %12s %5s\n", "case", "far", "δ=0 µs", "contacts", "default µs",
-                "goal", "contacts", "", "1e-6 µs", "goal");
+    std::printf("%-18s %4s %12s %9s %12s %5s %9s %5s %12s %5s\n", "case", "far", "δ=0 µs", "contacts",
+                "default µs", "goal", "contacts", "", "1e-6 µs", "goal");
     int pass_def = 0, pass_6 = 0;
     for (size_t i = 0; i < cases.size(); ++i) {
         const Case& c = cases[i];
         const bool gd = tdef[i].med_us <= 100.0, g6 = t6[i].med_us <= 1000.0;
         pass_def += gd;
         pass_6 += g6;
-        std::printf("%-18s %4s %12.1f %9d %12.1f %5s %9d %5s %12.1f %5s\n", c.name.c_str(), c.far ? "yes" : "no",
-                    t0[i].med_us, t0[i].r.count, tdef[i].med_us, gd ? "PASS" : "FAIL", tdef[i].r.count, "",
-                    t6[i].med_us, g6 ? "PASS" : "FAIL");
+        std::printf("%-18s %4s %12.1f %9d %12.1f %5s %9d %5s %12.1f %5s\n", c.name.c_str(),
+                    c.far ? "yes" : "no", t0[i].med_us, t0[i].r.count, tdef[i].med_us, gd ? "PASS" : "FAIL",
+                    tdef[i].r.count, "", t6[i].med_us, g6 ? "PASS" : "FAIL");
         row(c, 0.0, t0[i]);
         row(c, kAuto, tdef[i]);
         row(c, 1e-6, t6[i]);
     }
-    std::printf("goals met: %d of %zu cases at the default δ, %d of %zu at 1e-6 × size\n", pass_def, cases.size(), pass_6,
-                cases.size());
+    std::printf("goals met: %d of %zu cases at the default δ, %d of %zu at 1e-6 × size\n", pass_def,
+                cases.size(), pass_6, cases.size());
 
     /* the sweep */
     if (!opt.quick) {
         const double sweep[8] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
         std::vector<std::vector<Timed>> ts;
-        for (double dr : sweep) ts.push_back(time_all(ctx, cases, dr, std::max(3, opt.repeats / 2 + 1)));
-        std::printf("\nsweep: µs per query (median) against δ / size; slope of log µs against log 1/δ (goal <= 0.5)\n");
+        for (double dr : sweep)
+            ts.push_back(time_all(ctx, cases, dr, std::max(3, opt.repeats / 2 + 1)));
+        std::printf("\nsweep: µs per query (median) against δ / size; slope of log µs against log 1/δ (goal "
+                    "<= 0.5)\n");
         std::printf("%-18s %4s", "case", "far");
-        for (double dr : sweep) std::printf(" %8.0e", dr);
+        for (double dr : sweep)
+            std::printf(" %8.0e", dr);
         std::printf(" %7s %6s %5s\n", "slope", "tail", "goal");
         int pass_slope = 0;
         for (size_t i = 0; i < cases.size(); ++i) {
@@ -455,12 +485,15 @@ int main(int argc, char** argv) {
             }
             const double slope = (8 * sxy - sx * sy) / (8 * sxx - sx * sx);
             /* the tail: 1e-6 -> 1e-9 (three decades), where a growth faster than δ^-1/2 shows first */
-            const double tail = std::log10(std::max(ts[7][i].med_us, 1e-3) / std::max(ts[4][i].med_us, 1e-3)) / 3.0;
+            const double tail =
+                std::log10(std::max(ts[7][i].med_us, 1e-3) / std::max(ts[4][i].med_us, 1e-3)) / 3.0;
             const bool ok = slope <= 0.6 && tail <= 0.6;
             pass_slope += ok;
             std::printf(" %7.2f %6.2f %5s\n", slope, tail, ok ? "PASS" : "FAIL");
         }
-        std::printf("cost growing no faster than δ^-1/2 (slope over 1e-2..1e-9 and over 1e-6..1e-9 <= 0.5 + 0.1): %d of %zu cases\n", pass_slope, cases.size());
+        std::printf("cost growing no faster than δ^-1/2 (slope over 1e-2..1e-9 and over 1e-6..1e-9 <= 0.5 + "
+                    "0.1): %d of %zu cases\n",
+                    pass_slope, cases.size());
     }
     std::fclose(f);
     std::printf("(%s written)\n\nchecks (correctness only, no time):\n", csv.c_str());
@@ -469,6 +502,7 @@ int main(int argc, char** argv) {
         check(cases[i], t6[i].r, 1e-6);
     }
     rugo_collide_context_destroy(ctx);
-    for (rugo_shape* s : {s_disc, s_bay, s_gear, s_gear_bay, s_deep, s_rough, s_block, s_slab}) rugo_shape_destroy(s);
+    for (rugo_shape* s : {s_disc, s_bay, s_gear, s_gear_bay, s_deep, s_rough, s_block, s_slab})
+        rugo_shape_destroy(s);
     return sample_finish();
 }

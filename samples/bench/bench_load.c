@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
         rugo_real* tol = malloc(sizeof *tol * (size_t)n);
         if (!pts || !tol) return 1;
         sample_object(n, rugo_v2(0.0, 0.0), 1.0, pts);
-        for (int i = 0; i < n; ++i) tol[i] = 0.002 + 0.001 * (double)(i % 5);
+        for (int i = 0; i < n; ++i)
+            tol[i] = 0.002 + 0.001 * (double)(i % 5);
         rugo_shape_desc d;
         memset(&d, 0, sizeof d);
         d.control_points = pts;
@@ -92,7 +93,8 @@ int main(int argc, char** argv) {
         if (!baked || !again || rugo_shape_bake(built, baked, size, &written) != RUGO_OK) return 1;
         /* Median of batches for each side, batches of the two interleaved so that both see the same
          * machine load; the ratio is taken within this run. Build is slower, so fewer reps. */
-        const int reps_build = quick ? 2 : (n <= 256 ? 100 : 20), reps_load = quick ? 10 : (n <= 256 ? 2000 : 200);
+        const int reps_build = quick ? 2 : (n <= 256 ? 100 : 20),
+                  reps_load = quick ? 10 : (n <= 256 ? 2000 : 200);
         enum { MAX_BATCHES = 9 };
         const int batches = quick ? 3 : MAX_BATCHES;
         double build_us[MAX_BATCHES], load_us[MAX_BATCHES];
@@ -132,7 +134,8 @@ int main(int argc, char** argv) {
         free(pts);
         free(tol);
     }
-    printf("# summary: loading a baked shape is %.1fx to %.1fx faster than building it from JSON (target 20x)%s\n",
+    printf("# summary: loading a baked shape is %.1fx to %.1fx faster than building it from JSON (target "
+           "20x)%s\n",
            ratio_min, ratio_max, bad ? "; ROUND TRIP MISMATCH" : "");
     return bad ? 1 : 0;
 }

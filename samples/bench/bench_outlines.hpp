@@ -58,7 +58,8 @@ inline std::vector<rugo_vec2> along_polyline(const std::vector<rugo_vec2>& v, in
     size_t e = 0;
     for (int k = 0; k < n; ++k) {
         const double s = cum.back() * k / n;
-        while (e + 1 < v.size() && cum[e + 1] <= s) ++e;
+        while (e + 1 < v.size() && cum[e + 1] <= s)
+            ++e;
         const rugo_vec2 a = v[e], b = v[(e + 1) % v.size()];
         const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
         p[(size_t)k] = rugo_v2(a.x + w * (b.x - a.x), a.y + w * (b.y - a.y));
@@ -69,15 +70,18 @@ inline std::vector<rugo_vec2> along_polyline(const std::vector<rugo_vec2>& v, in
 /* A box w x h with rounded corners: n points at equal spacing, corners among them when the spacing
  * divides the sides (straight segments where four consecutive points are collinear). */
 inline std::vector<rugo_vec2> rbox_pts(int n, double w, double h) {
-    return along_polyline({rugo_v2(-w / 2, -h / 2), rugo_v2(w / 2, -h / 2), rugo_v2(w / 2, h / 2), rugo_v2(-w / 2, h / 2)}, n);
+    return along_polyline(
+        {rugo_v2(-w / 2, -h / 2), rugo_v2(w / 2, -h / 2), rugo_v2(w / 2, h / 2), rugo_v2(-w / 2, h / 2)}, n);
 }
 
 /* A polygon with sharp corners: vertex k repeated mult[k] times, `inner` equally spaced points on each
  * side between the vertices. */
-inline std::vector<rugo_vec2> sharp_pts(const std::vector<rugo_vec2>& v, const std::vector<int>& mult, int inner) {
+inline std::vector<rugo_vec2> sharp_pts(const std::vector<rugo_vec2>& v, const std::vector<int>& mult,
+                                        int inner) {
     std::vector<rugo_vec2> p;
     for (size_t k = 0; k < v.size(); ++k) {
-        for (int m = 0; m < mult[k]; ++m) p.push_back(v[k]);
+        for (int m = 0; m < mult[k]; ++m)
+            p.push_back(v[k]);
         const rugo_vec2 a = v[k], b = v[(k + 1) % v.size()];
         for (int i = 1; i <= inner; ++i) {
             const double w = (double)i / (inner + 1);
@@ -94,11 +98,13 @@ inline std::vector<rugo_vec2> bowl_pts(int n, double rb) {
     const double al = 2.0 * kPi / 64.0, rho = rb * 6.0 / (4.0 + 2.0 * std::cos(al));
     std::vector<rugo_vec2> p;
     const double a0 = -kPi / 2 + 12 * al; /* right rim; the bay runs clockwise about its centre */
-    for (int k = 0; k < arc; ++k) p.push_back(rugo_v2(rho * std::cos(a0 - k * al), rho * std::sin(a0 - k * al)));
+    for (int k = 0; k < arc; ++k)
+        p.push_back(rugo_v2(rho * std::cos(a0 - k * al), rho * std::sin(a0 - k * al)));
     const rugo_vec2 left = p.back(), right = p.front();
     const double W = 0.8, H = 0.9;
     /* the rest: left rim, left side, bottom, right side, right rim (open polyline from left to right) */
-    std::vector<rugo_vec2> poly = {left, rugo_v2(-W, left.y), rugo_v2(-W, -H), rugo_v2(W, -H), rugo_v2(W, right.y), right};
+    std::vector<rugo_vec2> poly = {left,           rugo_v2(-W, left.y), rugo_v2(-W, -H),
+                                   rugo_v2(W, -H), rugo_v2(W, right.y), right};
     std::vector<double> cum(poly.size(), 0.0);
     for (size_t i = 1; i < poly.size(); ++i)
         cum[i] = cum[i - 1] + std::hypot(poly[i].x - poly[i - 1].x, poly[i].y - poly[i - 1].y);
@@ -106,9 +112,11 @@ inline std::vector<rugo_vec2> bowl_pts(int n, double rb) {
     size_t e = 0;
     for (int k = 1; k <= rest; ++k) {
         const double s = cum.back() * k / (rest + 1);
-        while (e + 2 < poly.size() && cum[e + 1] <= s) ++e;
+        while (e + 2 < poly.size() && cum[e + 1] <= s)
+            ++e;
         const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
-        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x), poly[e].y + w * (poly[e + 1].y - poly[e].y)));
+        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x),
+                            poly[e].y + w * (poly[e + 1].y - poly[e].y)));
     }
     return p;
 }
@@ -119,7 +127,8 @@ inline std::vector<rugo_vec2> rough_pts(const std::vector<rugo_vec2>& base, doub
     const int n0 = (int)base.size();
     std::vector<double> lam0((size_t)n0);
     rugo_tolerances_preset(RUGO_PRESET_TIPO_3, 0, n0, lam0.data());
-    for (auto& v : lam0) v *= amp;
+    for (auto& v : lam0)
+        v *= amp;
     std::vector<rugo_vec2> out((size_t)(n0 << 2));
     rugo_roughen_def d = rugo_default_roughen_def();
     d.points = base.data();
@@ -131,7 +140,6 @@ inline std::vector<rugo_vec2> rough_pts(const std::vector<rugo_vec2>& base, doub
     if (rugo_roughen(&d, out.data()) != RUGO_OK) out.clear();
     return out;
 }
-
 
 } // namespace bench_outlines
 

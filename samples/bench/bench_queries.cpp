@@ -84,8 +84,9 @@
  * pairs (bench_queries_smooth.csv, _rough.csv), bench_queries_pareto.csv (the Pareto front of time
  * against the effective max separation error, per method and subset), bench_queries_sweep.csv,
  * bench_queries_hard.csv (near-tangent, tiny overlap, rough on rough, far from the origin, parallel
- * straight sides: librugo finest and the baseline against the reference), and a one-line summary: time ratios at equal maximum separation error 1e-3 and 1e-5 of the size (the
- * baseline interpolated between its m values on log scales), goal met or not.
+ * straight sides: librugo finest and the baseline against the reference), and a one-line summary: time ratios
+ * at equal maximum separation error 1e-3 and 1e-5 of the size (the baseline interpolated between its m values
+ * on log scales), goal met or not.
  * --quick (the test registration): 12 poses, m <= 256, one repetition, a short sweep; checks that it
  * works and that the sanity numbers hold (finest and brute force agree with the reference, coarse
  * levels within their hard bounds, the baseline converges with m, the sweep's counts, the hard cases).
@@ -120,10 +121,10 @@ namespace {
 using namespace polygon_baseline;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kWindow = 0.005; /* D: contacts up to this separation are asked for */
-constexpr double kMatch = 0.05;   /* W: matching and region radius */
-constexpr int kRefSamples = 32;   /* reference samples per segment */
-constexpr int kCap = 256;         /* contact capacity per librugo query */
+constexpr double kWindow = 0.005;                        /* D: contacts up to this separation are asked for */
+constexpr double kMatch = 0.05;                          /* W: matching and region radius */
+constexpr int kRefSamples = 32;                          /* reference samples per segment */
+constexpr int kCap = 256;                                /* contact capacity per librugo query */
 constexpr double kSkin = 2.0 * (double)b2_polygonRadius; /* both polygons' skins */
 
 double now_ns() {
@@ -212,8 +213,10 @@ bool make_rough(Body& b, const std::string& name, std::vector<rugo_vec2> base, u
     std::vector<double> lam0((size_t)n0), lam((size_t)n);
     if (rugo_tolerances_preset(RUGO_PRESET_TIPO_3, 0, n0, lam0.data()) != RUGO_OK) return false;
     if (rugo_tolerances_preset(RUGO_PRESET_TIPO_3, 0, n, lam.data()) != RUGO_OK) return false;
-    for (auto& v : lam0) v *= 0.004;
-    for (auto& v : lam) v *= 0.002;
+    for (auto& v : lam0)
+        v *= 0.004;
+    for (auto& v : lam)
+        v *= 0.002;
     std::vector<rugo_vec2> out((size_t)n);
     rugo_roughen_def d = rugo_default_roughen_def();
     d.points = base.data();
@@ -280,7 +283,8 @@ LEval eval(const LCurve& c, ld u) {
     const ld mt = 1 - t;
     const ld b0 = mt * mt * mt / 6, b1 = (3 * t * t * t - 6 * t * t + 4) / 6,
              b2 = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, b3 = t * t * t / 6;
-    const ld d0 = -mt * mt / 2, d1 = (3 * t * t - 4 * t) / 2, d2 = (-3 * t * t + 2 * t + 1) / 2, d3 = t * t / 2;
+    const ld d0 = -mt * mt / 2, d1 = (3 * t * t - 4 * t) / 2, d2 = (-3 * t * t + 2 * t + 1) / 2,
+             d3 = t * t / 2;
     const ld e0 = mt, e1 = 3 * t - 2, e2 = -3 * t + 1, e3 = t;
     LEval r;
     r.x = b0 * c.x[i0] + b1 * c.x[i1] + b2 * c.x[i2] + b3 * c.x[i3];
@@ -306,7 +310,8 @@ struct Grid {
 /* The signed distance from the samples of P to curve Q; local minima within `reach` refined. Appends
  * pairs (A's point first) to out. p_is_a: P is curve A. */
 void ref_side(const LCurve& P, const LCurve& Q, bool p_is_a, double reach, std::vector<RefMin>& out,
-              long* unrefined, std::vector<double>* phi_out, std::vector<double>* px_out, std::vector<double>* py_out) {
+              long* unrefined, std::vector<double>* phi_out, std::vector<double>* px_out,
+              std::vector<double>* py_out) {
     const int K = kRefSamples;
     const int np = P.n * K, nq = Q.n * K;
     std::vector<double> qx((size_t)nq), qy((size_t)nq);
@@ -333,11 +338,14 @@ void ref_side(const LCurve& P, const LCurve& Q, bool p_is_a, double reach, std::
         const int iy = std::min(g.ny - 1, std::max(0, (int)((y - g.y0) / g.h)));
         return iy * g.nx + ix;
     };
-    for (int i = 0; i < nq; ++i) g.start[(size_t)cell(qx[(size_t)i], qy[(size_t)i]) + 1]++;
-    for (size_t i = 1; i < g.start.size(); ++i) g.start[i] += g.start[i - 1];
+    for (int i = 0; i < nq; ++i)
+        g.start[(size_t)cell(qx[(size_t)i], qy[(size_t)i]) + 1]++;
+    for (size_t i = 1; i < g.start.size(); ++i)
+        g.start[i] += g.start[i - 1];
     {
         std::vector<int> fill(g.start.begin(), g.start.end() - 1);
-        for (int i = 0; i < nq; ++i) g.items[(size_t)fill[(size_t)cell(qx[(size_t)i], qy[(size_t)i])]++] = i;
+        for (int i = 0; i < nq; ++i)
+            g.items[(size_t)fill[(size_t)cell(qx[(size_t)i], qy[(size_t)i])]++] = i;
     }
     /* φ at P's samples; foot parameter on Q. NaN: nothing of Q within reach. */
     std::vector<double> phi((size_t)np, NAN);
@@ -386,7 +394,10 @@ void ref_side(const LCurve& P, const LCurve& Q, bool p_is_a, double reach, std::
             for (int it = 0; it < 60; ++it) {
                 ld dh;
                 const ld h = hfun(u, &dh);
-                if (h < 0) lo = u; else hi = u;
+                if (h < 0)
+                    lo = u;
+                else
+                    hi = u;
                 ld un = u - h / dh;
                 if (!(dh > 0) || !(un > lo && un < hi)) un = (lo + hi) / 2;
                 if (std::fabs(un - u) < 1e-19L * (ld)Q.n) {
@@ -453,9 +464,15 @@ void ref_side(const LCurve& P, const LCurve& Q, bool p_is_a, double reach, std::
         m.region = -1;
         const double fx = (double)f.x, fy = (double)f.y, gx = (double)q.x, gy = (double)q.y;
         if (p_is_a) {
-            m.ax = fx; m.ay = fy; m.bx = gx; m.by = gy;
+            m.ax = fx;
+            m.ay = fy;
+            m.bx = gx;
+            m.by = gy;
         } else {
-            m.ax = gx; m.ay = gy; m.bx = fx; m.by = fy;
+            m.ax = gx;
+            m.ay = gy;
+            m.bx = fx;
+            m.by = fy;
         }
         m.s = (double)(sgn * d);
         /* B's point minus A's, in long double (world points far from the origin lose the direction) */
@@ -483,10 +500,10 @@ void ref_side(const LCurve& P, const LCurve& Q, bool p_is_a, double reach, std::
  * sample nearest its point on A (samples of the patches and 64 more either side are kept; a contact
  * whose nearest kept sample is a margin one, or farther than W, belongs to none). */
 struct PoseRef {
-    std::vector<RefMin> mins;    /* region = patch index */
-    std::vector<double> sx, sy;  /* kept samples of A */
-    std::vector<int> sp;         /* their patch, or -1 */
-    std::vector<double> smin;    /* per region: reference separation */
+    std::vector<RefMin> mins;   /* region = patch index */
+    std::vector<double> sx, sy; /* kept samples of A */
+    std::vector<int> sp;        /* their patch, or -1 */
+    std::vector<double> smin;   /* per region: reference separation */
     int regions = 0;
 };
 
@@ -503,7 +520,8 @@ int nearest_patch(const PoseRef& r, double x, double y) {
     return p;
 }
 
-void reference(const Body& A, rugo_transform xa, const Body& B, rugo_transform xb, PoseRef& pr, long* unrefined) {
+void reference(const Body& A, rugo_transform xa, const Body& B, rugo_transform xb, PoseRef& pr,
+               long* unrefined) {
     pr = PoseRef();
     const LCurve ca = world_curve(A.pts, xa), cb = world_curve(B.pts, xb);
     std::vector<double> phi, ax, ay;
@@ -511,7 +529,10 @@ void reference(const Body& A, rugo_transform xa, const Body& B, rugo_transform x
     ref_side(ca, cb, true, 2.0 * kWindow, all, unrefined, &phi, &ax, &ay);
     ref_side(cb, ca, false, 2.0 * kWindow, all, unrefined, nullptr, nullptr, nullptr);
     const int n = (int)phi.size();
-    auto in = [&](int i) { const double v = phi[(size_t)(((i % n) + n) % n)]; return !std::isnan(v) && v <= 2.0 * kWindow; };
+    auto in = [&](int i) {
+        const double v = phi[(size_t)(((i % n) + n) % n)];
+        return !std::isnan(v) && v <= 2.0 * kWindow;
+    };
     int start = -1;
     for (int i = 0; i < n && start < 0; ++i)
         if (!in(i)) start = i;
@@ -527,7 +548,8 @@ void reference(const Body& A, rugo_transform xa, const Body& B, rugo_transform x
     std::vector<char> keep((size_t)n, 0);
     for (int i = 0; i < n; ++i)
         if (patch[(size_t)i] >= 0)
-            for (int d = -64; d <= 64; ++d) keep[(size_t)(((i + d) % n + n) % n)] = 1;
+            for (int d = -64; d <= 64; ++d)
+                keep[(size_t)(((i + d) % n + n) % n)] = 1;
     for (int i = 0; i < n; ++i)
         if (keep[(size_t)i]) {
             pr.sx.push_back(ax[(size_t)i]);
@@ -633,8 +655,8 @@ rugo_contact_query make_query(int level, double margin) {
     return q;
 }
 
-rugo_contact_state state_at(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa, const rugo_shape* b,
-                            rugo_transform xb) {
+rugo_contact_state state_at(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform xa,
+                            const rugo_shape* b, rugo_transform xb) {
     /* the poses are placed by the round-off answer, whatever resolution the methods run at */
     rugo_contact_query q = rugo_default_contact_query();
     q.resolution = 0.0;
@@ -658,8 +680,8 @@ double touching(rugo_collide_context* ctx, const rugo_shape* a, rugo_transform x
     return hi;
 }
 
-void rugo_contacts(rugo_collide_context* ctx, const Body& A, rugo_transform xa, const Body& B, rugo_transform xb,
-                   int level, std::vector<Cnt>& out, rugo_query_stats* qs) {
+void rugo_contacts(rugo_collide_context* ctx, const Body& A, rugo_transform xa, const Body& B,
+                   rugo_transform xb, int level, std::vector<Cnt>& out, rugo_query_stats* qs) {
     static rugo_contact c[kCap];
     const rugo_contact_query q = make_query(level, kWindow);
     rugo_contact_output o = rugo_contact_output_of(c, kCap);
@@ -750,11 +772,12 @@ void bez_box(const rugo_vec2* b, double grow, std::array<double, 4>& box) {
 
 void brute_prepare(BruteSide& A, BruteScratch& s) {
     s.boxa.resize((size_t)A.n);
-    for (int k = 0; k < A.n; ++k) bez_box(A.bez[(size_t)k].data(), A.band[(size_t)k] + kWindow, s.boxa[(size_t)k]);
+    for (int k = 0; k < A.n; ++k)
+        bez_box(A.bez[(size_t)k].data(), A.band[(size_t)k] + kWindow, s.boxa[(size_t)k]);
 }
 
-void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, rugo_transform xb, BruteScratch& s,
-                    std::vector<Cnt>* out, long* pairs) {
+void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, rugo_transform xb,
+                    BruteScratch& s, std::vector<Cnt>* out, long* pairs) {
     /* B relative to A, as librugo does: everything in A's frame */
     rugo_transform rel;
     rel.q.c = xa.q.c * xb.q.c + xa.q.s * xb.q.s;
@@ -763,7 +786,8 @@ void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, r
     s.bb.resize((size_t)B.n);
     s.boxb.resize((size_t)B.n);
     for (int k = 0; k < B.n; ++k) {
-        for (int i = 0; i < 4; ++i) s.bb[(size_t)k][(size_t)i] = rugo_transform_point(rel, B.bez[(size_t)k][(size_t)i]);
+        for (int i = 0; i < 4; ++i)
+            s.bb[(size_t)k][(size_t)i] = rugo_transform_point(rel, B.bez[(size_t)k][(size_t)i]);
         bez_box(s.bb[(size_t)k].data(), B.band[(size_t)k], s.boxb[(size_t)k]);
     }
     s.minima.clear();
@@ -792,8 +816,14 @@ void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, r
                 h.sb = j;
                 h.ta = r.stationary[k].s;
                 h.tb = r.stationary[k].t;
-                if (h.ta >= 1.0) { h.sa = (h.sa + 1) % A.n; h.ta = 0.0; }
-                if (h.tb >= 1.0) { h.sb = (h.sb + 1) % B.n; h.tb = 0.0; }
+                if (h.ta >= 1.0) {
+                    h.sa = (h.sa + 1) % A.n;
+                    h.ta = 0.0;
+                }
+                if (h.tb >= 1.0) {
+                    h.sb = (h.sb + 1) % B.n;
+                    h.tb = 0.0;
+                }
                 h.pa = rugo_v2_add(r.stationary[k].pa, o);
                 h.pb = rugo_v2_add(r.stationary[k].pb, o);
                 h.d = r.stationary[k].distance;
@@ -811,7 +841,8 @@ void brute_contacts(const BruteSide& A, rugo_transform xa, const BruteSide& B, r
         bool dup = false;
         for (size_t j = 0; j < i && !dup; ++j) {
             const auto& o2 = s.stationary[j];
-            dup = std::hypot(o2.pa.x - h.pa.x, o2.pa.y - h.pa.y) <= eps && std::hypot(o2.pb.x - h.pb.x, o2.pb.y - h.pb.y) <= eps;
+            dup = std::hypot(o2.pa.x - h.pa.x, o2.pa.y - h.pa.y) <= eps &&
+                  std::hypot(o2.pb.x - h.pb.x, o2.pb.y - h.pb.y) <= eps;
         }
         if (dup) continue;
         const rugo_vec2 d = rugo_v2_sub(h.pb, h.pa);
@@ -860,13 +891,15 @@ struct Row {
 };
 
 void print_row(FILE* f, const Row& r) {
-    std::fprintf(f, "%s,%d,%.2f,%.0f,%.3e,%.3e,%.3e,%.3e,%ld,%ld\n", r.method.c_str(), r.param, r.pairs, r.time_ns,
-                 r.m.max_sep, r.m.n_sep ? r.m.sum_sep / (double)r.m.n_sep : 0.0, r.m.max_pt, r.m.max_nrm, r.m.missed,
-                 r.m.spurious);
+    std::fprintf(f, "%s,%d,%.2f,%.0f,%.3e,%.3e,%.3e,%.3e,%ld,%ld\n", r.method.c_str(), r.param, r.pairs,
+                 r.time_ns, r.m.max_sep, r.m.n_sep ? r.m.sum_sep / (double)r.m.n_sep : 0.0, r.m.max_pt,
+                 r.m.max_nrm, r.m.missed, r.m.spurious);
 }
 
 /* The error used for the targets: a missed or spurious contact counts as an error of at least D. */
-double eff_err(const Row& r) { return r.m.missed + r.m.spurious > 0 ? std::max(r.m.max_sep, kWindow) : r.m.max_sep; }
+double eff_err(const Row& r) {
+    return r.m.missed + r.m.spurious > 0 ? std::max(r.m.max_sep, kWindow) : r.m.max_sep;
+}
 
 /* Time of the baseline at max separation error e, log-log interpolation between m values (errors
  * fall as m grows). Returns -1 if no m reaches e (then *reach_m = 0) or if even m = 16 is below e. */
@@ -914,9 +947,12 @@ std::vector<rugo_vec2> comb_points(int teeth, double pitch, double amp, int per_
     const int rest = n - nb;
     const int side = (int)std::lround(rest * H / (2.0 * H + W));
     const int top = rest - 2 * side;
-    for (int i = 0; i < side; ++i) p.push_back(rugo_v2(0.5 * W, -0.5 * H + H * i / side));
-    for (int i = 0; i < top; ++i) p.push_back(rugo_v2(0.5 * W - W * i / top, 0.5 * H));
-    for (int i = 0; i < side; ++i) p.push_back(rugo_v2(-0.5 * W, 0.5 * H - H * i / side));
+    for (int i = 0; i < side; ++i)
+        p.push_back(rugo_v2(0.5 * W, -0.5 * H + H * i / side));
+    for (int i = 0; i < top; ++i)
+        p.push_back(rugo_v2(0.5 * W - W * i / top, 0.5 * H));
+    for (int i = 0; i < side; ++i)
+        p.push_back(rugo_v2(-0.5 * W, 0.5 * H - H * i / side));
     return p;
 }
 
@@ -928,10 +964,14 @@ std::vector<rugo_vec2> slab_points(double w, double h, int n) {
         nw = n / 2 - nh;
     }
     std::vector<rugo_vec2> p;
-    for (int i = 0; i < nw; ++i) p.push_back(rugo_v2(-0.5 * w + w * i / nw, -0.5 * h));
-    for (int i = 0; i < nh; ++i) p.push_back(rugo_v2(0.5 * w, -0.5 * h + h * i / nh));
-    for (int i = 0; i < nw; ++i) p.push_back(rugo_v2(0.5 * w - w * i / nw, 0.5 * h));
-    for (int i = 0; i < nh; ++i) p.push_back(rugo_v2(-0.5 * w, 0.5 * h - h * i / nh));
+    for (int i = 0; i < nw; ++i)
+        p.push_back(rugo_v2(-0.5 * w + w * i / nw, -0.5 * h));
+    for (int i = 0; i < nh; ++i)
+        p.push_back(rugo_v2(0.5 * w, -0.5 * h + h * i / nh));
+    for (int i = 0; i < nw; ++i)
+        p.push_back(rugo_v2(0.5 * w - w * i / nw, 0.5 * h));
+    for (int i = 0; i < nh; ++i)
+        p.push_back(rugo_v2(-0.5 * w, 0.5 * h - h * i / nh));
     return p;
 }
 
@@ -944,8 +984,8 @@ struct SweepRow {
 
 /* One fixed situation: B moved along dir from A's position until the curves touch, then by gap more. */
 SweepRow sweep_point(rugo_collide_context* ctx, const std::string& kind, const std::string& shapes, int n,
-                     const rugo_shape* a, const rugo_shape* b, rugo_transform xa, rugo_transform xb, rugo_vec2 from,
-                     rugo_vec2 dir, int expected, int reps) {
+                     const rugo_shape* a, const rugo_shape* b, rugo_transform xa, rugo_transform xb,
+                     rugo_vec2 from, rugo_vec2 dir, int expected, int reps) {
     const double gap = 1e-7;
     const double d = touching(ctx, a, xa, b, xb, from, dir) + gap;
     xb.p = rugo_v2(from.x + d * dir.x, from.y + d * dir.y);
@@ -980,8 +1020,8 @@ struct HardRow {
     long regions;
 };
 
-HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body& A, rugo_transform xa, const Body& B,
-                  rugo_transform xb, int m, long* unrefined) {
+HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body& A, rugo_transform xa,
+                  const Body& B, rugo_transform xb, int m, long* unrefined) {
     HardRow h;
     h.name = name;
     PoseRef pr;
@@ -1005,7 +1045,8 @@ HardRow hard_case(rugo_collide_context* ctx, const std::string& name, const Body
         box2d_pairs(pa, ba, pb, bb, pl);
         got.clear();
         int sink = 0;
-        for (const auto& p : pl) box2d_collide(pa, ba, pb, bb, p.first, p.second, &got, &sink);
+        for (const auto& p : pl)
+            box2d_collide(pa, ba, pb, bb, p.first, p.second, &got, &sink);
         evaluate(pr, got, h.poly);
     } else {
         h.poly.finite = false;
@@ -1079,17 +1120,17 @@ __attribute__((noinline)) double time_poses(rugo_collide_context* ctx, const std
     return now_ns() - t0;
 }
 
-/* The two subsets under their own names (noipa: not folded into one), so that a profiler can count either alone
- * (valgrind --tool=callgrind --toggle-collect='*time_smooth_poses*'). */
+/* The two subsets under their own names (noipa: not folded into one), so that a profiler can count either
+ * alone (valgrind --tool=callgrind --toggle-collect='*time_smooth_poses*'). */
 __attribute__((noipa)) double time_smooth_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
-                                                   const std::vector<Pose>& poses, const rugo_contact_query& q,
-                                                   rugo_contact* buf) {
+                                                const std::vector<Pose>& poses, const rugo_contact_query& q,
+                                                rugo_contact* buf) {
     return time_poses(ctx, bodies, poses, q, buf);
 }
 
 __attribute__((noipa)) double time_rough_poses(rugo_collide_context* ctx, const std::vector<Body>& bodies,
-                                                  const std::vector<Pose>& poses, const rugo_contact_query& q,
-                                                  rugo_contact* buf) {
+                                               const std::vector<Pose>& poses, const rugo_contact_query& q,
+                                               rugo_contact* buf) {
     return time_poses(ctx, bodies, poses, q, buf);
 }
 
@@ -1102,12 +1143,13 @@ int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, con
     const rugo_contact_query q = make_query(0, kWindow);
     const size_t P = poses.size();
     std::vector<rugo_contact_cache*> caches(P, nullptr);
-    for (auto& c : caches) rugo_contact_cache_create(nullptr, kCap, &c);
+    for (auto& c : caches)
+        rugo_contact_cache_create(nullptr, kCap, &c);
     static rugo_contact cbuf[kCap], wbuf[kCap];
-    std::printf("# warm queries at level 0, resolution %g (size 1), margin %g; %zu poses\n", g_resolution, kWindow,
-                P);
-    std::printf("%-14s %10s %10s %8s %8s %12s %s\n", "v, w (1/s)", "cold ns", "warm ns", "cold/warm", "reused",
-                "max |ds|", "state differs");
+    std::printf("# warm queries at level 0, resolution %g (size 1), margin %g; %zu poses\n", g_resolution,
+                kWindow, P);
+    std::printf("%-14s %10s %10s %8s %8s %12s %s\n", "v, w (1/s)", "cold ns", "warm ns", "cold/warm",
+                "reused", "max |ds|", "state differs");
     const double speeds[][2] = {{1.0, 1.0}, {0.1, 0.1}, {0.01, 0.01}, {0.001, 0.001}, {0.0, 0.0}};
     for (const auto& vw : speeds) {
         rugo_rng rng;
@@ -1127,22 +1169,22 @@ int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, con
                 rugo_contact_cache_clear(caches[i]);
                 rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
                 out.cache = caches[i];
-                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
-                                    poses[i].xb, &q, ctx, &out);
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa,
+                                    bodies[(size_t)poses[i].b].shape, poses[i].xb, &q, ctx, &out);
             }
             double t0 = now_ns();
             for (size_t i = 0; i < P; ++i) {
                 rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
-                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
-                                    moved[i].xb, &q, ctx, &out);
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa,
+                                    bodies[(size_t)moved[i].b].shape, moved[i].xb, &q, ctx, &out);
             }
             cold_t.push_back(now_ns() - t0);
             t0 = now_ns();
             for (size_t i = 0; i < P; ++i) {
                 rugo_contact_output out = rugo_contact_output_of(wbuf, kCap);
                 out.cache = caches[i];
-                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
-                                    moved[i].xb, &q, ctx, &out);
+                rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa,
+                                    bodies[(size_t)moved[i].b].shape, moved[i].xb, &q, ctx, &out);
             }
             warm_t.push_back(now_ns() - t0);
         }
@@ -1152,21 +1194,22 @@ int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, con
             rugo_contact_cache_clear(caches[i]);
             rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
             out.cache = caches[i];
-            rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
-                                poses[i].xb, &q, ctx, &out);
+            rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa,
+                                bodies[(size_t)poses[i].b].shape, poses[i].xb, &q, ctx, &out);
             rugo_contact_output w = rugo_contact_output_of(wbuf, kCap);
             w.cache = caches[i];
-            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
-                                moved[i].xb, &q, ctx, &w);
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa,
+                                bodies[(size_t)moved[i].b].shape, moved[i].xb, &q, ctx, &w);
             rugo_contact_output c = rugo_contact_output_of(cbuf, kCap);
-            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa, bodies[(size_t)moved[i].b].shape,
-                                moved[i].xb, &q, ctx, &c);
+            rugo_collide_shapes(bodies[(size_t)moved[i].a].shape, moved[i].xa,
+                                bodies[(size_t)moved[i].b].shape, moved[i].xb, &q, ctx, &c);
             reused += w.stats.reused;
             differs += w.state != c.state;
             for (int k = 0; k < c.count; ++k) { /* each cold contact against the warm one nearest its point */
                 double best = HUGE_VAL, bd = HUGE_VAL;
                 for (int j = 0; j < w.count; ++j) {
-                    const double d = std::hypot(cbuf[k].point_a.x - wbuf[j].point_a.x, cbuf[k].point_a.y - wbuf[j].point_a.y);
+                    const double d = std::hypot(cbuf[k].point_a.x - wbuf[j].point_a.x,
+                                                cbuf[k].point_a.y - wbuf[j].point_a.y);
                     if (d < bd) {
                         bd = d;
                         best = std::fabs(cbuf[k].separation - wbuf[j].separation);
@@ -1181,13 +1224,15 @@ int warm_queries(rugo_collide_context* ctx, const std::vector<Body>& bodies, con
         std::printf("%5.3f, %5.3f   %10.0f %10.0f %8.2fx %7.1f%% %12.2e %ld\n", vw[0], vw[1], c, w, c / w,
                     100.0 * (double)reused / (double)P, max_ds, differs);
     }
-    for (auto& c : caches) rugo_contact_cache_destroy(c);
+    for (auto& c : caches)
+        rugo_contact_cache_destroy(c);
     rugo_collide_context_destroy(ctx);
-    for (auto& b : bodies) rugo_shape_destroy(b.shape);
+    for (auto& b : bodies)
+        rugo_shape_destroy(b.shape);
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 int main(int argc, char** argv) {
     bool quick = false, strip = true, contacts_hash = false, ray_casts = false, warm = false;
@@ -1206,13 +1251,18 @@ int main(int argc, char** argv) {
         else if (std::strcmp(argv[i], "--band-adjusted") == 0)
             g_rule = RUGO_CONTACT_BAND_ADJUSTED;
         else if (std::strcmp(argv[i], "--hm") == 0)
-            strip = false; /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
+            strip = false;            /* the baseline with ear clipping + Hertel-Mehlhorn pieces only */
         else if (argv[i][0] == '-') { /* an unknown option, --help included: not a directory name */
-            std::fprintf(stderr,
-                         "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]; "
-                         "[--resolution D] for the rugo methods (default 0)\n",
-                         argv[0]);
-            std::fprintf(stderr, "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --warm; [--resolution D] [--band-adjusted] for the rugo methods (default 0, the thesis rule)\n", argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --ray-casts [--quick]; "
+                "[--resolution D] for the rugo methods (default 0)\n",
+                argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s [--quick] [--hm] [OUTDIR] | --contacts-hash [--quick] | --warm; [--resolution D] "
+                "[--band-adjusted] for the rugo methods (default 0, the thesis rule)\n",
+                argv[0]);
             return 2;
         } else
             dir = argv[i];
@@ -1224,13 +1274,14 @@ int main(int argc, char** argv) {
     }
     const int poses_per_kind = quick ? 2 : 40;
     const int reps = quick ? 1 : 15;
-    const std::vector<int> ms = quick ? std::vector<int>{16, 64, 256}
-                                      : std::vector<int>{16, 32, 64, 128, 256, 512, 1024, 2048, 4096};
+    const std::vector<int> ms =
+        quick ? std::vector<int>{16, 64, 256} : std::vector<int>{16, 32, 64, 128, 256, 512, 1024, 2048, 4096};
     const std::vector<int> levels = {0, -1, -2, -3};
 
     /* ---- shapes ---- */
     std::vector<Body> bodies(4);
-    bool ok = make_smooth(bodies[0], "ellipse", ellipse_points(256)) && make_smooth(bodies[1], "bean", bean_points(256)) &&
+    bool ok = make_smooth(bodies[0], "ellipse", ellipse_points(256)) &&
+              make_smooth(bodies[1], "bean", bean_points(256)) &&
               make_rough(bodies[2], "ellipse_rough", ellipse_points(64), 11) &&
               make_rough(bodies[3], "bean_rough", bean_points(64), 12);
     if (!ok) return 1;
@@ -1253,7 +1304,8 @@ int main(int argc, char** argv) {
             const double th = rugo_rng_range(&rng, 0.0, 2.0 * kPi);
             const rugo_vec2 u = rugo_v2(std::cos(th), std::sin(th));
             const double gap = rugo_rng_range(&rng, -0.002, 0.002);
-            const double d = touching(ctx, bodies[(size_t)p.a].shape, p.xa, bodies[(size_t)p.b].shape, p.xb, p.xa.p, u);
+            const double d =
+                touching(ctx, bodies[(size_t)p.a].shape, p.xa, bodies[(size_t)p.b].shape, p.xb, p.xa.p, u);
             p.xb.p = rugo_v2((d + gap) * u.x, (d + gap) * u.y);
             poses.push_back(p);
         }
@@ -1279,8 +1331,8 @@ int main(int argc, char** argv) {
             for (size_t i = 0; i < P; ++i) {
                 const bool smooth = !bodies[(size_t)poses[i].a].rough;
                 rugo_contact_output out = rugo_contact_output_of(cbuf, kCap);
-                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa, bodies[(size_t)poses[i].b].shape,
-                                    poses[i].xb, &q, ctx, &out);
+                rugo_collide_shapes(bodies[(size_t)poses[i].a].shape, poses[i].xa,
+                                    bodies[(size_t)poses[i].b].shape, poses[i].xb, &q, ctx, &out);
                 const int n = out.count;
                 work[smooth ? 0 : 1][0] += out.stats.box_tests;
                 work[smooth ? 0 : 1][1] += out.stats.segment_pairs;
@@ -1289,8 +1341,9 @@ int main(int argc, char** argv) {
                 if (smooth) hs = sample_fnv1a(hs, head, sizeof head);
                 for (int k = 0; k < n; ++k) { /* field by field: padding bytes are not part of the answer */
                     const rugo_contact& c = cbuf[k];
-                    const double reals[] = {c.point_a.x, c.point_a.y, c.point_b.x, c.point_b.y, c.normal.x, c.normal.y,
-                                            c.separation, c.t_a, c.t_b, c.tolerance_a, c.tolerance_b, c.friction,
+                    const double reals[] = {c.point_a.x,  c.point_a.y,   c.point_b.x,   c.point_b.y,
+                                            c.normal.x,   c.normal.y,    c.separation,  c.t_a,
+                                            c.t_b,        c.tolerance_a, c.tolerance_b, c.friction,
                                             c.restitution};
                     const int ints[] = {c.segment_a, c.segment_b, c.level_a, c.level_b, c.region};
                     h = sample_fnv1a(h, reals, sizeof reals);
@@ -1305,21 +1358,27 @@ int main(int argc, char** argv) {
             }
             /* and the time per query (best of 5 passes over the poses; a quick look, not the benchmark) */
             std::vector<Pose> smooth_poses, rough_poses;
-            for (const Pose& p : poses) (bodies[(size_t)p.a].rough ? rough_poses : smooth_poses).push_back(p);
+            for (const Pose& p : poses)
+                (bodies[(size_t)p.a].rough ? rough_poses : smooth_poses).push_back(p);
             double best_s = HUGE_VAL, best_r = HUGE_VAL;
             for (int rep = 0; rep < 5; ++rep) {
                 best_s = std::min(best_s, time_smooth_poses(ctx, bodies, smooth_poses, q, cbuf));
                 best_r = std::min(best_r, time_rough_poses(ctx, bodies, rough_poses, q, cbuf));
             }
-            std::printf("contacts_hash level %d: %016llx (%zu poses; smooth ones %016llx; ns per query: %.0f, smooth %.0f, rough %.0f)\n",
+            std::printf("contacts_hash level %d: %016llx (%zu poses; smooth ones %016llx; ns per query: "
+                        "%.0f, smooth %.0f, rough %.0f)\n",
                         L, (unsigned long long)h, P, (unsigned long long)hs, (best_s + best_r) / (double)P,
                         best_s / (double)smooth_poses.size(), best_r / (double)rough_poses.size());
-            std::printf("#   per query: box tests %.0f smooth, %.0f rough; segment pairs %.1f smooth, %.1f rough\n",
-                        (double)work[0][0] / (double)smooth_poses.size(), (double)work[1][0] / (double)rough_poses.size(),
-                        (double)work[0][1] / (double)smooth_poses.size(), (double)work[1][1] / (double)rough_poses.size());
+            std::printf(
+                "#   per query: box tests %.0f smooth, %.0f rough; segment pairs %.1f smooth, %.1f rough\n",
+                (double)work[0][0] / (double)smooth_poses.size(),
+                (double)work[1][0] / (double)rough_poses.size(),
+                (double)work[0][1] / (double)smooth_poses.size(),
+                (double)work[1][1] / (double)rough_poses.size());
         }
         rugo_collide_context_destroy(ctx);
-        for (auto& b : bodies) rugo_shape_destroy(b.shape);
+        for (auto& b : bodies)
+            rugo_shape_destroy(b.shape);
         return 0;
     }
 
@@ -1327,9 +1386,11 @@ int main(int argc, char** argv) {
     std::vector<PoseRef> ref(P);
     long unrefined = 0, required_regions = 0, poses_without_required = 0;
     for (size_t i = 0; i < P; ++i) {
-        reference(bodies[(size_t)poses[i].a], poses[i].xa, bodies[(size_t)poses[i].b], poses[i].xb, ref[i], &unrefined);
+        reference(bodies[(size_t)poses[i].a], poses[i].xa, bodies[(size_t)poses[i].b], poses[i].xb, ref[i],
+                  &unrefined);
         int req = 0;
-        for (double sm : ref[i].smin) req += sm <= 0.5 * kWindow;
+        for (double sm : ref[i].smin)
+            req += sm <= 0.5 * kWindow;
         required_regions += req;
         poses_without_required += req == 0;
     }
@@ -1348,7 +1409,8 @@ int main(int argc, char** argv) {
     std::vector<Cnt> got;
     got.reserve(1024);
     /* run(i, out, pairs): one query on pose i; out and pairs may be null (timing). */
-    auto measure = [&](const std::string& method, int param, const std::function<void(size_t, std::vector<Cnt>*, long*)>& run) {
+    auto measure = [&](const std::string& method, int param,
+                       const std::function<void(size_t, std::vector<Cnt>*, long*)>& run) {
         Row r[3];
         long pairs[3] = {0, 0, 0};
         for (int k = 0; k < 3; ++k) {
@@ -1374,10 +1436,12 @@ int main(int argc, char** argv) {
             for (int rep = 0; rep < reps; ++rep)
                 for (size_t g = 0; g < groups; ++g) {
                     const double t0 = now_ns();
-                    for (size_t j = g * G; j < std::min(idx[k].size(), (g + 1) * G); ++j) run(idx[k][j], nullptr, nullptr);
+                    for (size_t j = g * G; j < std::min(idx[k].size(), (g + 1) * G); ++j)
+                        run(idx[k][j], nullptr, nullptr);
                     gbest[g] = std::min(gbest[g], now_ns() - t0);
                 }
-            for (double t : gbest) best[k] += t;
+            for (double t : gbest)
+                best[k] += t;
         }
         best[0] = best[1] + best[2];
         for (int k = 0; k < 3; ++k) {
@@ -1406,16 +1470,18 @@ int main(int argc, char** argv) {
             rugo_contact_output o = rugo_contact_output_of(cbuf, kCap);
             rugo_collide_shapes(A.shape, poses[i].xa, B.shape, poses[i].xb, &q, ctx, &o);
         });
-        std::printf("# rugo level %d: %.1f box tests, %.1f segment pairs per query\n", L, (double)boxes / (double)P,
-                    r.pairs);
+        std::printf("# rugo level %d: %.1f box tests, %.1f segment pairs per query\n", L,
+                    (double)boxes / (double)P, r.pairs);
     }
 
     /* ---- brute force ---- */
     {
         std::vector<BruteSide> bs;
-        for (const auto& b : bodies) bs.push_back(brute_side(b));
+        for (const auto& b : bodies)
+            bs.push_back(brute_side(b));
         std::vector<BruteScratch> scratch(bodies.size());
-        for (size_t k = 0; k < bodies.size(); ++k) brute_prepare(bs[k], scratch[k]);
+        for (size_t k = 0; k < bodies.size(); ++k)
+            brute_prepare(bs[k], scratch[k]);
         measure("brute", 0, [&](size_t i, std::vector<Cnt>* out, long* np) {
             brute_contacts(bs[(size_t)poses[i].a], poses[i].xa, bs[(size_t)poses[i].b], poses[i].xb,
                            scratch[(size_t)poses[i].a], out ? out : &got, np);
@@ -1434,7 +1500,8 @@ int main(int argc, char** argv) {
             strips += pb.back()->strip;
             poly_ok &= pb.back()->ok;
             pieces += (long)pb.back()->pieces.size();
-            for (const auto& pc : pb.back()->pieces) piece_vertices += pc.m_count;
+            for (const auto& pc : pb.back()->pieces)
+                piece_vertices += pc.m_count;
         }
         if (!poly_ok) {
             std::fprintf(stderr, "polygon decomposition failed at m = %d\n", m);
@@ -1442,7 +1509,8 @@ int main(int argc, char** argv) {
         }
         std::vector<std::vector<std::pair<int, int>>> lists(P);
         for (size_t i = 0; i < P; ++i)
-            box2d_pairs(*pb[(size_t)poses[i].a], b2xf(poses[i].xa), *pb[(size_t)poses[i].b], b2xf(poses[i].xb), lists[i]);
+            box2d_pairs(*pb[(size_t)poses[i].a], b2xf(poses[i].xa), *pb[(size_t)poses[i].b],
+                        b2xf(poses[i].xb), lists[i]);
         int sink = 0;
         const Row& r = measure("box2d", m, [&](size_t i, std::vector<Cnt>* out, long* np) {
             const PolyBody &A = *pb[(size_t)poses[i].a], &B = *pb[(size_t)poses[i].b];
@@ -1451,7 +1519,8 @@ int main(int argc, char** argv) {
             if (np) *np = (long)pl.size();
             std::vector<Cnt>* o = out ? out : &got;
             o->clear();
-            for (const auto& pr : pl) box2d_collide(A, xa, B, xb, pr.first, pr.second, o, &sink);
+            for (const auto& pr : pl)
+                box2d_collide(A, xa, B, xb, pr.first, pr.second, o, &sink);
         });
         measure("box2d_narrow", m, [&](size_t i, std::vector<Cnt>* out, long* np) {
             const PolyBody &A = *pb[(size_t)poses[i].a], &B = *pb[(size_t)poses[i].b];
@@ -1459,12 +1528,15 @@ int main(int argc, char** argv) {
             if (np) *np = (long)lists[i].size();
             std::vector<Cnt>* o = out ? out : &got;
             o->clear();
-            for (const auto& pr : lists[i]) box2d_collide(A, xa, B, xb, pr.first, pr.second, o, &sink);
+            for (const auto& pr : lists[i])
+                box2d_collide(A, xa, B, xb, pr.first, pr.second, o, &sink);
         });
-        std::printf("# box2d m = %d: %.1f convex pieces per shape (%.2f vertices each; %ld of %zu shapes by the strip "
-                    "decomposition, the others by ear clipping + Hertel-Mehlhorn), %.1f b2CollidePolygons calls per query\n",
-                    m, (double)pieces / (double)bodies.size(), (double)piece_vertices / (double)pieces, strips,
-                    bodies.size(), r.pairs);
+        std::printf("# box2d m = %d: %.1f convex pieces per shape (%.2f vertices each; %ld of %zu shapes by "
+                    "the strip "
+                    "decomposition, the others by ear clipping + Hertel-Mehlhorn), %.1f b2CollidePolygons "
+                    "calls per query\n",
+                    m, (double)pieces / (double)bodies.size(), (double)piece_vertices / (double)pieces,
+                    strips, bodies.size(), r.pairs);
     }
 
     /* ---- output ---- */
@@ -1473,7 +1545,8 @@ int main(int argc, char** argv) {
                          "max_normal_err_rad,missed,spurious\n";
     bool io_ok = true;
     for (int k = 0; k < 3; ++k) {
-        std::snprintf(path, sizeof path, k == 0 ? "%s/bench_queries.csv" : "%s/bench_queries_%s.csv", dir, subset_name[k]);
+        std::snprintf(path, sizeof path, k == 0 ? "%s/bench_queries.csv" : "%s/bench_queries_%s.csv", dir,
+                      subset_name[k]);
         FILE* csv = std::fopen(path, "w");
         if (!csv) return 1;
         std::fputs(header, csv);
@@ -1500,8 +1573,11 @@ int main(int argc, char** argv) {
                     (o.time_ns < r.time_ns || eff_err(o) < eff_err(r)))
                     dominated = true;
             if (dominated) continue;
-            std::fprintf(par, "%s,%s,%d,%.0f,%.3e\n", subset_name[k], r.method.c_str(), r.param, r.time_ns, eff_err(r));
-            if (k == 0) std::printf("# pareto %s %d: %.0f ns, %.3e\n", r.method.c_str(), r.param, r.time_ns, eff_err(r));
+            std::fprintf(par, "%s,%s,%d,%.0f,%.3e\n", subset_name[k], r.method.c_str(), r.param, r.time_ns,
+                         eff_err(r));
+            if (k == 0)
+                std::printf("# pareto %s %d: %.0f ns, %.3e\n", r.method.c_str(), r.param, r.time_ns,
+                            eff_err(r));
         }
     io_ok &= std::fclose(par) == 0;
 
@@ -1519,8 +1595,8 @@ int main(int argc, char** argv) {
                 const rugo_transform xa = rugo_make_transform(0.0, 0.0, 0.3);
                 const rugo_transform xb = rugo_make_transform(0.0, 0.0, 2.0);
                 const rugo_vec2 u = rugo_v2(std::cos(0.7), std::sin(0.7));
-                sweep.push_back(sweep_point(ctx, "segments", pair == 0 ? "ellipse-ellipse" : "bean-bean", n, a, b, xa,
-                                            xb, xa.p, u, 1, sreps));
+                sweep.push_back(sweep_point(ctx, "segments", pair == 0 ? "ellipse-ellipse" : "bean-bean", n,
+                                            a, b, xa, xb, xa.p, u, 1, sreps));
                 rugo_shape_destroy(a);
                 rugo_shape_destroy(b);
             }
@@ -1541,8 +1617,8 @@ int main(int argc, char** argv) {
             const double xc = -0.5 * teeth * pitch + (first + 0.5 * k) * pitch;
             const rugo_transform xa = rugo_identity_transform();
             const rugo_transform xb = rugo_identity_transform();
-            sweep.push_back(sweep_point(ctx, "contacts", "comb-slab", nc, comb, slab, xa, xb, rugo_v2(xc, 0.0),
-                                        rugo_v2(0.0, -1.0), k, sreps));
+            sweep.push_back(sweep_point(ctx, "contacts", "comb-slab", nc, comb, slab, xa, xb,
+                                        rugo_v2(xc, 0.0), rugo_v2(0.0, -1.0), k, sreps));
             rugo_shape_destroy(slab);
         }
         rugo_shape_destroy(comb);
@@ -1550,13 +1626,16 @@ int main(int argc, char** argv) {
     std::snprintf(path, sizeof path, "%s/bench_queries_sweep.csv", dir);
     FILE* sw = std::fopen(path, "w");
     if (!sw) return 1;
-    std::fprintf(sw, "kind,shapes,segments,expected_contacts,contacts,box_tests,segment_pairs,time_ns_per_query\n");
-    std::printf("# sweep: kind,shapes,segments,expected_contacts,contacts,box_tests,segment_pairs,time_ns_per_query\n");
+    std::fprintf(
+        sw, "kind,shapes,segments,expected_contacts,contacts,box_tests,segment_pairs,time_ns_per_query\n");
+    std::printf(
+        "# sweep: "
+        "kind,shapes,segments,expected_contacts,contacts,box_tests,segment_pairs,time_ns_per_query\n");
     for (const auto& s : sweep) {
-        std::fprintf(sw, "%s,%s,%d,%d,%d,%ld,%ld,%.0f\n", s.kind.c_str(), s.shapes.c_str(), s.n, s.expected, s.contacts,
-                     s.boxes, s.pairs, s.time_ns);
-        std::printf("# sweep %s,%s,%d,%d,%d,%ld,%ld,%.0f\n", s.kind.c_str(), s.shapes.c_str(), s.n, s.expected, s.contacts,
-                    s.boxes, s.pairs, s.time_ns);
+        std::fprintf(sw, "%s,%s,%d,%d,%d,%ld,%ld,%.0f\n", s.kind.c_str(), s.shapes.c_str(), s.n, s.expected,
+                     s.contacts, s.boxes, s.pairs, s.time_ns);
+        std::printf("# sweep %s,%s,%d,%d,%d,%ld,%ld,%.0f\n", s.kind.c_str(), s.shapes.c_str(), s.n,
+                    s.expected, s.contacts, s.boxes, s.pairs, s.time_ns);
     }
     io_ok &= std::fclose(sw) == 0;
 
@@ -1564,20 +1643,24 @@ int main(int argc, char** argv) {
     std::vector<HardRow> hard;
     {
         const int mh = quick ? 256 : 1024;
-        auto place = [&](const Body& A, rugo_transform xa, const Body& B, rugo_transform xb, rugo_vec2 u, double gap) {
+        auto place = [&](const Body& A, rugo_transform xa, const Body& B, rugo_transform xb, rugo_vec2 u,
+                         double gap) {
             const double d = touching(ctx, A.shape, xa, B.shape, xb, xa.p, u) + gap;
             xb.p = rugo_v2(xa.p.x + d * u.x, xa.p.y + d * u.y);
             return xb;
         };
         const Body &E = bodies[0], &ER = bodies[2];
-        const rugo_transform x0 = rugo_make_transform(0.0, 0.0, 0.0), x90 = rugo_make_transform(0.0, 0.0, 0.5 * kPi);
+        const rugo_transform x0 = rugo_make_transform(0.0, 0.0, 0.0),
+                             x90 = rugo_make_transform(0.0, 0.0, 0.5 * kPi);
         const rugo_vec2 ux = rugo_v2(1.0, 0.0);
-        hard.push_back(hard_case(ctx, "near-tangent, gap 1e-9", E, x0, E, place(E, x0, E, x90, ux, 1e-9), mh, &unrefined));
-        hard.push_back(hard_case(ctx, "near-tangent, gap 1e-12", E, x0, E, place(E, x0, E, x90, ux, 1e-12), mh, &unrefined));
-        hard.push_back(hard_case(ctx, "overlap 1e-9 (two close crossings)", E, x0, E, place(E, x0, E, x90, ux, -1e-9), mh,
+        hard.push_back(hard_case(ctx, "near-tangent, gap 1e-9", E, x0, E, place(E, x0, E, x90, ux, 1e-9), mh,
                                  &unrefined));
-        hard.push_back(hard_case(ctx, "rough on rough, gap 1e-9", ER, x0, ER, place(ER, x0, ER, x90, ux, 1e-9), mh,
-                                 &unrefined));
+        hard.push_back(hard_case(ctx, "near-tangent, gap 1e-12", E, x0, E, place(E, x0, E, x90, ux, 1e-12),
+                                 mh, &unrefined));
+        hard.push_back(hard_case(ctx, "overlap 1e-9 (two close crossings)", E, x0, E,
+                                 place(E, x0, E, x90, ux, -1e-9), mh, &unrefined));
+        hard.push_back(hard_case(ctx, "rough on rough, gap 1e-9", ER, x0, ER,
+                                 place(ER, x0, ER, x90, ux, 1e-9), mh, &unrefined));
         const rugo_transform far = rugo_make_transform(1000.0, -1000.0, 0.3);
         rugo_transform farb = far;
         farb.q = rugo_rot_from_angle(1.9);
@@ -1596,18 +1679,24 @@ int main(int argc, char** argv) {
         std::snprintf(path, sizeof path, "%s/bench_queries_hard.csv", dir);
         FILE* hf = std::fopen(path, "w");
         if (!hf) return 1;
-        std::fprintf(hf, "case,state,regions,rugo_max_sep_err,rugo_max_normal_err_rad,rugo_missed,rugo_spurious,box2d_m,"
-                         "box2d_max_sep_err,box2d_max_normal_err_rad,box2d_missed,box2d_spurious\n");
-        std::printf("# hard cases (librugo finest; box2d m = %d): case,state,regions,rugo sep err,normal err,missed,"
-                    "spurious | box2d sep err,normal err,missed,spurious\n", mh);
+        std::fprintf(
+            hf,
+            "case,state,regions,rugo_max_sep_err,rugo_max_normal_err_rad,rugo_missed,rugo_spurious,box2d_m,"
+            "box2d_max_sep_err,box2d_max_normal_err_rad,box2d_missed,box2d_spurious\n");
+        std::printf(
+            "# hard cases (librugo finest; box2d m = %d): case,state,regions,rugo sep err,normal err,missed,"
+            "spurious | box2d sep err,normal err,missed,spurious\n",
+            mh);
         for (const auto& h : hard) {
             std::fprintf(hf, "%s,%s,%ld,%.3e,%.3e,%ld,%ld,%d,%.3e,%.3e,%ld,%ld\n", h.name.c_str(),
-                         rugo_contact_state_name((rugo_contact_state)h.state), h.regions, h.rugo.max_sep, h.rugo.max_nrm,
-                         h.rugo.missed, h.rugo.spurious, mh, h.poly.max_sep, h.poly.max_nrm, h.poly.missed, h.poly.spurious);
-            std::printf("# hard %s: %s, %ld region(s); rugo %.2e, %.2e rad, %ld, %ld | box2d %.2e, %.2e rad, %ld, %ld\n",
-                        h.name.c_str(), rugo_contact_state_name((rugo_contact_state)h.state), h.regions, h.rugo.max_sep,
-                        h.rugo.max_nrm, h.rugo.missed, h.rugo.spurious, h.poly.max_sep, h.poly.max_nrm, h.poly.missed,
-                        h.poly.spurious);
+                         rugo_contact_state_name((rugo_contact_state)h.state), h.regions, h.rugo.max_sep,
+                         h.rugo.max_nrm, h.rugo.missed, h.rugo.spurious, mh, h.poly.max_sep, h.poly.max_nrm,
+                         h.poly.missed, h.poly.spurious);
+            std::printf("# hard %s: %s, %ld region(s); rugo %.2e, %.2e rad, %ld, %ld | box2d %.2e, %.2e rad, "
+                        "%ld, %ld\n",
+                        h.name.c_str(), rugo_contact_state_name((rugo_contact_state)h.state), h.regions,
+                        h.rugo.max_sep, h.rugo.max_nrm, h.rugo.missed, h.rugo.spurious, h.poly.max_sep,
+                        h.poly.max_nrm, h.poly.missed, h.poly.spurious);
         }
         io_ok &= std::fclose(hf) == 0;
     }
@@ -1639,26 +1728,29 @@ int main(int argc, char** argv) {
                         if (!lowest || eff_err(r) < eff_err(*lowest)) lowest = &r;
                     }
                 const double lower = last->time_ns / rr->time_ns;
-                std::printf(" at %.0e: rugo level %d %.0f ns; box2d does not reach it with m <= %d (its smallest max error "
+                std::printf(" at %.0e: rugo level %d %.0f ns; box2d does not reach it with m <= %d (its "
+                            "smallest max error "
                             "is %.1e, at m = %d; at m = %d it takes %.0f ns, ratio %.2fx) (goal %.0fx: %s);",
-                            targets[t], rr->param, rr->time_ns, last->param, eff_err(*lowest), lowest->param, last->param,
-                            last->time_ns, lower, goals[t],
-                            lower >= goals[t] ? "met: no m tried reaches that error, and the largest is that much slower"
-                                              : "not shown");
+                            targets[t], rr->param, rr->time_ns, last->param, eff_err(*lowest), lowest->param,
+                            last->param, last->time_ns, lower, goals[t],
+                            lower >= goals[t]
+                                ? "met: no m tried reaches that error, and the largest is that much slower"
+                                : "not shown");
                 continue;
             }
             const double ratio = tb / rr->time_ns;
-            std::printf(" at %.0e: rugo level %d %.0f ns vs box2d m~%.0f %.0f ns = %.2fx (goal %.0fx: %s; vs box2d_narrow "
+            std::printf(" at %.0e: rugo level %d %.0f ns vs box2d m~%.0f %.0f ns = %.2fx (goal %.0fx: %s; vs "
+                        "box2d_narrow "
                         "m~%.0f %.0f ns: %.2fx);",
-                        targets[t], rr->param, rr->time_ns, m_at, tb, ratio, goals[t], ratio >= goals[t] ? "met" : "not met",
-                        m_at_n, tbn, tbn / rr->time_ns);
+                        targets[t], rr->param, rr->time_ns, m_at, tb, ratio, goals[t],
+                        ratio >= goals[t] ? "met" : "not met", m_at_n, tbn, tbn / rr->time_ns);
         }
         const Row* f = nullptr;
         for (const auto& r : rows[k])
             if (r.method == "rugo" && r.param == 0) f = &r;
         if (f)
-            std::printf(" librugo finest max separation error %.1e of the size (%s both targets)\n", f->m.max_sep,
-                        eff_err(*f) <= 1e-5 ? "beats" : "misses");
+            std::printf(" librugo finest max separation error %.1e of the size (%s both targets)\n",
+                        f->m.max_sep, eff_err(*f) <= 1e-5 ? "beats" : "misses");
         else
             std::printf("\n");
     }
@@ -1668,7 +1760,8 @@ int main(int argc, char** argv) {
     sample_expect("polygon decomposition succeeded for every m", poly_ok);
     sample_expect("every pose has a reference region with s <= D/2", poses_without_required == 0);
     bool finite = true;
-    for (const auto& r : rows[0]) finite &= r.m.finite && std::isfinite(r.time_ns) && r.time_ns > 0.0;
+    for (const auto& r : rows[0])
+        finite &= r.m.finite && std::isfinite(r.time_ns) && r.time_ns > 0.0;
     sample_expect("every method ran with finite contacts and times", finite);
     const Row* brute = nullptr;
     for (const auto& r : rows[0])
@@ -1681,14 +1774,18 @@ int main(int argc, char** argv) {
         sample_expect_le("finest level: max point error (size 1)", fin->m.max_pt, 1e-5);
     }
     if (brute) {
-        sample_expect("brute force: no missed or spurious contact", brute->m.missed == 0 && brute->m.spurious == 0);
+        sample_expect("brute force: no missed or spurious contact",
+                      brute->m.missed == 0 && brute->m.spurious == 0);
         sample_expect_le("brute force: max separation error", brute->m.max_sep, 1e-9);
-        if (fin) sample_expect("brute force runs more narrow-phase pairs than the tree", brute->pairs >= fin->pairs);
+        if (fin)
+            sample_expect("brute force runs more narrow-phase pairs than the tree",
+                          brute->pairs >= fin->pairs);
     }
     for (const auto& r : rows[0])
         if (r.method == "rugo" && r.param < 0) {
             char name[160];
-            std::snprintf(name, sizeof name, "level %d: separation error / (beta_A + beta_B) of the contact", r.param);
+            std::snprintf(name, sizeof name, "level %d: separation error / (beta_A + beta_B) of the contact",
+                          r.param);
             sample_expect_le(name, r.m.max_bound_ratio, 1.0);
         }
     {
@@ -1699,9 +1796,12 @@ int main(int argc, char** argv) {
                 if (!hi || r.param > hi->param) hi = &r;
             }
         if (lo && hi) {
-            sample_expect_le("box2d: max separation error falls with m (largest m / m = 16)", hi->m.max_sep / lo->m.max_sep, 0.5);
+            sample_expect_le("box2d: max separation error falls with m (largest m / m = 16)",
+                             hi->m.max_sep / lo->m.max_sep, 0.5);
             sample_expect_le("box2d: mean separation error falls with m (largest m / m = 16)",
-                             (hi->m.sum_sep / (double)std::max(1L, hi->m.n_sep)) / (lo->m.sum_sep / (double)std::max(1L, lo->m.n_sep)), 0.1);
+                             (hi->m.sum_sep / (double)std::max(1L, hi->m.n_sep)) /
+                                 (lo->m.sum_sep / (double)std::max(1L, lo->m.n_sep)),
+                             0.1);
             sample_expect("box2d: no missed contact at the finest m", hi->m.missed == 0);
         }
     }
@@ -1714,28 +1814,41 @@ int main(int argc, char** argv) {
     for (const auto& s : sweep) {
         counts &= s.contacts == s.expected;
         if (s.kind == "segments" && s.shapes == "ellipse-ellipse") {
-            if (min_n == 0 || s.n < min_n) { min_n = s.n; min_box = s.boxes; }
-            if (s.n > max_n) { max_n = s.n; max_box = s.boxes; }
+            if (min_n == 0 || s.n < min_n) {
+                min_n = s.n;
+                min_box = s.boxes;
+            }
+            if (s.n > max_n) {
+                max_n = s.n;
+                max_box = s.boxes;
+            }
         }
         if (s.kind == "contacts") {
             max_pairs_per_contact = std::max(max_pairs_per_contact, (double)s.pairs / s.expected);
             if (s.expected == 1) pairs_k1 = s.pairs;
-            if (s.expected > kmax) { kmax = s.expected; pairs_kmax = s.pairs; }
+            if (s.expected > kmax) {
+                kmax = s.expected;
+                pairs_kmax = s.pairs;
+            }
         }
     }
     sample_expect("sweep: every situation has its expected number of contacts", counts);
     if (min_box > 0 && max_box > 0)
-        sample_expect_le("sweep: box-test growth / segment growth (ellipses)", ((double)max_box / (double)min_box) /
-                                                                                    ((double)max_n / (double)min_n), 0.5);
+        sample_expect_le("sweep: box-test growth / segment growth (ellipses)",
+                         ((double)max_box / (double)min_box) / ((double)max_n / (double)min_n), 0.5);
     if (pairs_k1 > 0 && pairs_kmax > 0) {
         sample_expect_le("sweep: segment pairs per contact (comb on slabs)", max_pairs_per_contact, 8.0);
         sample_expect_le("sweep: at least one more segment pair per extra contact", (double)(kmax - 1),
                          (double)(pairs_kmax - pairs_k1));
     }
     bool hard_ok = !hard.empty();
-    for (const auto& h : hard) hard_ok &= h.rugo.finite && h.rugo.missed == 0 && h.rugo.spurious == 0 && h.rugo.max_sep <= 1e-9 && h.regions > 0;
-    sample_expect("hard cases: librugo finest finds every region, nothing spurious, separation within 1e-9", hard_ok);
-    for (auto& b : bodies) rugo_shape_destroy(b.shape);
+    for (const auto& h : hard)
+        hard_ok &= h.rugo.finite && h.rugo.missed == 0 && h.rugo.spurious == 0 && h.rugo.max_sep <= 1e-9 &&
+                   h.regions > 0;
+    sample_expect("hard cases: librugo finest finds every region, nothing spurious, separation within 1e-9",
+                  hard_ok);
+    for (auto& b : bodies)
+        rugo_shape_destroy(b.shape);
     rugo_collide_context_destroy(ctx);
     return sample_finish();
 }

@@ -43,7 +43,9 @@ inline double to_float(double x) {
     return static_cast<double>(f);
 }
 
-inline double cross3(const DV& a, const DV& b, const DV& c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+inline double cross3(const DV& a, const DV& b, const DV& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
 
 /* m vertices on the finest curve at equal arc length (from 64 chords per segment), from u = 0, rounded to
  * float. */
@@ -85,7 +87,9 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
         prev[(size_t)i] = (i + n - 1) % n;
         next[(size_t)i] = (i + 1) % n;
     }
-    auto reflex = [&](int i) { return cross3(v[(size_t)prev[(size_t)i]], v[(size_t)i], v[(size_t)next[(size_t)i]]) <= 0.0; };
+    auto reflex = [&](int i) {
+        return cross3(v[(size_t)prev[(size_t)i]], v[(size_t)i], v[(size_t)next[(size_t)i]]) <= 0.0;
+    };
     std::vector<int> reflexes;
     for (int i = 0; i < n; ++i)
         if (reflex(i)) {
@@ -102,7 +106,8 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
             if (!alive[(size_t)r] || !isreflex[(size_t)r] || r == a || r == c) continue;
             const DV& p = v[(size_t)r];
             if (p.x < lx || p.x > hx || p.y < ly || p.y > hy) continue;
-            if (cross3(pa, pb, p) >= 0.0 && cross3(pb, pc, p) >= 0.0 && cross3(pc, pa, p) >= 0.0) return false;
+            if (cross3(pa, pb, p) >= 0.0 && cross3(pb, pc, p) >= 0.0 && cross3(pc, pa, p) >= 0.0)
+                return false;
         }
         return true;
     };
@@ -117,7 +122,8 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
         heap.push_back({diag(b), {b, version[(size_t)b]}});
         std::push_heap(heap.begin(), heap.end(), std::greater<Entry>());
     };
-    for (int i = 0; i < n; ++i) push(i);
+    for (int i = 0; i < n; ++i)
+        push(i);
     std::vector<std::array<int, 3>> tris;
     int remaining = n;
     while (remaining > 3) {
@@ -173,7 +179,9 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
         poly.push_back({t[0], t[1], t[2]});
         owner.push_back((int)owner.size());
     }
-    std::function<int(int)> find = [&](int k) { return owner[(size_t)k] == k ? k : owner[(size_t)k] = find(owner[(size_t)k]); };
+    std::function<int(int)> find = [&](int k) {
+        return owner[(size_t)k] == k ? k : owner[(size_t)k] = find(owner[(size_t)k]);
+    };
     /* diagonal (u, v) -> the triangle holding u->v and the one holding v->u */
     struct Diag {
         int u, w, t1, t2;
@@ -196,7 +204,8 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
         auto len = [&](const Diag& d) {
             return std::hypot(v[(size_t)d.u].x - v[(size_t)d.w].x, v[(size_t)d.u].y - v[(size_t)d.w].y);
         };
-        std::stable_sort(diags.begin(), diags.end(), [&](const Diag& x, const Diag& y) { return len(x) < len(y); });
+        std::stable_sort(diags.begin(), diags.end(),
+                         [&](const Diag& x, const Diag& y) { return len(x) < len(y); });
     }
     auto rotate_to = [](std::vector<int> p, int start) {
         const auto it = std::find(p.begin(), p.end(), start);
@@ -229,7 +238,8 @@ inline std::vector<std::vector<int>> decompose_hm(const std::vector<DV>& v) {
         bool convex = true;
         for (size_t k = 0; k < L && convex; ++k) {
             if (merged[k] != u && merged[k] != w) continue;
-            convex = cross3(v[(size_t)merged[(k + L - 1) % L]], v[(size_t)merged[k]], v[(size_t)merged[(k + 1) % L]]) > 0.0;
+            convex = cross3(v[(size_t)merged[(k + L - 1) % L]], v[(size_t)merged[k]],
+                            v[(size_t)merged[(k + 1) % L]]) > 0.0;
         }
         if (!convex) continue;
         poly[(size_t)p1] = merged;
@@ -266,9 +276,11 @@ inline std::vector<std::vector<DV>> decompose_strip(const std::vector<DV>& v, DV
         }
     for (int s = s0; s < s0 + n;) {
         int e = s + 1;
-        while (e - s < 5 && e < s0 + n && cross3(at(e - 1), at(e), at(e + 1)) > 0.0) ++e;
+        while (e - s < 5 && e < s0 + n && cross3(at(e - 1), at(e), at(e + 1)) > 0.0)
+            ++e;
         std::vector<DV> piece;
-        for (int k = s; k <= e; ++k) piece.push_back(at(k));
+        for (int k = s; k <= e; ++k)
+            piece.push_back(at(k));
         piece.push_back(inner(at(e)));
         piece.push_back(inner(at(s)));
         out.push_back(piece);
@@ -279,9 +291,12 @@ inline std::vector<std::vector<DV>> decompose_strip(const std::vector<DV>& v, DV
     auto cat = [&](int i) { return core[(size_t)(((i % q) + q) % q)]; };
     for (int s = 0; s < q;) {
         int e = s + 1;
-        while (e - s < 6 && e < q && cross3(cat(e - 1), cat(e), cat(e + 1)) > 0.0 && cross3(c, cat(s), cat(e + 1)) > 0.0) ++e;
+        while (e - s < 6 && e < q && cross3(cat(e - 1), cat(e), cat(e + 1)) > 0.0 &&
+               cross3(c, cat(s), cat(e + 1)) > 0.0)
+            ++e;
         std::vector<DV> piece{c};
-        for (int k = s; k <= e; ++k) piece.push_back(cat(k));
+        for (int k = s; k <= e; ++k)
+            piece.push_back(cat(k));
         out.push_back(piece);
         s = e;
     }
@@ -302,7 +317,8 @@ inline std::vector<std::vector<DV>> decompose(const std::vector<DV>& v, bool str
     std::vector<std::vector<DV>> out;
     for (const auto& idx : decompose_hm(v)) {
         std::vector<DV> piece;
-        for (int k : idx) piece.push_back(v[(size_t)k]);
+        for (int k : idx)
+            piece.push_back(v[(size_t)k]);
         out.push_back(piece);
     }
     return out;
@@ -330,13 +346,16 @@ inline void build_poly(const std::vector<rugo_vec2>& pts, int m, bool strip, Pol
         const int L = (int)part.size();
         if (L < 3 || L > b2_maxPolygonVertices) return;
         for (int k = 0; k < L; ++k) {
-            const DV &p0 = part[(size_t)k], &p1 = part[(size_t)((k + 1) % L)], &p2 = part[(size_t)((k + 2) % L)];
-            const DV f0{to_float(p0.x), to_float(p0.y)}, f1{to_float(p1.x), to_float(p1.y)}, f2{to_float(p2.x), to_float(p2.y)};
+            const DV &p0 = part[(size_t)k], &p1 = part[(size_t)((k + 1) % L)],
+                     &p2 = part[(size_t)((k + 2) % L)];
+            const DV f0{to_float(p0.x), to_float(p0.y)}, f1{to_float(p1.x), to_float(p1.y)},
+                f2{to_float(p2.x), to_float(p2.y)};
             if (!(cross3(p0, p1, p2) > 0.0) || !(cross3(f0, f1, f2) > 0.0)) return;
         }
         b2PolygonShape s;
         s.m_count = (int32)part.size();
-        for (size_t k = 0; k < part.size(); ++k) s.m_vertices[k].Set((float)part[k].x, (float)part[k].y);
+        for (size_t k = 0; k < part.size(); ++k)
+            s.m_vertices[k].Set((float)part[k].x, (float)part[k].y);
         double ax = 0, ay = 0, area = 0;
         for (int k = 0; k < s.m_count; ++k) {
             const b2Vec2 e = s.m_vertices[(k + 1) % s.m_count] - s.m_vertices[k];
@@ -353,10 +372,12 @@ inline void build_poly(const std::vector<rugo_vec2>& pts, int m, bool strip, Pol
         b2AABB bx;
         s.ComputeAABB(&bx, b2Transform(b2Vec2(0.0f, 0.0f), b2Rot(0.0f)), 0);
         b2Vec2 c(0.0f, 0.0f);
-        for (int k = 0; k < s.m_count; ++k) c += s.m_vertices[k];
+        for (int k = 0; k < s.m_count; ++k)
+            c += s.m_vertices[k];
         c *= 1.0f / (float)s.m_count;
         float r = 0.0f;
-        for (int k = 0; k < s.m_count; ++k) r = std::max(r, b2Distance(c, s.m_vertices[k]));
+        for (int k = 0; k < s.m_count; ++k)
+            r = std::max(r, b2Distance(c, s.m_vertices[k]));
         r += s.m_radius;
         pb.radius = std::max(pb.radius, c.Length() + r);
         pb.pieces.push_back(s);
@@ -392,10 +413,10 @@ struct TreeHits {
 };
 
 inline void box2d_pairs(const PolyBody& A, const b2Transform& xa, const PolyBody& B, const b2Transform& xb,
-                 std::vector<std::pair<int, int>>& out) {
+                        std::vector<std::pair<int, int>>& out) {
     out.clear();
-    const b2Vec2 cb = b2MulT(xa, xb.p);            /* B's origin in A's frame */
-    const b2Transform ab = b2MulT(xb, xa);         /* A's frame -> B's frame */
+    const b2Vec2 cb = b2MulT(xa, xb.p);    /* B's origin in A's frame */
+    const b2Transform ab = b2MulT(xb, xa); /* A's frame -> B's frame */
     TreeHits th{&B, b2AABB(), 0, &out};
     for (size_t i = 0; i < A.pieces.size(); ++i) {
         const float reach = A.cr[i] + B.radius;
@@ -415,8 +436,8 @@ inline void box2d_pairs(const PolyBody& A, const b2Transform& xa, const PolyBody
     }
 }
 
-inline void box2d_collide(const PolyBody& A, const b2Transform& xa, const PolyBody& B, const b2Transform& xb, int i,
-                          int j, std::vector<Cnt>* out, int* points) {
+inline void box2d_collide(const PolyBody& A, const b2Transform& xa, const PolyBody& B, const b2Transform& xb,
+                          int i, int j, std::vector<Cnt>* out, int* points) {
     b2Manifold man;
     b2CollidePolygons(&man, &A.pieces[(size_t)i], xa, &B.pieces[(size_t)j], xb);
     if (man.pointCount == 0) return;

@@ -50,7 +50,8 @@ bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
     Result res;
     res.bodies = s.body_count;
     res.shapes = s.shape_count;
-    for (int i = 0; i < s.body_count; ++i) res.rough += s.bodies[i].kind == SCENE_ROUGH;
+    for (int i = 0; i < s.body_count; ++i)
+        res.rough += s.bodies[i].kind == SCENE_ROUGH;
 
     FILE* traj = write ? b2s::OpenOut(dir, "trajectory.csv") : nullptr;
     if (write && !traj) return false;
@@ -66,15 +67,17 @@ bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
         if (write && std::find(std::begin(frameAt), std::end(frameAt), k) != std::end(frameAt)) {
             char name[64], title[128];
             std::snprintf(name, sizeof name, "/frames/frame_%04ld.svg", k);
-            std::snprintf(title, sizeof title, "b2_demo t = %.2f s (rough bodies: curves at their contact level)", run.time);
+            std::snprintf(title, sizeof title,
+                          "b2_demo t = %.2f s (rough bodies: curves at their contact level)", run.time);
             sample_expect(name + 1, b2s::DrawFrame(run, dir + name, title));
         }
         if (traj && k % 6 == 0)
             for (std::size_t i = 0; i < run.bodies.size(); ++i) {
                 const b2Body* b = run.bodies[i];
-                std::fprintf(traj, "%ld,%.4f,%zu,%s,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%d\n", k, run.time, i, s.bodies[i].name,
-                             static_cast<int>(s.bodies[i].kind), b->GetPosition().x, b->GetPosition().y, b->GetAngle(),
-                             b->GetLinearVelocity().x, b->GetLinearVelocity().y, b->GetAngularVelocity(), b->IsAwake() ? 1 : 0);
+                std::fprintf(traj, "%ld,%.4f,%zu,%s,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%d\n", k, run.time, i,
+                             s.bodies[i].name, static_cast<int>(s.bodies[i].kind), b->GetPosition().x,
+                             b->GetPosition().y, b->GetAngle(), b->GetLinearVelocity().x,
+                             b->GetLinearVelocity().y, b->GetAngularVelocity(), b->IsAwake() ? 1 : 0);
             }
         if (k == nsteps) break;
         const auto t0 = std::chrono::steady_clock::now();
@@ -119,7 +122,8 @@ bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
         if (b->GetType() != b2_dynamicBody) continue;
         const double v = b2s::Speed(b), w = b->GetAngularVelocity();
         const b2Vec2 lc = b->GetLocalCenter();
-        res.keFinal += 0.5 * b->GetMass() * v * v + 0.5 * (b->GetInertia() - b->GetMass() * (lc.x * lc.x + lc.y * lc.y)) * w * w;
+        res.keFinal += 0.5 * b->GetMass() * v * v +
+                       0.5 * (b->GetInertia() - b->GetMass() * (lc.x * lc.x + lc.y * lc.y)) * w * w;
     }
     (void)eMin;
     int nr = 0;
@@ -147,11 +151,12 @@ bool RunDemo(b2s::Run& run, const std::string& dir, bool write, Result* out) {
     res.hash = hash.h;
     if (write) {
         char title[160];
-        std::snprintf(title, sizeof title, "b2_demo final state, t = %.2f s: %d bodies (%d rough, %d shapes)", run.time,
-                      res.bodies, res.rough, res.shapes);
+        std::snprintf(title, sizeof title, "b2_demo final state, t = %.2f s: %d bodies (%d rough, %d shapes)",
+                      run.time, res.bodies, res.rough, res.shapes);
         sample_expect("final.svg", b2s::DrawFrame(run, dir + "/final.svg", title, true));
         long rows = 0;
-        std::snprintf(title, sizeof title, "b2_demo: %d bodies (%d rough), %.1f s", res.bodies, res.rough, run.time);
+        std::snprintf(title, sizeof title, "b2_demo: %d bodies (%d rough), %.1f s", res.bodies, res.rough,
+                      run.time);
         sample_expect("animation.html written", b2s::WriteAnimation(run, dir, title, &rows));
         // Every 6th step of every body: the whole trajectory is in the page.
         std::printf("animation.html: %ld trajectory rows\n", rows);
@@ -187,13 +192,15 @@ int main(int argc, char** argv) {
                         scene_table::Create("demo", 0, &runB) && RunDemo(runB, dir, false, &b);
         std::printf("hash run 1: %016" PRIx64 "\nhash run 2: %016" PRIx64 "\n", a.hash, b.hash);
         sample_expect("both runs completed", ok);
-        sample_expect("determinism: identical FNV-1a hashes of all transforms over two runs", ok && a.hash == b.hash);
+        sample_expect("determinism: identical FNV-1a hashes of all transforms over two runs",
+                      ok && a.hash == b.hash);
         if (expectHash != nullptr) {
             char got[17];
             std::snprintf(got, sizeof got, "%016" PRIx64, a.hash);
             std::printf("pinned hash %s, this run %s\n", expectHash, got);
-            sample_expect("determinism: the hash equals the pinned one (same bits across processes and builds)",
-                          std::strcmp(got, expectHash) == 0);
+            sample_expect(
+                "determinism: the hash equals the pinned one (same bits across processes and builds)",
+                std::strcmp(got, expectHash) == 0);
         }
         return sample_finish();
     }
@@ -213,44 +220,55 @@ int main(int argc, char** argv) {
         return sample_finish();
     }
     const double released = r.e0 - r.eFinal;
-    std::printf("b2_demo: %d bodies (%d rough sharing %d shapes, %d ordinary), %ld steps at 60 Hz\n", r.bodies, r.rough,
-                r.shapes, r.bodies - r.rough - 1, r.steps);
-    std::printf("time per step %.3f ms (total %.2f s)\n", 1e3 * r.seconds / static_cast<double>(r.steps), r.seconds);
-    std::printf("contacts touching: mean %.1f, max %d; rough: mean %.1f, max %d\n", r.meanContacts, r.maxContacts,
-                r.meanRough, r.maxRough);
-    std::printf("memory per rough body: bridge %zu B + Box2D %zu B (%d proxies); all %d shapes %zu B, shared\n",
-                r.bridgeBytes, r.box2dBytes, r.proxies, r.shapes, r.shapeBytes);
-    std::printf("bridge: %ld queries, %ld cache hits, %ld points (%ld speculative), %ld empty, %ld TOI evaluations\n",
-                r.stats.queries, r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints,
-                r.stats.emptyEvaluations, r.stats.toiEvaluations);
-    std::printf("energy: initial %.3f J, largest growth %.4f J, final %.3f J, final kinetic %.5f J\n", r.e0, r.eMaxGrowth,
-                r.eFinal, r.keFinal);
-    std::printf("deepest rough contact during the run: %.4f m beyond the bands (%s / %s at t = %.3f s); deepest "
-                "ordinary Box2D contact: %.4f m; at rest: rough %.4f m (%s / %s), ordinary %.4f m\n", r.worstExcess,
-                r.worstA >= 0 ? s.bodies[r.worstA].name : "-", r.worstB >= 0 ? s.bodies[r.worstB].name : "-", r.worstTime,
-                r.worstOrdinary, r.finalExcess, r.finalA >= 0 ? s.bodies[r.finalA].name : "-",
-                r.finalB >= 0 ? s.bodies[r.finalB].name : "-", r.finalOrdinary);
+    std::printf("b2_demo: %d bodies (%d rough sharing %d shapes, %d ordinary), %ld steps at 60 Hz\n",
+                r.bodies, r.rough, r.shapes, r.bodies - r.rough - 1, r.steps);
+    std::printf("time per step %.3f ms (total %.2f s)\n", 1e3 * r.seconds / static_cast<double>(r.steps),
+                r.seconds);
+    std::printf("contacts touching: mean %.1f, max %d; rough: mean %.1f, max %d\n", r.meanContacts,
+                r.maxContacts, r.meanRough, r.maxRough);
+    std::printf(
+        "memory per rough body: bridge %zu B + Box2D %zu B (%d proxies); all %d shapes %zu B, shared\n",
+        r.bridgeBytes, r.box2dBytes, r.proxies, r.shapes, r.shapeBytes);
+    std::printf(
+        "bridge: %ld queries, %ld cache hits, %ld points (%ld speculative), %ld empty, %ld TOI evaluations\n",
+        r.stats.queries, r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints,
+        r.stats.emptyEvaluations, r.stats.toiEvaluations);
+    std::printf("energy: initial %.3f J, largest growth %.4f J, final %.3f J, final kinetic %.5f J\n", r.e0,
+                r.eMaxGrowth, r.eFinal, r.keFinal);
+    std::printf(
+        "deepest rough contact during the run: %.4f m beyond the bands (%s / %s at t = %.3f s); deepest "
+        "ordinary Box2D contact: %.4f m; at rest: rough %.4f m (%s / %s), ordinary %.4f m\n",
+        r.worstExcess, r.worstA >= 0 ? s.bodies[r.worstA].name : "-",
+        r.worstB >= 0 ? s.bodies[r.worstB].name : "-", r.worstTime, r.worstOrdinary, r.finalExcess,
+        r.finalA >= 0 ? s.bodies[r.finalA].name : "-", r.finalB >= 0 ? s.bodies[r.finalB].name : "-",
+        r.finalOrdinary);
     std::printf("hash %016" PRIx64 "\n", r.hash);
 
     FILE* f = b2s::OpenOut(dir, "results.json");
     if (f) {
-        std::fprintf(f,
-                     "{\"bodies\": %d, \"rough_bodies\": %d, \"shapes\": %d, \"steps\": %ld, \"time_step\": %.9g,\n"
-                     " \"seconds_stepping\": %.6f, \"ms_per_step\": %.6f,\n"
-                     " \"contacts_mean\": %.4f, \"contacts_max\": %d, \"rough_contacts_mean\": %.4f, \"rough_contacts_max\": %d,\n"
-                     " \"memory_per_rough_body\": {\"bridge_bytes\": %zu, \"box2d_bytes\": %zu, \"proxies\": %d},\n"
-                     " \"shared_shape_bytes\": %zu,\n"
-                     " \"bridge\": {\"queries\": %ld, \"cache_hits\": %ld, \"points\": %ld, \"speculative\": %ld, \"empty\": %ld, \"toi_evaluations\": %ld},\n"
-                     " \"energy\": {\"initial\": %.9g, \"max_growth\": %.9g, \"final\": %.9g, \"final_kinetic\": %.9g},\n"
-                     " \"min_manifold_separation\": %.9g, \"worst_penetration_beyond_bands\": %.9g,\n"
-                     " \"worst_ordinary_penetration\": %.9g, \"final_penetration_beyond_bands\": %.9g, \"final_ordinary_penetration\": %.9g,\n"
-                     " \"lowest_centre_y\": %.6f, \"largest_abs_x\": %.6f,\n"
-                     " \"hash\": \"%016" PRIx64 "\"}\n",
-                     r.bodies, r.rough, r.shapes, r.steps, s.time_step, r.seconds, 1e3 * r.seconds / static_cast<double>(r.steps),
-                     r.meanContacts, r.maxContacts, r.meanRough, r.maxRough, r.bridgeBytes, r.box2dBytes, r.proxies, r.shapeBytes,
-                     r.stats.queries, r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints,
-                     r.stats.emptyEvaluations, r.stats.toiEvaluations, r.e0, r.eMaxGrowth, r.eFinal, r.keFinal, r.minSeparation,
-                     r.worstExcess, r.worstOrdinary, r.finalExcess, r.finalOrdinary, r.minY, r.maxAbsX, r.hash);
+        std::fprintf(
+            f,
+            "{\"bodies\": %d, \"rough_bodies\": %d, \"shapes\": %d, \"steps\": %ld, \"time_step\": %.9g,\n"
+            " \"seconds_stepping\": %.6f, \"ms_per_step\": %.6f,\n"
+            " \"contacts_mean\": %.4f, \"contacts_max\": %d, \"rough_contacts_mean\": %.4f, "
+            "\"rough_contacts_max\": %d,\n"
+            " \"memory_per_rough_body\": {\"bridge_bytes\": %zu, \"box2d_bytes\": %zu, \"proxies\": %d},\n"
+            " \"shared_shape_bytes\": %zu,\n"
+            " \"bridge\": {\"queries\": %ld, \"cache_hits\": %ld, \"points\": %ld, \"speculative\": %ld, "
+            "\"empty\": %ld, \"toi_evaluations\": %ld},\n"
+            " \"energy\": {\"initial\": %.9g, \"max_growth\": %.9g, \"final\": %.9g, \"final_kinetic\": "
+            "%.9g},\n"
+            " \"min_manifold_separation\": %.9g, \"worst_penetration_beyond_bands\": %.9g,\n"
+            " \"worst_ordinary_penetration\": %.9g, \"final_penetration_beyond_bands\": %.9g, "
+            "\"final_ordinary_penetration\": %.9g,\n"
+            " \"lowest_centre_y\": %.6f, \"largest_abs_x\": %.6f,\n"
+            " \"hash\": \"%016" PRIx64 "\"}\n",
+            r.bodies, r.rough, r.shapes, r.steps, s.time_step, r.seconds,
+            1e3 * r.seconds / static_cast<double>(r.steps), r.meanContacts, r.maxContacts, r.meanRough,
+            r.maxRough, r.bridgeBytes, r.box2dBytes, r.proxies, r.shapeBytes, r.stats.queries,
+            r.stats.cacheHits, r.stats.pointsSubmitted, r.stats.speculativePoints, r.stats.emptyEvaluations,
+            r.stats.toiEvaluations, r.e0, r.eMaxGrowth, r.eFinal, r.keFinal, r.minSeparation, r.worstExcess,
+            r.worstOrdinary, r.finalExcess, r.finalOrdinary, r.minY, r.maxAbsX, r.hash);
         sample_expect("results.json written", std::fclose(f) == 0);
     }
     // The floor's lowest point is about -0.25 m; a centre below it fell through.
@@ -265,7 +283,8 @@ int main(int argc, char** argv) {
                      r.finalExcess, std::max(2.0 * b2_linearSlop, r.finalOrdinary + b2_linearSlop));
     sample_expect_le("energy never grows beyond 1% of the initial (position correction only) [J/J]",
                      r.eMaxGrowth / r.e0, 0.01);
-    sample_expect_le("the pile comes to rest: final kinetic energy / energy released", r.keFinal / released, 0.01);
+    sample_expect_le("the pile comes to rest: final kinetic energy / energy released", r.keFinal / released,
+                     0.01);
     sample_expect("rough bodies made rough contacts", r.maxRough > 0);
     return sample_finish();
 }

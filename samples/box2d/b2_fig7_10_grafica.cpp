@@ -38,7 +38,8 @@ struct Pose {
 struct Outcome {
     std::string label;
     std::vector<Pose> start, final;
-    double meanMu = NAN, e0 = NAN, eFinal = NAN, released = NAN, finalKinetic = NAN, maxGrowth = NAN, minAbove = 1e9;
+    double meanMu = NAN, e0 = NAN, eFinal = NAN, released = NAN, finalKinetic = NAN, maxGrowth = NAN,
+           minAbove = 1e9;
     double worstOverlap = -1e9;
     int worstA = -1, worstB = -1;
     long muCount = 0;
@@ -55,9 +56,11 @@ bool RunVariant(int v, const std::string& dir, std::shared_ptr<const scene>* des
         *desc = run.description;
         const scene& s = *run.sc;
         o.label = s.label;
-        for (const b2Body* b : run.bodies) o.start.push_back({b->GetPosition().x, b->GetPosition().y, b->GetAngle()});
+        for (const b2Body* b : run.bodies)
+            o.start.push_back({b->GetPosition().x, b->GetPosition().y, b->GetAngle()});
         std::vector<long> frames;
-        for (long k = 0; static_cast<double>(k) * s.time_step < s.duration; k += 30) frames.push_back(k);
+        for (long k = 0; static_cast<double>(k) * s.time_step < s.duration; k += 30)
+            frames.push_back(k);
         const bool ok = b2s::RunScene(run, dir, "grafica_" + o.label, frames, &rec, [&](const b2s::Run& r) {
             const b2s::ContactScan cs = b2s::ScanContacts(r);
             if (cs.worstExcess > o.worstOverlap) {
@@ -67,10 +70,12 @@ bool RunVariant(int v, const std::string& dir, std::shared_ptr<const scene>* des
             }
         });
         if (!ok) return false;
-        for (const b2Body* b : run.bodies) o.final.push_back({b->GetPosition().x, b->GetPosition().y, b->GetAngle()});
+        for (const b2Body* b : run.bodies)
+            o.final.push_back({b->GetPosition().x, b->GetPosition().y, b->GetAngle()});
         o.eFinal = b2s::Energy(run);
         o.maxSpeed = 0.0;
-        for (const b2Body* b : run.bodies) o.maxSpeed = std::max(o.maxSpeed, b2s::Speed(b));
+        for (const b2Body* b : run.bodies)
+            o.maxSpeed = std::max(o.maxSpeed, b2s::Speed(b));
         o.ballSpeed = b2s::Speed(run.bodies[static_cast<std::size_t>(run.Find(SCENE_ROLE_MOVER))]);
     }
     o.meanMu = rec.MeanMu();
@@ -93,10 +98,12 @@ double PresetMaxMu(rugo_tolerance_preset p) {
     rugo_tolerances_preset(p, 7, N, lam);
     const rugo_friction_map fm = scene_friction_map();
     std::vector<double> mu(N);
-    for (int i = 0; i < N; ++i) mu[static_cast<std::size_t>(i)] = rugo_friction(&fm, lam[i] * SCENE_ROUGHNESS_SCALE);
+    for (int i = 0; i < N; ++i)
+        mu[static_cast<std::size_t>(i)] = rugo_friction(&fm, lam[i] * SCENE_ROUGHNESS_SCALE);
     double e = 0.0;
     for (double a : mu)
-        for (double b : mu) e += std::max(a, b);
+        for (double b : mu)
+            e += std::max(a, b);
     return e / (static_cast<double>(N) * N);
 }
 
@@ -112,7 +119,8 @@ int main(int argc, char** argv) {
 
     FILE* f = b2s::OpenOut(dir, "summary.csv");
     if (f) std::fprintf(f, "variant,body,name,x0,y0,angle0,x,y,angle\n");
-    std::printf("body      start (x, y)        %-28s %-28s |dp| [m]  |da| [rad]\n", ("final " + o[0].label + " (x, y, angle)").c_str(),
+    std::printf("body      start (x, y)        %-28s %-28s |dp| [m]  |da| [rad]\n",
+                ("final " + o[0].label + " (x, y, angle)").c_str(),
                 ("final " + o[1].label + " (x, y, angle)").c_str());
     double sumDp = 0.0, sumDa = 0.0, push[2] = {0.0, 0.0};
     int letters = 0;
@@ -120,60 +128,81 @@ int main(int argc, char** argv) {
         const std::size_t u = static_cast<std::size_t>(i);
         for (int v = 0; v < 2; ++v)
             if (f)
-                std::fprintf(f, "%s,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", o[v].label.c_str(), i, s[v]->bodies[i].name, o[v].start[u].x,
-                             o[v].start[u].y, o[v].start[u].a, o[v].final[u].x, o[v].final[u].y, o[v].final[u].a);
+                std::fprintf(f, "%s,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", o[v].label.c_str(), i,
+                             s[v]->bodies[i].name, o[v].start[u].x, o[v].start[u].y, o[v].start[u].a,
+                             o[v].final[u].x, o[v].final[u].y, o[v].final[u].a);
         if (s[0]->bodies[i].is_static) continue;
         const double dp = std::hypot(o[0].final[u].x - o[1].final[u].x, o[0].final[u].y - o[1].final[u].y);
         const double da = std::fabs(std::remainder(o[0].final[u].a - o[1].final[u].a, 6.283185307179586));
-        std::printf("%-8s (%6.3f, %6.3f)   (%6.3f, %6.3f, %7.3f)    (%6.3f, %6.3f, %7.3f)    %.4f    %.4f\n", s[0]->bodies[i].name,
-                    o[0].start[u].x, o[0].start[u].y, o[0].final[u].x, o[0].final[u].y, o[0].final[u].a, o[1].final[u].x,
-                    o[1].final[u].y, o[1].final[u].a, dp, da);
+        std::printf("%-8s (%6.3f, %6.3f)   (%6.3f, %6.3f, %7.3f)    (%6.3f, %6.3f, %7.3f)    %.4f    %.4f\n",
+                    s[0]->bodies[i].name, o[0].start[u].x, o[0].start[u].y, o[0].final[u].x, o[0].final[u].y,
+                    o[0].final[u].a, o[1].final[u].x, o[1].final[u].y, o[1].final[u].a, dp, da);
         if (s[0]->bodies[i].role == SCENE_ROLE_OBJECT) {
             sumDp += dp;
             sumDa += da;
-            for (int v = 0; v < 2; ++v) push[v] += o[v].final[u].x - o[v].start[u].x;
+            for (int v = 0; v < 2; ++v)
+                push[v] += o[v].final[u].x - o[v].start[u].x;
             ++letters;
         }
     }
     if (f) std::fclose(f);
     const double meanDp = sumDp / letters, meanDa = sumDa / letters;
-    for (double& p : push) p /= letters;
+    for (double& p : push)
+        p /= letters;
     const double predicted[2] = {PresetMaxMu(RUGO_PRESET_TIPO_2), PresetMaxMu(RUGO_PRESET_TIPO_3)};
     for (const Outcome& r : o)
-        std::printf("%s: mean mu %.4f over %ld contact-steps; energy %.3f J -> %.3f J (released %.3f J), final kinetic %.3g J, "
-                    "largest step growth %.3g of initial, lowest centre %.3f m above the block's lowest top, deepest overlap beyond "
+        std::printf("%s: mean mu %.4f over %ld contact-steps; energy %.3f J -> %.3f J (released %.3f J), "
+                    "final kinetic %.3g J, "
+                    "largest step growth %.3g of initial, lowest centre %.3f m above the block's lowest top, "
+                    "deepest overlap beyond "
                     "bands %.4f m (%s-%s), ball ends at %.3f m/s\n",
-                    r.label.c_str(), r.meanMu, r.muCount, r.e0, r.eFinal, r.released, r.finalKinetic, r.maxGrowth, r.minAbove,
-                    r.worstOverlap, r.worstA >= 0 ? s[0]->bodies[r.worstA].name : "-", r.worstB >= 0 ? s[0]->bodies[r.worstB].name : "-",
-                    r.ballSpeed);
-    std::printf("tipo_2 vs tipo_3: mean |d centre| %.4f m, mean |d angle| %.4f rad over %d letters; letters pushed %.4f m vs %.4f m "
+                    r.label.c_str(), r.meanMu, r.muCount, r.e0, r.eFinal, r.released, r.finalKinetic,
+                    r.maxGrowth, r.minAbove, r.worstOverlap,
+                    r.worstA >= 0 ? s[0]->bodies[r.worstA].name : "-",
+                    r.worstB >= 0 ? s[0]->bodies[r.worstB].name : "-", r.ballSpeed);
+    std::printf("tipo_2 vs tipo_3: mean |d centre| %.4f m, mean |d angle| %.4f rad over %d letters; letters "
+                "pushed %.4f m vs %.4f m "
                 "on average\n",
                 meanDp, meanDa, letters, push[0], push[1]);
-    std::printf("mean mu at contacts: tipo_2 %.4f (presets predict %.4f), tipo_3 %.4f (predict %.4f); difference %.4f (predict %.4f)\n",
-                o[0].meanMu, predicted[0], o[1].meanMu, predicted[1], o[0].meanMu - o[1].meanMu, predicted[0] - predicted[1]);
+    std::printf("mean mu at contacts: tipo_2 %.4f (presets predict %.4f), tipo_3 %.4f (predict %.4f); "
+                "difference %.4f (predict %.4f)\n",
+                o[0].meanMu, predicted[0], o[1].meanMu, predicted[1], o[0].meanMu - o[1].meanMu,
+                predicted[0] - predicted[1]);
     if (FILE* fs = b2s::OpenOut(dir, "outcome.csv")) {
-        std::fprintf(fs, "variant,mean_mu,predicted_mu,contact_samples,mean_push,energy_initial,energy_final,final_kinetic,max_growth,"
+        std::fprintf(fs, "variant,mean_mu,predicted_mu,contact_samples,mean_push,energy_initial,energy_final,"
+                         "final_kinetic,max_growth,"
                          "min_above_ground,worst_overlap\n");
         for (int v = 0; v < 2; ++v)
-            std::fprintf(fs, "%s,%.6f,%.6f,%ld,%.6f,%.6f,%.6f,%.6g,%.6g,%.6f,%.6f\n", o[v].label.c_str(), o[v].meanMu, predicted[v],
-                         o[v].muCount, push[v], o[v].e0, o[v].eFinal, o[v].finalKinetic, o[v].maxGrowth, o[v].minAbove,
-                         o[v].worstOverlap);
+            std::fprintf(fs, "%s,%.6f,%.6f,%ld,%.6f,%.6f,%.6f,%.6g,%.6g,%.6f,%.6f\n", o[v].label.c_str(),
+                         o[v].meanMu, predicted[v], o[v].muCount, push[v], o[v].e0, o[v].eFinal,
+                         o[v].finalKinetic, o[v].maxGrowth, o[v].minAbove, o[v].worstOverlap);
         std::fclose(fs);
     }
 
     for (const Outcome& r : o) {
-        sample_expect_le((r.label + ": nothing falls through or off, -(lowest centre - block's lowest top) [m]").c_str(), -r.minAbove, 0.0);
-        sample_expect_le((r.label + ": no true-curve overlap beyond the bands above 5 mm [m]").c_str(), r.worstOverlap, 0.005);
-        sample_expect_le((r.label + ": energy does not grow, largest step increase / initial").c_str(), r.maxGrowth, 1e-2);
-        sample_expect_le((r.label + ": energy does not grow, final - initial [J]").c_str(), r.eFinal - r.e0, 0.0);
-        sample_expect_le((r.label + ": bodies come to rest, final kinetic / released").c_str(), r.finalKinetic / r.released, 0.005);
-        sample_expect_le((r.label + ": bodies come to rest, largest final speed [m/s]").c_str(), r.maxSpeed, 0.05);
+        sample_expect_le(
+            (r.label + ": nothing falls through or off, -(lowest centre - block's lowest top) [m]").c_str(),
+            -r.minAbove, 0.0);
+        sample_expect_le((r.label + ": no true-curve overlap beyond the bands above 5 mm [m]").c_str(),
+                         r.worstOverlap, 0.005);
+        sample_expect_le((r.label + ": energy does not grow, largest step increase / initial").c_str(),
+                         r.maxGrowth, 1e-2);
+        sample_expect_le((r.label + ": energy does not grow, final - initial [J]").c_str(), r.eFinal - r.e0,
+                         0.0);
+        sample_expect_le((r.label + ": bodies come to rest, final kinetic / released").c_str(),
+                         r.finalKinetic / r.released, 0.005);
+        sample_expect_le((r.label + ": bodies come to rest, largest final speed [m/s]").c_str(), r.maxSpeed,
+                         0.05);
     }
-    sample_expect("tipo_2 vs tipo_3 differ: mean |d centre| > 0.02 m or mean |d angle| > 0.1 rad", meanDp > 0.02 || meanDa > 0.1);
-    sample_expect("the presets predict tipo_2 rougher than tipo_3 under max mixing", predicted[0] > predicted[1]);
-    sample_expect_le("tipo_2 rougher than tipo_3: mean mu(tipo_2) - mean mu(tipo_3) >= 0.05, -(difference - 0.05)",
-                     -(o[0].meanMu - o[1].meanMu - 0.05), 0.0);
-    sample_expect_le("less friction, longer pushes: letters' mean x displacement tipo_3 - tipo_2 >= 0.1 m, -(difference - 0.1)",
+    sample_expect("tipo_2 vs tipo_3 differ: mean |d centre| > 0.02 m or mean |d angle| > 0.1 rad",
+                  meanDp > 0.02 || meanDa > 0.1);
+    sample_expect("the presets predict tipo_2 rougher than tipo_3 under max mixing",
+                  predicted[0] > predicted[1]);
+    sample_expect_le(
+        "tipo_2 rougher than tipo_3: mean mu(tipo_2) - mean mu(tipo_3) >= 0.05, -(difference - 0.05)",
+        -(o[0].meanMu - o[1].meanMu - 0.05), 0.0);
+    sample_expect_le("less friction, longer pushes: letters' mean x displacement tipo_3 - tipo_2 >= 0.1 m, "
+                     "-(difference - 0.1)",
                      -(push[1] - push[0] - 0.1), 0.0);
     return sample_finish();
 }

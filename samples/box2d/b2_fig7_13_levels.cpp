@@ -54,7 +54,8 @@ LevelTable Table(const rugo_shape* sh, int rel, bool block_top) {
     const rugo_friction_map fm = rugo_shape_friction_map(sh);
     for (int k = 0; k < tl.count; ++k) {
         const rugo_vec2 m = rugo_contour_point(c, k, 0.5), nrm = rugo_contour_normal(c, k, 0.5);
-        if (block_top && (nrm.y < 0.99 || m.y < 0.5 * (lo.y + hi.y) || m.x < lo.x + 1.0 || m.x > hi.x - 1.0)) continue;
+        if (block_top && (nrm.y < 0.99 || m.y < 0.5 * (lo.y + hi.y) || m.x < lo.x + 1.0 || m.x > hi.x - 1.0))
+            continue;
         t.lambda += tl.total[k];
         t.own += tl.own[k];
         t.mus.push_back(rugo_friction(&fm, tl.total[k]));
@@ -70,7 +71,8 @@ LevelTable Table(const rugo_shape* sh, int rel, bool block_top) {
 double PredictedMaxMu(const LevelTable& a, const LevelTable& b) {
     double e = 0.0;
     for (double x : a.mus)
-        for (double y : b.mus) e += std::max(x, y);
+        for (double y : b.mus)
+            e += std::max(x, y);
     return e / static_cast<double>(a.mus.size() * b.mus.size());
 }
 
@@ -83,11 +85,16 @@ int main(int argc, char** argv) {
     double mu[3] = {NAN, NAN, NAN}, slide[3] = {NAN, NAN, NAN}, predicted[3] = {NAN, NAN, NAN};
     FILE* f = b2s::OpenOut(dir, "summary.csv");
     FILE* ft = b2s::OpenOut(dir, "tolerances.csv");
-    if (f) std::fprintf(f, "level,mean_mu,predicted_mu,contact_samples,mean_slide,final_x0,final_x1,final_x2,max_energy_growth,final_kinetic\n");
-    if (ft) std::fprintf(ft, "level,body,mean_lambda,mean_own,mean_mu_of_lambda,predicted_contact_mu,measured_contact_mu,contact_samples\n");
+    if (f)
+        std::fprintf(f, "level,mean_mu,predicted_mu,contact_samples,mean_slide,final_x0,final_x1,final_x2,"
+                        "max_energy_growth,final_kinetic\n");
+    if (ft)
+        std::fprintf(ft, "level,body,mean_lambda,mean_own,mean_mu_of_lambda,predicted_contact_mu,measured_"
+                         "contact_mu,contact_samples\n");
     for (int i = 0; i < 3; ++i) {
         b2s::Run run;
-        if (!sample_expect("scene built", scene_table::Create("fig7_13_levels", variants[i], &run))) return sample_finish();
+        if (!sample_expect("scene built", scene_table::Create("fig7_13_levels", variants[i], &run)))
+            return sample_finish();
         const scene& s = *run.sc;
         b2s::Record rec;
         std::vector<double> bodyMu;
@@ -95,16 +102,19 @@ int main(int argc, char** argv) {
         double k0 = 0.0;
         for (const b2Body* b : run.bodies)
             if (b->GetType() == b2_dynamicBody) k0 += 0.5 * b->GetMass() * b2s::Speed(b) * b2s::Speed(b);
-        const bool ok = b2s::RunScene(run, dir, std::string("levels_") + s.label, {0, 30, 60, 120}, &rec,
-                                      [&](const b2s::Run& r) { b2s::AddContactMuPerBody(r, &bodyMu, &bodyMuCount); });
+        const bool ok =
+            b2s::RunScene(run, dir, std::string("levels_") + s.label, {0, 30, 60, 120}, &rec,
+                          [&](const b2s::Run& r) { b2s::AddContactMuPerBody(r, &bodyMu, &bodyMuCount); });
         if (!sample_expect("scene ran", ok)) return sample_finish();
         mu[i] = rec.MeanMu();
         const std::vector<b2Vec2>& fin = rec.pos.back();
         const int block = 0;
         const LevelTable tb = Table(s.bodies[block].shape, s.level, true);
-        std::printf("level %2d                  mean lambda  mean own   mean mu(lambda)  predicted contact mu  measured contact mu\n",
+        std::printf("level %2d                  mean lambda  mean own   mean mu(lambda)  predicted contact "
+                    "mu  measured contact mu\n",
                     s.level);
-        std::printf("  %-22s %7.3f mm   %7.3f mm  %.4f\n", "block (top)", 1e3 * tb.lambda, 1e3 * tb.own, tb.mu);
+        std::printf("  %-22s %7.3f mm   %7.3f mm  %.4f\n", "block (top)", 1e3 * tb.lambda, 1e3 * tb.own,
+                    tb.mu);
         if (ft) std::fprintf(ft, "%d,block_top,%.7f,%.7f,%.5f,,,\n", s.level, tb.lambda, tb.own, tb.mu);
         double sumSlide = 0.0, predSum = 0.0;
         int nObj = 0;
@@ -113,13 +123,15 @@ int main(int argc, char** argv) {
             const double pred = PredictedMaxMu(to, tb);
             const std::size_t ub = static_cast<std::size_t>(b);
             const double meas = bodyMuCount[ub] ? bodyMu[ub] / static_cast<double>(bodyMuCount[ub]) : NAN;
-            std::printf("  %-22s %7.3f mm   %7.3f mm  %.4f           %.4f                %.4f (%ld)\n", s.bodies[b].name,
-                        1e3 * to.lambda, 1e3 * to.own, to.mu, pred, meas, bodyMuCount[ub]);
+            std::printf("  %-22s %7.3f mm   %7.3f mm  %.4f           %.4f                %.4f (%ld)\n",
+                        s.bodies[b].name, 1e3 * to.lambda, 1e3 * to.own, to.mu, pred, meas, bodyMuCount[ub]);
             if (ft)
-                std::fprintf(ft, "%d,%s,%.7f,%.7f,%.5f,%.5f,%.5f,%ld\n", s.level, s.bodies[b].name, to.lambda, to.own, to.mu, pred, meas,
-                             bodyMuCount[ub]);
+                std::fprintf(ft, "%d,%s,%.7f,%.7f,%.5f,%.5f,%.5f,%ld\n", s.level, s.bodies[b].name, to.lambda,
+                             to.own, to.mu, pred, meas, bodyMuCount[ub]);
             if (s.level != 0)
-                sample_expect_le((std::string(s.label) + ": " + s.bodies[b].name + " absorbs real detail, -(mean own) [mm]").c_str(),
+                sample_expect_le((std::string(s.label) + ": " + s.bodies[b].name +
+                                  " absorbs real detail, -(mean own) [mm]")
+                                     .c_str(),
                                  -1e3 * to.own, -1.0);
             sumSlide += fin[ub].x - rec.pos.front()[ub].x;
             predSum += pred;
@@ -127,21 +139,29 @@ int main(int argc, char** argv) {
         }
         slide[i] = sumSlide / nObj;
         predicted[i] = predSum / nObj;
-        std::printf("  all contacts: mean mu %.4f over %ld contact-steps (predicted %.4f); mean slide %.3f m; objects end at x = "
+        std::printf("  all contacts: mean mu %.4f over %ld contact-steps (predicted %.4f); mean slide %.3f "
+                    "m; objects end at x = "
                     "%.3f, %.3f, %.3f\n",
                     mu[i], rec.muCount, predicted[i], slide[i], fin[1].x, fin[2].x, fin[3].x);
         if (f)
-            std::fprintf(f, "%d,%.6f,%.6f,%ld,%.5f,%.5f,%.5f,%.5f,%.6g,%.6g\n", s.level, mu[i], predicted[i], rec.muCount, slide[i], fin[1].x,
-                         fin[2].x, fin[3].x, rec.maxGrowth, rec.finalKinetic);
-        sample_expect_le((std::string(s.label) + ": nothing falls through, -(lowest centre y) [m]").c_str(), -rec.minY, 0.0);
-        sample_expect_le((std::string(s.label) + ": energy never grows, largest step increase / initial").c_str(), rec.maxGrowth, 1e-3);
-        sample_expect_le((std::string(s.label) + ": objects come to rest, final kinetic / initial kinetic").c_str(), rec.finalKinetic / k0,
-                         0.01);
+            std::fprintf(f, "%d,%.6f,%.6f,%ld,%.5f,%.5f,%.5f,%.5f,%.6g,%.6g\n", s.level, mu[i], predicted[i],
+                         rec.muCount, slide[i], fin[1].x, fin[2].x, fin[3].x, rec.maxGrowth,
+                         rec.finalKinetic);
+        sample_expect_le((std::string(s.label) + ": nothing falls through, -(lowest centre y) [m]").c_str(),
+                         -rec.minY, 0.0);
+        sample_expect_le(
+            (std::string(s.label) + ": energy never grows, largest step increase / initial").c_str(),
+            rec.maxGrowth, 1e-3);
+        sample_expect_le(
+            (std::string(s.label) + ": objects come to rest, final kinetic / initial kinetic").c_str(),
+            rec.finalKinetic / k0, 0.01);
     }
     if (f) std::fclose(f);
     if (ft) std::fclose(ft);
-    sample_expect_le("coarser is rougher: mean mu at level -1 - at level 0 >= 0.04, -(difference - 0.04)", -(mu[1] - mu[0] - 0.04), 0.0);
-    sample_expect_le("coarser is rougher: mean mu at level -2 - at level -1 >= 0.08, -(difference - 0.08)", -(mu[2] - mu[1] - 0.08), 0.0);
+    sample_expect_le("coarser is rougher: mean mu at level -1 - at level 0 >= 0.04, -(difference - 0.04)",
+                     -(mu[1] - mu[0] - 0.04), 0.0);
+    sample_expect_le("coarser is rougher: mean mu at level -2 - at level -1 >= 0.08, -(difference - 0.08)",
+                     -(mu[2] - mu[1] - 0.08), 0.0);
     sample_expect("more friction, shorter slides: mean slide at level -1 < at level 0", slide[1] < slide[0]);
     sample_expect("more friction, shorter slides: mean slide at level -2 < at level -1", slide[2] < slide[1]);
     return sample_finish();

@@ -45,7 +45,8 @@ bool RunPair(int v, const std::string& dir, PairResult* out) {
             if (k == 0 || k == 60 || k == n) {
                 char name[96], title[128];
                 std::snprintf(name, sizeof name, "/ball_%s_%04ld.svg", r.label.c_str(), k);
-                std::snprintf(title, sizeof title, "Fig. 7.4 ball-block %s, t = %.2f s", r.label.c_str(), run.time);
+                std::snprintf(title, sizeof title, "Fig. 7.4 ball-block %s, t = %.2f s", r.label.c_str(),
+                              run.time);
                 b2s::DrawFrame(run, dir + name, title, true);
             }
             double mu = 0.0;
@@ -57,7 +58,8 @@ bool RunPair(int v, const std::string& dir, PairResult* out) {
                 }
             const b2Vec2 c = ball->GetWorldCenter(), vel = ball->GetLinearVelocity();
             const double w = ball->GetAngularVelocity();
-            // Velocity of the ball's point at the block's top (y = 0), where it rests on the bands: rolling = 0.
+            // Velocity of the ball's point at the block's top (y = 0), where it rests on the bands: rolling =
+            // 0.
             const double slip = vel.x + w * (c.y - s.ground_top);
             const double speed = b2s::Speed(ball);
             if (nc > 0) {
@@ -97,36 +99,43 @@ int main(int argc, char** argv) {
     if (sample_mkdir(dir.c_str()) != 0) return 1;
     PairResult p[6];
     bool ok = true;
-    for (int v = 0; v < 6; ++v) ok = ok && RunPair(v, dir, &p[v]);
+    for (int v = 0; v < 6; ++v)
+        ok = ok && RunPair(v, dir, &p[v]);
     if (!sample_expect("all six pairs ran", ok)) return sample_finish();
     FILE* f = b2s::OpenOut(dir, "summary.csv");
-    if (f) std::fprintf(f, "pair,mean_mu,std_mu,contact_samples,roll_time,predicted_roll_time,rolling_deceleration\n");
+    if (f)
+        std::fprintf(
+            f, "pair,mean_mu,std_mu,contact_samples,roll_time,predicted_roll_time,rolling_deceleration\n");
     const double v0 = 3.0, g = 9.81;
     std::printf("pair            mean mu  std mu   roll at (pred.)    rolling decel\n");
     for (const PairResult& r : p) {
         const double pred = v0 / (3.0 * r.meanMu * g);
-        std::printf("%-15s %.4f   %.4f   %.3f s (%.3f s)  %.4f m/s^2\n", r.label.c_str(), r.meanMu, r.stdMu, r.rollTime, pred,
-                    r.rollDecel);
+        std::printf("%-15s %.4f   %.4f   %.3f s (%.3f s)  %.4f m/s^2\n", r.label.c_str(), r.meanMu, r.stdMu,
+                    r.rollTime, pred, r.rollDecel);
         if (f)
-            std::fprintf(f, "%s,%.6f,%.6f,%d,%.5f,%.5f,%.6f\n", r.label.c_str(), r.meanMu, r.stdMu, r.samples, r.rollTime, pred,
-                         r.rollDecel);
+            std::fprintf(f, "%s,%.6f,%.6f,%d,%.5f,%.5f,%.6f\n", r.label.c_str(), r.meanMu, r.stdMu, r.samples,
+                         r.rollTime, pred, r.rollDecel);
     }
     if (f) std::fclose(f);
     sample_expect_le("tipo_1-tipo_1: constant friction, std of mu", p[0].stdMu, 1e-3);
     for (int v = 1; v < 6; ++v)
-        sample_expect_le((p[v].label + ": friction varies along the surfaces, -(std of mu)").c_str(), -p[v].stdMu, -0.01);
+        sample_expect_le((p[v].label + ": friction varies along the surfaces, -(std of mu)").c_str(),
+                         -p[v].stdMu, -0.01);
     for (int v = 1; v < 6; ++v)
-        sample_expect((p[v].label + ": mean mu larger than tipo_1-tipo_1's").c_str(), p[v].meanMu > p[0].meanMu);
+        sample_expect((p[v].label + ": mean mu larger than tipo_1-tipo_1's").c_str(),
+                      p[v].meanMu > p[0].meanMu);
     sample_expect("tipo_2-tipo_2 mean mu larger than tipo_3-tipo_3's", p[3].meanMu > p[5].meanMu);
     sample_expect_le("tipo_1-tipo_1 rolls at v0/(3 mu g) within 25%: |t/t_pred - 1|",
                      std::fabs(p[0].rollTime / (v0 / (3.0 * p[0].meanMu * g)) - 1.0), 0.25);
-    sample_expect("larger mean mu rolls earlier: tipo_2-tipo_2 before tipo_1-tipo_1", p[3].rollTime < p[0].rollTime);
+    sample_expect("larger mean mu rolls earlier: tipo_2-tipo_2 before tipo_1-tipo_1",
+                  p[3].rollTime < p[0].rollTime);
     for (const PairResult& r : p) {
         sample_expect((r.label + ": reaches rolling").c_str(), !std::isnan(r.rollTime));
         sample_expect_le((r.label + ": rolling speed decays slowly: decel / (0.1 mu g)").c_str(),
                          std::fabs(r.rollDecel) / (0.1 * r.meanMu * g), 1.0);
         sample_expect_le((r.label + ": stays on the block, -(lowest centre y) [m]").c_str(), -r.minY, -0.3);
-        sample_expect_le((r.label + ": energy never grows, largest step increase / initial").c_str(), r.energyGrowth, 1e-3);
+        sample_expect_le((r.label + ": energy never grows, largest step increase / initial").c_str(),
+                         r.energyGrowth, 1e-3);
     }
     return sample_finish();
 }

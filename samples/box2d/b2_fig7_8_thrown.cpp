@@ -4,11 +4,12 @@
 // contact speed, μ of the contacts), frames thrown_<v>_<step>.svg and summary.json.
 //
 // Checks: the slab stays on the block and does not tip over; energy never grows; it comes to rest
-// (tangential speed falls to 0, thesis 7.8); (b) each stretch decelerates at μ g within 20%. (b): the deceleration on each stretch is measured by a
-// least-squares slope of the tangential speed while the whole slab is inside the stretch; Coulomb sliding
-// decelerates at μ g, so the friction map predicts rough / smooth = μ_rough / μ_smooth (0.83 / 0.10 = 8.3).
-// We require the measured ratio to be at least half of that (>= 4.2): the slab rocks (normal force varies),
-// Box2D solves friction iteratively and λ(t) ramps over a segment at each stretch end.
+// (tangential speed falls to 0, thesis 7.8); (b) each stretch decelerates at μ g within 20%. (b): the
+// deceleration on each stretch is measured by a least-squares slope of the tangential speed while the whole
+// slab is inside the stretch; Coulomb sliding decelerates at μ g, so the friction map predicts rough / smooth
+// = μ_rough / μ_smooth (0.83 / 0.10 = 8.3). We require the measured ratio to be at least half of that
+// (>= 4.2): the slab rocks (normal force varies), Box2D solves friction iteratively and λ(t) ramps over a
+// segment at each stretch end.
 #include "b2_sample.hpp"
 
 #include <algorithm>
@@ -48,7 +49,8 @@ bool RunVariant(int v, const std::string& dir, std::vector<Sample>* out, std::sh
         double vt = 0.0, mu = 0.0;
         for (b2ContactEdge* ce = body->GetContactList(); ce; ce = ce->next) {
             b2Contact* c = ce->contact;
-            if (!c->IsTouching() || !c->IsEnabled() || ce->other != run.bodies[static_cast<std::size_t>(ig)]) continue;
+            if (!c->IsTouching() || !c->IsEnabled() || ce->other != run.bodies[static_cast<std::size_t>(ig)])
+                continue;
             b2WorldManifold wm;
             c->GetWorldManifold(&wm);
             for (int p = 0; p < c->GetManifold()->pointCount; ++p) {
@@ -67,8 +69,8 @@ bool RunVariant(int v, const std::string& dir, std::vector<Sample>* out, std::sh
         smp.vt = smp.contacts ? vt / smp.contacts : NAN;
         smp.mu = smp.contacts ? mu / smp.contacts : NAN;
         smp.e = b2s::Energy(run);
-        std::fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%d,%.6f\n", smp.t, smp.x, smp.y, smp.a, smp.vx, smp.vy,
-                     smp.w, smp.vt, smp.mu, smp.contacts, smp.e);
+        std::fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%d,%.6f\n", smp.t, smp.x, smp.y, smp.a,
+                     smp.vx, smp.vy, smp.w, smp.vt, smp.mu, smp.contacts, smp.e);
         out->push_back(smp);
         if (k < n) run.Step();
     }
@@ -105,10 +107,13 @@ int main(int argc, char** argv) {
     rough2 = Deceleration(b, sb->stretch[1], 10.0, &n3);
     const double predicted = sb->stretch_mu[0] / sb->stretch_mu[1];
     const double ratio = rough1 / smooth;
-    std::printf("Fig. 7.8(b): deceleration rough %.3f m/s^2 (%d samples), smooth %.3f (%d), rough again %.3f (%d)\n",
-                rough1, n1, smooth, n2, rough2, n3);
-    std::printf("  friction map: mu rough %.3f, smooth %.3f -> predicted decelerations %.3f, %.3f; ratio %.2f (predicted %.2f)\n",
-                sb->stretch_mu[0], sb->stretch_mu[1], sb->stretch_mu[0] * g, sb->stretch_mu[1] * g, ratio, predicted);
+    std::printf(
+        "Fig. 7.8(b): deceleration rough %.3f m/s^2 (%d samples), smooth %.3f (%d), rough again %.3f (%d)\n",
+        rough1, n1, smooth, n2, rough2, n3);
+    std::printf("  friction map: mu rough %.3f, smooth %.3f -> predicted decelerations %.3f, %.3f; ratio "
+                "%.2f (predicted %.2f)\n",
+                sb->stretch_mu[0], sb->stretch_mu[1], sb->stretch_mu[0] * g, sb->stretch_mu[1] * g, ratio,
+                predicted);
     auto stopTime = [](const std::vector<Sample>& s) -> double {
         for (const Sample& p : s)
             if (std::fabs(p.vx) < 0.05 && p.t > 0.2) return p.t;
@@ -116,27 +121,30 @@ int main(int argc, char** argv) {
     };
     auto maxAbs = [](const std::vector<Sample>& s, double Sample::*m) {
         double r = 0;
-        for (const Sample& p : s) r = std::max(r, std::fabs(p.*m));
+        for (const Sample& p : s)
+            r = std::max(r, std::fabs(p.*m));
         return r;
     };
     auto minY = [](const std::vector<Sample>& s) {
         double r = 1e9;
-        for (const Sample& p : s) r = std::min(r, p.y);
+        for (const Sample& p : s)
+            r = std::min(r, p.y);
         return r;
     };
-    std::printf("Fig. 7.8(a): stops at t = %.3f s at x = %.3f; (b) stops at t = %.3f s at x = %.3f\n", stopTime(a),
-                a.back().x, stopTime(b), b.back().x);
+    std::printf("Fig. 7.8(a): stops at t = %.3f s at x = %.3f; (b) stops at t = %.3f s at x = %.3f\n",
+                stopTime(a), a.back().x, stopTime(b), b.back().x);
     // The slab stops within a few cm of the second rough stretch: too few samples there for a slope.
     const std::string r2 = n3 >= 5 ? std::to_string(rough2) : "null";
     FILE* f = b2s::OpenOut(dir, "summary.json");
     if (f) {
         std::fprintf(f,
-                     "{\"a\": {\"stop_time\": %.5f, \"stop_x\": %.5f},\n \"b\": {\"stop_time\": %.5f, \"stop_x\": %.5f,\n"
+                     "{\"a\": {\"stop_time\": %.5f, \"stop_x\": %.5f},\n \"b\": {\"stop_time\": %.5f, "
+                     "\"stop_x\": %.5f,\n"
                      "  \"deceleration\": {\"rough\": %.6f, \"smooth\": %.6f, \"rough_again\": %s},\n"
                      "  \"samples\": [%d, %d, %d], \"mu\": {\"rough\": %.5f, \"smooth\": %.5f},\n"
                      "  \"ratio\": %.5f, \"predicted_ratio\": %.5f}}\n",
-                     stopTime(a), a.back().x, stopTime(b), b.back().x, rough1, smooth, r2.c_str(), n1, n2, n3, sb->stretch_mu[0],
-                     sb->stretch_mu[1], ratio, predicted);
+                     stopTime(a), a.back().x, stopTime(b), b.back().x, rough1, smooth, r2.c_str(), n1, n2, n3,
+                     sb->stretch_mu[0], sb->stretch_mu[1], ratio, predicted);
         std::fclose(f);
     }
     for (int v = 0; v < 2; ++v) {
@@ -145,20 +153,26 @@ int main(int argc, char** argv) {
         std::string p = std::string(tag) + " ";
         // The slab's centre rests ~0.2 m above the top (y = 0); below 0 it went through.
         sample_expect_le((p + "stays on the block: -(lowest centre y) [m]").c_str(), -minY(s), -0.1);
-        sample_expect_le((p + "does not tip over: largest |angle| [rad]").c_str(), maxAbs(s, &Sample::a), 0.5);
-        sample_expect((p + "tangential speed falls to 0 (stops within the run)").c_str(), !std::isnan(stopTime(s)));
+        sample_expect_le((p + "does not tip over: largest |angle| [rad]").c_str(), maxAbs(s, &Sample::a),
+                         0.5);
+        sample_expect((p + "tangential speed falls to 0 (stops within the run)").c_str(),
+                      !std::isnan(stopTime(s)));
         sample_expect_le((p + "at rest at the end: |vx| [m/s]").c_str(), std::fabs(s.back().vx), 0.05);
         double grow = 0.0;
-        for (std::size_t i = 1; i < s.size(); ++i) grow = std::max(grow, s[i].e - s[i - 1].e);
+        for (std::size_t i = 1; i < s.size(); ++i)
+            grow = std::max(grow, s[i].e - s[i - 1].e);
         // Friction only removes energy; allow 0.1% of the initial per step for Box2D's position correction.
-        sample_expect_le((p + "energy never grows: largest step increase / initial energy").c_str(), grow / s[0].e, 1e-3);
+        sample_expect_le((p + "energy never grows: largest step increase / initial energy").c_str(),
+                         grow / s[0].e, 1e-3);
     }
-    sample_expect("(b) enough samples on the first rough stretch and on the smooth one", n1 >= 10 && n2 >= 10);
+    sample_expect("(b) enough samples on the first rough stretch and on the smooth one",
+                  n1 >= 10 && n2 >= 10);
     sample_expect_le("(b) smooth stretch decelerates at mu_smooth g within 20%: |a/(mu g) - 1|",
                      std::fabs(smooth / (sb->stretch_mu[1] * g) - 1.0), 0.2);
     sample_expect_le("(b) rough stretch decelerates at mu_rough g within 20%: |a/(mu g) - 1|",
                      std::fabs(rough1 / (sb->stretch_mu[0] * g) - 1.0), 0.2);
-    sample_expect_le("(b) decelerates measurably faster on the rough stretch: -(rough/smooth) <= -predicted/2",
-                     -ratio, -0.5 * predicted);
+    sample_expect_le(
+        "(b) decelerates measurably faster on the rough stretch: -(rough/smooth) <= -predicted/2", -ratio,
+        -0.5 * predicted);
     return sample_finish();
 }

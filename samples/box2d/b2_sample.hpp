@@ -38,7 +38,8 @@ inline double Energy(const Run& r) {
         const double ic = b->GetInertia() - m * (lc.x * lc.x + lc.y * lc.y); // Box2D's is about the origin
         const b2Vec2 v = b->GetLinearVelocity(), c = b->GetWorldCenter();
         const double w = b->GetAngularVelocity();
-        e += 0.5 * m * (v.x * v.x + v.y * v.y) + 0.5 * ic * w * w - m * (r.sc->gravity.x * c.x + r.sc->gravity.y * c.y);
+        e += 0.5 * m * (v.x * v.x + v.y * v.y) + 0.5 * ic * w * w -
+             m * (r.sc->gravity.x * c.x + r.sc->gravity.y * c.y);
     }
     return e;
 }
@@ -124,15 +125,18 @@ struct Fnv1a {
 inline double Px(const svg_canvas& c, double x) { return (x - c.ox) * c.scale; }
 inline double Py(const svg_canvas& c, double y) { return c.height - (y - c.oy) * c.scale; }
 
-inline void PolyLine(svg_canvas& c, const std::vector<b2Vec2>& v, bool closed, const char* stroke, const char* fill) {
-    std::fprintf(c.file, "<%s fill=\"%s\" stroke=\"%s\" stroke-width=\"1.2\" points=\"", closed ? "polygon" : "polyline",
-                 fill, stroke);
-    for (const b2Vec2& p : v) std::fprintf(c.file, "%.2f,%.2f ", Px(c, p.x), Py(c, p.y));
+inline void PolyLine(svg_canvas& c, const std::vector<b2Vec2>& v, bool closed, const char* stroke,
+                     const char* fill) {
+    std::fprintf(c.file, "<%s fill=\"%s\" stroke=\"%s\" stroke-width=\"1.2\" points=\"",
+                 closed ? "polygon" : "polyline", fill, stroke);
+    for (const b2Vec2& p : v)
+        std::fprintf(c.file, "%.2f,%.2f ", Px(c, p.x), Py(c, p.y));
     std::fprintf(c.file, "\"/>\n");
 }
 
 inline const char* Colour(int i) {
-    static const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d"};
+    static const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a",
+                                    "#66a61e", "#e6ab02", "#a6761d"};
     return colours[i % 7];
 }
 
@@ -151,7 +155,8 @@ inline bool DrawFrame(const Run& r, const std::string& path, const char* title, 
             rugo_shape_level(sb.shape, r.bridge->GetLevel(b), &k);
             std::vector<rugo_vec2> pts(static_cast<std::size_t>(k.count));
             const rugo_transform t = rugo_make_transform(xf.p.x, xf.p.y, b->GetAngle());
-            for (int j = 0; j < k.count; ++j) pts[static_cast<std::size_t>(j)] = rugo_transform_point(t, k.points[j]);
+            for (int j = 0; j < k.count; ++j)
+                pts[static_cast<std::size_t>(j)] = rugo_transform_point(t, k.points[j]);
             rugo_contour w = {pts.data(), k.count};
             svg_contour(&c, w, 6, col, 1.4, nullptr);
             if (show_band) {
@@ -163,7 +168,8 @@ inline bool DrawFrame(const Run& r, const std::string& path, const char* title, 
                         const double tt = s / 4.0;
                         const rugo_vec2 p = rugo_contour_point(w, j, tt), n = rugo_contour_normal(w, j, tt);
                         const double lam = rugo_tolerance_at(tl.total, tl.count, j, tt, 0.0);
-                        band.emplace_back(static_cast<float>(p.x + lam * n.x), static_cast<float>(p.y + lam * n.y));
+                        band.emplace_back(static_cast<float>(p.x + lam * n.x),
+                                          static_cast<float>(p.y + lam * n.y));
                     }
                 PolyLine(c, band, true, "#bbbbbb", "none");
             }
@@ -173,7 +179,8 @@ inline bool DrawFrame(const Run& r, const std::string& path, const char* title, 
             std::vector<b2Vec2> v;
             if (f->GetType() == b2Shape::e_polygon) {
                 const b2PolygonShape* p = static_cast<const b2PolygonShape*>(f->GetShape());
-                for (int j = 0; j < p->m_count; ++j) v.push_back(b2Mul(xf, p->m_vertices[j]));
+                for (int j = 0; j < p->m_count; ++j)
+                    v.push_back(b2Mul(xf, p->m_vertices[j]));
                 PolyLine(c, v, true, col, "none");
             } else if (f->GetType() == b2Shape::e_circle) {
                 const b2CircleShape* p = static_cast<const b2CircleShape*>(f->GetShape());
@@ -187,7 +194,8 @@ inline bool DrawFrame(const Run& r, const std::string& path, const char* title, 
                 PolyLine(c, spoke, false, col, "none");
             } else if (f->GetType() == b2Shape::e_chain) {
                 const b2ChainShape* p = static_cast<const b2ChainShape*>(f->GetShape());
-                for (int j = 0; j < p->m_count; ++j) v.push_back(b2Mul(xf, p->m_vertices[j]));
+                for (int j = 0; j < p->m_count; ++j)
+                    v.push_back(b2Mul(xf, p->m_vertices[j]));
                 PolyLine(c, v, false, col, "none");
             }
         }
@@ -221,16 +229,17 @@ inline double Slope(const std::vector<double>& x, const std::vector<double>& y) 
 // Runs a scene to its end, writing <prefix>.csv (every body every 6th step) and frames <prefix>_<step>.svg
 // at the given steps; gathers what the chapter-7 samples check.
 struct Record {
-    std::vector<std::vector<b2Vec2>> pos;   // per step, per body: world centre
-    std::vector<double> firstContact;       // per body: time of its first touching contact (NAN: none)
-    std::vector<double> impactY, reboundY;  // centre height at first contact; highest within 1 s after
+    std::vector<std::vector<b2Vec2>> pos;  // per step, per body: world centre
+    std::vector<double> firstContact;      // per body: time of its first touching contact (NAN: none)
+    std::vector<double> impactY, reboundY; // centre height at first contact; highest within 1 s after
     double e0 = 0, maxGrowth = 0, finalKinetic = 0, minY = 1e9;
     double muSum = 0;
     long muCount = 0;
     double MeanMu() const { return muCount ? muSum / static_cast<double>(muCount) : NAN; }
 };
 // after_step (optional) is called after every step, e.g. to gather more per-contact figures.
-inline bool RunScene(Run& run, const std::string& dir, const std::string& prefix, const std::vector<long>& frames, Record* rec,
+inline bool RunScene(Run& run, const std::string& dir, const std::string& prefix,
+                     const std::vector<long>& frames, Record* rec,
                      const std::function<void(const Run&)>& after_step = nullptr) {
     const scene& s = *run.sc;
     const std::size_t nb = run.bodies.size();
@@ -255,8 +264,9 @@ inline bool RunScene(Run& run, const std::string& dir, const std::string& prefix
             const b2Body* b = run.bodies[i];
             p[i] = b->GetWorldCenter();
             if (k % 6 == 0)
-                std::fprintf(f, "%.4f,%zu,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", run.time, i, s.bodies[i].name, p[i].x, p[i].y,
-                             b->GetAngle(), b->GetLinearVelocity().x, b->GetLinearVelocity().y, b->GetAngularVelocity());
+                std::fprintf(f, "%.4f,%zu,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", run.time, i, s.bodies[i].name,
+                             p[i].x, p[i].y, b->GetAngle(), b->GetLinearVelocity().x,
+                             b->GetLinearVelocity().y, b->GetAngularVelocity());
             if (b->GetType() != b2_dynamicBody) continue;
             rec->minY = std::min(rec->minY, static_cast<double>(p[i].y));
             if (std::isnan(rec->firstContact[i]))

@@ -46,21 +46,21 @@ inline double Cross(rugo_vec2 o, rugo_vec2 a, rugo_vec2 b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-
 } // namespace
 
 // The polygon variant: vertices on the finest curve, each chord as long as the curve between its ends
 // stays within eps of it (greedy over kSamplesPerSegment samples per segment), then a fan from the
 // centroid merged greedily into convex pieces of at most b2_maxPolygonVertices vertices. The outlines
 // are star-shaped about their centroid (checked), so the fan is a valid decomposition.
-bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Piece>* pieces, int* nverts, double* dev) {
+bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Piece>* pieces, int* nverts,
+                double* dev) {
     rugo_contour c;
     if (rugo_shape_level(s, rugo_shape_finest_level(s), &c) != RUGO_OK) return false;
     const int m = c.count * kSamplesPerSegment;
     std::vector<rugo_vec2> p(static_cast<size_t>(m));
     for (int i = 0; i < m; ++i)
-        p[static_cast<size_t>(i)] = rugo_contour_point(c, i / kSamplesPerSegment,
-                                                       static_cast<double>(i % kSamplesPerSegment) / kSamplesPerSegment);
+        p[static_cast<size_t>(i)] = rugo_contour_point(
+            c, i / kSamplesPerSegment, static_cast<double>(i % kSamplesPerSegment) / kSamplesPerSegment);
     std::vector<int> idx; // polygon vertices as sample indices
     int i = 0;
     while (i < m) {
@@ -87,7 +87,8 @@ bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Pie
         for (int k = 4 * i0; k <= 4 * i1; ++k) {
             const int kk = k % (4 * m);
             const rugo_vec2 q = rugo_contour_point(c, kk / (4 * kSamplesPerSegment),
-                                                   static_cast<double>(kk % (4 * kSamplesPerSegment)) / (4 * kSamplesPerSegment));
+                                                   static_cast<double>(kk % (4 * kSamplesPerSegment)) /
+                                                       (4 * kSamplesPerSegment));
             worst = std::max(worst, PointSegmentDistance(q, a, b));
         }
         if (Cross(apex, a, b) <= 1e-9) return false; // not star-shaped about the apex
@@ -107,7 +108,8 @@ bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Pie
             // convex if v[b-1] -> v[b] -> nb turns left, v[b] -> nb -> apex turns left and
             // nb -> apex -> v[a] turns left
             if (Cross(v[static_cast<size_t>(b - 1)], v[static_cast<size_t>(b)], nb) <= 1e-12 ||
-                Cross(v[static_cast<size_t>(b)], nb, apex) <= 1e-12 || Cross(nb, apex, v[static_cast<size_t>(a)]) <= 1e-12)
+                Cross(v[static_cast<size_t>(b)], nb, apex) <= 1e-12 ||
+                Cross(nb, apex, v[static_cast<size_t>(a)]) <= 1e-12)
                 break;
             ++b;
         }
@@ -125,14 +127,16 @@ bool FitPolygon(const rugo_shape* s, rugo_vec2 apex, double eps, std::vector<Pie
 
 bool BuildShapes(int segments, ShapeSet* set) {
     set->segments = segments;
-    static const rugo_tolerance_preset presets[kShapes] = {RUGO_PRESET_TIPO_2, RUGO_PRESET_TIPO_3, RUGO_PRESET_TIPO_5,
-                                                           RUGO_PRESET_TIPO_1};
+    static const rugo_tolerance_preset presets[kShapes] = {RUGO_PRESET_TIPO_2, RUGO_PRESET_TIPO_3,
+                                                           RUGO_PRESET_TIPO_5, RUGO_PRESET_TIPO_1};
     static const double aspects[kShapes] = {1.0, 1.3, 1.15, 1.45};
     std::vector<rugo_vec2> pts(static_cast<size_t>(segments));
     std::vector<double> lam(static_cast<size_t>(segments));
     for (int k = 0; k < kShapes; ++k) {
         RockOutline(700 + static_cast<std::uint64_t>(k), aspects[k], segments, pts.data());
-        if (rugo_tolerances_preset(presets[k], 710 + static_cast<std::uint64_t>(k), segments, lam.data()) != RUGO_OK) return false;
+        if (rugo_tolerances_preset(presets[k], 710 + static_cast<std::uint64_t>(k), segments, lam.data()) !=
+            RUGO_OK)
+            return false;
         for (double& l : lam)
             l *= SCENE_ROUGHNESS_SCALE;
         rugo_shape_def d = rugo_default_shape_def();
@@ -163,7 +167,8 @@ bool BuildShapes(int segments, ShapeSet* set) {
         int nv = 0;
         double dev = 0.0;
         if (!FitPolygon(sh, mp.centroid, kBudget, &pcs, &nv, &dev)) {
-            std::fprintf(stderr, "rock_pile: shape %d (S = %d) is not star-shaped about its centroid\n", k, segments);
+            std::fprintf(stderr, "rock_pile: shape %d (S = %d) is not star-shaped about its centroid\n", k,
+                         segments);
             return false;
         }
         set->pieces.push_back(pcs);
@@ -205,7 +210,8 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
     const int n = args.bodies;
     const Layout L = MakeLayout(n, set);
     world->world = std::make_unique<b2World>(b2Vec2(0.0f, -9.8f));
-    world->world->SetAllowSleeping(false); // every body stays awake: the cost of the contacts, not of sleeping
+    world->world->SetAllowSleeping(
+        false); // every body stays awake: the cost of the contacts, not of sleeping
     world->world->SetContinuousPhysics(args.continuous);
     if (var == kAuto || var == kFinest) {
         rugo::BridgeDef bd;
@@ -236,7 +242,8 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
     for (int i = 0; i < n; ++i) {
         const int row = i / L.cols, col = i % L.cols;
         const int k = ShapeOf(i, L);
-        const double x = -0.5 * (L.cols - 1) * L.spacing + col * L.spacing + rugo_rng_range(&rng, -0.05, 0.05);
+        const double x =
+            -0.5 * (L.cols - 1) * L.spacing + col * L.spacing + rugo_rng_range(&rng, -0.05, 0.05);
         const double y = 0.5 * L.spacing + 0.05 + row * L.spacing;
         const double ang = rugo_rng_range(&rng, 0.0, 6.283185307179586);
         b2BodyDef bd;
@@ -245,7 +252,8 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
         // Body origin = the shape's frame; place the centroid at (x, y).
         const rugo_vec2 c = set.centroid[static_cast<size_t>(k)];
         const double ca = std::cos(ang), sa = std::sin(ang);
-        bd.position.Set(static_cast<float>(x - (ca * c.x - sa * c.y)), static_cast<float>(y - (sa * c.x + ca * c.y)));
+        bd.position.Set(static_cast<float>(x - (ca * c.x - sa * c.y)),
+                        static_cast<float>(y - (sa * c.x + ca * c.y)));
         b2Body* b = world->world->CreateBody(&bd);
         if (var == kAuto || var == kFinest) {
             rugo::RoughBodyDef rd;
@@ -270,7 +278,8 @@ bool Create(const scene_table::Args& args, scene_table::World* world) {
             b2FixtureDef fd;
             fd.shape = &cs;
             // the rough body's mass in the larger circle
-            fd.density = static_cast<float>(set.mass[static_cast<size_t>(k)] / (b2_pi * cs.m_radius * cs.m_radius));
+            fd.density =
+                static_cast<float>(set.mass[static_cast<size_t>(k)] / (b2_pi * cs.m_radius * cs.m_radius));
             fd.friction = 0.5f;
             b->CreateFixture(&fd);
         }

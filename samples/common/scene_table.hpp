@@ -26,13 +26,13 @@ struct Entry;
 // What a scene is built from besides its name. Only the pile reads more than the variant; its default
 // size is the benchmark's first row (N = 16 at S = 64), where the automatic level is not the finest.
 struct Args {
-    int variant = 0;        // 0 .. Entry::variants - 1
-    int bodies = 16;        // the pile: N bodies
-    int segments = 64;      // the pile: S control points per shape
-    int maxProxies = 0;     // the pile: BridgeDef::maxProxies (0: the bridge's default)
-    double reuseDistance = -1.0; // the pile: BridgeDef::reuseDistance (< 0: the bridge's default)
+    int variant = 0;               // 0 .. Entry::variants - 1
+    int bodies = 16;               // the pile: N bodies
+    int segments = 64;             // the pile: S control points per shape
+    int maxProxies = 0;            // the pile: BridgeDef::maxProxies (0: the bridge's default)
+    double reuseDistance = -1.0;   // the pile: BridgeDef::reuseDistance (< 0: the bridge's default)
     double queryResolution = -1.0; // the pile: BridgeDef::queryResolution (< 0: the bridge's default)
-    bool continuous = true; // the pile: Box2D's continuous collision
+    bool continuous = true;        // the pile: Box2D's continuous collision
     // The pile: its shapes of `segments` control points when built before (the benchmark builds them
     // once for all variants and body counts); null: the scene builds them.
     std::shared_ptr<const pile::ShapeSet> pileShapes;

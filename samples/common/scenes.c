@@ -9,7 +9,7 @@ enum { MAXP = 512 };
 
 rugo_friction_map scene_friction_map(void) {
     rugo_friction_map m;
-    m.base = 0.1;                          /* smooth surfaces still slide with some friction */
+    m.base = 0.1; /* smooth surfaces still slide with some friction */
     m.lambda_min = 0.04 * SCENE_ROUGHNESS_SCALE;
     m.alpha = 0.8 / (0.61 * SCENE_ROUGHNESS_SCALE); /* μ = 0.9 at the library's largest λ (0.65) */
     return m;
@@ -36,7 +36,8 @@ rugo_real scene_max_band(const rugo_shape* shape, int level) {
     rugo_tolerance_level tl;
     if (rugo_shape_tolerance_level(shape, j, &tl) != RUGO_OK) return 0.0;
     double m = 0.0;
-    for (int k = 0; k < tl.count; ++k) m = fmax(m, tl.total[k]);
+    for (int k = 0; k < tl.count; ++k)
+        m = fmax(m, tl.total[k]);
     return m;
 }
 
@@ -53,7 +54,8 @@ static void resample(const rugo_vec2* poly, int m, int n, rugo_vec2* out) {
     int e = 0;
     for (int k = 0; k < n; ++k) {
         double s = len[m] * k / n;
-        while (e < m - 1 && len[e + 1] <= s) ++e;
+        while (e < m - 1 && len[e + 1] <= s)
+            ++e;
         double f = (s - len[e]) / (len[e + 1] - len[e]);
         rugo_vec2 a = poly[e], b = poly[(e + 1) % m];
         out[k] = rugo_v2(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y));
@@ -94,7 +96,8 @@ static void blob(uint64_t seed, double radius, double aspect, double rough, int 
     }
     for (int i = 0; i < n; ++i) {
         double th = PI2 * i / n, r = 1.0;
-        for (int k = 2; k < 8; ++k) r += amp[k] * sin(k * th + ph[k]);
+        for (int k = 2; k < 8; ++k)
+            r += amp[k] * sin(k * th + ph[k]);
         out[i] = rugo_v2(aspect * radius * r * cos(th), radius * r * sin(th));
     }
 }
@@ -112,7 +115,8 @@ static void gear(int teeth, double radius, double depth, int n, rugo_vec2* out) 
 static int stroke(const rugo_vec2* path, int m, double w, rugo_vec2* out) {
     rugo_vec2 p[32], off[32];
     double h = 0.5 * w;
-    for (int i = 0; i < m; ++i) p[i] = path[i];
+    for (int i = 0; i < m; ++i)
+        p[i] = path[i];
     for (int i = 0; i < m; ++i) {
         rugo_vec2 d0 = rugo_v2_sub(p[i > 0 ? i : 1], p[i > 0 ? i - 1 : 0]);
         rugo_vec2 d1 = rugo_v2_sub(p[i < m - 1 ? i + 1 : m - 1], p[i < m - 1 ? i : m - 2]);
@@ -124,15 +128,17 @@ static int stroke(const rugo_vec2* path, int m, double w, rugo_vec2* out) {
         if (i == m - 1) p[i] = rugo_v2_add(p[i], rugo_v2_scale(h, d0));
     }
     int k = 0;
-    for (int i = 0; i < m; ++i) out[k++] = rugo_v2_add(p[i], off[i]);
-    for (int i = m - 1; i >= 0; --i) out[k++] = rugo_v2_sub(p[i], off[i]);
+    for (int i = 0; i < m; ++i)
+        out[k++] = rugo_v2_add(p[i], off[i]);
+    for (int i = m - 1; i >= 0; --i)
+        out[k++] = rugo_v2_sub(p[i], off[i]);
     return k;
 }
 
 /* ---- building ------------------------------------------------------------------------------- */
 
-static rugo_shape* add_shape(scene* s, const rugo_vec2* pts, int n, const double* lam, double eps, double eps_max,
-                             rugo_status* st) {
+static rugo_shape* add_shape(scene* s, const rugo_vec2* pts, int n, const double* lam, double eps,
+                             double eps_max, rugo_status* st) {
     if (*st != RUGO_OK) return NULL;
     if (s->shape_count >= SCENE_MAX_SHAPES) {
         *st = RUGO_ERR_BAD_ARGUMENT;
@@ -149,7 +155,8 @@ static rugo_shape* add_shape(scene* s, const rugo_vec2* pts, int n, const double
     rugo_contour_problem pr;
     *st = rugo_shape_create(&d, &sh, &pr);
     if (*st != RUGO_OK) {
-        fprintf(stderr, "scenes: shape %d of scene %d: %s\n", s->shape_count, (int)s->id, rugo_status_string(*st));
+        fprintf(stderr, "scenes: shape %d of scene %d: %s\n", s->shape_count, (int)s->id,
+                rugo_status_string(*st));
         return NULL;
     }
     s->shapes[s->shape_count++] = sh;
@@ -159,11 +166,12 @@ static rugo_shape* add_shape(scene* s, const rugo_vec2* pts, int n, const double
 /* λ per segment in metres from a preset (library units times the scale). */
 static void preset(rugo_tolerance_preset p, uint64_t seed, int n, double* out) {
     rugo_tolerances_preset(p, seed, n, out);
-    for (int i = 0; i < n; ++i) out[i] *= SCENE_ROUGHNESS_SCALE;
+    for (int i = 0; i < n; ++i)
+        out[i] *= SCENE_ROUGHNESS_SCALE;
 }
 
-static scene_body* add_body(scene* s, const char* name, scene_role role, const rugo_shape* shape, int is_static,
-                            double x, double y, double angle) {
+static scene_body* add_body(scene* s, const char* name, scene_role role, const rugo_shape* shape,
+                            int is_static, double x, double y, double angle) {
     if (s->body_count >= SCENE_MAX_BODIES) return NULL;
     scene_body* b = &s->bodies[s->body_count++];
     memset(b, 0, sizeof *b);
@@ -207,7 +215,8 @@ static rugo_status build_ball(scene* s) {
     s->duration = 3.5;
     block_outline(12.0, 0.6, NULL, NB, bp);
     preset(pb, 12, NB, lb);
-    for (int i = 0; i < NS; ++i) sp[i] = rugo_v2(0.4 * cos(PI2 * i / NS), 0.4 * sin(PI2 * i / NS));
+    for (int i = 0; i < NS; ++i)
+        sp[i] = rugo_v2(0.4 * cos(PI2 * i / NS), 0.4 * sin(PI2 * i / NS));
     preset(ps, 11, NS, ls);
     rugo_status st = RUGO_OK;
     rugo_shape* block = add_shape(s, bp, NB, lb, 0.5, 0.9, &st);
@@ -269,7 +278,8 @@ static rugo_status build_thrown(scene* s) {
     rugo_shape* mover = add_shape(s, sp, NS, mover_lam, 0.2, 0.9, &st);
     if (st != RUGO_OK) return st;
     add_body(s, "block", SCENE_ROLE_GROUND, block, 1, 0.0, 0.0, 0.0);
-    scene_body* b = add_body(s, "slider", SCENE_ROLE_MOVER, mover, 0, -8.5, rest_y(mover, block, 0, 0.0), 0.0);
+    scene_body* b =
+        add_body(s, "slider", SCENE_ROLE_MOVER, mover, 0, -8.5, rest_y(mover, block, 0, 0.0), 0.0);
     b->linear_velocity = rugo_v2(10.0, 0.0);
     s->view_lo = rugo_v2(-10.2, -0.8);
     s->view_hi = rugo_v2(10.2, 1.5);
@@ -328,25 +338,37 @@ typedef struct letter {
 } letter;
 
 static int letter_outline(int which, rugo_vec2* poly) {
-    static const rugo_vec2 g[] = {{0.15, 0.12}, {0.0, 0.12}, {0.0, 0.4}, {0.3, 0.4}, {0.3, -0.2}, {0.0, -0.2}, {0.0, -0.1}};
+    static const rugo_vec2 g[] = {{0.15, 0.12}, {0.0, 0.12}, {0.0, 0.4}, {0.3, 0.4},
+                                  {0.3, -0.2},  {0.0, -0.2}, {0.0, -0.1}};
     static const rugo_vec2 r[] = {{0.0, 0.0}, {0.0, 0.4}, {0.25, 0.4}, {0.25, 0.3}};
     static const rugo_vec2 a[] = {{0.0, 0.4}, {0.3, 0.4}, {0.3, 0.0}, {0.0, 0.0}, {0.0, 0.2}, {0.12, 0.2}};
     static const rugo_vec2 c[] = {{0.3, 0.4}, {0.0, 0.4}, {0.0, 0.0}, {0.3, 0.0}};
     static const rugo_vec2 accent[] = {{0.0, 0.0}, {0.1, 0.12}};
-    static const rugo_vec2 f[] = {{0, 0},       {0.1, 0},     {0.1, 0.3}, {0.22, 0.3}, {0.22, 0.38},
-                                  {0.1, 0.38},  {0.1, 0.5},   {0.28, 0.5}, {0.28, 0.6}, {0, 0.6},
-                                  {0, 0.38},    {-0.08, 0.38}, {-0.08, 0.3}, {0, 0.3}};
+    static const rugo_vec2 f[] = {{0, 0},      {0.1, 0},      {0.1, 0.3},   {0.22, 0.3}, {0.22, 0.38},
+                                  {0.1, 0.38}, {0.1, 0.5},    {0.28, 0.5},  {0.28, 0.6}, {0, 0.6},
+                                  {0, 0.38},   {-0.08, 0.38}, {-0.08, 0.3}, {0, 0.3}};
     static const rugo_vec2 i_stem[] = {{0, 0}, {0.1, 0}, {0.1, 0.4}, {0, 0.4}};
     static const rugo_vec2 dot[] = {{0, 0}, {0.1, 0}, {0.1, 0.1}, {0, 0.1}};
     switch (which) {
-    case 0: return stroke(g, 7, 0.1, poly);
-    case 1: return stroke(r, 4, 0.1, poly);
-    case 2: return stroke(a, 6, 0.1, poly);
-    case 3: return stroke(accent, 2, 0.06, poly);
-    case 4: memcpy(poly, f, sizeof f); return 14;
-    case 5: memcpy(poly, i_stem, sizeof i_stem); return 4;
-    case 6: memcpy(poly, dot, sizeof dot); return 4;
-    default: return stroke(c, 4, 0.1, poly);
+    case 0:
+        return stroke(g, 7, 0.1, poly);
+    case 1:
+        return stroke(r, 4, 0.1, poly);
+    case 2:
+        return stroke(a, 6, 0.1, poly);
+    case 3:
+        return stroke(accent, 2, 0.06, poly);
+    case 4:
+        memcpy(poly, f, sizeof f);
+        return 14;
+    case 5:
+        memcpy(poly, i_stem, sizeof i_stem);
+        return 4;
+    case 6:
+        memcpy(poly, dot, sizeof dot);
+        return 4;
+    default:
+        return stroke(c, 4, 0.1, poly);
     }
 }
 
@@ -377,7 +399,8 @@ static rugo_status build_grafica(scene* s) {
         /* "diferentes coeficientes de restituição" (7.10): ε from 0.1 (g) to 0.66 (c), by glyph. */
         gs[k] = add_shape(s, gp[k], n, lg[k], 0.1 + 0.08 * k, 0.9, &st);
     }
-    for (int i = 0; i < NBALL; ++i) ballp[i] = rugo_v2(0.25 * cos(PI2 * i / NBALL), 0.25 * sin(PI2 * i / NBALL));
+    for (int i = 0; i < NBALL; ++i)
+        ballp[i] = rugo_v2(0.25 * cos(PI2 * i / NBALL), 0.25 * sin(PI2 * i / NBALL));
     preset(p, 90, NBALL, lball);
     rugo_shape* ball = add_shape(s, ballp, NBALL, lball, 0.5, 0.9, &st);
     if (st != RUGO_OK) return st;
@@ -392,14 +415,16 @@ static rugo_status build_grafica(scene* s) {
         rugo_vec2 lo, hi;
         rugo_contour_bounds(c, &lo, &hi);
         double top = -1.0; /* highest point of the wavy top under the letter */
-        for (double u = x; u <= x + hi.x - lo.x; u += 0.01) top = fmax(top, wave_at(&w, u));
+        for (double u = x; u <= x + hi.x - lo.x; u += 0.01)
+            top = fmax(top, wave_at(&w, u));
         double bx = x - lo.x, by = rest_y(sh, block, 0, top);
         add_body(s, glyph_names[word[l]], SCENE_ROLE_OBJECT, sh, 0, bx, by, 0.0);
         if (l == 2) add_body(s, "accent", SCENE_ROLE_OBJECT, gs[3], 0, bx + 0.12, by + 0.53, 0.0);
         if (l == 4) add_body(s, "i_dot", SCENE_ROLE_OBJECT, gs[6], 0, bx, by + 0.47, 0.0);
         x += hi.x - lo.x + 0.12;
     }
-    scene_body* b = add_body(s, "ball", SCENE_ROLE_MOVER, ball, 0, -3.0, rest_y(ball, block, 0, 0.03) + 0.1, 0.0);
+    scene_body* b =
+        add_body(s, "ball", SCENE_ROLE_MOVER, ball, 0, -3.0, rest_y(ball, block, 0, 0.03) + 0.1, 0.0);
     b->density = 4.0; /* a heavy ball, so that the hit carries through several letters */
     b->linear_velocity = rugo_v2(6.0, 0.0);
     s->ground_top = -0.04;
@@ -426,7 +451,8 @@ static void detailed(int kind, uint64_t seed, double hx, double hy, double amp, 
     static rugo_vec2 dense[DENSE], base[MAXP];
     for (int i = 0; i < DENSE; ++i) {
         double th = PI2 * i / DENSE, c = cos(th), sn = sin(th);
-        dense[i] = rugo_v2(hx * (c < 0 ? -1.0 : 1.0) * pow(fabs(c), 0.8), hy * (sn < 0 ? -1.0 : 1.0) * pow(fabs(sn), 0.8));
+        dense[i] = rugo_v2(hx * (c < 0 ? -1.0 : 1.0) * pow(fabs(c), 0.8),
+                           hy * (sn < 0 ? -1.0 : 1.0) * pow(fabs(sn), 0.8));
     }
     resample(dense, DENSE, n, base);
     rugo_rng rng;
@@ -493,9 +519,9 @@ static rugo_status build_demo(scene* s) {
     s->measures = "time per step, contacts, memory per rough body, settling, determinism hash";
     s->duration = 6.0;
     /* Shapes: three rocks, two gears, two blobs; several bodies share each. */
-    static const rugo_tolerance_preset rough[NS] = {RUGO_PRESET_TIPO_2, RUGO_PRESET_TIPO_5, RUGO_PRESET_TIPO_3,
-                                                   RUGO_PRESET_TIPO_1, RUGO_PRESET_TIPO_3, RUGO_PRESET_TIPO_2,
-                                                   RUGO_PRESET_TIPO_5};
+    static const rugo_tolerance_preset rough[NS] = {
+        RUGO_PRESET_TIPO_2, RUGO_PRESET_TIPO_5, RUGO_PRESET_TIPO_3, RUGO_PRESET_TIPO_1,
+        RUGO_PRESET_TIPO_3, RUGO_PRESET_TIPO_2, RUGO_PRESET_TIPO_5};
     blob(300, 0.45, 1.3, 2.0, NP, pts[0]);
     blob(301, 0.35, 1.0, 2.5, NP, pts[1]);
     blob(302, 0.55, 1.5, 1.5, NP, pts[2]);
@@ -573,12 +599,24 @@ rugo_status scene_create(scene_id id, int variant, scene* out) {
     out->ground_top = 0.0;
     rugo_status st;
     switch (id) {
-    case SCENE_BALL: st = build_ball(out); break;
-    case SCENE_THROWN: st = build_thrown(out); break;
-    case SCENE_FOUR_BODIES: st = build_four(out); break;
-    case SCENE_GRAFICA: st = build_grafica(out); break;
-    case SCENE_LEVELS: st = build_levels(out); break;
-    default: st = build_demo(out); break;
+    case SCENE_BALL:
+        st = build_ball(out);
+        break;
+    case SCENE_THROWN:
+        st = build_thrown(out);
+        break;
+    case SCENE_FOUR_BODIES:
+        st = build_four(out);
+        break;
+    case SCENE_GRAFICA:
+        st = build_grafica(out);
+        break;
+    case SCENE_LEVELS:
+        st = build_levels(out);
+        break;
+    default:
+        st = build_demo(out);
+        break;
     }
     if (st != RUGO_OK) {
         scene_destroy(out);
@@ -589,7 +627,8 @@ rugo_status scene_create(scene_id id, int variant, scene* out) {
 
 void scene_destroy(scene* s) {
     if (s == NULL) return;
-    for (int i = 0; i < s->shape_count; ++i) rugo_shape_destroy(s->shapes[i]);
+    for (int i = 0; i < s->shape_count; ++i)
+        rugo_shape_destroy(s->shapes[i]);
     s->shape_count = 0;
     s->body_count = 0;
 }

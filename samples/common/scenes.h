@@ -56,9 +56,9 @@ typedef enum scene_body_kind {
 
 /* What a body is for in its scene (the samples look bodies up by role). */
 typedef enum scene_role {
-    SCENE_ROLE_GROUND = 0, /* fixed block / ground / container */
-    SCENE_ROLE_MOVER = 1,  /* the body the figure follows (ball, thrown body, striking ball) */
-    SCENE_ROLE_OBJECT = 2, /* other free bodies (four bodies, letters, level objects, demo bodies) */
+    SCENE_ROLE_GROUND = 0,  /* fixed block / ground / container */
+    SCENE_ROLE_MOVER = 1,   /* the body the figure follows (ball, thrown body, striking ball) */
+    SCENE_ROLE_OBJECT = 2,  /* other free bodies (four bodies, letters, level objects, demo bodies) */
     SCENE_ROLE_OBSTACLE = 3 /* a second fixed body (Fig. 7.9) */
 } scene_role;
 
@@ -66,33 +66,33 @@ typedef struct scene_body {
     char name[24];
     scene_body_kind kind;
     scene_role role;
-    const rugo_shape* shape;   /* SCENE_ROUGH: owned by the scene, possibly shared with other bodies */
-    rugo_vec2 half_extents;    /* SCENE_BOX */
-    rugo_real radius;          /* SCENE_CIRCLE */
-    const rugo_vec2* chain;    /* SCENE_CHAIN: chain_count points (owned by the scene) */
+    const rugo_shape* shape; /* SCENE_ROUGH: owned by the scene, possibly shared with other bodies */
+    rugo_vec2 half_extents;  /* SCENE_BOX */
+    rugo_real radius;        /* SCENE_CIRCLE */
+    const rugo_vec2* chain;  /* SCENE_CHAIN: chain_count points (owned by the scene) */
     int chain_count;
-    int is_static;             /* 1: fixed (infinite mass) */
-    rugo_transform transform;  /* placement of the shape's local frame (body origin) */
-    rugo_vec2 linear_velocity; /* of the centre of mass, m/s */
-    rugo_real angular_velocity; /* rad/s */
-    rugo_real density;         /* kg/m^2 (dynamic bodies) */
+    int is_static;                   /* 1: fixed (infinite mass) */
+    rugo_transform transform;        /* placement of the shape's local frame (body origin) */
+    rugo_vec2 linear_velocity;       /* of the centre of mass, m/s */
+    rugo_real angular_velocity;      /* rad/s */
+    rugo_real density;               /* kg/m^2 (dynamic bodies) */
     rugo_real friction, restitution; /* ordinary bodies' material (rough bodies: from the shape) */
-    int level;                 /* contact level relative to the finest: 0, -1, -2 (= scene.level) */
+    int level;                       /* contact level relative to the finest: 0, -1, -2 (= scene.level) */
 } scene_body;
 
 typedef struct scene {
     scene_id id;
     int variant;
-    const char* name;        /* e.g. "ball tipo_1/tipo_2" (static storage or label below) */
-    const char* figure;      /* e.g. "Fig. 7.5-7.6" */
-    const char* measures;    /* one line: what the scene measures */
-    char label[64];          /* variant label, e.g. "tipo_1-tipo_2", "level-1" */
-    rugo_vec2 gravity;       /* m/s^2 */
-    rugo_real time_step;     /* s */
-    rugo_real duration;      /* s */
-    int level;               /* contact level of detail of every rough body (0, -1, -2) */
+    const char* name;           /* e.g. "ball tipo_1/tipo_2" (static storage or label below) */
+    const char* figure;         /* e.g. "Fig. 7.5-7.6" */
+    const char* measures;       /* one line: what the scene measures */
+    char label[64];             /* variant label, e.g. "tipo_1-tipo_2", "level-1" */
+    rugo_vec2 gravity;          /* m/s^2 */
+    rugo_real time_step;        /* s */
+    rugo_real duration;         /* s */
+    int level;                  /* contact level of detail of every rough body (0, -1, -2) */
     rugo_vec2 view_lo, view_hi; /* a box that frames the scene (for pictures) */
-    rugo_real ground_top;    /* height of the fixed block's top surface (bodies below it fell through) */
+    rugo_real ground_top;       /* height of the fixed block's top surface (bodies below it fell through) */
     /* SCENE_THROWN variant 1: the block's top is rough for x < stretch[0], smooth for stretch[0] <= x <
      * stretch[1] and rough again beyond; stretch_mu = the friction μ there (rough, smooth) predicted by
      * the friction map for a smooth mover. Zero elsewhere. */

@@ -43,9 +43,11 @@ void svg_contour(svg_canvas* c, rugo_contour k, int per_segment, const char* str
 
 void svg_control_polygon(svg_canvas* c, rugo_contour k, const char* stroke) {
     fprintf(c->file, "<polygon fill=\"none\" stroke=\"%s\" stroke-width=\"0.7\" points=\"", stroke);
-    for (int j = 0; j < k.count; ++j) fprintf(c->file, "%.2f,%.2f ", px(c, k.points[j].x), py(c, k.points[j].y));
+    for (int j = 0; j < k.count; ++j)
+        fprintf(c->file, "%.2f,%.2f ", px(c, k.points[j].x), py(c, k.points[j].y));
     fprintf(c->file, "\"/>\n");
-    for (int j = 0; j < k.count; ++j) svg_point(c, k.points[j], 1.8, stroke);
+    for (int j = 0; j < k.count; ++j)
+        svg_point(c, k.points[j], 1.8, stroke);
 }
 
 void svg_point(svg_canvas* c, rugo_vec2 p, double radius_px, const char* fill) {
@@ -56,7 +58,8 @@ void svg_point(svg_canvas* c, rugo_vec2 p, double radius_px, const char* fill) {
 void svg_arrow(svg_canvas* c, rugo_vec2 from, rugo_vec2 to, const char* stroke) {
     double x0 = px(c, from.x), y0 = py(c, from.y), x1 = px(c, to.x), y1 = py(c, to.y);
     double dx = x1 - x0, dy = y1 - y0, len = sqrt(dx * dx + dy * dy);
-    fprintf(c->file, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" stroke-width=\"1.5\"/>\n",
+    fprintf(c->file,
+            "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" stroke-width=\"1.5\"/>\n",
             x0, y0, x1, y1, stroke);
     if (len > 1e-9) {
         double ux = dx / len, uy = dy / len, h = 8.0;

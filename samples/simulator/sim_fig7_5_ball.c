@@ -63,7 +63,8 @@ static int run_pair(int v, const char* dir, pair_result* r) {
         if (k == 0 || k == 60 || k == n) {
             char path[1024], title[160];
             snprintf(path, sizeof path, "%.900s/ball_%.63s_%04ld.svg", dir, r->label, k);
-            snprintf(title, sizeof title, "simulator: Fig. 7.4 ball-block %.63s, t = %.2f s", r->label, run.time);
+            snprintf(title, sizeof title, "simulator: Fig. 7.4 ball-block %.63s, t = %.2f s", r->label,
+                     run.time);
             sim_draw_frame(&run, path, title, 1);
         }
         int nrec = 0, nc = 0;
@@ -76,9 +77,10 @@ static int run_pair(int v, const char* dir, pair_result* r) {
             ++nc;
             r->sticking += cr[q].sticking;
             r->micro += cr[q].micro;
-            fprintf(fi, "%.5f,%.6f,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", run.time, cr[q].point.x, cr[q].friction,
-                    cr[q].restitution, cr[q].separation, cr[q].tolerance, cr[q].normal_velocity_before,
-                    cr[q].normal_velocity_after, cr[q].impulse_normal, cr[q].impulse_tangent, cr[q].sticking, cr[q].micro);
+            fprintf(fi, "%.5f,%.6f,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", run.time, cr[q].point.x,
+                    cr[q].friction, cr[q].restitution, cr[q].separation, cr[q].tolerance,
+                    cr[q].normal_velocity_before, cr[q].normal_velocity_after, cr[q].impulse_normal,
+                    cr[q].impulse_tangent, cr[q].sticking, cr[q].micro);
         }
         r->impulses += nc;
         rugo_body_state b = sim_body(&run, ib);
@@ -103,10 +105,11 @@ static int run_pair(int v, const char* dir, pair_result* r) {
         r->min_y = fmin(r->min_y, b.center.y);
         r->lowest_above = fmin(r->lowest_above, sim_lowest_point(&run, ib) - (s.ground_top - run.band[ig]));
         if (nc)
-            fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%d,%.6f\n", run.time, b.center.x, b.center.y, speed, w, slip, mu, nc,
-                    slip_c);
+            fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%d,%.6f\n", run.time, b.center.x, b.center.y,
+                    speed, w, slip, mu, nc, slip_c);
         else
-            fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,,0,%.6f\n", run.time, b.center.x, b.center.y, speed, w, slip, slip_c);
+            fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,,0,%.6f\n", run.time, b.center.x, b.center.y, speed, w,
+                    slip, slip_c);
         if (k == n) break;
         const double ke_mid = sim_kinetic_after_kick(&run);
         if (sim_step(&run) != 0) return -1;
@@ -131,23 +134,26 @@ int main(int argc, char** argv) {
     if (sample_mkdir(dir) != 0) return 1;
     static pair_result p[6];
     int ok = 1;
-    for (int v = 0; v < 6; ++v) ok = ok && run_pair(v, dir, &p[v]) == 0;
+    for (int v = 0; v < 6; ++v)
+        ok = ok && run_pair(v, dir, &p[v]) == 0;
     if (!sample_expect("all six pairs ran", ok)) return sample_finish();
     FILE* f = sim_open_out(dir, "summary.csv");
     if (f)
-        fprintf(f, "pair,mean_mu,std_mu,contact_samples,roll_time,predicted_roll_time,rolling_deceleration,impulses,sticking,"
+        fprintf(f, "pair,mean_mu,std_mu,contact_samples,roll_time,predicted_roll_time,rolling_deceleration,"
+                   "impulses,sticking,"
                    "micro,max_energy_growth,hash\n");
     const double v0 = 3.0, g = 9.81;
-    printf("pair            mean mu  std mu   roll at (pred.)    rolling decel   impulses (sticking, micro)\n");
+    printf(
+        "pair            mean mu  std mu   roll at (pred.)    rolling decel   impulses (sticking, micro)\n");
     for (int v = 0; v < 6; ++v) {
         const pair_result* r = &p[v];
         const double pred = v0 / (3.0 * r->mean_mu * g);
-        printf("%-15s %.4f   %.4f   %.3f s (%.3f s)  %.4f m/s^2  %ld (%ld, %ld)\n", r->label, r->mean_mu, r->std_mu, r->roll_time,
-               pred, r->roll_decel, r->impulses, r->sticking, r->micro);
+        printf("%-15s %.4f   %.4f   %.3f s (%.3f s)  %.4f m/s^2  %ld (%ld, %ld)\n", r->label, r->mean_mu,
+               r->std_mu, r->roll_time, pred, r->roll_decel, r->impulses, r->sticking, r->micro);
         if (f)
-            fprintf(f, "%s,%.6f,%.6f,%d,%.5f,%.5f,%.6f,%ld,%ld,%ld,%.6g,%016llx\n", r->label, r->mean_mu, r->std_mu, r->samples,
-                    r->roll_time, pred, r->roll_decel, r->impulses, r->sticking, r->micro, r->growth,
-                    (unsigned long long)r->hash);
+            fprintf(f, "%s,%.6f,%.6f,%d,%.5f,%.5f,%.6f,%ld,%ld,%ld,%.6g,%016llx\n", r->label, r->mean_mu,
+                    r->std_mu, r->samples, r->roll_time, pred, r->roll_decel, r->impulses, r->sticking,
+                    r->micro, r->growth, (unsigned long long)r->hash);
     }
     if (f) fclose(f);
     char name[2048];
@@ -161,7 +167,8 @@ int main(int argc, char** argv) {
     sample_expect("tipo_2-tipo_2 mean mu larger than tipo_3-tipo_3's", p[3].mean_mu > p[5].mean_mu);
     sample_expect_le("tipo_1-tipo_1 rolls at v0/(3 mu g) within 25%: |t/t_pred - 1|",
                      fabs(p[0].roll_time / (v0 / (3.0 * p[0].mean_mu * g)) - 1.0), 0.25);
-    sample_expect("larger mean mu rolls earlier: tipo_2-tipo_2 before tipo_1-tipo_1", p[3].roll_time < p[0].roll_time);
+    sample_expect("larger mean mu rolls earlier: tipo_2-tipo_2 before tipo_1-tipo_1",
+                  p[3].roll_time < p[0].roll_time);
     for (int v = 0; v < 6; ++v) {
         const pair_result* r = &p[v];
         snprintf(name, sizeof name, "%s: reaches rolling", r->label);
@@ -170,12 +177,15 @@ int main(int argc, char** argv) {
         sample_expect_le(name, fabs(r->roll_decel) / (0.1 * r->mean_mu * g), 1.0);
         snprintf(name, sizeof name, "%s: stays on the block, -(lowest centre y) [m]", r->label);
         sample_expect_le(name, -r->min_y, -0.3);
-        snprintf(name, sizeof name, "%s: never below the top minus the block's band, -(lowest curve point - (top - band)) [m]",
+        snprintf(name, sizeof name,
+                 "%s: never below the top minus the block's band, -(lowest curve point - (top - band)) [m]",
                  r->label);
         sample_expect_le(name, -r->lowest_above, 0.0);
-        snprintf(name, sizeof name, "%s: impulses never add kinetic energy, largest gain of a step [J]", r->label);
+        snprintf(name, sizeof name, "%s: impulses never add kinetic energy, largest gain of a step [J]",
+                 r->label);
         sample_expect_le(name, r->impulse_gain, 1e-9);
-        snprintf(name, sizeof name, "%s: energy grows only by the bounce discretisation, largest step increase [J]", r->label);
+        snprintf(name, sizeof name,
+                 "%s: energy grows only by the bounce discretisation, largest step increase [J]", r->label);
         sample_expect_le(name, r->growth, r->bound);
     }
     return sample_finish();

@@ -60,8 +60,8 @@ static int run_variant(int v, const char* dir, smp* out, int* count, scene* s) {
         if (k == 0 || k == 30 || k == 60 || k == n) {
             char path[1024], title[160];
             snprintf(path, sizeof path, "%s/thrown_%s_%04ld.svg", dir, tag, k);
-            snprintf(title, sizeof title, "simulator: Fig. 7.7 (%s) t = %.2f s, vx = %.2f m/s", s->label, run.time,
-                     b.linear_velocity.x);
+            snprintf(title, sizeof title, "simulator: Fig. 7.7 (%s) t = %.2f s, vx = %.2f m/s", s->label,
+                     run.time, b.linear_velocity.x);
             sim_draw_frame(&run, path, title, 1);
         }
         /* Tangential speed at the contact: the slab's velocity along the block's top (x) at the points of
@@ -79,10 +79,10 @@ static int run_variant(int v, const char* dir, smp* out, int* count, scene* s) {
             vt += b.linear_velocity.x - b.angular_velocity * (cr[q].point.y - b.center.y);
             mu += cr[q].friction;
             ++p.contacts;
-            fprintf(fi, "%.5f,%.6f,%.6f,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", run.time, cr[q].point.x,
-                    cr[q].point.y, cr[q].friction, cr[q].restitution, cr[q].separation, cr[q].tolerance,
-                    cr[q].normal_velocity_before, cr[q].normal_velocity_after, cr[q].impulse_normal,
-                    cr[q].impulse_tangent, cr[q].sticking, cr[q].micro);
+            fprintf(fi, "%.5f,%.6f,%.6f,%.5f,%.5f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", run.time,
+                    cr[q].point.x, cr[q].point.y, cr[q].friction, cr[q].restitution, cr[q].separation,
+                    cr[q].tolerance, cr[q].normal_velocity_before, cr[q].normal_velocity_after,
+                    cr[q].impulse_normal, cr[q].impulse_tangent, cr[q].sticking, cr[q].micro);
         }
         p.x = b.center.x;
         p.y = b.center.y;
@@ -94,8 +94,8 @@ static int run_variant(int v, const char* dir, smp* out, int* count, scene* s) {
         p.mu = p.contacts ? mu / p.contacts : NAN;
         p.e = sim_energy(&run);
         lowest_above[v] = fmin(lowest_above[v], sim_lowest_point(&run, im) - (s->ground_top - run.band[ig]));
-        fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%d,%.6f\n", p.t, p.x, p.y, p.a, p.vx, p.vy, p.w, p.vt,
-                p.mu, p.contacts, p.e);
+        fprintf(f, "%.5f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%d,%.6f\n", p.t, p.x, p.y, p.a, p.vx, p.vy,
+                p.w, p.vt, p.mu, p.contacts, p.e);
         if (*count < MAXS) out[(*count)++] = p;
         if (k == n) break;
         const double ke_mid = sim_kinetic_after_kick(&run);
@@ -107,8 +107,8 @@ static int run_variant(int v, const char* dir, smp* out, int* count, scene* s) {
         }
         impulse_gain[v] = sample_max(impulse_gain[v], sim_kinetic(&run) - ke_mid);
     }
-    printf("(%s) %ld steps, %ld impulses, %ld bisections, %ld steps left unresolved, hash %016llx\n", tag, run.steps,
-           run.impulses, run.bisections, run.unresolved_steps, (unsigned long long)run.hash);
+    printf("(%s) %ld steps, %ld impulses, %ld bisections, %ld steps left unresolved, hash %016llx\n", tag,
+           run.steps, run.impulses, run.bisections, run.unresolved_steps, (unsigned long long)run.hash);
     hashes[v] = run.hash;
     sim_destroy(&run);
     fclose(fi);
@@ -160,13 +160,15 @@ int main(int argc, char** argv) {
             break;
         }
     double rough2_mean = v_in / (stop_b - t_in);
-    printf("Fig. 7.8(b): deceleration rough %.3f m/s^2 (%d samples), smooth %.3f (%d), rough again %.3f (%d; mean to rest "
+    printf("Fig. 7.8(b): deceleration rough %.3f m/s^2 (%d samples), smooth %.3f (%d), rough again %.3f (%d; "
+           "mean to rest "
            "%.3f from %.3f m/s at t = %.3f s)\n",
            rough1, n1, smooth, n2, rough2, n3, rough2_mean, v_in, t_in);
-    printf("  friction map: mu rough %.3f, smooth %.3f -> predicted decelerations %.3f, %.3f; ratio %.2f (predicted %.2f)\n",
+    printf("  friction map: mu rough %.3f, smooth %.3f -> predicted decelerations %.3f, %.3f; ratio %.2f "
+           "(predicted %.2f)\n",
            sb.stretch_mu[0], sb.stretch_mu[1], sb.stretch_mu[0] * g, sb.stretch_mu[1] * g, ratio, predicted);
-    printf("Fig. 7.8(a): stops at t = %.3f s at x = %.3f; (b) stops at t = %.3f s at x = %.3f\n", stop_a, a[na - 1].x,
-           stop_b, b[nb - 1].x);
+    printf("Fig. 7.8(a): stops at t = %.3f s at x = %.3f; (b) stops at t = %.3f s at x = %.3f\n", stop_a,
+           a[na - 1].x, stop_b, b[nb - 1].x);
     double mu_a = 0.0;
     int mu_an = 0;
     for (int i = 0; i < na; ++i)
@@ -186,12 +188,14 @@ int main(int argc, char** argv) {
         fprintf(f,
                 "{\"a\": {\"stop_time\": %.5f, \"stop_x\": %.5f, \"mean_mu_sliding\": %.5f},\n"
                 " \"b\": {\"stop_time\": %.5f, \"stop_x\": %.5f,\n"
-                "  \"deceleration\": {\"rough\": %.6f, \"smooth\": %.6f, \"rough_again\": %s, \"rough_again_mean_to_rest\": %.6f},\n"
+                "  \"deceleration\": {\"rough\": %.6f, \"smooth\": %.6f, \"rough_again\": %s, "
+                "\"rough_again_mean_to_rest\": %.6f},\n"
                 "  \"samples\": [%d, %d, %d], \"mu\": {\"rough\": %.5f, \"smooth\": %.5f},\n"
                 "  \"ratio\": %.5f, \"predicted_ratio\": %.5f},\n"
                 " \"hash\": [\"%016llx\", \"%016llx\"]}\n",
-                stop_a, a[na - 1].x, mu_a, stop_b, b[nb - 1].x, rough1, smooth, r2, rough2_mean, n1, n2, n3, sb.stretch_mu[0],
-                sb.stretch_mu[1], ratio, predicted, (unsigned long long)hashes[0], (unsigned long long)hashes[1]);
+                stop_a, a[na - 1].x, mu_a, stop_b, b[nb - 1].x, rough1, smooth, r2, rough2_mean, n1, n2, n3,
+                sb.stretch_mu[0], sb.stretch_mu[1], ratio, predicted, (unsigned long long)hashes[0],
+                (unsigned long long)hashes[1]);
         fclose(f);
     }
     for (int v = 0; v < 2; ++v) {
@@ -207,7 +211,9 @@ int main(int argc, char** argv) {
         }
         snprintf(name, sizeof name, "%s stays on the block: -(lowest centre y) [m]", tag);
         sample_expect_le(name, -min_y, -0.1);
-        snprintf(name, sizeof name, "%s never below the top minus the block's band: -(lowest curve point - (top - band)) [m]", tag);
+        snprintf(name, sizeof name,
+                 "%s never below the top minus the block's band: -(lowest curve point - (top - band)) [m]",
+                 tag);
         sample_expect_le(name, -lowest_above[v], 0.0);
         snprintf(name, sizeof name, "%s does not tip over: largest |angle| [rad]", tag);
         sample_expect_le(name, max_a, 0.5);
@@ -215,24 +221,32 @@ int main(int argc, char** argv) {
         sample_expect(name, !isnan(stop_time(s, n)));
         snprintf(name, sizeof name, "%s at rest at the end: |vx| [m/s]", tag);
         sample_expect_le(name, fabs(s[n - 1].vx), 0.05);
-        snprintf(name, sizeof name, "%s impulses never add kinetic energy: largest gain of a step's impulses [J]", tag);
+        snprintf(name, sizeof name,
+                 "%s impulses never add kinetic energy: largest gain of a step's impulses [J]", tag);
         sample_expect_le(name, impulse_gain[v], 1e-9 * s[0].e);
-        snprintf(name, sizeof name, "%s energy (kinetic + potential) grows only by the bounce discretisation: largest step increase [J] <= sum m g h 2 sqrt(2 g band)", tag);
+        snprintf(name, sizeof name,
+                 "%s energy (kinetic + potential) grows only by the bounce discretisation: largest step "
+                 "increase [J] <= sum m g h 2 sqrt(2 g band)",
+                 tag);
         sample_expect_le(name, grow, growth_bound[v]);
-        printf("%s largest step increase of energy %.4g J = %.4g of the initial (the Box2D sample allows 1e-3)\n", tag, grow,
-               grow / s[0].e);
+        printf("%s largest step increase of energy %.4g J = %.4g of the initial (the Box2D sample allows "
+               "1e-3)\n",
+               tag, grow, grow / s[0].e);
         snprintf(name, sizeof name, "%s comes to rest: final kinetic / initial kinetic", tag);
         sample_expect_le(name, 0.5 * (s[n - 1].vx * s[n - 1].vx + s[n - 1].vy * s[n - 1].vy) / 50.0, 0.01);
     }
-    sample_expect("(b) enough samples on the first rough stretch and on the smooth one", n1 >= 10 && n2 >= 10);
+    sample_expect("(b) enough samples on the first rough stretch and on the smooth one",
+                  n1 >= 10 && n2 >= 10);
     sample_expect_le("(b) smooth stretch decelerates at mu_smooth g within 20%: |a/(mu g) - 1|",
                      fabs(smooth / (sb.stretch_mu[1] * g) - 1.0), 0.2);
     sample_expect_le("(b) rough stretch decelerates at mu_rough g within 20%: |a/(mu g) - 1|",
                      fabs(rough1 / (sb.stretch_mu[0] * g) - 1.0), 0.2);
-    sample_expect_le("(b) decelerates measurably faster on the rough stretch: -(rough/smooth) <= -predicted/2", -ratio,
-                     -0.5 * predicted);
-    sample_expect_le("(b) stops fast on the second rough stretch: -(mean deceleration to rest / smooth) <= -predicted/2",
-                     -rough2_mean / smooth, -0.5 * predicted);
+    sample_expect_le(
+        "(b) decelerates measurably faster on the rough stretch: -(rough/smooth) <= -predicted/2", -ratio,
+        -0.5 * predicted);
+    sample_expect_le(
+        "(b) stops fast on the second rough stretch: -(mean deceleration to rest / smooth) <= -predicted/2",
+        -rough2_mean / smooth, -0.5 * predicted);
     scene_destroy(&sa);
     scene_destroy(&sb);
     return sample_finish();

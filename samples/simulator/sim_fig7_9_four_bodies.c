@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
     if (sample_mkdir(dir) != 0) return 1;
     static scene s;
     static sim_record rec;
-    if (!sample_expect("scene built", scene_create(SCENE_FOUR_BODIES, 0, &s) == RUGO_OK)) return sample_finish();
+    if (!sample_expect("scene built", scene_create(SCENE_FOUR_BODIES, 0, &s) == RUGO_OK))
+        return sample_finish();
     static const long frames[] = {0, 30, 60, 90, 120, 150, 180, 240, 300};
     double released = NAN, bound = NAN, ground_band = 0.0;
     {
@@ -50,8 +51,9 @@ int main(int argc, char** argv) {
         ok = ok && sim_run_scene(&run, dir, "four_bodies", frames, 9, &rec, NULL, NULL) == 0;
         if (!sample_expect("scene ran", ok)) return sample_finish();
         released = rec.e0 - sim_energy(&run);
-        printf("%ld steps, %ld impulses (%ld micro, %ld sticking), %ld bisections, %ld steps left unresolved\n", run.steps,
-               rec.impulses, rec.micro, rec.sticking, run.bisections, run.unresolved_steps);
+        printf(
+            "%ld steps, %ld impulses (%ld micro, %ld sticking), %ld bisections, %ld steps left unresolved\n",
+            run.steps, rec.impulses, rec.micro, rec.sticking, run.bisections, run.unresolved_steps);
         sim_destroy(&run);
     }
     /* Determinism: the same scene again, same process, no output. */
@@ -60,46 +62,55 @@ int main(int argc, char** argv) {
         sim_run run;
         int ok = sim_build(&run, &s, NULL) == 0;
         const long n = lround(s.duration / s.time_step);
-        for (long k = 0; ok && k < n; ++k) ok = sim_step(&run) == 0;
+        for (long k = 0; ok && k < n; ++k)
+            ok = sim_step(&run) == 0;
         if (!sample_expect("scene ran again", ok)) return sample_finish();
         hash2 = run.hash;
         sim_destroy(&run);
     }
-    printf("determinism: hash of all transforms every step %016llx, second run %016llx\n", (unsigned long long)rec.hash,
-           (unsigned long long)hash2);
+    printf("determinism: hash of all transforms every step %016llx, second run %016llx\n",
+           (unsigned long long)rec.hash, (unsigned long long)hash2);
     double rebound[4];
     FILE* f = sim_open_out(dir, "summary.json");
     if (f) fprintf(f, "{\"bodies\": [");
     for (int i = 0; i < 4; ++i) {
         const int b = 3 + i;
         rebound[i] = rec.rebound_y[b] - rec.impact_y[b];
-        printf("%-12s first impact t = %.3f s, rebound %.4f m, final (%.3f, %.3f)\n", s.bodies[b].name, rec.first_contact[b],
-               rebound[i], rec.final[b][0], rec.final[b][1]);
+        printf("%-12s first impact t = %.3f s, rebound %.4f m, final (%.3f, %.3f)\n", s.bodies[b].name,
+               rec.first_contact[b], rebound[i], rec.final[b][0], rec.final[b][1]);
         if (f)
-            fprintf(f, "%s{\"name\": \"%s\", \"first_impact\": %.5f, \"rebound\": %.6f, \"final\": [%.6f, %.6f]}", i ? ", " : "",
-                    s.bodies[b].name, rec.first_contact[b], rebound[i], rec.final[b][0], rec.final[b][1]);
+            fprintf(
+                f, "%s{\"name\": \"%s\", \"first_impact\": %.5f, \"rebound\": %.6f, \"final\": [%.6f, %.6f]}",
+                i ? ", " : "", s.bodies[b].name, rec.first_contact[b], rebound[i], rec.final[b][0],
+                rec.final[b][1]);
     }
-    printf("energy: initial %.4f J, released %.4f J, final kinetic %.6f J, mean mu %.4f; largest step growth %.4g J (%.3g of "
+    printf("energy: initial %.4f J, released %.4f J, final kinetic %.6f J, mean mu %.4f; largest step growth "
+           "%.4g J (%.3g of "
            "initial; bound %.4g J), impulses' largest kinetic gain %.3g J\n",
-           rec.e0, released, rec.final_kinetic, sim_record_mean_mu(&rec), rec.max_growth_abs, rec.max_growth, bound,
-           rec.max_impulse_gain);
+           rec.e0, released, rec.final_kinetic, sim_record_mean_mu(&rec), rec.max_growth_abs, rec.max_growth,
+           bound, rec.max_impulse_gain);
     if (f) {
         fprintf(f,
-                "],\n \"energy_initial\": %.6f, \"released\": %.6f, \"final_kinetic\": %.9f, \"max_growth\": %.9g, \"mean_mu\": %.6f,"
+                "],\n \"energy_initial\": %.6f, \"released\": %.6f, \"final_kinetic\": %.9f, \"max_growth\": "
+                "%.9g, \"mean_mu\": %.6f,"
                 " \"impulses\": %ld, \"hash\": \"%016llx\"}\n",
                 rec.e0, released, rec.final_kinetic, rec.max_growth, sim_record_mean_mu(&rec), rec.impulses,
                 (unsigned long long)rec.hash);
         fclose(f);
     }
-    sample_expect_le("nothing falls through: -(lowest centre y - lowest valley of the block) [m]", -(rec.min_y - s.ground_top), 0.0);
+    sample_expect_le("nothing falls through: -(lowest centre y - lowest valley of the block) [m]",
+                     -(rec.min_y - s.ground_top), 0.0);
     sample_expect_le("nothing falls through: -(lowest curve point - (lowest valley - block's band)) [m]",
                      -(rec.min_curve_above + ground_band), 0.0);
-    sample_expect_le("impulses never add kinetic energy: largest gain of a step's impulses [J]", rec.max_impulse_gain,
-                     1e-9 * fabs(rec.e0));
-    sample_expect_le("energy grows only by the bounce discretisation: largest step increase [J]", rec.max_growth_abs, bound);
+    sample_expect_le("impulses never add kinetic energy: largest gain of a step's impulses [J]",
+                     rec.max_impulse_gain, 1e-9 * fabs(rec.e0));
+    sample_expect_le("energy grows only by the bounce discretisation: largest step increase [J]",
+                     rec.max_growth_abs, bound);
     sample_expect_le("bodies come to rest: final kinetic / released", rec.final_kinetic / released, 0.01);
-    sample_expect("restitution: the e = 0.85 body rebounds higher than the e = 0.10 body", rebound[3] > rebound[0]);
-    sample_expect("determinism: a second run in the same process gives the same hash of all transforms", rec.hash == hash2);
+    sample_expect("restitution: the e = 0.85 body rebounds higher than the e = 0.10 body",
+                  rebound[3] > rebound[0]);
+    sample_expect("determinism: a second run in the same process gives the same hash of all transforms",
+                  rec.hash == hash2);
     if (expect_hash != NULL) {
         char got[17];
         snprintf(got, sizeof got, "%016llx", (unsigned long long)rec.hash);

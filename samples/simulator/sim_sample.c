@@ -15,7 +15,6 @@ static int abs_level(const rugo_shape* sh, int rel) {
     return j;
 }
 
-
 static void hash_transforms(sim_run* r) {
     for (int i = 0; i < r->sc->body_count; ++i) {
         rugo_body_state b = sim_body(r, i);
@@ -95,11 +94,14 @@ int sim_find(const scene* s, scene_role role, int nth) {
 rugo_body_state sim_body(const sim_run* r, int i) {
     rugo_body_state b;
     memset(&b, 0, sizeof b);
-    if (rugo_world_body(r->world, r->id[i], &b) != RUGO_OK) fprintf(stderr, "rugo_world_body(%d) failed\n", i);
+    if (rugo_world_body(r->world, r->id[i], &b) != RUGO_OK)
+        fprintf(stderr, "rugo_world_body(%d) failed\n", i);
     return b;
 }
 
-double sim_speed(const rugo_body_state* b) { return sqrt(rugo_v2_dot(b->linear_velocity, b->linear_velocity)); }
+double sim_speed(const rugo_body_state* b) {
+    return sqrt(rugo_v2_dot(b->linear_velocity, b->linear_velocity));
+}
 
 static double body_kinetic(const rugo_body_state* b) {
     return 0.5 * b->mass * rugo_v2_dot(b->linear_velocity, b->linear_velocity) +
@@ -137,7 +139,8 @@ double sim_kinetic_after_kick(const sim_run* r) {
 }
 
 double sim_micro_growth_bound(const sim_run* r) {
-    double g = sqrt(rugo_v2_dot(r->sc->gravity, r->sc->gravity)), h = r->sc->time_step, fixed = 0.0, sum = 0.0;
+    double g = sqrt(rugo_v2_dot(r->sc->gravity, r->sc->gravity)), h = r->sc->time_step, fixed = 0.0,
+           sum = 0.0;
     for (int i = 0; i < r->sc->body_count; ++i)
         if (r->sc->bodies[i].is_static) fixed = fmax(fixed, r->band[i]);
     for (int i = 0; i < r->sc->body_count; ++i) {
@@ -154,7 +157,8 @@ static rugo_contour world_curve(const sim_run* r, int i, rugo_vec2* pts) {
     rugo_shape_level(r->sc->bodies[i].shape, r->level[i], &k);
     rugo_body_state b = sim_body(r, i);
     int n = k.count < SIM_MAX_POINTS ? k.count : SIM_MAX_POINTS;
-    for (int j = 0; j < n; ++j) pts[j] = rugo_transform_point(b.transform, k.points[j]);
+    for (int j = 0; j < n; ++j)
+        pts[j] = rugo_transform_point(b.transform, k.points[j]);
     w.points = pts;
     w.count = n;
     return w;
@@ -168,7 +172,8 @@ double sim_lowest_point(const sim_run* r, int i) {
 }
 
 static const char* colour(int i) {
-    static const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d"};
+    static const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a",
+                                    "#66a61e", "#e6ab02", "#a6761d"};
     return colours[i % 7];
 }
 
@@ -197,7 +202,8 @@ int sim_draw_frame(const sim_run* r, const char* path, const char* title, int sh
     }
     int nrec = 0;
     const rugo_contact_record* rec = r->steps > 0 ? rugo_world_contact_records(r->world, &nrec) : NULL;
-    for (int k = 0; k < nrec; ++k) svg_point(&c, rec[k].point, 2.0, rec[k].micro ? "#3182bd" : "#de2d26");
+    for (int k = 0; k < nrec; ++k)
+        svg_point(&c, rec[k].point, 2.0, rec[k].micro ? "#3182bd" : "#de2d26");
     svg_text(&c, rugo_v2(r->sc->view_lo.x, r->sc->view_hi.y), title, 14.0);
     return svg_close(&c);
 }
@@ -223,7 +229,9 @@ double sim_slope(const double* x, const double* y, int n) {
     return d != 0.0 ? (dn * sxy - sx * sy) / d : NAN;
 }
 
-double sim_record_mean_mu(const sim_record* rec) { return rec->mu_count ? rec->mu_sum / (double)rec->mu_count : NAN; }
+double sim_record_mean_mu(const sim_record* rec) {
+    return rec->mu_count ? rec->mu_sum / (double)rec->mu_count : NAN;
+}
 
 static void pose_of(const sim_run* r, int i, double out[3]) {
     rugo_body_state b = sim_body(r, i);
@@ -232,8 +240,8 @@ static void pose_of(const sim_run* r, int i, double out[3]) {
     out[2] = atan2(b.transform.q.s, b.transform.q.c);
 }
 
-int sim_run_scene(sim_run* r, const char* dir, const char* prefix, const long* frames, int n_frames, sim_record* rec,
-                  sim_after_step after, void* user) {
+int sim_run_scene(sim_run* r, const char* dir, const char* prefix, const long* frames, int n_frames,
+                  sim_record* rec, sim_after_step after, void* user) {
     const scene* s = r->sc;
     const int nb = s->body_count;
     memset(rec, 0, sizeof *rec);
@@ -257,11 +265,13 @@ int sim_run_scene(sim_run* r, const char* dir, const char* prefix, const long* f
     double e_prev = rec->e0;
     for (long k = 0; k <= n; ++k) {
         int draw = k == n;
-        for (int q = 0; q < n_frames; ++q) draw |= frames[q] == k;
+        for (int q = 0; q < n_frames; ++q)
+            draw |= frames[q] == k;
         if (draw) {
             char path[1024], title[256];
             snprintf(path, sizeof path, "%s/%s_%04ld.svg", dir, prefix, k);
-            snprintf(title, sizeof title, "simulator: %s %s (%s), t = %.2f s", s->figure, s->name, s->label, r->time);
+            snprintf(title, sizeof title, "simulator: %s %s (%s), t = %.2f s", s->figure, s->name, s->label,
+                     r->time);
             sim_draw_frame(r, path, title, 0);
         }
         int nrec = 0;
@@ -269,8 +279,9 @@ int sim_run_scene(sim_run* r, const char* dir, const char* prefix, const long* f
         for (int i = 0; i < nb; ++i) {
             rugo_body_state b = sim_body(r, i);
             if (k % 6 == 0)
-                fprintf(f, "%.4f,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", r->time, i, s->bodies[i].name, b.center.x, b.center.y,
-                        atan2(b.transform.q.s, b.transform.q.c), b.linear_velocity.x, b.linear_velocity.y, b.angular_velocity);
+                fprintf(f, "%.4f,%d,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", r->time, i, s->bodies[i].name,
+                        b.center.x, b.center.y, atan2(b.transform.q.s, b.transform.q.c), b.linear_velocity.x,
+                        b.linear_velocity.y, b.angular_velocity);
             if (b.type != RUGO_BODY_DYNAMIC) continue;
             rec->min_y = fmin(rec->min_y, b.center.y);
             rec->min_curve_above = fmin(rec->min_curve_above, sim_lowest_point(r, i) - s->ground_top);
@@ -317,7 +328,8 @@ int sim_run_scene(sim_run* r, const char* dir, const char* prefix, const long* f
         rec->max_growth_abs = sample_max(rec->max_growth_abs, e - e_prev);
         e_prev = e;
     }
-    for (int i = 0; i < nb; ++i) pose_of(r, i, rec->final[i]);
+    for (int i = 0; i < nb; ++i)
+        pose_of(r, i, rec->final[i]);
     rec->final_kinetic = sim_kinetic(r);
     rec->steps = r->steps;
     rec->unresolved_steps = r->unresolved_steps;

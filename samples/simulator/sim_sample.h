@@ -23,13 +23,13 @@
 typedef struct sim_run {
     const scene* sc;
     rugo_world* world;
-    int id[SCENE_MAX_BODIES];        /* world body id per scene body */
-    double band[SCENE_MAX_BODIES];   /* widest band of each body at the scene's level */
-    int level[SCENE_MAX_BODIES];     /* absolute level of each body's contacts */
+    int id[SCENE_MAX_BODIES];      /* world body id per scene body */
+    double band[SCENE_MAX_BODIES]; /* widest band of each body at the scene's level */
+    int level[SCENE_MAX_BODIES];   /* absolute level of each body's contacts */
     double time;
     long steps;
-    uint64_t hash;                   /* FNV-1a over every body's transform after every step (and at 0) */
-    rugo_step_stats last;            /* stats of the last step */
+    uint64_t hash;        /* FNV-1a over every body's transform after every step (and at 0) */
+    rugo_step_stats last; /* stats of the last step */
     long impulses, unresolved_steps, bisections;
 } sim_run;
 
@@ -61,7 +61,6 @@ double sim_micro_growth_bound(const sim_run* r);
 /* Lowest point of the body's curve at its contact level (world y). */
 double sim_lowest_point(const sim_run* r, int i);
 
-
 /* Every body at its current transform: its curve at the contact level, the band's outer offset dashed
  * when show_band, and the contact points of the last step as dots. 0 on success. */
 int sim_draw_frame(const sim_run* r, const char* path, const char* title, int show_band);
@@ -77,17 +76,17 @@ typedef struct sim_record {
     double start[SCENE_MAX_BODIES][3], final[SCENE_MAX_BODIES][3]; /* centre x, y, angle */
     double first_contact[SCENE_MAX_BODIES];                        /* time of the first impulse (NaN: none) */
     double impact_y[SCENE_MAX_BODIES], rebound_y[SCENE_MAX_BODIES]; /* centre y then; highest within 1 s */
-    double e0, max_growth, final_kinetic, min_y;   /* max_growth: largest step increase of energy / |e0| */
-    double max_growth_abs;                         /* the same in J */
-    double max_impulse_gain;                       /* largest kinetic energy the impulses of a step added, J */
-    double min_curve_above;                        /* lowest curve point of a free body minus ground_top */
-    double worst_overlap;                          /* deepest true-curve overlap at an impulse (-separation) */
+    double e0, max_growth, final_kinetic, min_y; /* max_growth: largest step increase of energy / |e0| */
+    double max_growth_abs;                       /* the same in J */
+    double max_impulse_gain;                     /* largest kinetic energy the impulses of a step added, J */
+    double min_curve_above;                      /* lowest curve point of a free body minus ground_top */
+    double worst_overlap;                        /* deepest true-curve overlap at an impulse (-separation) */
     int worst_a, worst_b;
-    double worst_time;                             /* when */
-    double worst_separation_tolerance;             /* that impulse's λ_A + λ_B */
-    double mu_sum;                                 /* over every impulse of the run */
+    double worst_time;                 /* when */
+    double worst_separation_tolerance; /* that impulse's λ_A + λ_B */
+    double mu_sum;                     /* over every impulse of the run */
     long mu_count;
-    double body_mu_sum[SCENE_MAX_BODIES];          /* over the impulses each body took part in */
+    double body_mu_sum[SCENE_MAX_BODIES]; /* over the impulses each body took part in */
     long body_mu_count[SCENE_MAX_BODIES];
     long steps, impulses, micro, sticking, unresolved_steps;
     uint64_t hash;

@@ -43,8 +43,10 @@ static double dist_to_segment(rugo_contour c, int k, rugo_vec2 p) {
         double d1 = hypot(q1.x - p.x, q1.y - p.y), d2 = hypot(q2.x - p.x, q2.y - p.y);
         if (d1 < best) best = d1;
         if (d2 < best) best = d2;
-        if (d1 < d2) b = x2;
-        else a = x1;
+        if (d1 < d2)
+            b = x2;
+        else
+            a = x1;
     }
     return best;
 }
@@ -65,13 +67,14 @@ static void rough_object(rugo_vec2* out) {
             d[s] = rugo_v2_scale(sigma * rugo_rng_gaussian(&rng), rugo_contour_normal(c, seg, 0.5));
         }
         rugo_wavelet_synthesize(RUGO_FILTER_DEFAULT, cur, d, n, out);
-        for (int i = 0; i < 2 * n; ++i) cur[i] = out[i];
+        for (int i = 0; i < 2 * n; ++i)
+            cur[i] = out[i];
     }
 }
 
 typedef struct beta_result {
     long outside;
-    double worst_excess;      /* max of (measured - β), negative when never exceeded */
+    double worst_excess;          /* max of (measured - β), negative when never exceeded */
     double tight_mean, tight_min; /* β / measured max per coarse segment */
 } beta_result;
 
@@ -89,7 +92,8 @@ static beta_result check_beta(const rugo_pyramid* p, const rugo_tolerances* t, c
         for (int i = k * per; i < (k + 1) * per; ++i)
             for (int s = 0; s < S; ++s) {
                 double tt = (double)s / S;
-                double d = dist_to_segment(c, k, rugo_contour_point(fin, i, tt)) + rugo_tolerance_at(lam, N, i, tt, 0.0);
+                double d = dist_to_segment(c, k, rugo_contour_point(fin, i, tt)) +
+                           rugo_tolerance_at(lam, N, i, tt, 0.0);
                 if (d > l.bound[k]) ++r.outside;
                 worst = fmax(worst, d);
                 r.worst_excess = fmax(r.worst_excess, d - l.bound[k]);
@@ -148,10 +152,11 @@ int main(int argc, char** argv) {
     snprintf(path, sizeof path, "%s/band_coverage.json", dir);
     FILE* js = fopen(path, "w");
     if (js == NULL) return 1;
-    fprintf(js, "{\"shape\": \"sample_object(32) + 3 synthesised levels of outward roughness, %d segments\",\n"
-                " \"q\": %.3g, \"predicted_fraction_outside\": %.6g,\n"
-                " \"prediction_note\": \"P(|Z| > q) for a normal perturbation and a band q sigma\",\n"
-                " \"samples\": %d,\n \"levels\": [",
+    fprintf(js,
+            "{\"shape\": \"sample_object(32) + 3 synthesised levels of outward roughness, %d segments\",\n"
+            " \"q\": %.3g, \"predicted_fraction_outside\": %.6g,\n"
+            " \"prediction_note\": \"P(|Z| > q) for a normal perturbation and a band q sigma\",\n"
+            " \"samples\": %d,\n \"levels\": [",
             N, q, predicted, N * S);
     printf("q = %.2f: a normal perturbation lies outside q sigma with probability %.3f\n", q, predicted);
     printf("level segs | outside total band: coef  detail | outside own band: coef  detail | outside beta "
@@ -169,13 +174,15 @@ int main(int argc, char** argv) {
             long out_total = 0, out_own = 0;
             for (int i = 0; i < N; ++i)
                 for (int s = 0; s < S; ++s) {
-                    rugo_curve_point cp = rugo_contour_closest_point(c, rugo_contour_point(fin, i, (double)s / S));
+                    rugo_curve_point cp =
+                        rugo_contour_closest_point(c, rugo_contour_point(fin, i, (double)s / S));
                     if (cp.distance > rugo_tolerance_at(l.total, l.count, cp.segment, cp.t, 0.0)) ++out_total;
                     if (cp.distance > rugo_tolerance_at(l.own, l.count, cp.segment, cp.t, 0.0)) ++out_own;
                 }
             frac_total[e] = (double)out_total / (N * S);
             frac_own[e] = (double)out_own / (N * S);
-            all_in_range &= frac_total[e] >= 0.0 && frac_total[e] <= 1.0 && frac_own[e] >= 0.0 && frac_own[e] <= 1.0;
+            all_in_range &=
+                frac_total[e] >= 0.0 && frac_total[e] <= 1.0 && frac_own[e] >= 0.0 && frac_own[e] <= 1.0;
         }
         beta_result b0 = check_beta(p, tol[1], zero, j);
         beta_result b1 = check_beta(p, banded, rough, j);
@@ -197,11 +204,13 @@ int main(int argc, char** argv) {
                 frac_total[0] / predicted, frac_total[1] / predicted, b0.outside, b1.outside, b0.tight_mean,
                 b0.tight_min, b1.tight_mean, b1.tight_min);
     }
-    fprintf(js, "\n ],\n \"beta_worst_excess\": %.6g,\n"
-                " \"reading\": \"outside_total_vs_predicted is the measured fraction over P(|Z| > q); 1 would mean "
-                "the band behaves like q sigma of a normal perturbation. Coarser totals add the finer bands (5.3), "
-                "so they are expected to be wider.\"\n}\n",
-            worst_excess);
+    fprintf(
+        js,
+        "\n ],\n \"beta_worst_excess\": %.6g,\n"
+        " \"reading\": \"outside_total_vs_predicted is the measured fraction over P(|Z| > q); 1 would mean "
+        "the band behaves like q sigma of a normal perturbation. Coarser totals add the finer bands (5.3), "
+        "so they are expected to be wider.\"\n}\n",
+        worst_excess);
     fclose(js);
     printf("worst (measured - beta) over every check: %.3g (negative: never exceeded)\n", worst_excess);
     sample_expect("no finest sample (plus its band) outside beta, any level, lambda = 0 and lambda > 0",

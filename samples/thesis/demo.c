@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
     rugo_curve_point cp = rugo_contour_closest_point(fine, rugo_v2(2.0, 0.0));
     rugo_vec2 before = cp.point, delta = rugo_v2(0.35, 0.1);
     static rugo_vec2 original[N];
-    for (int i = 0; i < N; ++i) original[i] = fine.points[i];
+    for (int i = 0; i < N; ++i)
+        original[i] = fine.points[i];
     st = rugo_pyramid_deform(p, cp.segment, cp.t, delta, 4, 1.0, RUGO_DETAILS_LOCAL, NULL);
     if (st != RUGO_OK) return 1;
     rugo_pyramid_level(p, J, &fine);
@@ -95,9 +96,11 @@ int main(int argc, char** argv) {
     svg_contour(&svg, orig, 16, "#999999", 1.2, "6,4");
     svg_contour(&svg, fine, 16, "#1b9e77", 2.0, NULL);
     svg_arrow(&svg, before, rugo_v2_add(before, delta), "#e7298a");
-    svg_text(&svg, rugo_v2(lo.x, hi.y), "multiresolution deformation over levels 6..3 (details in local frames)", 13.0);
+    svg_text(&svg, rugo_v2(lo.x, hi.y),
+             "multiresolution deformation over levels 6..3 (details in local frames)", 13.0);
     sample_expect("wrote deform.svg", svg_close(&svg) == 0);
-    sample_expect_le("deformed point lands near its target (local frames), |error| / delta", deviation / hypot(delta.x, delta.y), 0.25);
+    sample_expect_le("deformed point lands near its target (local frames), |error| / delta",
+                     deviation / hypot(delta.x, delta.y), 0.25);
     rugo_pyramid_destroy(p);
 
     /* 4. Fitting a sprite outline: a dense, slightly noisy polygon as an image tracer would give. */
@@ -124,7 +127,8 @@ int main(int argc, char** argv) {
     svg_contour_extent(fitted, &lo, &hi);
     snprintf(path, sizeof path, "%s/fit.svg", dir);
     if (svg_open(&svg, path, lo, hi, 600.0) != 0) return 1;
-    for (int i = 0; i < M; ++i) svg_point(&svg, outline[i], 1.0, "#999999");
+    for (int i = 0; i < M; ++i)
+        svg_point(&svg, outline[i], 1.0, "#999999");
     svg_contour(&svg, fitted, 16, "#1b9e77", 1.5, NULL);
     svg_control_polygon(&svg, fitted, "#d95f02");
     svg_text(&svg, rugo_v2(lo.x, hi.y), "32-point contour fitted to a 400-point outline", 13.0);
@@ -145,8 +149,10 @@ int main(int argc, char** argv) {
         }
         rugo_tolerances_preset(RUGO_PRESET_TIPO_3, 0, N, lam_a);
         rugo_tolerances_preset(RUGO_PRESET_TIPO_5, 0, NB, lam_b);
-        for (int i = 0; i < N; ++i) lam_a[i] *= 0.05; /* the presets are sized for objects ~10 across */
-        for (int i = 0; i < NB; ++i) lam_b[i] *= 0.05;
+        for (int i = 0; i < N; ++i)
+            lam_a[i] *= 0.05; /* the presets are sized for objects ~10 across */
+        for (int i = 0; i < NB; ++i)
+            lam_b[i] *= 0.05;
         rugo_shape_def sd = rugo_default_shape_def();
         sd.points = pts;
         sd.count = N;
@@ -160,7 +166,8 @@ int main(int argc, char** argv) {
         sd.points = ball;
         sd.count = NB;
         sd.tolerances = lam_b;
-        ok = ok && rugo_shape_create(&sd, &sb, NULL) == RUGO_OK && rugo_collide_context_create(NULL, &ctx) == RUGO_OK;
+        ok = ok && rugo_shape_create(&sd, &sb, NULL) == RUGO_OK &&
+             rugo_collide_context_create(NULL, &ctx) == RUGO_OK;
         sample_expect("built two rough shapes", ok);
         /* The ball just above the object's top, within the summed bands of their roughness. */
         rugo_transform xa = rugo_identity_transform(), xb = rugo_make_transform(0.0, 0.0, 0.0);
@@ -179,7 +186,8 @@ int main(int argc, char** argv) {
             ok = rugo_collide_shapes(sa, xa, sb, xb, &q, ctx, &out) == RUGO_OK;
             contacts_fine = out.count;
             state = out.state;
-            sample_expect("the rough shapes touch within their bands", ok && state == RUGO_STATE_CONTACT && contacts_fine > 0);
+            sample_expect("the rough shapes touch within their bands",
+                          ok && state == RUGO_STATE_CONTACT && contacts_fine > 0);
             for (int i = 0; i < contacts_fine; ++i) {
                 if (i == 0 || contacts[i].separation < min_sep) min_sep = contacts[i].separation;
                 if (contacts[i].friction > max_mu) max_mu = contacts[i].friction;
@@ -195,7 +203,8 @@ int main(int argc, char** argv) {
             rugo_shape_level(sa, J, &ca);
             rugo_shape_level(sb, rugo_shape_finest_level(sb), &cb);
             static rugo_vec2 moved[NB];
-            for (int i = 0; i < NB; ++i) moved[i] = rugo_transform_point(xb, cb.points[i]);
+            for (int i = 0; i < NB; ++i)
+                moved[i] = rugo_transform_point(xb, cb.points[i]);
             rugo_contour cbw = {moved, NB};
             rugo_vec2 lo2 = rugo_v2(-0.8, xb.p.y - 1.0), hi2 = rugo_v2(0.8, xb.p.y + 0.6);
             snprintf(path, sizeof path, "%s/contacts.svg", dir);
@@ -205,10 +214,14 @@ int main(int argc, char** argv) {
             for (int i = 0; i < contacts_fine; ++i) {
                 svg_point(&svg, contacts[i].point_a, 3.0, "#d95f02");
                 svg_point(&svg, contacts[i].point_b, 3.0, "#d95f02");
-                svg_arrow(&svg, contacts[i].point_a, rugo_v2_add(contacts[i].point_a, rugo_v2_scale(0.2, contacts[i].normal)),
+                svg_arrow(&svg, contacts[i].point_a,
+                          rugo_v2_add(contacts[i].point_a, rugo_v2_scale(0.2, contacts[i].normal)),
                           "#e7298a");
             }
-            svg_text(&svg, rugo_v2(lo2.x, hi2.y), "rough object (tipo_3) and rough ball (tipo_5): contact within their summed bands, normal A to B", 12.0);
+            svg_text(&svg, rugo_v2(lo2.x, hi2.y),
+                     "rough object (tipo_3) and rough ball (tipo_5): contact within their summed bands, "
+                     "normal A to B",
+                     12.0);
             sample_expect("wrote contacts.svg", svg_close(&svg) == 0);
         }
         rugo_collide_context_destroy(ctx);
@@ -219,19 +232,24 @@ int main(int argc, char** argv) {
     snprintf(path, sizeof path, "%s/results.json", dir);
     FILE* f = fopen(path, "w");
     if (f == NULL) return 1;
-    fprintf(f, "{\"control_points\": %d, \"area\": %.15g, \"centroid\": [%.15g, %.15g], \"inertia\": %.15g, "
-               "\"perimeter\": %.15g,\n \"level_areas\": [%.10g, %.10g, %.10g, %.10g],\n"
-               " \"deformation\": {\"delta\": [%.6g, %.6g], \"deviation_local_frames\": %.6g},\n"
-               " \"fit\": {\"max_error\": %.6g, \"rms_error\": %.6g},\n"
-               " \"rough_contact\": {\"contacts_finest\": %d, \"contacts_level_minus_1\": %d, \"min_separation\": %.6g, "
-               "\"max_friction\": %.6g}}\n",
-            N, mp.area, mp.centroid.x, mp.centroid.y, mp.inertia, perimeter, level_area[0], level_area[1], level_area[2],
-            level_area[3], delta.x, delta.y, deviation, fit_max, fit_rms, contacts_fine, contacts_coarse, min_sep, max_mu);
+    fprintf(f,
+            "{\"control_points\": %d, \"area\": %.15g, \"centroid\": [%.15g, %.15g], \"inertia\": %.15g, "
+            "\"perimeter\": %.15g,\n \"level_areas\": [%.10g, %.10g, %.10g, %.10g],\n"
+            " \"deformation\": {\"delta\": [%.6g, %.6g], \"deviation_local_frames\": %.6g},\n"
+            " \"fit\": {\"max_error\": %.6g, \"rms_error\": %.6g},\n"
+            " \"rough_contact\": {\"contacts_finest\": %d, \"contacts_level_minus_1\": %d, "
+            "\"min_separation\": %.6g, "
+            "\"max_friction\": %.6g}}\n",
+            N, mp.area, mp.centroid.x, mp.centroid.y, mp.inertia, perimeter, level_area[0], level_area[1],
+            level_area[2], level_area[3], delta.x, delta.y, deviation, fit_max, fit_rms, contacts_fine,
+            contacts_coarse, min_sep, max_mu);
     fclose(f);
-    printf("rugo_demo: wrote %s/{object.json, levels.svg, deform.svg, fit.svg, contacts.svg, results.json}\n", dir);
-    printf("rough contact: %d contacts at the finest level (%d at level -1), closest %.4g, max friction %.3g\n",
-           contacts_fine, contacts_coarse, min_sep, max_mu);
-    printf("area %.6f, perimeter %.6f, inertia %.6f; fit max error %.4g, rms %.4g\n", mp.area, perimeter, mp.inertia,
-           fit_max, fit_rms);
+    printf("rugo_demo: wrote %s/{object.json, levels.svg, deform.svg, fit.svg, contacts.svg, results.json}\n",
+           dir);
+    printf(
+        "rough contact: %d contacts at the finest level (%d at level -1), closest %.4g, max friction %.3g\n",
+        contacts_fine, contacts_coarse, min_sep, max_mu);
+    printf("area %.6f, perimeter %.6f, inertia %.6f; fit max error %.4g, rms %.4g\n", mp.area, perimeter,
+           mp.inertia, fit_max, fit_rms);
     return sample_finish();
 }

@@ -50,7 +50,8 @@ static int apply(const run* r, int seg, double t, rugo_vec2 delta, rugo_vec2* mo
     rugo_contour c;
     rugo_pyramid_level(p, J, &c);
     *moved_to = rugo_contour_point(c, seg, t);
-    for (int i = 0; i < N; ++i) after[i] = c.points[i];
+    for (int i = 0; i < N; ++i)
+        after[i] = c.points[i];
     rugo_pyramid_destroy(p);
     return 0;
 }
@@ -81,7 +82,8 @@ int main(int argc, char** argv) {
     snprintf(path, sizeof path, "%s/fig2_10.json", dir);
     FILE* out = fopen(path, "w");
     if (out == NULL) return 1;
-    fprintf(out, "{\"point\": [%.10g, %.10g], \"delta\": [%.10g, %.10g], \"runs\": [", cp.point.x, cp.point.y, delta.x, delta.y);
+    fprintf(out, "{\"point\": [%.10g, %.10g], \"delta\": [%.10g, %.10g], \"runs\": [", cp.point.x, cp.point.y,
+            delta.x, delta.y);
     for (int i = 0; i < RUNS; ++i) {
         rugo_vec2 to;
         if (apply(&runs[i], cp.segment, cp.t, delta, &to, after[i]) != 0) {
@@ -89,8 +91,8 @@ int main(int argc, char** argv) {
             continue;
         }
         double dev = hypot(to.x - cp.point.x - delta.x, to.y - cp.point.y - delta.y);
-        fprintf(out, "%s\n  {\"run\": \"%s\", \"moved_to\": [%.12g, %.12g], \"deviation_from_delta\": %.6g}", i ? "," : "",
-                runs[i].name, to.x, to.y, dev);
+        fprintf(out, "%s\n  {\"run\": \"%s\", \"moved_to\": [%.12g, %.12g], \"deviation_from_delta\": %.6g}",
+                i ? "," : "", runs[i].name, to.x, to.y, dev);
         char name[160];
         snprintf(name, sizeof name, "%s: |moved - delta|", runs[i].name);
         if (runs[i].mode == RUGO_DETAILS_FIXED) {

@@ -63,7 +63,8 @@ static int all_finite(const rugo_vec2* v, int n) {
 }
 
 /* Original (dashed grey), first level / round (thin), final rough curve (solid). */
-static int picture(const char* path, const char* title, rugo_contour orig, rugo_contour mid, rugo_contour rough) {
+static int picture(const char* path, const char* title, rugo_contour orig, rugo_contour mid,
+                   rugo_contour rough) {
     rugo_vec2 lo, hi, a, b;
     svg_contour_extent(orig, &lo, &hi);
     svg_contour_extent(rough, &a, &b);
@@ -111,7 +112,10 @@ int main(int argc, char** argv) {
          * of the two-level run (shown thin). */
         rugo_status s3 = run(pts, lam, methods[k], 1, mid);
         if (s1 != RUGO_OK || s2 != RUGO_OK || s3 != RUGO_OK) {
-            fprintf(stderr, "rugo_roughen (%s): %s\n", names[k], rugo_status_string(s1 != RUGO_OK ? s1 : s2 != RUGO_OK ? s2 : s3));
+            fprintf(stderr, "rugo_roughen (%s): %s\n", names[k],
+                    rugo_status_string(s1 != RUGO_OK   ? s1
+                                       : s2 != RUGO_OK ? s2
+                                                       : s3));
             return 1;
         }
         snprintf(name, sizeof name, "%s: two runs with the same seed give the same bytes", names[k]);
@@ -119,8 +123,8 @@ int main(int argc, char** argv) {
         snprintf(name, sizeof name, "%s: all %d output points finite", names[k], M);
         sample_expect(name, all_finite(out, M));
         st[k] = deviation(out, ref, M);
-        printf("%s (Fig. %s): RMS normal deviation %.4f = %.3f sigma, max %.4f = %.3f sigma\n", names[k], figures[k],
-               st[k].rms, st[k].rms / sigma, st[k].max, st[k].max / sigma);
+        printf("%s (Fig. %s): RMS normal deviation %.4f = %.3f sigma, max %.4f = %.3f sigma\n", names[k],
+               figures[k], st[k].rms, st[k].rms / sigma, st[k].max, st[k].max / sigma);
         snprintf(name, sizeof name, "%s: RMS deviation / sigma >= 1/2", names[k]);
         sample_expect_le(name, 0.5, st[k].rms / sigma);
         snprintf(name, sizeof name, "%s: RMS deviation / sigma <= 2", names[k]);
@@ -130,25 +134,29 @@ int main(int argc, char** argv) {
 
         rugo_contour co = {pts, N}, cm = {mid, 2 * N}, cr = {out, M};
         char title[200];
-        snprintf(title, sizeof title, "Fig. %s (%s): 32 points (dashed), %s (thin), %s (solid); lambda = %.0f",
-                 figures[k], names[k], k == 0 ? "+1 level" : "1 round", k == 0 ? "+2 levels" : "2 rounds", LAMBDA);
+        snprintf(title, sizeof title,
+                 "Fig. %s (%s): 32 points (dashed), %s (thin), %s (solid); lambda = %.0f", figures[k],
+                 names[k], k == 0 ? "+1 level" : "1 round", k == 0 ? "+2 levels" : "2 rounds", LAMBDA);
         snprintf(path, sizeof path, "%s/fig%s.svg", dir, k == 0 ? "2_12" : "2_13");
-        sample_expect(k == 0 ? "wrote fig2_12.svg" : "wrote fig2_13.svg", picture(path, title, co, cm, cr) == 0);
+        sample_expect(k == 0 ? "wrote fig2_12.svg" : "wrote fig2_13.svg",
+                      picture(path, title, co, cm, cr) == 0);
     }
 
     snprintf(path, sizeof path, "%s/fig2_12.json", dir);
     FILE* f = fopen(path, "w");
     if (f == NULL) return 1;
-    fprintf(f,
-            "{\"control_points\": %d, \"profile\": \"constant\", \"lambda\": %.6g, \"q\": %.6g, \"sigma\": %.6g, "
-            "\"seed\": %llu, \"filter\": \"%s\", \"methods\": [",
-            N, LAMBDA, RUGO_DEFAULT_Q, sigma, (unsigned long long)SEED, rugo_filter_name(RUGO_FILTER_DEFAULT));
+    fprintf(
+        f,
+        "{\"control_points\": %d, \"profile\": \"constant\", \"lambda\": %.6g, \"q\": %.6g, \"sigma\": %.6g, "
+        "\"seed\": %llu, \"filter\": \"%s\", \"methods\": [",
+        N, LAMBDA, RUGO_DEFAULT_Q, sigma, (unsigned long long)SEED, rugo_filter_name(RUGO_FILTER_DEFAULT));
     for (int k = 0; k < 2; ++k)
         fprintf(f,
                 "%s\n  {\"method\": \"%s\", \"figure\": \"%s\", \"levels\": %d, \"output_points\": %d, "
                 "\"rms_normal_deviation\": %.6g, \"max_normal_deviation\": %.6g, \"rms_over_sigma\": %.6g, "
                 "\"max_over_sigma\": %.6g}",
-                k ? "," : "", names[k], figures[k], LEVELS, M, st[k].rms, st[k].max, st[k].rms / sigma, st[k].max / sigma);
+                k ? "," : "", names[k], figures[k], LEVELS, M, st[k].rms, st[k].max, st[k].rms / sigma,
+                st[k].max / sigma);
     fprintf(f, "\n]}\n");
     sample_expect("wrote fig2_12.json", fclose(f) == 0);
     return sample_finish();

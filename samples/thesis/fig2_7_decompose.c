@@ -47,13 +47,15 @@ int main(int argc, char** argv) {
     rugo_contour coarsest;
     rugo_pyramid_level(p, 5 - LEVELS, &coarsest);
     int m = coarsest.count;
-    for (int i = 0; i < m; ++i) data[i] = coarsest.points[i];
+    for (int i = 0; i < m; ++i)
+        data[i] = coarsest.points[i];
     int synth_ok = 1;
     for (int j = 5 - LEVELS; j < 5; ++j, m *= 2) {
         const rugo_vec2 *dw = NULL, *dl = NULL;
         synth_ok &= rugo_pyramid_details(p, j, &dw, &dl) == RUGO_OK;
         synth_ok &= dw != NULL && rugo_wavelet_synthesize(def.filter, data, dw, m, fine_buf) == RUGO_OK;
-        for (int i = 0; i < 2 * m; ++i) data[i] = fine_buf[i];
+        for (int i = 0; i < 2 * m; ++i)
+            data[i] = fine_buf[i];
     }
     sample_expect("synthesis from the stored pyramid succeeded", synth_ok);
     double pr = 0.0, size = 0.0;
@@ -70,22 +72,28 @@ int main(int argc, char** argv) {
     rugo_contour fine;
     rugo_pyramid_level(p, 5, &fine);
     rugo_vec2 mean_fine = rugo_v2(0, 0);
-    for (int i = 0; i < N; ++i) mean_fine = rugo_v2_add(mean_fine, rugo_v2_scale(1.0 / N, fine.points[i]));
-    fprintf(f, "{\"filter\": \"%s\", \"perfect_reconstruction_error\": %.3g, \"levels\": [", rugo_filter_name(def.filter), pr / size);
+    for (int i = 0; i < N; ++i)
+        mean_fine = rugo_v2_add(mean_fine, rugo_v2_scale(1.0 / N, fine.points[i]));
+    fprintf(f, "{\"filter\": \"%s\", \"perfect_reconstruction_error\": %.3g, \"levels\": [",
+            rugo_filter_name(def.filter), pr / size);
     for (int j = 5; j >= 5 - LEVELS; --j) {
         rugo_contour c;
         rugo_pyramid_level(p, j, &c);
         rugo_mass_properties mp = rugo_contour_mass_properties(c);
         rugo_vec2 mean = rugo_v2(0, 0);
-        for (int i = 0; i < c.count; ++i) mean = rugo_v2_add(mean, rugo_v2_scale(1.0 / c.count, c.points[i]));
+        for (int i = 0; i < c.count; ++i)
+            mean = rugo_v2_add(mean, rugo_v2_scale(1.0 / c.count, c.points[i]));
         double dist = curve_distance(fine, c);
-        fprintf(f, "%s\n  {\"level\": %d, \"control_points\": %d, \"area\": %.10g, \"mean\": [%.12g, %.12g], "
-                   "\"max_distance_from_original\": %.6g}",
+        fprintf(f,
+                "%s\n  {\"level\": %d, \"control_points\": %d, \"area\": %.10g, \"mean\": [%.12g, %.12g], "
+                "\"max_distance_from_original\": %.6g}",
                 j == 5 ? "" : ",", j, c.count, mp.area, mean.x, mean.y, dist);
         char name[96];
         snprintf(name, sizeof name, "level %d keeps the control points' mean (abs error)", j);
-        sample_expect_le(name, sample_max(fabs(mean.x - mean_fine.x), fabs(mean.y - mean_fine.y)), 1e-12 * size);
-        printf("level %d: %d points, area %.6g, max distance from the original curve %.4g\n", j, c.count, mp.area, dist);
+        sample_expect_le(name, sample_max(fabs(mean.x - mean_fine.x), fabs(mean.y - mean_fine.y)),
+                         1e-12 * size);
+        printf("level %d: %d points, area %.6g, max distance from the original curve %.4g\n", j, c.count,
+               mp.area, dist);
     }
     fprintf(f, "\n]}\n");
     fclose(f);

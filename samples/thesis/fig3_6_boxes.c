@@ -45,7 +45,8 @@ static void svg_box(svg_canvas* c, const rugo_obb* b, const char* stroke) {
 /* The invariant of mobb.h on dense samples: node (j, k) contains every descendant finest segment
  * thickened by β^J (as discs) and its own coarse segment thickened by λ^j_k; parents contain their
  * children. Returns the largest violation (<= 0 when it holds). */
-static double invariant_violation(const rugo_mobb_tree* tree, const rugo_pyramid* p, const rugo_tolerances* t) {
+static double invariant_violation(const rugo_mobb_tree* tree, const rugo_pyramid* p,
+                                  const rugo_tolerances* t) {
     enum { S = 24 };
     int J = rugo_pyramid_finest_level(p), J0 = rugo_pyramid_coarsest_level(p);
     rugo_contour fine;
@@ -65,12 +66,14 @@ static double invariant_violation(const rugo_mobb_tree* tree, const rugo_pyramid
                 for (int s = 0; s <= S; ++s) {
                     rugo_vec2 d = rugo_v2_sub(rugo_contour_point(fine, i, (double)s / S), b->center);
                     double rad = t ? fl.bound[i] : 0.0;
-                    for (int a = 0; a < 2; ++a) worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) + rad - b->half[a]);
+                    for (int a = 0; a < 2; ++a)
+                        worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) + rad - b->half[a]);
                 }
             for (int s = 0; s <= S; ++s) {
                 rugo_vec2 d = rugo_v2_sub(rugo_contour_point(cj, k, (double)s / S), b->center);
                 double rad = t ? tl.total[k] : 0.0;
-                for (int a = 0; a < 2; ++a) worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) + rad - b->half[a]);
+                for (int a = 0; a < 2; ++a)
+                    worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) + rad - b->half[a]);
             }
             if (j < J)
                 for (int c = 0; c < 2; ++c) {
@@ -78,7 +81,8 @@ static double invariant_violation(const rugo_mobb_tree* tree, const rugo_pyramid
                     rugo_obb_corners(rugo_mobb_tree_node(tree, j + 1, 2 * k + c), q);
                     for (int i = 0; i < 4; ++i) {
                         rugo_vec2 d = rugo_v2_sub(q[i], b->center);
-                        for (int a = 0; a < 2; ++a) worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) - b->half[a]);
+                        for (int a = 0; a < 2; ++a)
+                            worst = fmax(worst, fabs(rugo_v2_dot(d, b->axis[a])) - b->half[a]);
                     }
                 }
         }
@@ -136,7 +140,8 @@ int main(int argc, char** argv) {
         double* lam = malloc((size_t)n * sizeof *lam);
         if (lam == NULL) return 1;
         rugo_tolerances_preset(RUGO_PRESET_TIPO_5, 0, n, lam);
-        for (int i = 0; i < n; ++i) lam[i] *= 4.0;
+        for (int i = 0; i < n; ++i)
+            lam[i] *= 4.0;
         rugo_tolerance_def td = rugo_default_tolerance_def();
         td.pyramid = p;
         td.finest = lam;
@@ -151,13 +156,16 @@ int main(int argc, char** argv) {
         rugo_mobb_tree* trees[2] = {NULL, NULL}; /* smooth, indexed by method */
         for (int m = 0; m < 2; ++m) {
             rugo_mobb_tree* rough = NULL;
-            if (!build(p, NULL, (rugo_box_method)m, &trees[m]) || !build(p, tol, (rugo_box_method)m, &rough)) return 1;
+            if (!build(p, NULL, (rugo_box_method)m, &trees[m]) || !build(p, tol, (rugo_box_method)m, &rough))
+                return 1;
             char name[160];
-            snprintf(name, sizeof name, "%d-point object, method (%s), smooth: invariant holds (worst excess)", n,
+            snprintf(name, sizeof name,
+                     "%d-point object, method (%s), smooth: invariant holds (worst excess)", n,
                      method_tag((rugo_box_method)m));
             sample_expect_le(name, invariant_violation(trees[m], p, NULL), 0.0);
-            snprintf(name, sizeof name, "%d-point object, method (%s), rough (tipo_5 x4): invariant holds (worst excess)",
-                     n, method_tag((rugo_box_method)m));
+            snprintf(name, sizeof name,
+                     "%d-point object, method (%s), rough (tipo_5 x4): invariant holds (worst excess)", n,
+                     method_tag((rugo_box_method)m));
             sample_expect_le(name, invariant_violation(rough, p, tol), 0.0);
             rugo_mobb_tree_destroy(rough);
         }
@@ -176,7 +184,8 @@ int main(int argc, char** argv) {
         }
         for (int m = 0; m < 2; ++m)
             for (int j = J; j >= J0; --j) {
-                snprintf(path, sizeof path, "%s/fig3_6_n%d_%s_level%d.svg", dir, n, method_tag((rugo_box_method)m), j);
+                snprintf(path, sizeof path, "%s/fig3_6_n%d_%s_level%d.svg", dir, n,
+                         method_tag((rugo_box_method)m), j);
                 svg_canvas svg;
                 if (svg_open(&svg, path, lo, hi, 700.0) != 0) {
                     svg_ok = 0;
@@ -187,9 +196,11 @@ int main(int argc, char** argv) {
                 svg_contour(&svg, fine, 12, "#888888", 1.2, NULL);
                 if (j < J) svg_contour(&svg, cj, 12, "#1b9e77", 1.0, "5,3");
                 const char* colour = m == RUGO_BOXES_OF_BOXES ? "#d95f02" : "#7570b3";
-                for (int k = 0; k < (1 << j); ++k) svg_box(&svg, rugo_mobb_tree_node(trees[m], j, k), colour);
+                for (int k = 0; k < (1 << j); ++k)
+                    svg_box(&svg, rugo_mobb_tree_node(trees[m], j, k), colour);
                 char caption[200];
-                snprintf(caption, sizeof caption, "%d-point object, level %d, method (%s): total box area %.3f", n, j,
+                snprintf(caption, sizeof caption,
+                         "%d-point object, level %d, method (%s): total box area %.3f", n, j,
                          method_tag((rugo_box_method)m), rugo_mobb_tree_level_area(trees[m], j));
                 svg_text(&svg, rugo_v2(lo.x, hi.y), caption, 13.0);
                 svg_ok &= svg_close(&svg) == 0;
@@ -204,7 +215,8 @@ int main(int argc, char** argv) {
         for (int j = J; j >= J0; --j) {
             double aa = rugo_mobb_tree_level_area(trees[RUGO_BOXES_OF_BOXES], j);
             double ab = rugo_mobb_tree_level_area(trees[RUGO_BOXES_MULTIRES], j);
-            double ta = n == 256 ? thesis_value(THESIS_A, j) : NAN, tb = n == 256 ? thesis_value(THESIS_B, j) : NAN;
+            double ta = n == 256 ? thesis_value(THESIS_A, j) : NAN,
+                   tb = n == 256 ? thesis_value(THESIS_B, j) : NAN;
             printf("%5d %5d %12.3f %14.3f %9.4f |", j, 1 << j, aa, ab, ab / aa);
             if (isnan(ta))
                 printf("\n");
@@ -215,8 +227,8 @@ int main(int argc, char** argv) {
                 fprintf(csv, ",,\n");
             else
                 fprintf(csv, "%.3f,%.3f,%.6f\n", ta, tb, tb / ta);
-            fprintf(json, "%s\n  {\"level\": %d, \"boxes\": %d, \"area_a\": %.6f, \"area_b\": %.6f", j == J ? "" : ",", j,
-                    1 << j, aa, ab);
+            fprintf(json, "%s\n  {\"level\": %d, \"boxes\": %d, \"area_a\": %.6f, \"area_b\": %.6f",
+                    j == J ? "" : ",", j, 1 << j, aa, ab);
             if (!isnan(ta)) fprintf(json, ", \"thesis_a\": %.3f, \"thesis_b\": %.3f", ta, tb);
             fprintf(json, "}");
             if (j < J) {
@@ -225,7 +237,8 @@ int main(int argc, char** argv) {
             }
         }
         fprintf(json, "]}");
-        printf("(b) smaller than (a) on %d of %d upper levels (thesis: 3 of 5, levels 7, 6 and 3)\n", b_smaller, compared);
+        printf("(b) smaller than (a) on %d of %d upper levels (thesis: 3 of 5, levels 7, 6 and 3)\n",
+               b_smaller, compared);
 
         /* What holds for any object: equal leaves, and coarser levels need more area in total. */
         char name[160];
@@ -235,8 +248,9 @@ int main(int argc, char** argv) {
             int grows = 1;
             for (int j = J0; j < J; ++j)
                 grows &= rugo_mobb_tree_level_area(trees[m], j) > rugo_mobb_tree_level_area(trees[m], j + 1);
-            snprintf(name, sizeof name, "%d-point object, method (%s): total area grows towards coarse levels (as Fig. 4.6)",
-                     n, method_tag((rugo_box_method)m));
+            snprintf(name, sizeof name,
+                     "%d-point object, method (%s): total area grows towards coarse levels (as Fig. 4.6)", n,
+                     method_tag((rugo_box_method)m));
             sample_expect(name, grows);
         }
         if (n == 256) {
@@ -246,12 +260,14 @@ int main(int argc, char** argv) {
             static const int thesis_smaller[3] = {7, 6, 3};
             for (int i = 0; i < 3; ++i) {
                 int j = thesis_smaller[i];
-                snprintf(name, sizeof name, "256-point object, level %d: area (b) < area (a), as in the thesis", j);
+                snprintf(name, sizeof name,
+                         "256-point object, level %d: area (b) < area (a), as in the thesis", j);
                 sample_expect(name, rugo_mobb_tree_level_area(trees[RUGO_BOXES_MULTIRES], j) <
                                         rugo_mobb_tree_level_area(trees[RUGO_BOXES_OF_BOXES], j));
             }
         }
-        for (int m = 0; m < 2; ++m) rugo_mobb_tree_destroy(trees[m]);
+        for (int m = 0; m < 2; ++m)
+            rugo_mobb_tree_destroy(trees[m]);
         rugo_tolerances_destroy(tol);
         rugo_pyramid_destroy(p);
         free(lam);

@@ -88,7 +88,8 @@ static rugo_status build_tree(const object* o, rugo_box_method m, rugo_mobb_tree
 static long count_nodes(const rugo_mobb_tree* t) {
     long c = 0;
     for (int j = 0; j <= 31 && j <= rugo_mobb_tree_finest_level(t) + 1; ++j)
-        for (long k = 0; k < (1L << j); ++k) c += rugo_mobb_tree_node(t, j, (int)k) != NULL;
+        for (long k = 0; k < (1L << j); ++k)
+            c += rugo_mobb_tree_node(t, j, (int)k) != NULL;
     return c;
 }
 
@@ -127,7 +128,9 @@ static int time_case(object* objs, int count, int min_reps, int max_reps, double
         for (int i = 0; i < count; ++i) {
             free_levels(&objs[i]);
             rugo_mobb_tree* tree = NULL;
-            if (build_levels(&objs[i]) != RUGO_OK || build_tree(&objs[i], RUGO_BOXES_MULTIRES, &tree) != RUGO_OK) return 0;
+            if (build_levels(&objs[i]) != RUGO_OK ||
+                build_tree(&objs[i], RUGO_BOXES_MULTIRES, &tree) != RUGO_OK)
+                return 0;
             rugo_mobb_tree_destroy(tree);
         }
         double t1 = now();
@@ -210,7 +213,8 @@ int main(int argc, char** argv) {
     double xo[COUNTS], ob[COUNTS], oa[COUNTS], of[COUNTS];
     object objs[12];
     int made = 1;
-    for (int i = 0; i < 12; ++i) made &= make_object(&objs[i], 256, i);
+    for (int i = 0; i < 12; ++i)
+        made &= make_object(&objs[i], 256, i);
     snprintf(path, sizeof path, "%s/fig4_5b.csv", dir);
     FILE* fb = fopen(path, "w");
     if (fb == NULL || !made) return 1;
@@ -229,7 +233,8 @@ int main(int argc, char** argv) {
         printf("%d,%d,%.9f,%.9f,%.9f\n", c, 256 * c, t.tree_b, t.tree_a, t.full);
         fprintf(fb, "%d,%d,%.9f,%.9f,%.9f\n", c, 256 * c, t.tree_b, t.tree_a, t.full);
     }
-    for (int i = 0; i < 12; ++i) free_object(&objs[i]);
+    for (int i = 0; i < 12; ++i)
+        free_object(&objs[i]);
     fclose(fb);
     sample_expect("Fig. 4.5(b): every object count built", ran_b);
     sample_expect("every tree has 2n - 4 nodes (levels 2..J)", nodes_ok != 0);
@@ -255,29 +260,36 @@ int main(int argc, char** argv) {
     enum { GOAL_SIZE = 4096 };
     const double goal_ns = 100.0;
     int g = 0;
-    while (g < SIZES - 1 && xs[g] < GOAL_SIZE) ++g;
+    while (g < SIZES - 1 && xs[g] < GOAL_SIZE)
+        ++g;
     const double tb_ns = 1e9 * tb[g] / xs[g], ta_ns = 1e9 * ta[g] / xs[g], tf_ns = 1e9 * tf[g] / xs[g];
-    printf("summary: at %d segments the tree costs %.1f ns/segment (method (b); %.2f x the %.0f ns goal, %s), "
-           "%.1f ns with method (a), %.1f ns with pyramid and tolerances; slopes %.1f / %.1f ns/segment "
-           "(R^2 %.4f / %.4f); per 256-segment object %.3g s (R^2 %.4f)%s\n",
-           (int)xs[g], tb_ns, tb_ns / goal_ns, goal_ns, quick ? "not judged in --quick" : tb_ns <= goal_ns ? "met" : "NOT met",
-           ta_ns, tf_ns, 1e9 * b1, 1e9 * b3, r1, r3, b4, r4, quick ? " (--quick: one repetition, noisy)" : "");
+    printf(
+        "summary: at %d segments the tree costs %.1f ns/segment (method (b); %.2f x the %.0f ns goal, %s), "
+        "%.1f ns with method (a), %.1f ns with pyramid and tolerances; slopes %.1f / %.1f ns/segment "
+        "(R^2 %.4f / %.4f); per 256-segment object %.3g s (R^2 %.4f)%s\n",
+        (int)xs[g], tb_ns, tb_ns / goal_ns, goal_ns,
+        quick              ? "not judged in --quick"
+        : tb_ns <= goal_ns ? "met"
+                           : "NOT met",
+        ta_ns, tf_ns, 1e9 * b1, 1e9 * b3, r1, r3, b4, r4, quick ? " (--quick: one repetition, noisy)" : "");
 
     snprintf(path, sizeof path, "%s/fig4_5_summary.json", dir);
     FILE* fj = fopen(path, "w");
     if (fj == NULL) return 1;
-    fprintf(fj,
-            "{\"quick\": %s, \"segments\": {\"tree_b_slope_s_per_segment\": %.6g, \"tree_b_r2\": %.6f, "
-            "\"tree_a_slope_s_per_segment\": %.6g, \"tree_a_r2\": %.6f, \"full_slope_s_per_segment\": %.6g, "
-            "\"full_r2\": %.6f},\n \"objects\": {\"tree_b_slope_s_per_object\": %.6g, \"tree_b_r2\": %.6f, "
-            "\"tree_a_slope_s_per_object\": %.6g, \"tree_a_r2\": %.6f, \"full_slope_s_per_object\": %.6g, "
-            "\"full_r2\": %.6f},\n"
-            " \"at_%d_segments\": {\"tree_b_ns_per_segment\": %.2f, \"tree_a_ns_per_segment\": %.2f, "
-            "\"full_ns_per_segment\": %.2f, \"goal_ns_per_segment\": %.0f, \"tree_b_ratio_to_goal\": %.4f}}\n",
-            quick ? "true" : "false", b1, r1, b2, r2, b3, r3, b4, r4, b6, r6, b5, r5, (int)xs[g], tb_ns, ta_ns, tf_ns,
-            goal_ns, tb_ns / goal_ns);
+    fprintf(
+        fj,
+        "{\"quick\": %s, \"segments\": {\"tree_b_slope_s_per_segment\": %.6g, \"tree_b_r2\": %.6f, "
+        "\"tree_a_slope_s_per_segment\": %.6g, \"tree_a_r2\": %.6f, \"full_slope_s_per_segment\": %.6g, "
+        "\"full_r2\": %.6f},\n \"objects\": {\"tree_b_slope_s_per_object\": %.6g, \"tree_b_r2\": %.6f, "
+        "\"tree_a_slope_s_per_object\": %.6g, \"tree_a_r2\": %.6f, \"full_slope_s_per_object\": %.6g, "
+        "\"full_r2\": %.6f},\n"
+        " \"at_%d_segments\": {\"tree_b_ns_per_segment\": %.2f, \"tree_a_ns_per_segment\": %.2f, "
+        "\"full_ns_per_segment\": %.2f, \"goal_ns_per_segment\": %.0f, \"tree_b_ratio_to_goal\": %.4f}}\n",
+        quick ? "true" : "false", b1, r1, b2, r2, b3, r3, b4, r4, b6, r6, b5, r5, (int)xs[g], tb_ns, ta_ns,
+        tf_ns, goal_ns, tb_ns / goal_ns);
     sample_expect("wrote fig4_5a.csv, fig4_5b.csv, fig4_5_summary.json", fclose(fj) == 0);
-    sample_expect("timings are finite and positive", isfinite(b1) && tb[SIZES - 1] > 0.0 && ob[COUNTS - 1] > 0.0);
+    sample_expect("timings are finite and positive",
+                  isfinite(b1) && tb[SIZES - 1] > 0.0 && ob[COUNTS - 1] > 0.0);
     sample_expect("the goal's size (4096 segments) was measured", xs[g] == GOAL_SIZE && tb[g] > 0.0);
     return sample_finish();
 }

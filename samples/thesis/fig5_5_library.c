@@ -30,8 +30,8 @@ static int bar_chart(const char* path, const double* v, int n) {
     for (int i = 0; i < n; ++i) {
         const double x0 = ((double)i + 0.15 - c.ox) * c.scale, x1 = ((double)i + 0.85 - c.ox) * c.scale;
         const double y0 = c.height - (0.0 - c.oy) * c.scale, y1 = c.height - (50.0 * v[i] - c.oy) * c.scale;
-        fprintf(c.file, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#1b9e77\"/>\n", x0, y1,
-                x1 - x0, y0 - y1);
+        fprintf(c.file, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#1b9e77\"/>\n", x0,
+                y1, x1 - x0, y0 - y1);
         if (i % 4 == 0) {
             char label[16];
             snprintf(label, sizeof label, "%d", i);
@@ -58,14 +58,19 @@ int main(int argc, char** argv) {
     }
     double t3[N3], t5[N5];
     rugo_tolerance_preset p3, p5;
-    if (rugo_preset_from_name("tipo_3", &p3) != RUGO_OK || rugo_preset_from_name("tipo_5", &p5) != RUGO_OK) return 1;
-    if (rugo_tolerances_preset(p3, 0, N3, t3) != RUGO_OK || rugo_tolerances_preset(p5, 0, N5, t5) != RUGO_OK) return 1;
+    if (rugo_preset_from_name("tipo_3", &p3) != RUGO_OK || rugo_preset_from_name("tipo_5", &p5) != RUGO_OK)
+        return 1;
+    if (rugo_tolerances_preset(p3, 0, N3, t3) != RUGO_OK || rugo_tolerances_preset(p5, 0, N5, t5) != RUGO_OK)
+        return 1;
 
     int bad3 = 0, bad5 = 0, bad5_elided = 0;
-    for (int i = 0; i < N3; ++i) bad3 += t3[i] != THESIS_TIPO_3[i];
-    for (int i = 0; i < 32; ++i) bad5 += t5[i] != THESIS_TIPO_5[i];
+    for (int i = 0; i < N3; ++i)
+        bad3 += t3[i] != THESIS_TIPO_3[i];
+    for (int i = 0; i < 32; ++i)
+        bad5 += t5[i] != THESIS_TIPO_5[i];
     bad5 += t5[127] != THESIS_TIPO_5_ROW_127;
-    for (int i = 32; i < 127; ++i) bad5_elided += t5[i] != THESIS_TIPO_5[i % 32];
+    for (int i = 32; i < 127; ++i)
+        bad5_elided += t5[i] != THESIS_TIPO_5[i % 32];
     sample_expect("tipo_3, segments 0..31, equals Fig. 5.5 exactly", bad3 == 0);
     sample_expect("tipo_5, segments 0..31 and 127, equals Fig. 5.5 exactly", bad5 == 0);
     sample_expect("tipo_5, segments 32..126 (elided in Fig. 5.5), continue its pattern", bad5_elided == 0);
@@ -80,9 +85,11 @@ int main(int argc, char** argv) {
     if (f == NULL) return 1;
     fprintf(f, "{\"figure\": \"5.5\", \"matches_thesis\": %s,\n \"tipo_3\": {\"segments\": %d, \"values\": [",
             bad3 == 0 && bad5 == 0 && bad5_elided == 0 ? "true" : "false", N3);
-    for (int i = 0; i < N3; ++i) fprintf(f, "%s%.2f", i ? ", " : "", t3[i]);
+    for (int i = 0; i < N3; ++i)
+        fprintf(f, "%s%.2f", i ? ", " : "", t3[i]);
     fprintf(f, "]},\n \"tipo_5\": {\"segments\": %d, \"values\": [", N5);
-    for (int i = 0; i < N5; ++i) fprintf(f, "%s%.2f", i ? ", " : "", t5[i]);
+    for (int i = 0; i < N5; ++i)
+        fprintf(f, "%s%.2f", i ? ", " : "", t5[i]);
     fprintf(f, "]}}\n");
     sample_expect("wrote fig5_5.json", fclose(f) == 0);
 
@@ -101,7 +108,8 @@ int main(int argc, char** argv) {
     snprintf(path, sizeof path, "%s/fig5_5.txt", dir);
     f = fopen(path, "w");
     if (f == NULL) return 1;
-    fprintf(f, "Figure 5.5: tolerances of the library on contours of 32 (tipo_3) and 128 (tipo_5) segments\n\n");
+    fprintf(f,
+            "Figure 5.5: tolerances of the library on contours of 32 (tipo_3) and 128 (tipo_5) segments\n\n");
     fprintf(f, "segment  tipo_3  tipo_5\n");
     for (int i = 0; i < N5; ++i) {
         if (i < N3)
@@ -113,7 +121,7 @@ int main(int argc, char** argv) {
 
     snprintf(path, sizeof path, "%s/fig5_6.svg", dir);
     sample_expect("wrote fig5_6.svg", bar_chart(path, t3, N3) == 0);
-    printf("tipo_3 (32): %.2f %.2f %.2f %.2f ...; tipo_5 (128): %.2f x4, %.2f x4, %.2f x4, %.2f x4 ...\n", t3[0], t3[1],
-           t3[2], t3[3], t5[0], t5[4], t5[8], t5[12]);
+    printf("tipo_3 (32): %.2f %.2f %.2f %.2f ...; tipo_5 (128): %.2f x4, %.2f x4, %.2f x4, %.2f x4 ...\n",
+           t3[0], t3[1], t3[2], t3[3], t5[0], t5[4], t5[8], t5[12]);
     return sample_finish();
 }

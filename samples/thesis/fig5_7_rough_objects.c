@@ -57,7 +57,8 @@ static result measure(const rugo_vec2* rough, const rugo_vec2* ref, const double
     r.rms = sqrt(r.rms / (double)(M * SAMPLES));
     r.rms_low = n_low ? sqrt(r.rms_low / (double)n_low) : 0.0;
     r.rms_high = n_high ? sqrt(r.rms_high / (double)n_high) : 0.0;
-    r.self_intersecting = rugo_contour_check(rough, M, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL) == RUGO_ERR_SELF_INTERSECTING;
+    r.self_intersecting =
+        rugo_contour_check(rough, M, RUGO_CHECK_SELF_INTERSECTION, NULL, NULL) == RUGO_ERR_SELF_INTERSECTING;
     return r;
 }
 
@@ -89,7 +90,8 @@ int main(int argc, char** argv) {
     double lam[2][N], sigma_rms[2], sigma_max[2];
     for (int s = 0; s < 2; ++s) {
         rugo_tolerance_preset p;
-        if (rugo_preset_from_name(profiles[s], &p) != RUGO_OK || rugo_tolerances_preset(p, 0, N, lam[s]) != RUGO_OK)
+        if (rugo_preset_from_name(profiles[s], &p) != RUGO_OK ||
+            rugo_tolerances_preset(p, 0, N, lam[s]) != RUGO_OK)
             return 1;
         double ss = 0.0, mx = 0.0;
         for (int k = 0; k < N; ++k) {
@@ -126,23 +128,28 @@ int main(int argc, char** argv) {
                 fprintf(stderr, "rugo_roughen: %s\n", rugo_status_string(st));
                 return 1;
             }
-            snprintf(name, sizeof name, "%s (%s), %s: finite and deterministic", shape_names[s], profiles[s], method_names[m]);
+            snprintf(name, sizeof name, "%s (%s), %s: finite and deterministic", shape_names[s], profiles[s],
+                     method_names[m]);
             sample_expect(name, all_finite(rough[s][m], M) && memcmp(rough[s][m], again, sizeof again) == 0);
             res[s][m] = measure(rough[s][m], ref[s], lam[s]);
             const result* r = &res[s][m];
-            printf("%s (%s), %s: RMS deviation %.4f = %.3f sigma_rms, max %.4f = %.3f sigma_max%s\n", shape_names[s],
-                   profiles[s], method_names[m], r->rms, r->rms / sigma_rms[s], r->max, r->max / sigma_max[s],
-                   r->self_intersecting ? " (self-intersecting)" : "");
-            snprintf(name, sizeof name, "%s, %s: RMS deviation / RMS sigma >= 1/2", shape_names[s], method_names[m]);
+            printf("%s (%s), %s: RMS deviation %.4f = %.3f sigma_rms, max %.4f = %.3f sigma_max%s\n",
+                   shape_names[s], profiles[s], method_names[m], r->rms, r->rms / sigma_rms[s], r->max,
+                   r->max / sigma_max[s], r->self_intersecting ? " (self-intersecting)" : "");
+            snprintf(name, sizeof name, "%s, %s: RMS deviation / RMS sigma >= 1/2", shape_names[s],
+                     method_names[m]);
             sample_expect_le(name, 0.5, r->rms / sigma_rms[s]);
-            snprintf(name, sizeof name, "%s, %s: RMS deviation / RMS sigma <= 2", shape_names[s], method_names[m]);
+            snprintf(name, sizeof name, "%s, %s: RMS deviation / RMS sigma <= 2", shape_names[s],
+                     method_names[m]);
             sample_expect_le(name, r->rms / sigma_rms[s], 2.0);
-            snprintf(name, sizeof name, "%s, %s: max deviation / max sigma <= 6", shape_names[s], method_names[m]);
+            snprintf(name, sizeof name, "%s, %s: max deviation / max sigma <= 6", shape_names[s],
+                     method_names[m]);
             sample_expect_le(name, r->max / sigma_max[s], 6.0);
             if (s == 1) {
-                printf("  ball blocks: RMS on 0.55/0.65 %.4f, on 0.04 %.4f (ratio %.2f)\n", r->rms_high, r->rms_low,
-                       r->rms_high / r->rms_low);
-                snprintf(name, sizeof name, "ball, %s: rougher on 0.55/0.65 blocks than on 0.04 blocks (ratio >= 2)",
+                printf("  ball blocks: RMS on 0.55/0.65 %.4f, on 0.04 %.4f (ratio %.2f)\n", r->rms_high,
+                       r->rms_low, r->rms_high / r->rms_low);
+                snprintf(name, sizeof name,
+                         "ball, %s: rougher on 0.55/0.65 blocks than on 0.04 blocks (ratio >= 2)",
                          method_names[m]);
                 sample_expect_le(name, 2.0, r->rms_high / r->rms_low);
             }
@@ -153,21 +160,26 @@ int main(int argc, char** argv) {
     snprintf(path, sizeof path, "%s/fig5_7.json", dir);
     FILE* f = fopen(path, "w");
     if (f == NULL) return 1;
-    fprintf(f, "{\"figure\": \"5.7\", \"control_points\": %d, \"levels\": %d, \"q\": %.6g, \"seed\": %llu, \"objects\": [", N,
-            LEVELS, RUGO_DEFAULT_Q, (unsigned long long)SEED);
+    fprintf(f,
+            "{\"figure\": \"5.7\", \"control_points\": %d, \"levels\": %d, \"q\": %.6g, \"seed\": %llu, "
+            "\"objects\": [",
+            N, LEVELS, RUGO_DEFAULT_Q, (unsigned long long)SEED);
     for (int s = 0; s < 2; ++s) {
-        fprintf(f, "%s\n  {\"name\": \"%s\", \"profile\": \"%s\", \"sigma_rms\": %.6g, \"sigma_max\": %.6g, \"methods\": [",
+        fprintf(f,
+                "%s\n  {\"name\": \"%s\", \"profile\": \"%s\", \"sigma_rms\": %.6g, \"sigma_max\": %.6g, "
+                "\"methods\": [",
                 s ? "," : "", shape_names[s], profiles[s], sigma_rms[s], sigma_max[s]);
         for (int m = 0; m < 2; ++m) {
             const result* r = &res[s][m];
             fprintf(f,
-                    "%s\n    {\"method\": \"%s\", \"rms_normal_deviation\": %.6g, \"max_normal_deviation\": %.6g, "
+                    "%s\n    {\"method\": \"%s\", \"rms_normal_deviation\": %.6g, \"max_normal_deviation\": "
+                    "%.6g, "
                     "\"rms_over_sigma_rms\": %.6g, \"max_over_sigma_max\": %.6g, \"self_intersecting\": %s",
-                    m ? "," : "", method_names[m], r->rms, r->max, r->rms / sigma_rms[s], r->max / sigma_max[s],
-                    r->self_intersecting ? "true" : "false");
+                    m ? "," : "", method_names[m], r->rms, r->max, r->rms / sigma_rms[s],
+                    r->max / sigma_max[s], r->self_intersecting ? "true" : "false");
             if (s == 1)
-                fprintf(f, ", \"rms_central_rough_blocks\": %.6g, \"rms_central_smooth_blocks\": %.6g", r->rms_high,
-                        r->rms_low);
+                fprintf(f, ", \"rms_central_rough_blocks\": %.6g, \"rms_central_smooth_blocks\": %.6g",
+                        r->rms_high, r->rms_low);
             fprintf(f, "}");
         }
         fprintf(f, "]}");
@@ -195,13 +207,15 @@ int main(int argc, char** argv) {
         for (int s = 0; s < 2; ++s) {
             rugo_vec2 shifted[M];
             const rugo_vec2* src = row == 0 ? ref[s] : rough[s][row - 1];
-            for (int i = 0; i < M; ++i) shifted[i] = rugo_v2(src[i].x, src[i].y - ROW * row);
+            for (int i = 0; i < M; ++i)
+                shifted[i] = rugo_v2(src[i].x, src[i].y - ROW * row);
             rugo_contour c = {shifted, M};
             svg_contour(&svg, c, 6, "#222222", 1.2, NULL);
         }
         svg_text(&svg, rugo_v2(lo.x, top + 5.0 - ROW * row), labels[row], 13.0);
     }
-    svg_text(&svg, rugo_v2(lo.x, hi.y - 2.0), "Fig. 5.7: object (tipo_3) and ball (tipo_5), 64 points, +2 levels", 14.0);
+    svg_text(&svg, rugo_v2(lo.x, hi.y - 2.0),
+             "Fig. 5.7: object (tipo_3) and ball (tipo_5), 64 points, +2 levels", 14.0);
     sample_expect("wrote fig5_7.svg", svg_close(&svg) == 0);
     return sample_finish();
 }

@@ -55,7 +55,8 @@ static stats compare(const double* coef, const double* detail, int n) {
     double sc = 0.0, sd = 0.0, scc = 0.0, sdd = 0.0, scd = 0.0;
     int larger = 0;
     for (int k = 0; k < n; ++k) {
-        if (!(isfinite(coef[k]) && isfinite(detail[k]) && coef[k] > 0.0 && detail[k] > 0.0)) s.all_finite_positive = 0;
+        if (!(isfinite(coef[k]) && isfinite(detail[k]) && coef[k] > 0.0 && detail[k] > 0.0))
+            s.all_finite_positive = 0;
         double r = coef[k] / detail[k];
         s.ratio_mean += r / n;
         s.ratio_min = fmin(s.ratio_min, r);
@@ -104,7 +105,8 @@ static rugo_status build(uint64_t seed, rugo_pyramid** p, rugo_tolerances* tol[2
     rugo_status st = rugo_pyramid_create(&pdef, p, NULL);
     if (st != RUGO_OK) return st;
     double zero[N];
-    for (int i = 0; i < N; ++i) zero[i] = 0.0;
+    for (int i = 0; i < N; ++i)
+        zero[i] = 0.0;
     for (int e = 0; e < 2; ++e) {
         rugo_tolerance_def tdef = rugo_default_tolerance_def();
         tdef.pyramid = *p;
@@ -124,13 +126,15 @@ static void bar_panel(FILE* f, double y0, double h, double width, const char* ti
     const double pw = width - left - right, ph = h - top - bottom;
     fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\" font-family=\"sans-serif\">%s</text>\n", left,
             y0 + 16.0, title);
-    fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\"/>\n", left, y0 + top + ph,
-            left + pw, y0 + top + ph);
-    fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\"/>\n", left, y0 + top, left,
-            y0 + top + ph);
+    fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\"/>\n", left,
+            y0 + top + ph, left + pw, y0 + top + ph);
+    fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\"/>\n", left, y0 + top,
+            left, y0 + top + ph);
     for (int g = 0; g <= 4; ++g) {
         double v = vmax * g / 4.0, y = y0 + top + ph - ph * g / 4.0;
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" text-anchor=\"end\" font-family=\"sans-serif\">%.2f</text>\n",
+        fprintf(f,
+                "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" text-anchor=\"end\" "
+                "font-family=\"sans-serif\">%.2f</text>\n",
                 left - 4.0, y + 3.0, v);
     }
     const double slot = pw / n, bw = slot * 0.42;
@@ -142,8 +146,8 @@ static void bar_panel(FILE* f, double y0, double h, double width, const char* ti
         fprintf(f, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#ff7f0e\"/>\n", x + bw,
                 y0 + top + ph - hd, bw, hd);
         if (k % 8 == 0)
-            fprintf(f, "<text x=\"%.2f\" y=\"%.1f\" font-size=\"9\" font-family=\"sans-serif\">%d</text>\n", x,
-                    y0 + top + ph + 12.0, k);
+            fprintf(f, "<text x=\"%.2f\" y=\"%.1f\" font-size=\"9\" font-family=\"sans-serif\">%d</text>\n",
+                    x, y0 + top + ph + 12.0, k);
     }
 }
 
@@ -169,9 +173,11 @@ int main(int argc, char** argv) {
     FILE* js = fopen(path, "w");
     if (csv == NULL || js == NULL) return 1;
     fprintf(csv, "level,segment,coefficient,detail,ratio\n");
-    fprintf(js, "{\"object\": \"sample_object(128) with seeded outward roughness on its first two detail levels\",\n"
-                " \"filter\": \"%s\", \"q\": %.3g, \"neighbours\": 1, \"extremes\": 3,\n \"levels\": [",
-            rugo_filter_name(filter), RUGO_DEFAULT_Q);
+    fprintf(
+        js,
+        "{\"object\": \"sample_object(128) with seeded outward roughness on its first two detail levels\",\n"
+        " \"filter\": \"%s\", \"q\": %.3g, \"neighbours\": 1, \"extremes\": 3,\n \"levels\": [",
+        rugo_filter_name(filter), RUGO_DEFAULT_Q);
     stats per_level[2];
     double vmax = 0.0;
     for (int li = 0; li < 2; ++li) {
@@ -184,11 +190,12 @@ int main(int argc, char** argv) {
         }
         stats s = compare(a.own, b.own, a.count);
         per_level[li] = s;
-        printf("level %d (%d segments): mean tolerance coefficient %.4g, detail %.4g; ratio coefficient/detail: "
-               "of the means %.3f, per segment mean %.3f sd %.3f [%.3f, %.3f]; correlation %.3f; coefficient "
-               "larger on %.0f%% of segments\n",
-               a.level, a.count, s.mean_coef, s.mean_detail, s.ratio_of_means, s.ratio_mean, s.ratio_sd, s.ratio_min,
-               s.ratio_max, s.correlation, 100.0 * s.coef_larger_fraction);
+        printf(
+            "level %d (%d segments): mean tolerance coefficient %.4g, detail %.4g; ratio coefficient/detail: "
+            "of the means %.3f, per segment mean %.3f sd %.3f [%.3f, %.3f]; correlation %.3f; coefficient "
+            "larger on %.0f%% of segments\n",
+            a.level, a.count, s.mean_coef, s.mean_detail, s.ratio_of_means, s.ratio_mean, s.ratio_sd,
+            s.ratio_min, s.ratio_max, s.correlation, 100.0 * s.coef_larger_fraction);
         fprintf(js,
                 "%s\n  {\"level\": %d, \"segments\": %d, \"mean_coefficient\": %.6g, \"mean_detail\": %.6g, "
                 "\"ratio_of_means\": %.6g, \"ratio_mean\": %.6g, \"ratio_sd\": %.6g, \"ratio_min\": %.6g, "
@@ -202,23 +209,29 @@ int main(int argc, char** argv) {
     fprintf(js,
             "\n ],\n \"ratio_of_means_level6_over_level5\": %.6g,\n"
             " \"coefficient_larger_in_this_draw\": %s,\n"
-            " \"note\": \"coefficient/detail per segment scatters (different data: 3 control-point details vs the "
-            "extremes of the sampled detail curve); the proportion is judged on the means and the correlation\"\n}\n",
+            " \"note\": \"coefficient/detail per segment scatters (different data: 3 control-point details "
+            "vs the "
+            "extremes of the sampled detail curve); the proportion is judged on the means and the "
+            "correlation\"\n}\n",
             level_agreement, scaled_up ? "true" : "false");
     fclose(csv);
     fclose(js);
     printf("in this draw the coefficient estimator is %s the detail one (ratio of means %.3f at level 6, "
            "%.3f at level 5); the verdict over many draws follows\n",
-           scaled_up ? "larger than" : "not uniformly larger than", per_level[0].ratio_of_means, per_level[1].ratio_of_means);
+           scaled_up ? "larger than" : "not uniformly larger than", per_level[0].ratio_of_means,
+           per_level[1].ratio_of_means);
 
     for (int li = 0; li < 2; ++li) {
         char name[128];
-        snprintf(name, sizeof name, "level %d: every tolerance finite and positive (both estimators)", J - 1 - li);
+        snprintf(name, sizeof name, "level %d: every tolerance finite and positive (both estimators)",
+                 J - 1 - li);
         sample_expect(name, per_level[li].all_finite_positive);
-        snprintf(name, sizeof name, "level %d: the two estimators are correlated (correlation >= 0.5)", J - 1 - li);
+        snprintf(name, sizeof name, "level %d: the two estimators are correlated (correlation >= 0.5)",
+                 J - 1 - li);
         sample_expect(name, per_level[li].correlation >= 0.5);
     }
-    sample_expect_le("ratio of means is stable across levels: |level6/level5 - 1|", fabs(level_agreement - 1.0), 0.25);
+    sample_expect_le("ratio of means is stable across levels: |level6/level5 - 1|",
+                     fabs(level_agreement - 1.0), 0.25);
 
     /* Is the proportion stable? The same object with SEEDS other roughness draws: the ratio of the
      * means per level, its mean and spread over the draws. */
@@ -256,10 +269,11 @@ int main(int argc, char** argv) {
         seed_sd[li] = sqrt(fmax(0.0, (rsq[li] - good * seed_mean[li] * seed_mean[li]) / (good - 1)));
         /* "scaled up" = the mean ratio exceeds 1 by more than 2 standard errors of that mean */
         significant[li] = seed_mean[li] - 1.0 > 2.0 * seed_sd[li] / sqrt((double)good);
-        printf("over %d roughness draws, level %d: ratio of means coefficient/detail %.3f +- %.3f (sd), below 1 "
-               "in %d draws; coefficient larger on at least %.0f%% of segments in every draw; scaled up: %s\n",
-               good, J - 1 - li, seed_mean[li], seed_sd[li], below_one[li], 100.0 * larger_min[li],
-               significant[li] ? "yes (mean ratio > 1 by more than 2 standard errors)" : "not significantly");
+        printf(
+            "over %d roughness draws, level %d: ratio of means coefficient/detail %.3f +- %.3f (sd), below 1 "
+            "in %d draws; coefficient larger on at least %.0f%% of segments in every draw; scaled up: %s\n",
+            good, J - 1 - li, seed_mean[li], seed_sd[li], below_one[li], 100.0 * larger_min[li],
+            significant[li] ? "yes (mean ratio > 1 by more than 2 standard errors)" : "not significantly");
     }
     sample_expect("every roughness draw built", failed_builds == 0);
     sample_expect("every draw: all tolerances finite and positive", finite_all);
@@ -273,9 +287,10 @@ int main(int argc, char** argv) {
     if (js == NULL) return 1;
     fprintf(js, "{\"draws\": %d, \"levels\": [", good);
     for (int li = 0; li < 2; ++li)
-        fprintf(js, "%s\n  {\"level\": %d, \"ratio_of_means_mean\": %.6g, \"ratio_of_means_sd\": %.6g, "
-                    "\"draws_with_ratio_below_1\": %d, \"coefficient_larger_fraction_min\": %.6g, "
-                    "\"coefficient_is_scaled_up_detail\": %s}",
+        fprintf(js,
+                "%s\n  {\"level\": %d, \"ratio_of_means_mean\": %.6g, \"ratio_of_means_sd\": %.6g, "
+                "\"draws_with_ratio_below_1\": %d, \"coefficient_larger_fraction_min\": %.6g, "
+                "\"coefficient_is_scaled_up_detail\": %s}",
                 li ? "," : "", J - 1 - li, seed_mean[li], seed_sd[li], below_one[li], larger_min[li],
                 significant[li] ? "true" : "false");
     fprintf(js, "\n ],\n \"definition\": \"scaled up = mean over draws of (mean coefficient tolerance / mean "
@@ -287,8 +302,10 @@ int main(int argc, char** argv) {
     FILE* f = fopen(path, "w");
     if (f == NULL) return 1;
     const double width = 900.0, panel = 230.0;
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\">\n"
-               "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", width, 2 * panel + 20.0);
+    fprintf(f,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\">\n"
+            "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
+            width, 2 * panel + 20.0);
     for (int li = 0; li < 2; ++li) {
         rugo_tolerance_level a, b;
         rugo_tolerances_level(tol[0], J - 1 - li, &a);

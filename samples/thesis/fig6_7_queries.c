@@ -177,8 +177,8 @@ int main(int argc, char** argv) {
             int np = 0;
             long tests = 0;
             rugo_tree_pairs(rugo_shape_tree(A->shape), A->x, rugo_shape_finest_level(A->shape),
-                            rugo_shape_tree(B->shape), B->x, rugo_shape_finest_level(B->shape), ctx, NULL, 0, &np,
-                            &tests);
+                            rugo_shape_tree(B->shape), B->x, rugo_shape_finest_level(B->shape), ctx, NULL, 0,
+                            &np, &tests);
             tests_total += tests;
             rugo_contact_output out = rugo_contact_output_of(c[k], CAP);
             int reps = 0;

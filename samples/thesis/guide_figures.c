@@ -33,41 +33,50 @@ static double pxx(const svg_canvas* c, double x) { return (x - c->ox) * c->scale
 static double pxy(const svg_canvas* c, double y) { return c->height - (y - c->oy) * c->scale; }
 
 /* A closed polyline through n points shifted by `off`, with an optional class and fill. */
-static void polyline(svg_canvas* c, const rugo_vec2* p, int n, rugo_vec2 off, const char* cls, const char* stroke,
-                     double width, const char* dash) {
+static void polyline(svg_canvas* c, const rugo_vec2* p, int n, rugo_vec2 off, const char* cls,
+                     const char* stroke, double width, const char* dash) {
     fprintf(c->file, "<polygon%s%s%s fill=\"none\" stroke=\"%s\" stroke-width=\"%.2f\"%s%s%s points=\"",
-            cls ? " class=\"" : "", cls ? cls : "", cls ? "\"" : "", stroke, width, dash ? " stroke-dasharray=\"" : "",
-            dash ? dash : "", dash ? "\"" : "");
-    for (int i = 0; i < n; ++i) fprintf(c->file, "%.2f,%.2f ", pxx(c, p[i].x + off.x), pxy(c, p[i].y + off.y));
+            cls ? " class=\"" : "", cls ? cls : "", cls ? "\"" : "", stroke, width,
+            dash ? " stroke-dasharray=\"" : "", dash ? dash : "", dash ? "\"" : "");
+    for (int i = 0; i < n; ++i)
+        fprintf(c->file, "%.2f,%.2f ", pxx(c, p[i].x + off.x), pxy(c, p[i].y + off.y));
     fprintf(c->file, "\"/>\n");
 }
 
 /* Samples of a contour (SAMPLES per segment), transformed by x, into out (count * SAMPLES points). */
 static void sample_curve(rugo_contour k, rugo_transform x, rugo_vec2* out) {
     for (int j = 0; j < k.count; ++j)
-        for (int i = 0; i < SAMPLES; ++i) out[j * SAMPLES + i] = rugo_transform_point(x, rugo_contour_point(k, j, (double)i / SAMPLES));
+        for (int i = 0; i < SAMPLES; ++i)
+            out[j * SAMPLES + i] = rugo_transform_point(x, rugo_contour_point(k, j, (double)i / SAMPLES));
 }
 
 /* The curve offset by sign * λ(t) along its outward normal (λ(t) from the level's accumulated λ). */
-static void offset_curve(rugo_contour k, const rugo_tolerance_level* tl, rugo_transform x, double sign, rugo_vec2* out) {
+static void offset_curve(rugo_contour k, const rugo_tolerance_level* tl, rugo_transform x, double sign,
+                         rugo_vec2* out) {
     for (int j = 0; j < k.count; ++j)
         for (int i = 0; i < SAMPLES; ++i) {
             const double t = (double)i / SAMPLES;
             const double lam = rugo_tolerance_at(tl->total, tl->count, j, t, 0.0);
-            rugo_vec2 p = rugo_v2_add(rugo_contour_point(k, j, t), rugo_v2_scale(sign * lam, rugo_contour_normal(k, j, t)));
+            rugo_vec2 p = rugo_v2_add(rugo_contour_point(k, j, t),
+                                      rugo_v2_scale(sign * lam, rugo_contour_normal(k, j, t)));
             out[j * SAMPLES + i] = rugo_transform_point(x, p);
         }
 }
 
 /* The band between the two offset curves, filled (even-odd between the outer and inner curve). */
-static void band(svg_canvas* c, const rugo_shape* s, int level, rugo_transform x, rugo_vec2 off, const char* fill) {
+static void band(svg_canvas* c, const rugo_shape* s, int level, rugo_transform x, rugo_vec2 off,
+                 const char* fill) {
     rugo_contour k;
     rugo_tolerance_level tl;
-    if (rugo_shape_level(s, level, &k) != RUGO_OK || rugo_shape_tolerance_level(s, level, &tl) != RUGO_OK) return;
+    if (rugo_shape_level(s, level, &k) != RUGO_OK || rugo_shape_tolerance_level(s, level, &tl) != RUGO_OK)
+        return;
     const int n = k.count * SAMPLES;
     rugo_vec2* p = malloc((size_t)n * sizeof *p);
     if (p == NULL) return;
-    fprintf(c->file, "<path class=\"band\" fill=\"%s\" fill-opacity=\"0.35\" fill-rule=\"evenodd\" stroke=\"none\" d=\"", fill);
+    fprintf(
+        c->file,
+        "<path class=\"band\" fill=\"%s\" fill-opacity=\"0.35\" fill-rule=\"evenodd\" stroke=\"none\" d=\"",
+        fill);
     for (int side = 0; side < 2; ++side) {
         offset_curve(k, &tl, x, side ? -1.0 : 1.0, p);
         for (int i = 0; i < n; ++i)
@@ -78,8 +87,8 @@ static void band(svg_canvas* c, const rugo_shape* s, int level, rugo_transform x
     free(p);
 }
 
-static void curve(svg_canvas* c, rugo_contour k, rugo_transform x, rugo_vec2 off, const char* stroke, double width,
-                  const char* dash) {
+static void curve(svg_canvas* c, rugo_contour k, rugo_transform x, rugo_vec2 off, const char* stroke,
+                  double width, const char* dash) {
     rugo_vec2* p = malloc((size_t)k.count * SAMPLES * sizeof *p);
     if (p == NULL) return;
     sample_curve(k, x, p);
@@ -104,7 +113,8 @@ static int count_in_file(const char* path, const char* needle) {
     fclose(f);
     buf[n] = '\0';
     int count = 0;
-    for (const char* p = strstr(buf, needle); p != NULL; p = strstr(p + 1, needle)) ++count;
+    for (const char* p = strstr(buf, needle); p != NULL; p = strstr(p + 1, needle))
+        ++count;
     return count;
 }
 
@@ -120,7 +130,8 @@ static void ramp(double mu, double lo, double hi, char out[8]) {
 static rugo_shape* build(const rugo_vec2* pts, int n, rugo_tolerance_preset preset, rugo_friction_map map) {
     double lam[N];
     if (rugo_tolerances_preset(preset, 0, n, lam) != RUGO_OK) return NULL;
-    for (int i = 0; i < n; ++i) lam[i] *= 0.1;
+    for (int i = 0; i < n; ++i)
+        lam[i] *= 0.1;
     rugo_shape_def def = rugo_default_shape_def();
     def.points = pts;
     def.count = n;
@@ -163,7 +174,8 @@ int main(int argc, char** argv) {
         const int panels = J - J0 + 1;
         snprintf(path, sizeof path, "%s/levels.svg", dir);
         svg_canvas svg;
-        if (svg_open(&svg, path, lo, rugo_v2(hi.x + PANEL * (panels - 1), hi.y + 0.25), 1100.0) != 0) return 1;
+        if (svg_open(&svg, path, lo, rugo_v2(hi.x + PANEL * (panels - 1), hi.y + 0.25), 1100.0) != 0)
+            return 1;
         for (int j = J; j >= J0; --j) {
             const rugo_vec2 off = rugo_v2(PANEL * (J - j), 0.0);
             rugo_contour cj;
@@ -171,7 +183,8 @@ int main(int argc, char** argv) {
             fprintf(svg.file, "<g class=\"level\" data-level=\"%d\">\n", j);
             if (j < J) curve(&svg, fine, id, off, "#bbbbbb", 1.0, NULL);
             curve(&svg, cj, id, off, "#1b9e77", 1.8, NULL);
-            for (int k = 0; k < cj.count; ++k) svg_point(&svg, rugo_v2_add(cj.points[k], off), 2.0, "#d95f02");
+            for (int k = 0; k < cj.count; ++k)
+                svg_point(&svg, rugo_v2_add(cj.points[k], off), 2.0, "#d95f02");
             fprintf(svg.file, "</g>\n");
             snprintf(text, sizeof text, "level %d: %d points", j, cj.count);
             label(&svg, rugo_v2(lo.x + off.x + 0.1, hi.y + 0.15), text);
@@ -187,12 +200,15 @@ int main(int argc, char** argv) {
         for (int j = J0; j <= J; ++j) {
             rugo_tolerance_level tl;
             rugo_shape_tolerance_level(rock, j, &tl);
-            for (int k = 0; k < tl.count; ++k) mean[j] += tl.total[k] / tl.count;
+            for (int k = 0; k < tl.count; ++k)
+                mean[j] += tl.total[k] / tl.count;
         }
         int grows = 1;
-        for (int j = J0; j < J; ++j) grows &= mean[j] >= mean[j + 1];
+        for (int j = J0; j < J; ++j)
+            grows &= mean[j] >= mean[j + 1];
         printf("mean accumulated tolerance per level:");
-        for (int j = J; j >= J0; --j) printf(" λ^%d %.4f", j, mean[j]);
+        for (int j = J; j >= J0; --j)
+            printf(" λ^%d %.4f", j, mean[j]);
         printf("\n");
         sample_expect("the mean accumulated tolerance grows towards coarse levels (5.3)", grows);
 
@@ -227,8 +243,9 @@ int main(int argc, char** argv) {
                 curve(&svg, fine, id, off, "#999999", 0.8, "4,3");
             }
             curve(&svg, cj, id, off, "#1b5e20", 1.2, NULL);
-            snprintf(text, sizeof text, p == 0 ? "level %d: band ±λ(t), asperities for display"
-                                               : "level %d: accumulated band ±λ^%d(t)",
+            snprintf(text, sizeof text,
+                     p == 0 ? "level %d: band ±λ(t), asperities for display"
+                            : "level %d: accumulated band ±λ^%d(t)",
                      levels[p], levels[p]);
             label(&svg, rugo_v2(lo.x + off.x + 0.1, hi.y + 0.15), text);
         }
@@ -241,7 +258,8 @@ int main(int argc, char** argv) {
         const rugo_mobb_tree* tree = rugo_shape_tree(rock);
         snprintf(path, sizeof path, "%s/boxes.svg", dir);
         svg_canvas svg;
-        if (svg_open(&svg, path, rugo_v2(lo.x - 0.1, lo.y - 0.1), rugo_v2(hi.x + 0.1 + 3 * PANEL, hi.y + 0.3), 1100.0) != 0)
+        if (svg_open(&svg, path, rugo_v2(lo.x - 0.1, lo.y - 0.1), rugo_v2(hi.x + 0.1 + 3 * PANEL, hi.y + 0.3),
+                     1100.0) != 0)
             return 1;
         int drawn = 0, inside = 1;
         for (int j = J; j >= J - 3; --j) {
@@ -254,7 +272,8 @@ int main(int argc, char** argv) {
                 const rugo_obb* b = rugo_mobb_tree_node(tree, j, k);
                 box(&svg, b, off, "#7570b3");
                 ++drawn;
-                for (int s = 0; s <= SAMPLES; ++s) inside &= rugo_obb_contains(b, rugo_contour_point(cj, k, (double)s / SAMPLES), 1e-9);
+                for (int s = 0; s <= SAMPLES; ++s)
+                    inside &= rugo_obb_contains(b, rugo_contour_point(cj, k, (double)s / SAMPLES), 1e-9);
             }
             snprintf(text, sizeof text, "level %d: %d boxes", j, 1 << j);
             label(&svg, rugo_v2(lo.x + off.x, hi.y + 0.2), text);
@@ -296,22 +315,27 @@ int main(int argc, char** argv) {
         for (int g = 0; g < 3; ++g) {
             static const double level_mu[3] = {0.0, 0.3, 0.9};
             const double y = -2.6 + level_mu[g];
-            fprintf(svg.file, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#999999\"%s/>\n",
-                    pxx(&svg, -1.25), pxy(&svg, y), pxx(&svg, 1.25), pxy(&svg, y), g ? " stroke-dasharray=\"3,3\"" : "");
+            fprintf(svg.file,
+                    "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#999999\"%s/>\n",
+                    pxx(&svg, -1.25), pxy(&svg, y), pxx(&svg, 1.25), pxy(&svg, y),
+                    g ? " stroke-dasharray=\"3,3\"" : "");
             snprintf(text, sizeof text, "%.1f", level_mu[g]);
             svg_text(&svg, rugo_v2(-1.36, y - 0.02), text, 10.0);
         }
         fprintf(svg.file, "<polyline fill=\"none\" stroke=\"#d7191c\" stroke-width=\"1.2\" points=\"");
-        for (int i = 0; i < N * SAMPLES; ++i) fprintf(svg.file, "%.2f,%.2f ", pxx(&svg, graph[i].x), pxy(&svg, graph[i].y));
+        for (int i = 0; i < N * SAMPLES; ++i)
+            fprintf(svg.file, "%.2f,%.2f ", pxx(&svg, graph[i].x), pxy(&svg, graph[i].y));
         fprintf(svg.file, "\"/>\n");
         label(&svg, rugo_v2(-1.25, -1.3), "μ along the contour, segment 0 to 63");
         label(&svg, rugo_v2(lo.x, hi.y + 0.1), "friction μ(λ(t)): 0.3 (blue) to 0.9 (red)");
         sample_expect("wrote friction.svg", svg_close(&svg) == 0);
-        printf("friction along the contour: %.4f .. %.4f (at segment middles up to %.12f)\n", mu_min, mu_max, mu_mid_max);
+        printf("friction along the contour: %.4f .. %.4f (at segment middles up to %.12f)\n", mu_min, mu_max,
+               mu_mid_max);
         sample_expect("μ never below the smooth surface's base 0.3", mu_min == 0.3);
         sample_expect_le("|μ at the middle of a 0.065 segment - 0.9|", fabs(mu_mid_max - 0.9), 1e-9);
         sample_expect_le("μ anywhere (the cubic λ(t) may overshoot a little)", mu_max, 0.95);
-        sample_expect("friction.svg shows 768 coloured pieces", count_in_file(path, "class=\"mu\"") == N * SAMPLES);
+        sample_expect("friction.svg shows 768 coloured pieces",
+                      count_in_file(path, "class=\"mu\"") == N * SAMPLES);
     }
 
     /* ---- contacts.svg: the pebble lowered onto the rock until it touches at the finest level ------- */
@@ -354,13 +378,14 @@ int main(int argc, char** argv) {
             state[k] = out.state;
         }
         rugo_collide_context_destroy(ctx);
-        printf("pebble at (%.4f, %.4f): level 0 %s with %d contacts, level -2 %s with %d contacts\n", xb.p.x, xb.p.y,
-               rugo_contact_state_name(state[0]), count[0], rugo_contact_state_name(state[1]), count[1]);
+        printf("pebble at (%.4f, %.4f): level 0 %s with %d contacts, level -2 %s with %d contacts\n", xb.p.x,
+               xb.p.y, rugo_contact_state_name(state[0]), count[0], rugo_contact_state_name(state[1]),
+               count[1]);
         int within = count[0] > 0;
         for (int i = 0; i < count[0]; ++i) {
             const rugo_contact* c = &contacts[0][i];
-            printf("  finest: separation %.5f, bands %.5f + %.5f, μ %.3f, ε %.2f\n", c->separation, c->tolerance_a,
-                   c->tolerance_b, c->friction, c->restitution);
+            printf("  finest: separation %.5f, bands %.5f + %.5f, μ %.3f, ε %.2f\n", c->separation,
+                   c->tolerance_a, c->tolerance_b, c->friction, c->restitution);
             within &= c->separation <= c->tolerance_a + c->tolerance_b + 1e-12;
         }
         sample_expect("the pebble touches the rock at the finest level and at level -2 (state contact)",
@@ -371,13 +396,17 @@ int main(int argc, char** argv) {
         svg_canvas svg;
         /* Two panels around the pebble, each clipped to its own rectangle. */
         const double w = 1.6;
-        const rugo_vec2 clo = rugo_v2(xb.p.x - 0.8, xb.p.y - 0.75), chi = rugo_v2(xb.p.x + 0.8, xb.p.y + 0.55);
+        const rugo_vec2 clo = rugo_v2(xb.p.x - 0.8, xb.p.y - 0.75),
+                        chi = rugo_v2(xb.p.x + 0.8, xb.p.y + 0.55);
         if (svg_open(&svg, path, clo, rugo_v2(chi.x + w + 0.1, chi.y + 0.15), 900.0) != 0) return 1;
         int drawn = 0;
         for (int p = 0; p < 2; ++p) {
             const rugo_vec2 off = rugo_v2((w + 0.1) * p, 0.0);
-            fprintf(svg.file, "<clipPath id=\"panel%d\"><rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"/></clipPath>\n",
-                    p, pxx(&svg, clo.x + off.x), pxy(&svg, chi.y), w * svg.scale, (chi.y - clo.y) * svg.scale);
+            fprintf(svg.file,
+                    "<clipPath id=\"panel%d\"><rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" "
+                    "height=\"%.2f\"/></clipPath>\n",
+                    p, pxx(&svg, clo.x + off.x), pxy(&svg, chi.y), w * svg.scale,
+                    (chi.y - clo.y) * svg.scale);
             fprintf(svg.file, "<g clip-path=\"url(#panel%d)\">\n", p);
             const int la = p ? J - 2 : J, lb = rugo_shape_finest_level(pebble) - (p ? 2 : 0);
             rugo_contour ca, cb;
@@ -398,8 +427,9 @@ int main(int argc, char** argv) {
                 ++drawn;
             }
             fprintf(svg.file, "</g>\n");
-            snprintf(text, sizeof text, "%s (%d and %d points): %s, μ %.2f", p ? "level -2" : "finest level", ca.count,
-                     cb.count, rugo_contact_state_name(state[p]), count[p] > 0 ? contacts[p][0].friction : 0.0);
+            snprintf(text, sizeof text, "%s (%d and %d points): %s, μ %.2f", p ? "level -2" : "finest level",
+                     ca.count, cb.count, rugo_contact_state_name(state[p]),
+                     count[p] > 0 ? contacts[p][0].friction : 0.0);
             label(&svg, rugo_v2(clo.x + off.x, chi.y + 0.08), text);
         }
         sample_expect("wrote contacts.svg", svg_close(&svg) == 0);

@@ -23,7 +23,8 @@
 static int check_version(void) {
     char text[64];
     snprintf(text, sizeof text, "%d.%d.%d", RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR, RUGO_VERSION_PATCH);
-    int ok = strcmp(text, RUGO_VERSION_STRING) == 0 && strcmp(RUGO_VERSION_STRING, RUGO_EXPECTED_VERSION) == 0 &&
+    int ok = strcmp(text, RUGO_VERSION_STRING) == 0 &&
+             strcmp(RUGO_VERSION_STRING, RUGO_EXPECTED_VERSION) == 0 &&
              strcmp(rugo_version_string(), RUGO_VERSION_STRING) == 0;
     ok &= RUGO_VERSION_NUMBER == RUGO_VERSION_MAJOR * 10000 + RUGO_VERSION_MINOR * 100 + RUGO_VERSION_PATCH;
     ok &= RUGO_VERSION_AT_LEAST(RUGO_VERSION_MAJOR, RUGO_VERSION_MINOR, RUGO_VERSION_PATCH);

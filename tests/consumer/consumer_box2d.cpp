@@ -62,7 +62,8 @@ int main() {
             std::fprintf(stderr, "Attach: %s\n", rugo_status_string(st));
             ok = 0;
         }
-        for (int i = 0; i < 180 && ok; ++i) bridge.Step(1.0f / 60.0f, 8, 3);
+        for (int i = 0; i < 180 && ok; ++i)
+            bridge.Step(1.0f / 60.0f, 8, 3);
 
         // Lowest point of the body's curve in world coordinates (dense samples of the finest level).
         rugo_contour curve;
@@ -80,8 +81,8 @@ int main() {
                     y, lowest, speed, body->GetMass(), bridge.IsRough(body), rugo_version_string());
         // Resting on the ground: the curve above y = 0 by the box's skin (b2_polygonRadius, 1 cm) plus the
         // 2 mm band, within Box2D's linear slop (5 mm); nearly still. Measured: 1.10 cm, 3e-15 m/s.
-        ok &= bridge.IsRough(body) && y > 0.15 && y < 0.35 && lowest > 0.012 - 0.005 && lowest < 0.012 + 0.005 &&
-              speed < 0.05;
+        ok &= bridge.IsRough(body) && y > 0.15 && y < 0.35 && lowest > 0.012 - 0.005 &&
+              lowest < 0.012 + 0.005 && speed < 0.05;
     }
     rugo_shape_destroy(shape);
     if (!ok) std::fprintf(stderr, "consumer_box2d: the rough body does not rest on the ground\n");

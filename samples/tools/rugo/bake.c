@@ -19,7 +19,8 @@ int cmd_bake(int argc, char** argv) {
     rugo_baked_error err;
     rugo_status st = rugo_shape_write_baked_file(shape, out, NULL, NULL, &err);
     if (st != RUGO_OK) {
-        fprintf(stderr, "rugo bake: %s: %s (status %d: %s)\n", out, err.message, (int)st, rugo_status_string(st));
+        fprintf(stderr, "rugo bake: %s: %s (status %d: %s)\n", out, err.message, (int)st,
+                rugo_status_string(st));
         rc = EXIT_INPUT;
     } else {
         size_t bytes = 0;
@@ -36,7 +37,8 @@ int cmd_bake(int argc, char** argv) {
                "\"coarsest_level\": %d, \"rough\": %s, \"reversed\": %s}\n",
                (unsigned long)bytes, RUGO_BAKED_VERSION, 1 << rugo_shape_finest_level(shape),
                rugo_shape_finest_level(shape), rugo_shape_coarsest_level(shape),
-               rugo_shape_is_rough(shape) ? "true" : "false", rugo_shape_was_reversed(shape) ? "true" : "false");
+               rugo_shape_is_rough(shape) ? "true" : "false",
+               rugo_shape_was_reversed(shape) ? "true" : "false");
     }
     rugo_shape_destroy(shape);
     rugo_shape_desc_free(&desc);

@@ -7,15 +7,15 @@
 static void print_vec(const char* name, rugo_vec2 v) { printf("\"%s\": [%.17g, %.17g]", name, v.x, v.y); }
 
 int cmd_contacts(int argc, char** argv) {
-    static const char* const vals[] = {"--pose-a", "--pose-b", "--lod", "--level", "--error-budget", "--tolerance", NULL};
+    static const char* const vals[] = {"--pose-a",       "--pose-b",    "--lod", "--level",
+                                       "--error-budget", "--tolerance", NULL};
     args a;
     int rc = parse_args(argc, argv, vals, NULL, &a);
     if (rc) return rc;
     if (a.positional_count != 2) return usage_error("expects two shape files A.json B.json%s", "");
     /* --level is the older name of --lod */
-    const char *pa = opt(&a, "--pose-a", NULL), *pb = opt(&a, "--pose-b", NULL),
-               *lv = opt(&a, "--lod", NULL), *bv = opt(&a, "--error-budget", NULL),
-               *tv = opt(&a, "--tolerance", NULL);
+    const char *pa = opt(&a, "--pose-a", NULL), *pb = opt(&a, "--pose-b", NULL), *lv = opt(&a, "--lod", NULL),
+               *bv = opt(&a, "--error-budget", NULL), *tv = opt(&a, "--tolerance", NULL);
     if (lv == NULL) lv = opt(&a, "--level", NULL);
     rugo_transform xa = rugo_identity_transform(), xb = rugo_identity_transform();
     if (pa && parse_pose(pa, &xa) != 0) return usage_error("--pose-a must be X,Y,THETA, got '%s'", pa);
@@ -75,12 +75,13 @@ int cmd_contacts(int argc, char** argv) {
         print_vec("point_b", c->point_b);
         printf(", ");
         print_vec("normal", c->normal);
-        printf(", \"separation\": %.17g, \"segment_a\": %d, \"segment_b\": %d, \"t_a\": %.17g, \"t_b\": %.17g, "
-               "\"tolerance\": %.17g, \"friction\": %.17g, \"tolerance_a\": %.17g, \"tolerance_b\": %.17g, "
-               "\"restitution\": %.17g, \"level_a\": %d, \"level_b\": %d, \"region\": %d, \"id\": \"%016llx\"}",
-               c->separation, c->segment_a, c->segment_b, c->t_a, c->t_b, c->tolerance_a + c->tolerance_b,
-               c->friction, c->tolerance_a, c->tolerance_b, c->restitution, c->level_a, c->level_b, c->region,
-               (unsigned long long)c->id);
+        printf(
+            ", \"separation\": %.17g, \"segment_a\": %d, \"segment_b\": %d, \"t_a\": %.17g, \"t_b\": %.17g, "
+            "\"tolerance\": %.17g, \"friction\": %.17g, \"tolerance_a\": %.17g, \"tolerance_b\": %.17g, "
+            "\"restitution\": %.17g, \"level_a\": %d, \"level_b\": %d, \"region\": %d, \"id\": \"%016llx\"}",
+            c->separation, c->segment_a, c->segment_b, c->t_a, c->t_b, c->tolerance_a + c->tolerance_b,
+            c->friction, c->tolerance_a, c->tolerance_b, c->restitution, c->level_a, c->level_b, c->region,
+            (unsigned long long)c->id);
     }
     printf("%s], \"stats\": {\"box_tests\": %ld, \"segment_pairs\": %ld, \"newton_iterations\": %ld, "
            "\"fallbacks\": %ld}, \"reversed_a\": %s, \"reversed_b\": %s}\n",

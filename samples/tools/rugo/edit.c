@@ -11,7 +11,8 @@
 
 static void print_points(FILE* f, const rugo_vec2* p, int n) {
     fputc('[', f);
-    for (int i = 0; i < n; ++i) fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", p[i].x, p[i].y);
+    for (int i = 0; i < n; ++i)
+        fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", p[i].x, p[i].y);
     fputc(']', f);
 }
 
@@ -50,7 +51,8 @@ int cmd_decompose(int argc, char** argv) {
         goto done;
     }
     if (levels < 1) {
-        fprintf(stderr, "rugo decompose: %d control points cannot be decomposed (a level needs >= 4)\n", desc.count);
+        fprintf(stderr, "rugo decompose: %d control points cannot be decomposed (a level needs >= 4)\n",
+                desc.count);
         rc = EXIT_INPUT;
         goto done;
     }
@@ -87,7 +89,8 @@ int cmd_refine(int argc, char** argv) {
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
     rugo_contour_problem pr;
-    rugo_status st = rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
+    rugo_status st =
+        rugo_contour_check(desc.control_points, desc.count, RUGO_CHECK_SELF_INTERSECTION, &pr, NULL);
     if (st == RUGO_OK && ((long)desc.count << times) > RUGO_MAX_CONTROL_POINTS) st = RUGO_ERR_TOO_MANY_POINTS;
     if (st != RUGO_OK) {
         report_problem(a.positional[0], st, &pr, &desc);
@@ -131,10 +134,12 @@ int cmd_deform(int argc, char** argv) {
     rugo_vec2 delta;
     int spread = 1;
     rugo_detail_mode mode = RUGO_DETAILS_FIXED;
-    if (at == NULL || parse_real(at, &u) != 0 || u < 0.0) return usage_error("--at U (curve parameter >= 0) is required%s", "");
+    if (at == NULL || parse_real(at, &u) != 0 || u < 0.0)
+        return usage_error("--at U (curve parameter >= 0) is required%s", "");
     if (dv == NULL || parse_pair(dv, &delta) != 0) return usage_error("--delta DX,DY is required%s", "");
     const char *lv = opt(&a, "--levels", NULL), *wv = opt(&a, "--w", NULL), *mv = opt(&a, "--details", NULL);
-    if (lv && parse_int(lv, 1, 30, &spread) != 0) return usage_error("--levels must be a positive integer, got '%s'", lv);
+    if (lv && parse_int(lv, 1, 30, &spread) != 0)
+        return usage_error("--levels must be a positive integer, got '%s'", lv);
     if (wv && parse_real(wv, &w) != 0) return usage_error("--w must be a number, got '%s'", wv);
     if (mv && strcmp(mv, "fixed") != 0 && strcmp(mv, "local") != 0)
         return usage_error("--details must be fixed or local, got '%s'", mv);
@@ -150,7 +155,8 @@ int cmd_deform(int argc, char** argv) {
         goto free_pyramid;
     }
     if (spread > J - rugo_pyramid_coarsest_level(p) + 1) {
-        fprintf(stderr, "rugo deform: --levels at most %d for this shape\n", J - rugo_pyramid_coarsest_level(p) + 1);
+        fprintf(stderr, "rugo deform: --levels at most %d for this shape\n",
+                J - rugo_pyramid_coarsest_level(p) + 1);
         rc = EXIT_USAGE;
         goto free_pyramid;
     }
@@ -205,8 +211,8 @@ done:
 }
 
 #ifdef RUGO_HAVE_FIT
-/* Reads a points file for `fit` (the point lists `import` also reads): JSON {"points": [...]} or plain text, one "x,y" or "x y"
- * per line (rugo_points_text_parse). Returns 0, or EXIT_INPUT after a message. */
+/* Reads a points file for `fit` (the point lists `import` also reads): JSON {"points": [...]} or plain text,
+ * one "x,y" or "x y" per line (rugo_points_text_parse). Returns 0, or EXIT_INPUT after a message. */
 static int load_points(const char* path, rugo_point_list* pts) {
     rugo_text text;
     rugo_status st = rugo_read_file(path, NULL, &text);
@@ -258,7 +264,8 @@ int cmd_fit(int argc, char** argv) {
         rugo_contour_orient_ccw(ctrl, n);
         char extra[256];
         snprintf(extra, sizeof extra,
-                 "\"fit\": {\"samples\": %d, \"parameterization\": \"%s\", \"max_error\": %.17g, \"rms_error\": %.17g}",
+                 "\"fit\": {\"samples\": %d, \"parameterization\": \"%s\", \"max_error\": %.17g, "
+                 "\"rms_error\": %.17g}",
                  count, param == RUGO_PARAM_UNIFORM ? "uniform" : "chord", res.max_error, res.rms_error);
         rc = write_shape(opt(&a, "-o", NULL), ctrl, n, RUGO_FILTER_DEFAULT, extra);
     } else {

@@ -79,7 +79,8 @@ int cmd_render(int argc, char** argv) {
     opt(&a, "--band", &band);
     opt(&a, "--perturbation", &perturbation);
     if (lv && parse_int(lv, 0, 30, &levels) != 0) return usage_error("--levels must be >= 0, got '%s'", lv);
-    if (sv && parse_int(sv, 1, 256, &samples) != 0) return usage_error("--samples must be 1..256, got '%s'", sv);
+    if (sv && parse_int(sv, 1, 256, &samples) != 0)
+        return usage_error("--samples must be 1..256, got '%s'", sv);
     rugo_shape_desc desc;
     if ((rc = load_shape(a.positional[0], &desc))) return rc;
     if ((rc = check_outline(a.positional[0], &desc, RUGO_CHECK_SELF_INTERSECTION))) {
@@ -98,8 +99,10 @@ int cmd_render(int argc, char** argv) {
     int J = log2_exact(desc.count);
     if (levels > 0) {
         if (J < 2 || levels > J - 2) {
-            fprintf(stderr, "rugo render: --levels needs a power-of-two count with %d coarser levels of >= 4 points\n",
-                    levels);
+            fprintf(
+                stderr,
+                "rugo render: --levels needs a power-of-two count with %d coarser levels of >= 4 points\n",
+                levels);
             free(tol);
             rugo_shape_desc_free(&desc);
             return EXIT_USAGE;

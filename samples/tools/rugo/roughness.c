@@ -54,8 +54,8 @@ int finest_tolerances(const char* path, const rugo_roughness_desc* r, const rugo
 /* The roughness to write with the (counter-clockwise) points of a shape whose geometry an edit changed:
  * the input's, re-numbered if the points were reversed (a list then, since presets start at segment 0),
  * without the perturbation, which belonged to the old geometry. *tol receives an array to free. */
-int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed,
-                      const rugo_vec2* points, rugo_roughness_desc* out, rugo_real** tol) {
+int carried_roughness(const char* path, const rugo_shape_desc* in, int reversed, const rugo_vec2* points,
+                      rugo_roughness_desc* out, rugo_real** tol) {
     *tol = NULL;
     *out = in->roughness;
     out->has_perturbation = false;
@@ -316,7 +316,8 @@ int cmd_tolerances(int argc, char** argv) {
         for (int j = rugo_shape_finest_level(baked); j >= rugo_shape_coarsest_level(baked); --j) {
             rugo_tolerance_level L;
             rugo_shape_tolerance_level(baked, j, &L);
-            printf("%s\n  {\"level\": %d, \"tolerance\": ", j == rugo_shape_finest_level(baked) ? "" : ",", j);
+            printf("%s\n  {\"level\": %d, \"tolerance\": ", j == rugo_shape_finest_level(baked) ? "" : ",",
+                   j);
             print_reals(stdout, L.total, L.count);
             printf(", \"own\": ");
             print_reals(stdout, L.own, L.count);

@@ -21,8 +21,9 @@ static int load_baked(const char* path, rugo_shape** out) {
     rugo_baked_error err;
     rugo_status st = rugo_shape_read_baked_file(path, NULL, out, &err);
     if (st != RUGO_OK) {
-        fprintf(stderr, "rugo %s: %s: byte %lu: %s%s%s (status %d: %s)\n", g_command, path, (unsigned long)err.offset,
-                err.field, err.field[0] ? ": " : "", err.message, (int)st, rugo_status_string(st));
+        fprintf(stderr, "rugo %s: %s: byte %lu: %s%s%s (status %d: %s)\n", g_command, path,
+                (unsigned long)err.offset, err.field, err.field[0] ? ": " : "", err.message, (int)st,
+                rugo_status_string(st));
         return EXIT_INPUT;
     }
     return 0;
@@ -75,7 +76,8 @@ int load_shape_any(const char* path, rugo_shape_desc* desc, rugo_shape** baked) 
     rugo_text text;
     rugo_status st = rugo_read_file(path, NULL, &text);
     if (st != RUGO_OK) {
-        fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, path, rugo_status_string(st), (int)st);
+        fprintf(stderr, "rugo %s: %s: cannot read: %s (status %d)\n", g_command, path, rugo_status_string(st),
+                (int)st);
         return EXIT_INPUT;
     }
     rugo_parse_error err;
@@ -97,8 +99,8 @@ void report_problem(const char* path, rugo_status st, const rugo_contour_problem
                     const rugo_shape_desc* desc) {
     fprintf(stderr, "rugo %s: %s: %s (status %d)", g_command, path, rugo_status_string(st), (int)st);
     if (st == RUGO_ERR_SELF_INTERSECTING) {
-        fprintf(stderr, ": segments %d and %d cross near (%.9g, %.9g)", pr->segment_a, pr->segment_b, pr->where.x,
-                pr->where.y);
+        fprintf(stderr, ": segments %d and %d cross near (%.9g, %.9g)", pr->segment_a, pr->segment_b,
+                pr->where.x, pr->where.y);
     } else if (st == RUGO_ERR_NOT_FINITE && pr->index >= 0) {
         fprintf(stderr, ": control_points[%d]", pr->index);
         if (desc != NULL && pr->index < desc->count)
@@ -190,8 +192,7 @@ int write_desc(const char* path, const rugo_shape_desc* d, const char* extra) {
 }
 
 /* A shape without roughness. */
-int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filter filter,
-                const char* extra) {
+int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filter filter, const char* extra) {
     rugo_shape_desc d;
     memset(&d, 0, sizeof d);
     d.control_points = (rugo_vec2*)points;
@@ -202,7 +203,8 @@ int write_shape(const char* path, const rugo_vec2* points, int count, rugo_filte
 
 int log2_exact(int n) {
     int j = 0;
-    while ((1 << j) < n) ++j;
+    while ((1 << j) < n)
+        ++j;
     return (1 << j) == n ? j : -1;
 }
 

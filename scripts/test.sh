@@ -18,5 +18,10 @@ echo "=== fuzz (short run) ==="
 # Seeded and counted, on a fresh corpus of its own (build-fuzz/corpus, the long runs', is kept): the
 # same inputs on each run in the same checkout (docs/fuzzing.md).
 rm -rf build-fuzz/suite-corpus
-RUGO_FUZZ_CORPUS=build-fuzz/suite-corpus RUGO_FUZZ_SEED=1 sh scripts/fuzz.sh -runs=30000 || status=1
+RUGO_FUZZ_CORPUS=build-fuzz/suite-corpus RUGO_FUZZ_SEED=1 sh scripts/fuzz.sh -runs=30000 \
+    fuzz_shape_json fuzz_baked fuzz_contacts fuzz_import || status=1
+# The bridge target builds a Box2D world per input (about 100 inputs a second): fewer runs keep CI short.
+if command -v clang++ >/dev/null 2>&1 && [ -f /usr/include/box2d/box2d.h ]; then
+    RUGO_FUZZ_CORPUS=build-fuzz/suite-corpus RUGO_FUZZ_SEED=1 sh scripts/fuzz.sh -runs=3000 fuzz_bridge || status=1
+fi
 exit $status

@@ -1,5 +1,10 @@
 #include "core/internal.h"
 
+#include "rugo/shape_file.h" /* rugo_parse_error */
+
+#include <stdarg.h>
+#include <stdio.h>
+
 #include <stdint.h>
 #include <locale.h>
 #include <stdlib.h>
@@ -122,4 +127,15 @@ int rugo__strtod_c(const char* text, size_t n, double* out) {
     if (endp != alt + alen) return 0;
     *out = x;
     return 1;
+}
+
+rugo_status rugo__parse_fail(rugo_parse_error* e, rugo_status st, const char* field, const char* fmt, ...) {
+    if (e == NULL) return st;
+    memset(e, 0, sizeof *e);
+    snprintf(e->path, sizeof e->path, "%s", field);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->message, sizeof e->message, fmt, ap);
+    va_end(ap);
+    return st;
 }

@@ -84,4 +84,13 @@ static inline void rugo__decode_f64_le(double* dst, const unsigned char* src, si
     }
 }
 
+/* Fills *e (if not NULL) with the field and a printf-formatted message, line and column 0, and returns
+ * st: the one way parsers and loaders report a refusal (rugo_parse_error, rugo/shape_file.h). */
+struct rugo_parse_error;
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+rugo_status
+rugo__parse_fail(struct rugo_parse_error* e, rugo_status st, const char* field, const char* fmt, ...);
+
 #endif

@@ -27,6 +27,18 @@ static rugo_shape* rough_star(uint64_t seed, double band) {
     return s;
 }
 
+/* Two contacts field by field, bit for bit (memcmp would also compare their padding). */
+static int same_contact(const rugo_contact* x, const rugo_contact* y) {
+    const double a[] = {x->point_a.x,   x->point_a.y,  x->point_b.x,  x->point_b.y, x->normal.x,
+                        x->normal.y,    x->separation, x->t_a,        x->t_b,       x->tolerance_a,
+                        x->tolerance_b, x->friction,   x->restitution};
+    const double b[] = {y->point_a.x,   y->point_a.y,  y->point_b.x,  y->point_b.y, y->normal.x,
+                        y->normal.y,    y->separation, y->t_a,        y->t_b,       y->tolerance_a,
+                        y->tolerance_b, y->friction,   y->restitution};
+    return memcmp(a, b, sizeof a) == 0 && x->segment_a == y->segment_a && x->segment_b == y->segment_b &&
+           x->level_a == y->level_a && x->level_b == y->level_b && x->region == y->region && x->id == y->id;
+}
+
 static rugo_transform pose(double x, double y, double angle) {
     rugo_transform t;
     t.p = rugo_v2(x, y);
@@ -123,7 +135,8 @@ START_TEST(test_same_poses_give_the_same_bits) {
     ck_assert_int_eq(o2.stats.box_tests, 0);
     ck_assert_int_eq(o2.count, o1.count);
     ck_assert_int_eq(o2.state, o1.state);
-    ck_assert_int_eq(memcmp(c1, c2, (size_t)o1.count * sizeof c1[0]), 0);
+    for (int i = 0; i < o1.count; ++i)
+        ck_assert(same_contact(&c1[i], &c2[i]));
     /* capacity 0 asks for the state: the cached one */
     ck_assert_int_eq(query(f.ctx, f.a, f.xa, f.b, f.xb, &f.q, cache, NULL, 0, &o2), RUGO_OK);
     ck_assert_int_eq(o2.stats.reused, 1);
@@ -133,7 +146,7 @@ START_TEST(test_same_poses_give_the_same_bits) {
     ck_assert_int_eq(query(f.ctx, f.a, f.xa, f.b, f.xb, &f.q, cache, c2, 1, &o2), RUGO_OK);
     ck_assert_int_eq(o2.count, 1);
     ck_assert_int_eq(o2.stats.contacts_found, o1.count);
-    ck_assert_int_eq(memcmp(c1, c2, sizeof c1[0]), 0);
+    ck_assert(same_contact(&c1[0], &c2[0]));
     rugo_contact_cache_destroy(cache);
     teardown(&f);
 }

@@ -1412,6 +1412,7 @@ START_TEST(fit_outline_extreme_radius) {
         rugo_outline_fit_free(&f);
     }
     /* The automatic search on the tiny circle finds the count the unit circle's would. */
+    rugo_outline_fit_free(&ref);
     fd.control_count = 0;
     fd.samples = unit;
     fd.tolerance = 1e-4;

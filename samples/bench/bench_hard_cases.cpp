@@ -138,19 +138,7 @@ std::vector<rugo_vec2> bay_block(const std::vector<rugo_vec2>& body, int half, d
     const rugo_vec2 left = p.back(), right = p.front();
     const std::vector<rugo_vec2> poly = {left,           rugo_v2(-W, left.y), rugo_v2(-W, -H),
                                          rugo_v2(W, -H), rugo_v2(W, right.y), right};
-    std::vector<double> cum(poly.size(), 0.0);
-    for (size_t i = 1; i < poly.size(); ++i)
-        cum[i] = cum[i - 1] + std::hypot(poly[i].x - poly[i - 1].x, poly[i].y - poly[i - 1].y);
-    const int rest = n - (int)p.size();
-    size_t e = 0;
-    for (int k = 1; k <= rest; ++k) {
-        const double s = cum.back() * k / (rest + 1);
-        while (e + 2 < poly.size() && cum[e + 1] <= s)
-            ++e;
-        const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
-        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x),
-                            poly[e].y + w * (poly[e + 1].y - poly[e].y)));
-    }
+    bench_outlines::append_along_open_polyline(poly, n - (int)p.size(), p);
     return p;
 }
 

@@ -91,6 +91,24 @@ inline std::vector<rugo_vec2> sharp_pts(const std::vector<rugo_vec2>& v, const s
     return p;
 }
 
+/* Appends `count` points at equal arc-length spacing along the open polyline `poly`, its ends excluded
+ * (the bay blocks close their rims this way). */
+inline void append_along_open_polyline(const std::vector<rugo_vec2>& poly, int count,
+                                       std::vector<rugo_vec2>& p) {
+    std::vector<double> cum(poly.size(), 0.0);
+    for (size_t i = 1; i < poly.size(); ++i)
+        cum[i] = cum[i - 1] + std::hypot(poly[i].x - poly[i - 1].x, poly[i].y - poly[i - 1].y);
+    size_t e = 0;
+    for (int k = 1; k <= count; ++k) {
+        const double s = cum.back() * k / (count + 1);
+        while (e + 2 < poly.size() && cum[e + 1] <= s)
+            ++e;
+        const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
+        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x),
+                            poly[e].y + w * (poly[e + 1].y - poly[e].y)));
+    }
+}
+
 /* A bowl: a block whose top has a circular bay of (curve) radius rb about the origin, 25 control points
  * at spacing 2π/64 on the bay (the disc's spacing), the rest (n - 25) along the block's other sides. */
 inline std::vector<rugo_vec2> bowl_pts(int n, double rb) {
@@ -105,19 +123,7 @@ inline std::vector<rugo_vec2> bowl_pts(int n, double rb) {
     /* the rest: left rim, left side, bottom, right side, right rim (open polyline from left to right) */
     std::vector<rugo_vec2> poly = {left,           rugo_v2(-W, left.y), rugo_v2(-W, -H),
                                    rugo_v2(W, -H), rugo_v2(W, right.y), right};
-    std::vector<double> cum(poly.size(), 0.0);
-    for (size_t i = 1; i < poly.size(); ++i)
-        cum[i] = cum[i - 1] + std::hypot(poly[i].x - poly[i - 1].x, poly[i].y - poly[i - 1].y);
-    const int rest = n - arc;
-    size_t e = 0;
-    for (int k = 1; k <= rest; ++k) {
-        const double s = cum.back() * k / (rest + 1);
-        while (e + 2 < poly.size() && cum[e + 1] <= s)
-            ++e;
-        const double w = (s - cum[e]) / (cum[e + 1] - cum[e]);
-        p.push_back(rugo_v2(poly[e].x + w * (poly[e + 1].x - poly[e].x),
-                            poly[e].y + w * (poly[e + 1].y - poly[e].y)));
-    }
+    append_along_open_polyline(poly, n - arc, p);
     return p;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/internal.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -28,6 +29,23 @@ void rugo_import_result_free(rugo_import_result* result) {
     if (result == NULL) return;
     rugo_outline_fit_free(&result->fit);
     memset(result, 0, sizeof *result);
+}
+
+/* rugo__parse_fail's twin: librugo_fit links librugo's public API only (a shared librugo exports no
+ * internal function; test shared_build), so it cannot call the core's. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static rugo_status
+import_fail(rugo_parse_error* e, rugo_status st, const char* field, const char* fmt, ...) {
+    if (e == NULL) return st;
+    memset(e, 0, sizeof *e);
+    snprintf(e->path, sizeof e->path, "%s", field);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->message, sizeof e->message, fmt, ap);
+    va_end(ap);
+    return st;
 }
 
 /* 1 if the text's first non-blank character (after a UTF-8 byte order mark) is '<'. */
@@ -89,9 +107,9 @@ static rugo_status sample_outline(const rugo_import_def* def, int svg, rugo_outl
     st = rugo_path_from_points(list.points, count, &def->allocator, &poly);
     rugo_point_list_free(&list);
     if (st != RUGO_OK)
-        return rugo__parse_fail(error, st, "points",
-                                "%d points do not make an outline: %s; give at least 3 distinct points",
-                                count, rugo_status_string(st));
+        return import_fail(error, st, "points",
+                           "%d points do not make an outline: %s; give at least 3 distinct points", count,
+                           rugo_status_string(st));
     *drawing_to_output = scale_map(def->scale);
     sd.path = &poly;
     sd.transform = *drawing_to_output;
@@ -99,10 +117,10 @@ static rugo_status sample_outline(const rugo_import_def* def, int svg, rugo_outl
     st = rugo_outline_sample(&sd, s, error);
     rugo_vec2 where;
     if (st == RUGO_ERR_ZERO_AREA && rugo_path_find_crossing(&poly, -1, rugo_affine_identity(), &where))
-        st = rugo__parse_fail(error, RUGO_ERR_SELF_INTERSECTING, "points",
-                              "self-intersecting: crosses itself near (%.6g, %.6g) (the points' own units); "
-                              "reorder the points into one loop that does not cross",
-                              where.x, where.y);
+        st = import_fail(error, RUGO_ERR_SELF_INTERSECTING, "points",
+                         "self-intersecting: crosses itself near (%.6g, %.6g) (the points' own units); "
+                         "reorder the points into one loop that does not cross",
+                         where.x, where.y);
     rugo_path_free(&poly);
     return st;
 }
@@ -112,42 +130,38 @@ rugo_status rugo_import_outline(const rugo_import_def* def, rugo_import_result* 
     if (error != NULL) memset(error, 0, sizeof *error);
     if (out != NULL) memset(out, 0, sizeof *out);
     if (def == NULL || out == NULL || def->text == NULL)
-        return rugo__parse_fail(error, RUGO_ERR_NULL_ARGUMENT, "", "a required argument is NULL");
+        return import_fail(error, RUGO_ERR_NULL_ARGUMENT, "", "a required argument is NULL");
     if (def->cookie != IMPORT_DEF_COOKIE)
-        return rugo__parse_fail(error, RUGO_ERR_BAD_ARGUMENT, "", "def not from rugo_default_import_def");
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, "", "def not from rugo_default_import_def");
     if (!(isfinite(def->scale) && def->scale > 0.0))
-        return rugo__parse_fail(
-            error, RUGO_ERR_BAD_ARGUMENT, "scale",
-            "scale is %.17g; it must be a number > 0 (output units per drawing unit, e.g. "
-            "0.01 for 100 px per metre)",
-            def->scale);
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, "scale",
+                           "scale is %.17g; it must be a number > 0 (output units per drawing unit, e.g. "
+                           "0.01 for 100 px per metre)",
+                           def->scale);
     if (!(isfinite(def->max_size) && def->max_size > 0.0))
-        return rugo__parse_fail(error, RUGO_ERR_BAD_ARGUMENT, "max_size",
-                                "max_size is %.17g; it must be a number > 0", def->max_size);
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, "max_size",
+                           "max_size is %.17g; it must be a number > 0", def->max_size);
     if (!(def->tolerance >= 0.0) || !isfinite(def->tolerance))
-        return rugo__parse_fail(
-            error, RUGO_ERR_BAD_ARGUMENT, "tolerance",
-            "tolerance is %.17g; give a number > 0 in output units, or 0 for 1e-3 of the size",
-            def->tolerance);
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, "tolerance",
+                           "tolerance is %.17g; give a number > 0 in output units, or 0 for 1e-3 of the size",
+                           def->tolerance);
     if (def->sample_count < 0)
-        return rugo__parse_fail(error, RUGO_ERR_BAD_ARGUMENT, "sample_count",
-                                "sample_count is %d; give 0 or a count >= 3", def->sample_count);
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, "sample_count",
+                           "sample_count is %d; give 0 or a count >= 3", def->sample_count);
     if (def->control_count != 0 && !is_power_of_two(def->control_count)) {
         int lo = 4;
         while (lo * 2 <= def->control_count && lo < RUGO_MAX_CONTROL_POINTS / 2)
             lo *= 2;
-        return rugo__parse_fail(
-            error, RUGO_ERR_NOT_POWER_OF_TWO, "control_count",
-            "control_count is %d, not a power of two >= 4; use %d or %d (or 0 to search by "
-            "tolerance)",
-            def->control_count, lo, lo < def->control_count ? lo * 2 : 8);
+        return import_fail(error, RUGO_ERR_NOT_POWER_OF_TWO, "control_count",
+                           "control_count is %d, not a power of two >= 4; use %d or %d (or 0 to search by "
+                           "tolerance)",
+                           def->control_count, lo, lo < def->control_count ? lo * 2 : 8);
     }
     const int svg = looks_like_xml(def->text, def->length);
     if (!svg && (def->path_id != NULL || def->use_viewbox))
-        return rugo__parse_fail(error, RUGO_ERR_BAD_ARGUMENT,
-                                def->path_id != NULL ? "path_id" : "use_viewbox",
-                                "%s applies to SVG documents; this text is a point list",
-                                def->path_id != NULL ? "path_id" : "use_viewbox");
+        return import_fail(error, RUGO_ERR_BAD_ARGUMENT, def->path_id != NULL ? "path_id" : "use_viewbox",
+                           "%s applies to SVG documents; this text is a point list",
+                           def->path_id != NULL ? "path_id" : "use_viewbox");
     rugo_outline_samples s;
     memset(&s, 0, sizeof s);
     rugo_affine to_out = rugo_affine_identity();
@@ -163,11 +177,10 @@ rugo_status rugo_import_outline(const rugo_import_def* def, rugo_import_result* 
     const double size = hypot(hi.x - lo.x, hi.y - lo.y);
     if (!(size <= def->max_size)) {
         rugo_outline_samples_free(&s);
-        return rugo__parse_fail(
-            error, RUGO_ERR_BAD_SIZE, "scale",
-            "the outline is %.6g units across at scale %.6g, more than max_size %.6g: give a "
-            "scale (px per metre) that makes it game-sized, e.g. scale %.3g for 1 unit",
-            size, def->scale, def->max_size, def->scale / size);
+        return import_fail(error, RUGO_ERR_BAD_SIZE, "scale",
+                           "the outline is %.6g units across at scale %.6g, more than max_size %.6g: give a "
+                           "scale (px per metre) that makes it game-sized, e.g. scale %.3g for 1 unit",
+                           size, def->scale, def->max_size, def->scale / size);
     }
     const double tol = def->control_count ? 0.0 : (def->tolerance > 0.0 ? def->tolerance : 1e-3 * size);
     rugo_outline_fit_def fd = rugo_default_outline_fit_def();
@@ -179,9 +192,9 @@ rugo_status rugo_import_outline(const rugo_import_def* def, rugo_import_result* 
     st = rugo_fit_outline(&fd, &out->fit);
     if (st != RUGO_OK) {
         rugo_outline_samples_free(&s);
-        return rugo__parse_fail(error, st, "control_count",
-                                "the fit failed: %s; try another control count or more samples",
-                                rugo_status_string(st));
+        return import_fail(error, st, "control_count",
+                           "the fit failed: %s; try another control count or more samples",
+                           rugo_status_string(st));
     }
     out->from_svg = svg;
     out->sample_count = s.count;
@@ -196,13 +209,12 @@ rugo_status rugo_import_outline(const rugo_import_def* def, rugo_import_result* 
         const rugo_vec2 at = rugo_affine_apply(affine_inverse(to_out), pr.where);
         rugo_import_result_free(out);
         if (st == RUGO_ERR_SELF_INTERSECTING)
-            return rugo__parse_fail(
-                error, st, "control_count",
-                "self-intersecting fit: crosses itself near (%.6g, %.6g) in the drawing's "
-                "coordinates; widen a narrow neck there or give more control points",
-                at.x, at.y);
-        return rugo__parse_fail(error, st, "control_count", "the fitted outline is invalid: %s",
-                                rugo_status_string(st));
+            return import_fail(error, st, "control_count",
+                               "self-intersecting fit: crosses itself near (%.6g, %.6g) in the drawing's "
+                               "coordinates; widen a narrow neck there or give more control points",
+                               at.x, at.y);
+        return import_fail(error, st, "control_count", "the fitted outline is invalid: %s",
+                           rugo_status_string(st));
     }
     if (def->recentre) {
         rugo_contour c = {out->fit.control_points, out->fit.control_count};

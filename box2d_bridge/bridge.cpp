@@ -167,35 +167,36 @@ Bridge::~Bridge() {
 const char* Bridge::LastError() const { return m_impl->lastError.c_str(); }
 
 // Attach's refusals, each with the field, its value and a way out in LastError.
+static rugo_status refuse(std::string& out, rugo_status st, const char* field, const char* message) {
+    out = std::string(field) + ": " + message;
+    return st;
+}
+
+// The same with the field's value: fmt has exactly one double conversion (%g, %.17g, %.6g).
 static rugo_status refuse(std::string& out, rugo_status st, const char* field, const char* fmt,
                           double value) {
     char msg[320];
     std::snprintf(msg, sizeof msg, fmt, value);
-    out = std::string(field) + ": " + msg;
-    return st;
+    return refuse(out, st, field, msg);
 }
 
 rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     Impl& I = *m_impl;
     std::string& e = I.lastError;
     e.clear();
-    if (body == nullptr) return refuse(e, RUGO_ERR_NULL_ARGUMENT, "body", "is null%.0s", 0.0);
+    if (body == nullptr) return refuse(e, RUGO_ERR_NULL_ARGUMENT, "body", "is null");
     if (def.shape == nullptr)
         return refuse(e, RUGO_ERR_NULL_ARGUMENT, "RoughBodyDef::shape",
                       "is null; build one with rugo_shape_create "
-                      "or load one with rugo_shape_load_file%.0s",
-                      0.0);
+                      "or load one with rugo_shape_load_file");
     if (I.world == nullptr || body->GetWorld() != I.world)
-        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "body", "belongs to another b2World than this bridge's%.0s",
-                      0.0);
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "body", "belongs to another b2World than this bridge's");
     if (I.world->IsLocked() || I.removingProxies)
         return refuse(e, RUGO_ERR_WORLD_LOCKED, "body",
                       "the world is inside Step or a callback; attach after "
-                      "the step%.0s",
-                      0.0);
+                      "the step");
     if (I.bodies.count(body))
-        return refuse(e, RUGO_ERR_ALREADY_ATTACHED, "body", "already has a rough shape; Detach it first%.0s",
-                      0.0);
+        return refuse(e, RUGO_ERR_ALREADY_ATTACHED, "body", "already has a rough shape; Detach it first");
     if (!std::isfinite(def.density) || def.density < 0.0)
         return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::density",
                       "is %.17g; give a finite density >= 0 "

@@ -497,8 +497,12 @@ START_TEST(test_lifetime) {
         b2Body* b = dynamicBody(w, b2Vec2(0, 1));
         ck_assert_int_eq(bridge.Attach(a, roughDef(disc)), RUGO_OK);
         ck_assert_int_eq(bridge.Attach(a, roughDef(disc)), RUGO_ERR_ALREADY_ATTACHED);
+        ck_assert_str_eq(bridge.LastError(), "body: already has a rough shape; Detach it first");
         ck_assert_int_eq(bridge.Attach(nullptr, roughDef(disc)), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_str_eq(bridge.LastError(), "body: is null");
         ck_assert_int_eq(bridge.Attach(b, roughDef(nullptr)), RUGO_ERR_NULL_ARGUMENT);
+        ck_assert_msg(std::strstr(bridge.LastError(), "RoughBodyDef::shape: is null; build one") != nullptr,
+                      "%s", bridge.LastError());
         ck_assert_int_eq(bridge.Attach(b, roughDef(disc, 0.0)), RUGO_ERR_BAD_ARGUMENT);
         // the message names the field, the value and a way out
         ck_assert_msg(std::strstr(bridge.LastError(), "RoughBodyDef::density: is 0;") != nullptr &&

@@ -444,10 +444,12 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
         // the rough body first).
         uint32_t start = 0, count = 0;
         patchesAt(xfA, xfB, rc, &start, &count);
+        // Held by value: a fast pair's second query below appends to `patches`, which may move it.
         for (uint32_t i = 0; i < count; ++i) {
             const Patch& p = patches[start + i];
             if (p.ownerA == ownA && p.ownerB == ownB) {
-                patch = &p;
+                carried = p;
+                patch = &carried;
                 break;
             }
         }

@@ -339,10 +339,10 @@ typedef struct contact_out {
 } contact_out;
 
 /* How a query's resolution δ is shared: each shape may take a coarser level whose error is within
- * δ/4 of the chosen one's, the narrow phase runs at δ/2, and a cached answer is given back while the
- * shapes have moved relative to each other by at most δ/4 (contact_cache.c), so every separation stays
- * within δ. */
-#define RESOLUTION_LEVEL_SHARE 0.25
+ * δ/8 of the chosen one's (the two together move a band-adjusted distance by at most δ/4), the narrow
+ * phase runs at δ/2, and a cached answer is given back while the shapes have moved relative to each
+ * other by at most δ/4 (contact_cache.c), so every separation stays within δ. */
+#define RESOLUTION_LEVEL_SHARE 0.125
 #define RESOLUTION_NARROW_SHARE 0.5
 #define RESOLUTION_MOTION_SHARE 0.25
 

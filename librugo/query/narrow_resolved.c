@@ -448,6 +448,32 @@ static int polish_minimum(rctx* c, rugo_real* s, rugo_real* t, rugo_real* phi) {
     return 0;
 }
 
+/* Newton on φ along one parameter (free_t: t, with s fixed; else s), while φ's second derivative that
+ * way is positive and φ does not rise, within the piece's domain: a minimum pinned in the other
+ * parameter (at the band's knot, at a zero-speed end) polished to round-off along its line. *e is
+ * updated with the point. */
+static void polish_along(rctx* c, int free_t, rugo_real* s, rugo_real* t, phi_eval* e) {
+    rugo_real S = *s, T = *t;
+    phi_eval cur = *e;
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        const rugo_real g = free_t ? cur.gt : cur.gs, h = free_t ? cur.htt : cur.hss;
+        if (!(h > 0.0)) return;
+        const rugo_real step = -g / h;
+        const rugo_real S1 = free_t ? S : clamp01(S + step), T1 = free_t ? clamp01(T + step) : T;
+        phi_eval e1;
+        ++c->newton;
+        if (!eval_phi(c, S1, T1, &e1)) return;
+        if (e1.phi > cur.phi + 64.0 * EPS * (fabs(cur.phi) + cur.d + c->scale)) return;
+        S = S1;
+        T = T1;
+        cur = e1;
+        *s = S;
+        *t = T;
+        *e = cur;
+        if (fabs(step) <= NEWTON_TOL) return;
+    }
+}
+
 /* The stationarity system of the distance, H1 = (f-g)·f' = 0, H2 = (f-g)·g' = 0 (SPEC 8), from (s, t):
  * 1 and the root when it converged inside the domain, with the kind from D = |f-g|^2/2's Hessian. */
 static int polish_stationary(rctx* c, rugo_real* s, rugo_real* t, int* kind) {
@@ -657,7 +683,7 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
      *    φ fall by up to δ per piece kept points on long gentle slopes, tens of δ above the minimum
      *    they lead to.) */
     rugo_real drop = 0.0;
-    int kink = 0, corner = 0;
+    int kink = 0, corner = 0, pinned_s = 0, pinned_t = 0;
     for (int k = 0; k < 4; ++k) {
         const int is_s = k < 2, low = (k % 2) == 0;
         const rugo_real x = is_s ? s : t, edge = is_s ? (low ? b.s0 : b.s1) : (low ? b.t0 : b.t1);
@@ -672,6 +698,8 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
             const rugo_real g_left = v > 0.0 ? g + 2.0 * d1 - 2.0 * d1l : g; /* the left half's slope */
             if (g_left <= 0.0 && g >= 0.0) {
                 kink = 1;
+                pinned_s |= is_s;
+                pinned_t |= !is_s;
                 continue;
             }
         }
@@ -680,6 +708,8 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
             bez3(p->p, edge, &pt, &d, &dd);
             if (vlen(d) <= 1e-9 * c->scale) {
                 corner = 1;
+                pinned_s |= is_s;
+                pinned_t |= !is_s;
                 continue;
             }
         }
@@ -687,6 +717,8 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
     }
     if (drop > flat_slope(c)) return;
     if (kink || corner) {
+        /* the pinned parameter stays; the other one is polished along the pin's line */
+        if (pinned_s != pinned_t) polish_along(c, pinned_s, &s, &t, &e);
         add_found(c, c->mins, &c->nmin, s, t, e.phi, corner ? RUGO__END_MINIMUM : RUGO__MINIMUM, 1, 1e-9);
         return;
     }

@@ -946,23 +946,28 @@ static void search(rctx* c) {
             c->overflow = 1;
             return;
         }
-        /* The sub-piece farther from flat is halved; the two halves go on the stack, the lower on top. */
+        /* The sub-piece farther from flat is halved; the two halves go on the stack, the lower on top:
+         * the higher half takes this frame's place (the other sub-piece stays where it is), the lower
+         * one the next frame, so a split copies one sub-piece, not two frames. */
         const int split_f = !tiny_f && ff > half_delta && (ff >= fg || tiny_g || fg <= half_delta);
-        frame lo, hi;
-        lo.b = hi.b = b;
+        frame* hi = &st[n];
+        frame* lo = &st[n + 1];
+        sub upper;
+        lo->b = b;
         if (split_f) {
             const rugo_real m = 0.5 * (b.s0 + b.s1);
-            lo.b.s1 = hi.b.s0 = m;
-            split_sub(F, &lo.F, &hi.F);
-            lo.G = hi.G = *G;
+            lo->b.s1 = hi->b.s0 = m;
+            split_sub(F, &lo->F, &upper);
+            lo->G = *G;
+            hi->F = upper;
         } else {
             const rugo_real m = 0.5 * (b.t0 + b.t1);
-            lo.b.t1 = hi.b.t0 = m;
-            split_sub(G, &lo.G, &hi.G);
-            lo.F = hi.F = *F;
+            lo->b.t1 = hi->b.t0 = m;
+            split_sub(G, &lo->G, &upper);
+            lo->F = *F;
+            hi->G = upper;
         }
-        st[n++] = hi;
-        st[n++] = lo;
+        n += 2;
     }
 }
 

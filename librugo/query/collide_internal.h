@@ -481,8 +481,9 @@ void rugo__cache_store(rugo_contact_cache* c, const rugo_shape* a, rugo_transfor
 rugo_vec2 rugo__overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa,
                                rugo_real ta, rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb,
                                rugo_real scale);
-/* Contacts for the m crossings x that closed no region: one per cluster, normal of rugo__overlap_normal. */
+/* Contacts for the m crossings x that closed no region: one per cluster, normal of rugo__overlap_normal,
+ * regions numbered from first_region. */
 rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
-                                            const hit* x, int m, rugo_real scale);
+                                            const hit* x, int m, rugo_real scale, int first_region);
 
 #endif

@@ -797,9 +797,17 @@ static rugo_status shapes_regions(shape_query* s) {
     /* Local minima within the band away from every overlap region are contacts too. */
     st = emit_minima(&s->o, &s->g, (hit*)ctx->ss.data, s->ns, &r, r.count, s->override);
     if (st != RUGO_OK) return st;
-    if (s->o.n == 0 && s->want) {
+    /* Crossings that closed no region are an overlap below the resolution of the crossings: a contact
+     * when the query found no other; at a resolution δ > 0 also beside other contacts, since there a
+     * shallow overlap whose second crossing the resolved phase did not separate (it lies within δ)
+     * closes no region, and would otherwise have no contact at all. */
+    if (s->want && (s->o.n == 0 || (s->g.delta > 0.0 && r.count == 0))) {
         const hit* xs = (const hit*)ctx->xs.data;
-        st = rugo__emit_unresolved_crossings(&s->o, &s->g, NULL, xs, (int)m, s->g.scale);
+        const rugo_contact* c = (const rugo_contact*)ctx->out.data;
+        int first = 0;
+        for (size_t i = 0; i < s->o.n; ++i)
+            if (c[i].region >= first) first = c[i].region + 1;
+        st = rugo__emit_unresolved_crossings(&s->o, &s->g, NULL, xs, (int)m, s->g.scale, first);
         if (st != RUGO_OK) return st;
     }
     return RUGO_OK;

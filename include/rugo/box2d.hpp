@@ -107,7 +107,7 @@ struct BridgeDef {
 };
 
 /// RoughBodyDef::rollingResistance's default (docs/roughness.md, "Rolling resistance").
-constexpr double kDefaultRollingResistance = 1.0;
+constexpr double kDefaultRollingResistance = 1.5;
 
 /// How Bridge::Attach makes a b2Body rough.
 struct RoughBodyDef {
@@ -127,7 +127,7 @@ struct RoughBodyDef {
     /// the contact; an ordinary fixture has no band), never more than stops the turning. 0 switches it
     /// off for this body (a smooth curve then rolls and rocks on its asperities as Box2D 2.4 lets it).
     /// The default is calibrated so that a rough rock dropped on a floor comes to rest about as soon as
-    /// its polygon twin (samples/box2d/b2_settle). Errors: BAD_ARGUMENT if negative or not finite.
+    /// its polygon twin (samples/box2d/b2_surface). Errors: BAD_ARGUMENT if negative or not finite.
     double rollingResistance = kDefaultRollingResistance;
     /// Given to every proxy fixture, as b2FixtureDef would.
     b2Filter filter;

@@ -702,10 +702,10 @@ void Bridge::Impl::rollingResistance(RoughContact* rc, float impulse, double arm
     if (rel == 0.0) return;
     const double j =
         std::min(static_cast<double>(impulse) * arm, std::fabs(rel) / (ia + ib)) * (rel > 0.0 ? 1.0 : -1.0);
-    if (ia > 0.0)
-        a->SetAngularVelocity(static_cast<float>(static_cast<double>(a->GetAngularVelocity()) + ia * j));
-    if (ib > 0.0)
-        b->SetAngularVelocity(static_cast<float>(static_cast<double>(b->GetAngularVelocity()) - ib * j));
+    // As impulses that leave the bodies' sleep alone: SetAngularVelocity wakes a body and restarts its
+    // sleep timer, and a contact evaluated every step would then keep its bodies awake for ever.
+    if (ia > 0.0) a->ApplyAngularImpulse(static_cast<float>(j), false);
+    if (ib > 0.0) b->ApplyAngularImpulse(static_cast<float>(-j), false);
 }
 
 } // namespace rugo

@@ -219,6 +219,30 @@ bool makeCore(const Poly& pts, const std::vector<double>& reach, double radius, 
     return true;
 }
 
+// Removes the corners of a convex counter-clockwise polygon that lie within `tol` of the chord of their
+// neighbours, and returns by how much the polygon may have shrunk (the sum of their distances): Box2D
+// 2.4's b2PolygonShape::Set wraps the hull in floats and can cycle between two nearly collinear
+// corners (it then asserts; fuzz_bridge found one 4e-10 m off its chord), so no corner may be that flat.
+double dropFlatCorners(Poly* p, double tol) {
+    double shrink = 0.0;
+    for (bool again = true; again && p->size() > 3;) {
+        again = false;
+        const size_t m = p->size();
+        for (size_t k = 0; k < m; ++k) {
+            const rugo_vec2 a = (*p)[(k + m - 1) % m], b = (*p)[k], c = (*p)[(k + 1) % m];
+            const double chord = length(rugo_v2_sub(c, a));
+            const double off = chord > 0.0 ? cross(a, b, c) / chord : 0.0;
+            if (off < tol) {
+                shrink += std::max(off, 0.0);
+                p->erase(p->begin() + static_cast<std::ptrdiff_t>(k));
+                again = true;
+                break;
+            }
+        }
+    }
+    return shrink;
+}
+
 // How far the proxy (core pushed out by radius) reaches beyond the run's curve and band, sampled on its
 // boundary: the mean distance of a boundary point to the nearest curve sample minus the band there
 // (the mean, because the chord side of an open run may span a bay whatever the skin). For an open
@@ -295,6 +319,11 @@ bool enclose(const Poly& pts, const std::vector<double>& reach, double minRadius
                 rugo_v2(cx - hx, cy + hy)};
         bestRadius = minRadius;
     }
+    // Flat corners go (see dropFlatCorners); the skin grows by what that cut off. The tolerance is far
+    // above the float rounding of the corners (a relative 64 FLT_EPSILON of the extent).
+    const double flatTol =
+        std::max(1e-3 * static_cast<double>(b2_linearSlop), 64.0 * static_cast<double>(FLT_EPSILON) * extent);
+    bestRadius += dropFlatCorners(&best, flatTol);
     out->n = static_cast<int>(best.size());
     for (int i = 0; i < out->n; ++i)
         out->v[i] = toB2(best[static_cast<size_t>(i)]);

@@ -7,6 +7,9 @@
 //                       at most 1 %, 0 non-finite positions, angles or velocities, no body lost that was
 //                       not destroyed (the world holds exactly the bodies alive), worst step <= 20x the
 //                       median step (the thread's CPU time per step; the wall time is printed too).
+//                       The live heap (glibc's count of bytes in live blocks) is printed beside the
+//                       resident memory: a leak grows both, the allocator's fragmentation only the
+//                       resident memory. The step-time tally is allocated before the warm-up ends.
 //   b2_soak --quick     3,000 steps (the test suite): only the finiteness and body checks; the memory
 //                       and time figures are printed, not checked (a loaded machine's timing is no
 //                       verdict).
@@ -78,8 +81,10 @@ int main(int argc, char** argv) {
     long detaches = 0, attaches = 0, destroys = 0, spawns = 0, recycled = 0, refused = 0;
     long nonFinite = 0, amiss = 0;
     const long warm = steps / 10;
-    double rssWarm = 0.0, rssMax = 0.0;
+    double rssWarm = 0.0, rssMax = 0.0, heapWarm = 0.0, heapMax = 0.0;
+    int contactsMax = 0, contactsMaxWarm = 0;
     b2stress::StepTimes times;
+    times.Reserve(static_cast<std::size_t>(steps));
     for (long k = 0; k < steps; ++k) {
         if (k % 4 == 3) {
             const int what = static_cast<int>(rng.Below(3));
@@ -140,24 +145,35 @@ int main(int argc, char** argv) {
         times.Time([&] { w.Step(); });
         nonFinite += b2stress::NonFinite(*w.world);
         amiss += b2stress::BodiesAmiss(*w.world, alive);
-        if (k + 1 == warm) rssWarm = b2stress::ResidentBytes();
-        if (k + 1 > warm && (k + 1) % 500 == 0) rssMax = std::max(rssMax, b2stress::ResidentBytes());
-        if ((k + 1) % 10000 == 0 && k + 1 < steps) // progress of a long run, in case it is cut short
-            std::printf(
-                "  at step %ld: resident %.2f MiB, %ld non-finite, %ld amiss, step CPU median %.1f us, "
-                "worst %.1f us, wall worst %.1f us, %.0f s CPU\n",
-                k + 1, b2stress::ResidentBytes() / 1048576.0, nonFinite, amiss,
-                1e6 * b2stress::StepTimes::Median(times.cpu), 1e6 * b2stress::StepTimes::Worst(times.cpu),
-                1e6 * b2stress::StepTimes::Worst(times.wall), b2stress::StepTimes::Total(times.cpu));
+        contactsMax = std::max(contactsMax, w.world->GetContactCount());
+        if (k + 1 == warm) {
+            rssWarm = b2stress::ResidentBytes();
+            heapWarm = b2stress::LiveHeapBytes();
+            contactsMaxWarm = contactsMax;
+        }
+        if (k + 1 > warm && (k + 1) % 500 == 0) {
+            rssMax = std::max(rssMax, b2stress::ResidentBytes());
+            heapMax = std::max(heapMax, b2stress::LiveHeapBytes());
+        }
+        if ((k + 1) % 10000 == 0 && k + 1 < steps) { // progress of a long run, in case it is cut short
+            const std::vector<double> cpu = times.Cpu();
+            std::printf("  at step %ld: resident %.3f MiB, live heap %.3f MiB, %d contacts (most %d), %ld "
+                        "non-finite, %ld amiss, step CPU median %.1f us, worst %.1f us, %.0f s CPU\n",
+                        k + 1, b2stress::ResidentBytes() / 1048576.0, b2stress::LiveHeapBytes() / 1048576.0,
+                        w.world->GetContactCount(), contactsMax, nonFinite, amiss,
+                        1e6 * b2stress::StepTimes::Median(cpu), 1e6 * b2stress::StepTimes::Worst(cpu),
+                        b2stress::StepTimes::Total(cpu));
+        }
         if ((k + 1) % 10000 == 0) std::fflush(stdout);
     }
-    const double rssEnd = b2stress::ResidentBytes();
+    const double rssEnd = b2stress::ResidentBytes(), heapEnd = b2stress::LiveHeapBytes();
     rssMax = std::max(rssMax, rssEnd);
+    heapMax = std::max(heapMax, heapEnd);
     const double growth = rssWarm > 0.0 ? (rssMax - rssWarm) / rssWarm : 0.0;
-    const double median = b2stress::StepTimes::Median(times.cpu),
-                 worst = b2stress::StepTimes::Worst(times.cpu);
-    const double wallMedian = b2stress::StepTimes::Median(times.wall),
-                 wallWorst = b2stress::StepTimes::Worst(times.wall);
+    const double heapGrowth = heapWarm > 0.0 ? (heapMax - heapWarm) / heapWarm : 0.0;
+    const std::vector<double> cpu = times.Cpu(), wall = times.Wall();
+    const double median = b2stress::StepTimes::Median(cpu), worst = b2stress::StepTimes::Worst(cpu);
+    const double wallMedian = b2stress::StepTimes::Median(wall), wallWorst = b2stress::StepTimes::Worst(wall);
     const rugo::BridgeStats st = w.bridge->GetStats();
 
     std::printf("b2_soak: %ld steps of the demo world (%d bodies at the start, %zu dynamic alive at the end, "
@@ -171,9 +187,14 @@ int main(int argc, char** argv) {
                 "the end: growth %.3f %%\n",
                 rssWarm / 1048576.0, warm, rssMax / 1048576.0, rssEnd / 1048576.0, 100.0 * growth);
     std::printf(
+        "  live heap (mallinfo2): %.3f MiB after warm-up, %.3f MiB largest after, %.3f MiB at the end: "
+        "growth %.3f %%; Box2D contacts: at most %d during warm-up, %d in the whole run\n",
+        heapWarm / 1048576.0, heapMax / 1048576.0, heapEnd / 1048576.0, 100.0 * heapGrowth, contactsMaxWarm,
+        contactsMax);
+    std::printf(
         "  step CPU time: median %.1f us, worst %.1f us (%.1fx the median), total %.1f s; wall time: median "
         "%.1f us, worst %.1f us (%.1fx)\n",
-        1e6 * median, 1e6 * worst, median > 0.0 ? worst / median : 0.0, b2stress::StepTimes::Total(times.cpu),
+        1e6 * median, 1e6 * worst, median > 0.0 ? worst / median : 0.0, b2stress::StepTimes::Total(cpu),
         1e6 * wallMedian, 1e6 * wallWorst, wallMedian > 0.0 ? wallWorst / wallMedian : 0.0);
     sample_expect_le("non-finite positions, angles, velocities", static_cast<double>(nonFinite), 0.0);
     sample_expect_le("bodies lost or added (step-body pairs)", static_cast<double>(amiss), 0.0);

@@ -317,6 +317,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     }
     I.bodies[body] = r;
     I.reserveFor(I.bodies.size());
+    I.reservePointInfo(I.bodies.size());
     I.applyMass(r);
     return RUGO_OK;
 }

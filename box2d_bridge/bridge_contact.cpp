@@ -116,6 +116,13 @@ PointInfo* Bridge::Impl::pointInfoOf(RoughContact* rc) {
     return &pointInfo[2 * static_cast<size_t>(rc->infoSlot)];
 }
 
+// Slots for 16 touching proxy contacts a body (a body in a pile touches a handful of others, a few proxy
+// pairs each), now rather than in a step: the bridge allocates nothing in a step once warm.
+void Bridge::Impl::reservePointInfo(size_t bodyCount) {
+    infoNext.reserve(16 * bodyCount);
+    pointInfo.reserve(2 * 16 * bodyCount);
+}
+
 void Bridge::Impl::releasePointInfo(RoughContact* rc) {
     if (rc->infoSlot < 0) return;
     infoNext[static_cast<size_t>(rc->infoSlot)] = infoFree;

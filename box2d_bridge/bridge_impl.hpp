@@ -321,6 +321,7 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
     std::vector<int> infoNext;
     int infoFree = -1;
     PointInfo* pointInfoOf(RoughContact* rc);
+    void reservePointInfo(size_t bodyCount); // room for the slots of that many bodies' contacts
     void releasePointInfo(RoughContact* rc);
     // Inside Detach's DestroyFixture calls, or a user EndContact that Box2D raised outside Step
     // (DestroyBody, DestroyFixture, SetEnabled, SetType walk a contact list meanwhile): Attach and

@@ -65,7 +65,7 @@ rugo_vec2 rugo__overlap_normal(const query_side* A, const shape_pair* g, const p
  * curves' common point (separation 0 to round-off: the overlap is shallower than the resolution), with
  * the normal of rugo__overlap_normal. Id index 2 + cluster. */
 rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
-                                            const hit* x, int m, rugo_real scale) {
+                                            const hit* x, int m, rugo_real scale, int first_region) {
     const rugo_real near = OVERLAP_NEAR * scale;
     int cluster = 0;
     for (int i = 0; i < m; ++i) {
@@ -78,8 +78,8 @@ rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g,
         const int id_b = P != NULL ? (0xFFF00 | (x[i].sb & 0xFF)) : x[i].sb;
         const int sb = P != NULL ? -1 : x[i].sb;
         const rugo_real tb = P != NULL ? 0.0 : x[i].tb;
-        if (!rugo__emit_contact(o, x[i].sa, x[i].ta, sb, tb, x[i].pa, x[i].pb, n, cluster, 1, 2 + cluster,
-                                id_b))
+        if (!rugo__emit_contact(o, x[i].sa, x[i].ta, sb, tb, x[i].pa, x[i].pb, n, first_region + cluster, 1,
+                                2 + cluster, id_b))
             return RUGO_ERR_OUT_OF_MEMORY;
         ++cluster;
     }

@@ -339,10 +339,10 @@ typedef struct contact_out {
 } contact_out;
 
 /* How a query's resolution δ is shared: each shape may take a coarser level whose error is within
- * δ/4 of the chosen one's, the narrow phase runs at δ/2, and a cached answer is given back while the
- * shapes have moved relative to each other by at most δ/4 (contact_cache.c), so every separation stays
- * within δ. */
-#define RESOLUTION_LEVEL_SHARE 0.25
+ * δ/8 of the chosen one's (the two together move a band-adjusted distance by at most δ/4), the narrow
+ * phase runs at δ/2, and a cached answer is given back while the shapes have moved relative to each
+ * other by at most δ/4 (contact_cache.c), so every separation stays within δ. */
+#define RESOLUTION_LEVEL_SHARE 0.125
 #define RESOLUTION_NARROW_SHARE 0.5
 #define RESOLUTION_MOTION_SHARE 0.25
 
@@ -481,8 +481,9 @@ void rugo__cache_store(rugo_contact_cache* c, const rugo_shape* a, rugo_transfor
 rugo_vec2 rugo__overlap_normal(const query_side* A, const shape_pair* g, const primitive* P, int sa,
                                rugo_real ta, rugo_vec2 pa, int sb, rugo_real tb, rugo_vec2 pb,
                                rugo_real scale);
-/* Contacts for the m crossings x that closed no region: one per cluster, normal of rugo__overlap_normal. */
+/* Contacts for the m crossings x that closed no region: one per cluster, normal of rugo__overlap_normal,
+ * regions numbered from first_region. */
 rugo_status rugo__emit_unresolved_crossings(contact_out* o, const shape_pair* g, const primitive* P,
-                                            const hit* x, int m, rugo_real scale);
+                                            const hit* x, int m, rugo_real scale, int first_region);
 
 #endif

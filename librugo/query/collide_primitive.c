@@ -231,7 +231,7 @@ static rugo_status primitive_edge_crossings(primitive_query* s) {
     if (st != RUGO_OK) return st;
     if (s->o.n == 0) {
         const hit* xs = (const hit*)s->ctx->xs.data;
-        st = rugo__emit_unresolved_crossings(&s->o, NULL, s->P, xs, (int)s->m, s->g.scale);
+        st = rugo__emit_unresolved_crossings(&s->o, NULL, s->P, xs, (int)s->m, s->g.scale, 0);
         if (st != RUGO_OK) return st;
     }
     return RUGO_OK;
@@ -371,7 +371,8 @@ static rugo_status primitive_regions(primitive_query* s) {
     st = primitive_minima_outside_regions(s, &r);
     if (st != RUGO_OK) return st;
     if (s->o.n == 0 && s->want) {
-        st = rugo__emit_unresolved_crossings(&s->o, NULL, s->P, (const hit*)ctx->xs.data, (int)m, s->g.scale);
+        st = rugo__emit_unresolved_crossings(&s->o, NULL, s->P, (const hit*)ctx->xs.data, (int)m, s->g.scale,
+                                             0);
         if (st != RUGO_OK) return st;
     }
     return RUGO_OK;

@@ -43,10 +43,10 @@ static void banded_piece(const shape_pair* g, const query_side* s, int k, const 
 }
 
 /* The round-off narrow phase finds the minima of the distance; with bands that vary (the shapes' own,
- * not a constant override) the band-adjusted rule wants those of φ = d - λ_A - λ_B: each minimum is
- * moved to the minimum of φ that Newton reaches from it on the two pieces (left where Newton does not
- * converge, and where the pieces carry no band). A minimum of φ whose basin holds no minimum of the
- * distance is found only at a resolution above 0 (docs/contacts.md). */
+ * not a constant override) the band-adjusted rule wants those of φ = d - λ_A - λ_B. Where
+ * band_minima_at_round_off (below) could not search for them (its box budget ran out), each minimum of
+ * d is moved to the minimum of φ that Newton reaches from it on the two pieces (left where Newton does
+ * not converge): a minimum of φ whose basin holds no minimum of d is then missed. */
 static void polish_to_bands(const shape_pair* g, int ka, const rugo_vec2 fl[4], int kb, const rugo_vec2 gl[4],
                             rugo__narrow_result* r) {
     rugo__banded_piece bf, bg;
@@ -68,6 +68,46 @@ static void polish_to_bands(const shape_pair* g, int ka, const rugo_vec2 fl[4], 
         p->pb = rugo__bezier_point(gl, t);
         p->distance = rugo__v2_length(rugo_v2_sub(p->pb, p->pa));
     }
+}
+
+/* The resolution at which a query at δ = 0 with the band-adjusted rule searches for the basins of φ on
+ * pieces whose bands vary, as a fraction of the pair's size: every minimum it reports is polished to
+ * round-off by Newton on the true pieces and bands (narrow_resolved.h). */
+#define BAND_BASIN_SEARCH 1e-6
+
+/* At δ = 0 with the band-adjusted rule and bands that vary, the minima of φ, not of d: the round-off
+ * phase's minima in r are replaced by those of the resolved phase on φ (cutoff raised by its search
+ * resolution, so that no minimum with φ <= cutoff is pruned), whose minima are polished by Newton to
+ * round-off; a minimum of φ whose basin holds no minimum of d is found too. 0 (r unchanged) where the
+ * pieces carry no varying band or the resolved phase ran out of room. */
+static int band_minima_at_round_off(const shape_pair* g, int ka, const rugo_vec2 fl[4], int kb,
+                                    const rugo_vec2 gl[4], rugo_real band_cutoff, rugo__narrow_result* r) {
+    rugo__banded_piece bf, bg;
+    banded_piece(g, g->A, ka, fl, &bf);
+    banded_piece(g, g->B, kb, gl, &bg);
+    int banded = 0;
+    for (int h = 0; h < 2 && !banded; ++h)
+        for (int i = 0; i < 4 && !banded; ++i)
+            banded = bf.band[h][i] != bf.band[0][0] || bg.band[h][i] != bg.band[0][0];
+    if (!banded) return 0;
+    const rugo_real search = BAND_BASIN_SEARCH * g->scale;
+    rugo__narrow_result m;
+    rugo__narrow_resolved(&bf, &bg, band_cutoff + search, NAN, search, RUGO__RESOLVED_MINIMA, &m);
+    if (m.overflow) return 0;
+    int w = 0;
+    for (int i = 0; i < r->stationary_count; ++i)
+        if (!rugo__is_minimum_candidate(r->stationary[i].kind)) r->stationary[w++] = r->stationary[i];
+    for (int i = 0; i < m.stationary_count; ++i) {
+        if (w >= RUGO__NARROW_MAX_STATIONARY) {
+            r->overflow = 1;
+            break;
+        }
+        r->stationary[w++] = m.stationary[i];
+    }
+    r->stationary_count = w;
+    r->newton_iterations += m.newton_iterations;
+    r->fallback += m.fallback;
+    return 1;
 }
 
 /* One narrow call on pieces f (A, segment ka) and g (B, segment kb), results appended. At a resolution
@@ -96,7 +136,8 @@ static int narrow_pair(rugo_collide_context* ctx, shape_pair* g, narrow_ask ask,
     }
     if (!resolved) {
         rugo__narrow_pieces(fl, gl, cutoff, &r);
-        if (ask == ASK_FIRST_PASS && !g->thesis_rule && g->override < 0.0)
+        if (ask == ASK_FIRST_PASS && !g->thesis_rule && g->override < 0.0 &&
+            !(g->delta == 0.0 && band_minima_at_round_off(g, ka, fl, kb, gl, band_cutoff, &r)))
             polish_to_bands(g, ka, fl, kb, gl, &r);
     }
     const int src = g->src++;
@@ -756,9 +797,17 @@ static rugo_status shapes_regions(shape_query* s) {
     /* Local minima within the band away from every overlap region are contacts too. */
     st = emit_minima(&s->o, &s->g, (hit*)ctx->ss.data, s->ns, &r, r.count, s->override);
     if (st != RUGO_OK) return st;
-    if (s->o.n == 0 && s->want) {
+    /* Crossings that closed no region are an overlap below the resolution of the crossings: a contact
+     * when the query found no other; at a resolution δ > 0 also beside other contacts, since there a
+     * shallow overlap whose second crossing the resolved phase did not separate (it lies within δ)
+     * closes no region, and would otherwise have no contact at all. */
+    if (s->want && (s->o.n == 0 || (s->g.delta > 0.0 && r.count == 0))) {
         const hit* xs = (const hit*)ctx->xs.data;
-        st = rugo__emit_unresolved_crossings(&s->o, &s->g, NULL, xs, (int)m, s->g.scale);
+        const rugo_contact* c = (const rugo_contact*)ctx->out.data;
+        int first = 0;
+        for (size_t i = 0; i < s->o.n; ++i)
+            if (c[i].region >= first) first = c[i].region + 1;
+        st = rugo__emit_unresolved_crossings(&s->o, &s->g, NULL, xs, (int)m, s->g.scale, first);
         if (st != RUGO_OK) return st;
     }
     return RUGO_OK;

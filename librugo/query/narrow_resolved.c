@@ -39,6 +39,7 @@ enum {
     MAX_DEPTH = 48,     /* halvings of one parameter (2^-48: below any useful δ) */
     BOX_BUDGET = 20000, /* boxes per call, then overflow (the caller falls back to the round-off phase) */
     NEWTON_MAX = 12,
+    DESCENT_MAX = 24, /* steps of a leaf's walk to its minimum */
     TMP_ROOTS = 64
 };
 
@@ -447,6 +448,32 @@ static int polish_minimum(rctx* c, rugo_real* s, rugo_real* t, rugo_real* phi) {
     return 0;
 }
 
+/* Newton on φ along one parameter (free_t: t, with s fixed; else s), while φ's second derivative that
+ * way is positive and φ does not rise, within the piece's domain: a minimum pinned in the other
+ * parameter (at the band's knot, at a zero-speed end) polished to round-off along its line. *e is
+ * updated with the point. */
+static void polish_along(rctx* c, int free_t, rugo_real* s, rugo_real* t, phi_eval* e) {
+    rugo_real S = *s, T = *t;
+    phi_eval cur = *e;
+    for (int it = 0; it < NEWTON_MAX; ++it) {
+        const rugo_real g = free_t ? cur.gt : cur.gs, h = free_t ? cur.htt : cur.hss;
+        if (!(h > 0.0)) return;
+        const rugo_real step = -g / h;
+        const rugo_real S1 = free_t ? S : clamp01(S + step), T1 = free_t ? clamp01(T + step) : T;
+        phi_eval e1;
+        ++c->newton;
+        if (!eval_phi(c, S1, T1, &e1)) return;
+        if (e1.phi > cur.phi + 64.0 * EPS * (fabs(cur.phi) + cur.d + c->scale)) return;
+        S = S1;
+        T = T1;
+        cur = e1;
+        *s = S;
+        *t = T;
+        *e = cur;
+        if (fabs(step) <= NEWTON_TOL) return;
+    }
+}
+
 /* The stationarity system of the distance, H1 = (f-g)·f' = 0, H2 = (f-g)·g' = 0 (SPEC 8), from (s, t):
  * 1 and the root when it converged inside the domain, with the kind from D = |f-g|^2/2's Hessian. */
 static int polish_stationary(rctx* c, rugo_real* s, rugo_real* t, int* kind) {
@@ -514,12 +541,12 @@ static rugo_real point_chord(rugo_vec2 x, rugo_vec2 q0, rugo_vec2 V, rugo_real b
     return vlen(rugo_v2_sub(w, rugo_v2_scale(v, V))) - (b0 + v * db);
 }
 
-/* The minimum of φ over the leaf's box, by Newton projected onto the box (a gradient step where the
- * Hessian is not positive definite, halved until φ falls), from the chords' minimum (s, t). Inside
- * the box it is a local minimum of φ: polished. On the box's edge the minimum lies beyond, in a
- * neighbouring leaf, unless φ falls by less than δ across this leaf that way (a conforming stretch,
- * flat to the resolution): then it stands as a point of that stretch, polished if Newton without the
- * box converges from it. */
+/* The slope of φ (per unit of a piece's parameter) below which a stretch is flat: φ then changes by
+ * less than this over a whole piece, so by less than the resolution over any stretch of the curves. A
+ * point where φ falls faster than that across the edge of its leaf is not a minimum: the descent goes
+ * on into the neighbouring leaf or segment pair, which finds the minimum at its end. */
+static rugo_real flat_slope(const rctx* c) { return mn(1e-10 * c->scale, 0.25 * c->delta); }
+
 /* Where the first Newton step from the chords' minimum lands more than a box away, across an edge of
  * the box that is neither an end of the piece nor the band's knot (where φ may bend), the minimum it
  * heads for lies in another leaf, which finds it: this one can stop after one evaluation. */
@@ -535,45 +562,110 @@ static int leaves_box(const rctx* c, box b, rugo_real s, rugo_real t) {
     return 0;
 }
 
+/* 1 when (s, t) lies on an edge of the box and φ falls across it faster than a flat stretch's slope:
+ * the walk is leaving the box there, and the rest of it is another leaf's (or segment pair's). */
+static int leaving(const rctx* c, box b, rugo_real s, rugo_real t, const phi_eval* e) {
+    const rugo_real tol = flat_slope(c);
+    return (s == b.s0 && e->gs > tol) || (s == b.s1 && e->gs < -tol) || (t == b.t0 && e->gt > tol) ||
+           (t == b.t1 && e->gt < -tol);
+}
+
+/* The model q(d) = g·d + d·H d / 2 at a point; H with its eigenvalues lifted to positive (by its
+ * smallest, plus 1e-9 of its largest) where it is not positive definite: along a floor that curves the
+ * wrong way the model's minimum is then on the box's edge. */
+typedef struct quad_model {
+    rugo_real gs, gt, a, b, d; /* H = [[a, b], [b, d]] */
+} quad_model;
+
+static rugo_real quad_value(const quad_model* q, rugo_real x, rugo_real y) {
+    return q->gs * x + q->gt * y + 0.5 * (q->a * x * x + 2.0 * q->b * x * y + q->d * y * y);
+}
+
+/* The minimiser of q along one coordinate with the other fixed at `fixed`, clamped to [lo, hi]. */
+static rugo_real quad_line(rugo_real g, rugo_real h, rugo_real cross, rugo_real fixed, rugo_real lo,
+                           rugo_real hi) {
+    const rugo_real slope = g + cross * fixed;
+    rugo_real x = h > 0.0 ? -slope / h : (slope > 0.0 ? lo : hi);
+    return mn(hi, mx(lo, x));
+}
+
+/* The step (dS, dT) to the minimum of the model over the box (a convex quadratic over a rectangle: its
+ * free minimum when that lies inside, else the best of the four edges' minima). */
+static void quad_step(const phi_eval* e, box bx, rugo_real s, rugo_real t, rugo_real* dS, rugo_real* dT) {
+    quad_model q = {e->gs, e->gt, e->hss, e->hst, e->htt};
+    const rugo_real half_tr = 0.5 * (q.a + q.d), dh = 0.5 * (q.a - q.d);
+    const rugo_real root = sqrt(dh * dh + q.b * q.b);
+    const rugo_real lmin = half_tr - root, lmax = fabs(half_tr) + root;
+    if (!(lmin > 1e-9 * lmax)) {
+        const rugo_real mu = mx(0.0, -lmin) + 1e-9 * lmax;
+        q.a += mu;
+        q.d += mu;
+    }
+    const rugo_real xlo = bx.s0 - s, xhi = bx.s1 - s, ylo = bx.t0 - t, yhi = bx.t1 - t;
+    const rugo_real det = q.a * q.d - q.b * q.b;
+    if (det > 0.0) {
+        const rugo_real x = -(q.d * q.gs - q.b * q.gt) / det, y = -(q.a * q.gt - q.b * q.gs) / det;
+        if (x >= xlo && x <= xhi && y >= ylo && y <= yhi) {
+            *dS = x;
+            *dT = y;
+            return;
+        }
+    }
+    rugo_real best = HUGE_VAL, bx_ = 0.0, by_ = 0.0;
+    const rugo_real ys[2] = {ylo, yhi}, xs[2] = {xlo, xhi};
+    for (int k = 0; k < 2; ++k) {
+        const rugo_real x = quad_line(q.gs, q.a, q.b, ys[k], xlo, xhi), v = quad_value(&q, x, ys[k]);
+        if (v < best) best = v, bx_ = x, by_ = ys[k];
+        const rugo_real y = quad_line(q.gt, q.d, q.b, xs[k], ylo, yhi), w = quad_value(&q, xs[k], y);
+        if (w < best) best = w, bx_ = xs[k], by_ = y;
+    }
+    *dS = bx_;
+    *dT = by_;
+}
+
+/* The minimum of φ over the leaf's box, walked to from the chords' minimum (s, t) by the box-constrained
+ * steps of quad_step. Inside the box it is a local minimum of φ: polished. On an edge across which φ
+ * falls (faster than flat_slope) it is none: the walk goes on in the neighbouring leaf or segment pair,
+ * which reports the minimum where it ends, so this leaf reports nothing. What stays is the band's knot,
+ * a zero-speed end (a sharp corner) and stretches flat to round-off (parallel straight pieces), whose
+ * points stand for the stretch. */
 static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
     const rugo_real hs = b.s1 - b.s0, ht = b.t1 - b.t0;
     phi_eval e;
     if (!eval_phi(c, s, t, &e)) return; /* the curves meet: a crossing or a touching, found as such */
     int converged = 0; /* a full Newton step below NEWTON_TOL: a minimum of φ to round-off */
-    for (int it = 0; it < NEWTON_MAX && !converged; ++it) {
+    for (int it = 0; it < DESCENT_MAX && !converged; ++it) {
         const rugo_real det = e.hss * e.htt - e.hst * e.hst;
-        rugo_real dS, dT;
         const int newton = e.hss > 0.0 && det > 0.0;
+        rugo_real dS, dT;
         if (newton) {
             dS = -(e.htt * e.gs - e.hst * e.gt) / det;
             dT = -(e.hss * e.gt - e.hst * e.gs) / det;
-        } else {
-            /* a quarter of the box down the gradient, in the box's proportions */
-            const rugo_real gx = e.gs * hs, gy = e.gt * ht, g = sqrt(gx * gx + gy * gy);
-            if (!(g > 0.0)) break;
-            dS = -0.25 * hs * gx / g;
-            dT = -0.25 * ht * gy / g;
+            /* (a valley of φ, its Hessian far from round, can throw the first step far past a minimum
+             * that lies inside: only a well-rounded one decides at once) */
+            const rugo_real tr = e.hss + e.htt;
+            if (it == 0 && det >= 1e-4 * tr * tr && leaves_box(c, b, s + dS, t + dT)) return;
+            converged = fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL;
         }
-        /* (a valley of φ, its Hessian far from round, can throw the first step far past a minimum that
-         * lies inside: only a well-rounded one decides at once) */
-        const rugo_real tr = e.hss + e.htt;
-        if (it == 0 && newton && det >= 1e-4 * tr * tr && leaves_box(c, b, s + dS, t + dT)) return;
-        converged = newton && fabs(dS) <= NEWTON_TOL && fabs(dT) <= NEWTON_TOL;
+        /* The step: the minimum over the box of the quadratic model of φ (its Hessian's eigenvalues
+         * lifted to positive where they are not: along a valley whose floor curves the wrong way), so
+         * that a walk along a narrow valley follows its floor to the box's edge; halved until φ falls. */
+        quad_step(&e, b, s, t, &dS, &dT);
         int accepted = 0;
-        for (int half = 0; half < 6 && !accepted; ++half, dS *= 0.5, dT *= 0.5) {
+        for (int half = 0; half < 30 && !accepted; ++half, dS *= 0.5, dT *= 0.5) {
             const rugo_real S1 = mn(b.s1, mx(b.s0, s + dS)), T1 = mn(b.t1, mx(b.t0, t + dT));
+            if (S1 == s && T1 == t) break;
             phi_eval e1;
             ++c->newton;
             if (!eval_phi(c, S1, T1, &e1)) return;
-            if (e1.phi <= e.phi) {
-                const int moved = S1 != s || T1 != t;
+            if (e1.phi < e.phi || (converged && e1.phi <= e.phi)) {
                 s = S1;
                 t = T1;
                 e = e1;
-                accepted = moved;
+                accepted = 1;
             }
         }
-        if (!accepted) break;
+        if (!accepted || leaving(c, b, s, t, &e)) break;
     }
     const rugo_real es = 1e-9 * hs, et = 1e-9 * ht;
     const int inside = s > b.s0 + es && s < b.s1 - es && t > b.t0 + et && t < b.t1 - et;
@@ -587,10 +679,11 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
      *  - an end of the piece where the curve stops (zero speed: a sharp corner of coincident control
      *    points): RUGO__END_MINIMUM, which the caller confirms with the neighbouring segment's piece;
      *  - else the minimum lies beyond, in a neighbouring leaf or segment, when φ falls that way faster
-     *    than δ over the piece's whole parameter range; slower, it stands as a point of a stretch flat to
-     *    the resolution. */
+     *    than flat_slope; slower, the point stands for a stretch flat to round-off. (A rule that let
+     *    φ fall by up to δ per piece kept points on long gentle slopes, tens of δ above the minimum
+     *    they lead to.) */
     rugo_real drop = 0.0;
-    int kink = 0, corner = 0;
+    int kink = 0, corner = 0, pinned_s = 0, pinned_t = 0;
     for (int k = 0; k < 4; ++k) {
         const int is_s = k < 2, low = (k % 2) == 0;
         const rugo_real x = is_s ? s : t, edge = is_s ? (low ? b.s0 : b.s1) : (low ? b.t0 : b.t1);
@@ -605,6 +698,8 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
             const rugo_real g_left = v > 0.0 ? g + 2.0 * d1 - 2.0 * d1l : g; /* the left half's slope */
             if (g_left <= 0.0 && g >= 0.0) {
                 kink = 1;
+                pinned_s |= is_s;
+                pinned_t |= !is_s;
                 continue;
             }
         }
@@ -613,13 +708,17 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
             bez3(p->p, edge, &pt, &d, &dd);
             if (vlen(d) <= 1e-9 * c->scale) {
                 corner = 1;
+                pinned_s |= is_s;
+                pinned_t |= !is_s;
                 continue;
             }
         }
         drop = mx(drop, low ? g : -g);
     }
-    if (drop > c->delta) return;
+    if (drop > flat_slope(c)) return;
     if (kink || corner) {
+        /* the pinned parameter stays; the other one is polished along the pin's line */
+        if (pinned_s != pinned_t) polish_along(c, pinned_s, &s, &t, &e);
         add_found(c, c->mins, &c->nmin, s, t, e.phi, corner ? RUGO__END_MINIMUM : RUGO__MINIMUM, 1, 1e-9);
         return;
     }
@@ -632,8 +731,8 @@ static void leaf_minimum(rctx* c, box b, rugo_real s, rugo_real t) {
     add_found(c, c->mins, &c->nmin, s, t, e.phi, RUGO__MINIMUM, 0, 1e-12);
 }
 
-/* Chords that face each other along a stretch over which φ stays within δ (parallel to the
- * resolution): a conforming stretch, whose two ends are its points (Box2D clips faces the same way).
+/* Chords that face each other along a stretch over which φ is flat (slope below flat_slope: parallel
+ * to round-off): a conforming stretch, whose two ends are its points (Box2D clips faces the same way).
  * 1 when the leaf is one; its ends are then recorded. */
 static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
     const rugo_vec2 P0 = F->p[0], U = rugo_v2_sub(F->p[3], F->p[0]);
@@ -655,7 +754,7 @@ static int conforming_leaf(rctx* c, box b, const sub* F, const sub* G) {
     }
     /* flat to δ over the whole piece's parameter range, not only across this leaf */
     const rugo_real slope = fabs(phis[1] - phis[0]) / ((ub - ua) * (b.s1 - b.s0));
-    if (!(slope <= c->delta) || !(mn(phis[0], phis[1]) <= c->cutoff + c->delta)) return 0;
+    if (!(slope <= flat_slope(c)) || !(mn(phis[0], phis[1]) <= c->cutoff + c->delta)) return 0;
     for (int k = 0; k < 2; ++k) {
         const rugo_real s = b.s0 + us[k] * (b.s1 - b.s0), t = b.t0 + vs[k] * (b.t1 - b.t0);
         phi_eval e;
@@ -847,23 +946,28 @@ static void search(rctx* c) {
             c->overflow = 1;
             return;
         }
-        /* The sub-piece farther from flat is halved; the two halves go on the stack, the lower on top. */
+        /* The sub-piece farther from flat is halved; the two halves go on the stack, the lower on top:
+         * the higher half takes this frame's place (the other sub-piece stays where it is), the lower
+         * one the next frame, so a split copies one sub-piece, not two frames. */
         const int split_f = !tiny_f && ff > half_delta && (ff >= fg || tiny_g || fg <= half_delta);
-        frame lo, hi;
-        lo.b = hi.b = b;
+        frame* hi = &st[n];
+        frame* lo = &st[n + 1];
+        sub upper;
+        lo->b = b;
         if (split_f) {
             const rugo_real m = 0.5 * (b.s0 + b.s1);
-            lo.b.s1 = hi.b.s0 = m;
-            split_sub(F, &lo.F, &hi.F);
-            lo.G = hi.G = *G;
+            lo->b.s1 = hi->b.s0 = m;
+            split_sub(F, &lo->F, &upper);
+            lo->G = *G;
+            hi->F = upper;
         } else {
             const rugo_real m = 0.5 * (b.t0 + b.t1);
-            lo.b.t1 = hi.b.t0 = m;
-            split_sub(G, &lo.G, &hi.G);
-            lo.F = hi.F = *F;
+            lo->b.t1 = hi->b.t0 = m;
+            split_sub(G, &lo->G, &upper);
+            lo->F = *F;
+            hi->G = upper;
         }
-        st[n++] = hi;
-        st[n++] = lo;
+        n += 2;
     }
 }
 

@@ -13,8 +13,10 @@
  *  - the band-adjusted distance φ = |f - g| - λ_f - λ_g of the chords is convex on the leaf's square,
  *    and its minimum (closed form on the square's four edges) is a candidate minimum of φ when the
  *    true curves' gradient of φ there points into the leaf (so that of neighbouring leaves exactly one
- *    owns a minimum); it is then polished by Newton on the true pieces and bands, and kept where that
- *    fails (a conforming stretch, where φ is flat to δ);
+ *    owns a minimum); it is then walked to the leaf's minimum of φ on the true pieces and bands and
+ *    polished by Newton; a walk that leaves the leaf where φ falls across its edge reports nothing there
+ *    (the minimum is the neighbour's), and only a stretch flat to round-off (parallel straight pieces)
+ *    keeps unpolished points;
  *  - with RUGO__RESOLVED_SADDLES, chords that face each other across an overlap (anti-parallel)
  *    start a Newton run on the stationarity system (f-g)·f' = (f-g)·g' = 0; a root in the leaf whose
  *    distance Hessian is indefinite is a saddle: an overlap's depth pair (collide.c's regions).

@@ -82,6 +82,9 @@ struct Figures {
     // dynamic body awake), the worst step and its index; the wall time's median and worst.
     double median = 0.0, activeMedian = 0.0, worst = 0.0, wallMedian = 0.0, wallWorst = 0.0;
     long activeSteps = 0, worstStep = 0;
+    // Bridge queries in the worst step, and the median over the active steps: a worst step that did no
+    // more queries than usual is a spike of some other phase.
+    long worstQueries = 0, activeMedianQueries = 0;
     // The fastest body: its speed and the speed a free fall from its start to where it was then gives.
     double maxSpeed = 0.0, freeFallSpeed = 0.0;
     // Largest rise of one body's mechanical energy per kg over its own start (J/kg): energy from nowhere
@@ -112,15 +115,22 @@ Figures Run(Scene& s, long steps) {
     }
     b2stress::StepTimes times;
     times.Reserve(static_cast<std::size_t>(steps));
-    std::vector<double> active;
+    std::vector<double> active, activeQueries;
     active.reserve(static_cast<std::size_t>(steps));
+    activeQueries.reserve(static_cast<std::size_t>(steps));
+    std::vector<long> queries(static_cast<std::size_t>(steps), 0);
     for (long k = 0; k < steps; ++k) {
         if (s.beforeStep) s.beforeStep(k);
         bool awake = false;
         for (const b2Body* b : s.dynamic)
             awake = awake || b->IsAwake();
+        const long q0 = s.bridge->GetStats().queries;
         times.Time([&] { s.bridge->Step(1.0f / 60.0f, 8, 3); });
-        if (awake) active.push_back(times.cpu[static_cast<std::size_t>(k)]);
+        queries[static_cast<std::size_t>(k)] = s.bridge->GetStats().queries - q0;
+        if (awake) {
+            active.push_back(times.cpu[static_cast<std::size_t>(k)]);
+            activeQueries.push_back(static_cast<double>(queries[static_cast<std::size_t>(k)]));
+        }
         f.nonFinite += b2stress::NonFinite(*s.world);
         f.amiss += b2stress::BodiesAmiss(*s.world, s.alive);
         for (std::size_t i = 0; i < s.dynamic.size(); ++i) {
@@ -142,6 +152,8 @@ Figures Run(Scene& s, long steps) {
     f.activeSteps = static_cast<long>(active.size());
     f.worst = b2stress::StepTimes::Worst(cpu);
     f.worstStep = static_cast<long>(std::max_element(cpu.begin(), cpu.end()) - cpu.begin());
+    f.worstQueries = queries[static_cast<std::size_t>(f.worstStep)];
+    f.activeMedianQueries = static_cast<long>(b2stress::StepTimes::Median(activeQueries));
     f.wallMedian = b2stress::StepTimes::Median(wall);
     f.wallWorst = b2stress::StepTimes::Worst(wall);
     f.stats = s.bridge->GetStats();
@@ -156,12 +168,13 @@ double Ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 void Report(const char* name, const char* what, const Figures& f, bool quick, bool closed) {
     std::printf(
         "%-8s %s\n         %ld steps (%ld active): step CPU time median %.1f us, active median %.1f us, "
-        "worst %.1f us (step %ld; %.1fx the median, %.1fx the active median); wall median %.1f us, "
+        "worst %.1f us (step %ld, %ld queries against the active median's %ld; %.1fx the median, %.1fx the "
+        "active median); wall median %.1f us, "
         "worst %.1f us\n         %ld queries; fastest body %.2f m/s (a free fall from its start: %.2f "
         "m/s); largest rise of a body's energy over its start %.3g J/kg\n",
         name, what, f.steps, f.activeSteps, 1e6 * f.median, 1e6 * f.activeMedian, 1e6 * f.worst, f.worstStep,
-        Ratio(f.worst, f.median), Ratio(f.worst, f.activeMedian), 1e6 * f.wallMedian, 1e6 * f.wallWorst,
-        f.stats.queries, f.maxSpeed, f.freeFallSpeed, f.bodyRise);
+        f.worstQueries, f.activeMedianQueries, Ratio(f.worst, f.median), Ratio(f.worst, f.activeMedian),
+        1e6 * f.wallMedian, 1e6 * f.wallWorst, f.stats.queries, f.maxSpeed, f.freeFallSpeed, f.bodyRise);
     const std::string n(name);
     sample_expect_le((n + ": non-finite positions, angles, velocities").c_str(),
                      static_cast<double>(f.nonFinite), 0.0);

@@ -129,11 +129,18 @@ Bridge::Bridge(b2World* world, const BridgeDef& def) : m_impl(new Impl) {
     {
         // An unknown mixing rule would give NaN friction (rugo_mix); read as an int, since loading an
         // out-of-range enum value is undefined in C++.
-        int mix = 0;
-        static_assert(sizeof mix == sizeof def.pointFrictionMix, "rugo_mix_rule is an int");
-        std::memcpy(&mix, &def.pointFrictionMix, sizeof mix);
-        if (mix < RUGO_MIX_MAX || mix > RUGO_MIX_GEOMETRIC)
-            I.def.pointFrictionMix = BridgeDef().pointFrictionMix;
+        const BridgeDef defaults;
+        auto sane = [](const rugo_mix_rule& given, rugo_mix_rule fallback) {
+            int mix = 0;
+            static_assert(sizeof mix == sizeof given, "rugo_mix_rule is an int");
+            std::memcpy(&mix, &given, sizeof mix);
+            return mix < RUGO_MIX_MAX || mix > RUGO_MIX_GEOMETRIC ? fallback : given;
+        };
+        I.def.pointFrictionMix = sane(def.pointFrictionMix, defaults.pointFrictionMix);
+        I.def.fixtureFrictionMix = sane(def.fixtureFrictionMix, defaults.fixtureFrictionMix);
+        I.def.fixtureRestitutionMix = sane(def.fixtureRestitutionMix, defaults.fixtureRestitutionMix);
+        I.def.roughFrictionMix = sane(def.roughFrictionMix, defaults.roughFrictionMix);
+        I.def.roughRestitutionMix = sane(def.roughRestitutionMix, defaults.roughRestitutionMix);
     }
     I.userDestruction = def.destructionListener;
     I.query = queryEngineCreate();
@@ -237,6 +244,11 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
                       "is %g; give 0 (the bridge's) or "
                       "1..8",
                       def.maxProxies);
+    if (!std::isfinite(def.rollingResistance) || def.rollingResistance < 0.0)
+        return refuse(e, RUGO_ERR_BAD_ARGUMENT, "RoughBodyDef::rollingResistance",
+                      "is %.17g; give a factor >= 0 (0 switches rolling resistance off, "
+                      "rugo::kDefaultRollingResistance is calibrated)",
+                      def.rollingResistance);
     const int cap = def.maxProxies > 0
                         ? def.maxProxies
                         : (I.def.maxProxies >= 1 && I.def.maxProxies <= 8 ? I.def.maxProxies : 8);
@@ -281,6 +293,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     r->shape = s;
     r->data = data;
     r->density = def.density;
+    r->rollingResistance = def.rollingResistance;
     r->serial = I.nextSerial++;
     r->level = level;
     r->budget = budget;
@@ -304,6 +317,7 @@ rugo_status Bridge::Attach(b2Body* body, const RoughBodyDef& def) {
     }
     I.bodies[body] = r;
     I.reserveFor(I.bodies.size());
+    I.reservePointInfo(I.bodies.size());
     I.applyMass(r);
     return RUGO_OK;
 }

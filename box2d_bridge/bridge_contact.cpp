@@ -58,6 +58,7 @@ b2Contact* createContact(b2Fixture* fA, int32 iA, b2Fixture* fB, int32 iB, b2Blo
 
 void destroyContact(b2Contact* contact, b2BlockAllocator* allocator) {
     if (RoughContact* rc = dynamic_cast<RoughContact*>(contact)) {
+        rc->impl->releasePointInfo(rc);
         rc->~RoughContact();
         allocator->Free(rc, sizeof(RoughContact));
         return;
@@ -97,6 +98,51 @@ void RoughContact::install() {
         AddType(createContact, destroyContact, p.first, p.second);
     }
 }
+
+} // namespace detail
+
+// A contact's two PointInfo (allocated on its first points; a free slot first).
+PointInfo* Bridge::Impl::pointInfoOf(RoughContact* rc) {
+    if (rc->infoSlot < 0) {
+        if (infoFree >= 0) {
+            rc->infoSlot = infoFree;
+            infoFree = infoNext[static_cast<size_t>(infoFree)];
+        } else {
+            rc->infoSlot = static_cast<int>(infoNext.size());
+            infoNext.push_back(-1);
+            pointInfo.resize(pointInfo.size() + 2);
+        }
+    }
+    return &pointInfo[2 * static_cast<size_t>(rc->infoSlot)];
+}
+
+// Slots for 16 touching proxy contacts a body (a body in a pile touches a handful of others, a few proxy
+// pairs each), now rather than in a step: the bridge allocates nothing in a step once warm.
+void Bridge::Impl::reservePointInfo(size_t bodyCount) {
+    infoNext.reserve(16 * bodyCount);
+    pointInfo.reserve(2 * 16 * bodyCount);
+}
+
+void Bridge::Impl::releasePointInfo(RoughContact* rc) {
+    if (rc->infoSlot < 0) return;
+    infoNext[static_cast<size_t>(rc->infoSlot)] = infoFree;
+    infoFree = rc->infoSlot;
+    rc->infoSlot = -1;
+}
+
+rugo_status Bridge::GetPointInfo(const b2Contact* contact, int index, PointInfo* out) const {
+    if (contact == nullptr || out == nullptr) return RUGO_ERR_NULL_ARGUMENT;
+    const RoughContact* rc = dynamic_cast<const RoughContact*>(contact);
+    if (rc == nullptr || rc->impl != m_impl.get()) return RUGO_ERR_NOT_ATTACHED;
+    // The manifold and its surface data are written together (Impl::evaluate); a contact evaluated
+    // without points has a manifold of none.
+    if (index < 0 || index >= contact->GetManifold()->pointCount || rc->infoSlot < 0)
+        return RUGO_ERR_BAD_ARGUMENT;
+    *out = m_impl->pointInfo[2 * static_cast<size_t>(rc->infoSlot) + static_cast<size_t>(index)];
+    return RUGO_OK;
+}
+
+namespace detail {
 
 void registerBridge(const b2World* world, Bridge::Impl* impl) {
     RoughContact::install();

@@ -521,8 +521,9 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
     // gravity, covers its gap), as a speculative point.
     struct Pt {
         b2Vec2 pA, pB;
-        double s, mu, eps, closing, band;
+        double s, mu, eps, closing, resist;
         uint32_t key;
+        PointInfo info;
     };
     Pt pts[2];
     int np = 0;
@@ -536,9 +537,12 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
         p.pA = toB2(flip ? q.pb : q.pa);
         p.pB = toB2(flip ? q.pa : q.pb);
         p.s = q.s;
-        p.mu = q.mu;
-        p.eps = q.eps;
-        p.band = q.band;
+        surfaceAt(rc, q, flip, &p.info);
+        p.mu = p.info.friction;
+        p.eps = p.info.restitution;
+        // The rolling-resistance arm of the point: each rough side's band times its body's factor.
+        p.resist = (RA ? RA->rollingResistance * p.info.a.lambda : 0.0) +
+                   (RB ? RB->rollingResistance * p.info.b.lambda : 0.0);
         p.key = q.key;
         p.closing = approach(mA, p.pA, mB, p.pB, n);
         // A predicted point (i >= patch->count) counts whatever it does now: the impact at the first
@@ -602,7 +606,9 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
         }
     }
     m->pointCount = np;
+    PointInfo* info = pointInfoOf(rc);
     for (int i = 0; i < np; ++i) {
+        info[i] = pts[i].info;
         m->points[i].id.key = pts[i].key;
         m->points[i].normalImpulse = 0.0f; // Box2D copies the old impulses by id after Evaluate
         m->points[i].tangentImpulse = 0.0f;
@@ -633,15 +639,51 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
     }
     stats.pointsSubmitted += np;
     if (!toi && lastImpulse > 0.0f)
-        rollingResistance(rc, lastImpulse, 0.5 * (pts[0].band + pts[np - 1].band));
+        rollingResistance(rc, lastImpulse, 0.5 * (pts[0].resist + pts[np - 1].resist));
 }
 
-// Rolling resistance from roughness: a rough surface resists rolling in proportion to its band. The
-// contact resists the two bodies' relative turning with a torque of its normal force times the bands
-// at its points (λ_A + λ_B), applied as an angular impulse before the solve from the last solve's
-// normal impulse, never more than stops the relative turning. A smooth body (no band) rolls freely; a
-// rough one settles instead of rocking on its asperities for ever (Box2D's solver has no rolling
-// friction, and rolling on curved asperities does no work against its contact constraints).
+// The surfaces at a patch point (query orientation: A is rough; B rough or the contact's ordinary
+// fixture), in the contact's orientation (fixture A's side, fixture B's side), and the point's μ and ε
+// by the BridgeDef rule of the pair (docs/box2d.md, "Friction and restitution").
+void Bridge::Impl::surfaceAt(const RoughContact* rc, const PatchPoint& q, bool flip, PointInfo* out) const {
+    const BodyRec* qa = flip ? rc->recB : rc->recA; // the query's A: always rough
+    const BodyRec* qb = flip ? rc->recA : rc->recB; // nullptr: an ordinary fixture
+    SurfacePoint sa, sb;
+    sa.rough = true;
+    sa.segment = q.segA;
+    sa.level = q.levelA;
+    sa.t = static_cast<double>(q.tA);
+    sa.lambda = q.lamA;
+    sa.friction = rugo_friction(&qa->data->friction, q.lamA);
+    sa.restitution = qa->data->restitution.epsilon;
+    if (qb != nullptr) {
+        sb.rough = true;
+        sb.segment = q.segB;
+        sb.level = q.levelB;
+        sb.t = static_cast<double>(q.tB);
+        sb.lambda = q.lamB;
+        sb.friction = rugo_friction(&qb->data->friction, q.lamB);
+        sb.restitution = qb->data->restitution.epsilon;
+        out->friction = rugo_mix(def.roughFrictionMix, sa.friction, sb.friction);
+        out->restitution = rugo_mix(def.roughRestitutionMix, sa.restitution, sb.restitution);
+    } else {
+        const b2Fixture* f = flip ? rc->GetFixtureA() : rc->GetFixtureB();
+        sb.friction = static_cast<double>(f->GetFriction());
+        sb.restitution = static_cast<double>(f->GetRestitution());
+        out->friction = rugo_mix(def.fixtureFrictionMix, sa.friction, sb.friction);
+        out->restitution = rugo_mix(def.fixtureRestitutionMix, sa.restitution, sb.restitution);
+    }
+    out->a = flip ? sb : sa;
+    out->b = flip ? sa : sb;
+}
+
+// Rolling resistance from roughness (docs/roughness.md, "Rolling resistance"): a rough surface resists
+// rolling in proportion to its band. The contact resists the two bodies' relative turning with a
+// torque of its normal force times the arm k_A λ_A + k_B λ_B at its points (RoughBodyDef::
+// rollingResistance), applied as an angular impulse before the solve from the last solve's normal
+// impulse, never more than stops the relative turning. A smooth body (no band) rolls freely; a rough
+// one settles instead of rocking on its asperities for ever (Box2D's solver has no rolling friction,
+// and rolling on curved asperities does no work against its contact constraints).
 void Bridge::Impl::rollingResistance(RoughContact* rc, float impulse, double arm) {
     if (!(arm > 0.0)) return;
     b2Body* a = rc->GetFixtureA()->GetBody();

@@ -84,6 +84,8 @@ struct BodyRec {
     int level = 0;       // absolute contact level
     int relLevel = 0;    // relative contact level
     double budget = 0.0; // its error budget (m; RoughBodyDef's or the bridge's; < 0 or NaN: none)
+    // RoughBodyDef::rollingResistance (k).
+    double rollingResistance = 0.0;
     std::vector<b2Fixture*> proxies;
     rugo_vec2 rootCorners[4]; // local frame, for the speed bound
     b2MassData applied;       // what GetMassData returned right after the bridge set the mass
@@ -118,12 +120,15 @@ struct QContact {
 constexpr uint32_t kPatchEndKey = 1;
 
 struct PatchPoint {
-    rugo_vec2 pa, pb; // on A's curve and on B's (curve or primitive surface)
-    rugo_vec2 la, lb; // the same in A's and B's body frames (material points)
-    double band;      // the bands there: s = (pb - pa) . n - band
-    double s;         // band-adjusted separation along the patch normal
-    double mu, eps;
-    uint32_t key; // Box2D contact id (warm starting)
+    rugo_vec2 pa, pb;       // on A's curve and on B's (curve or primitive surface)
+    rugo_vec2 la, lb;       // the same in A's and B's body frames (material points)
+    double band;            // the bands there: s = (pb - pa) . n - band
+    double s;               // band-adjusted separation along the patch normal
+    double lamA, lamB;      // each side's band there (band = lamA + lamB; 0 on a primitive)
+    int segA, segB;         // each side's segment at its contact level (-1: primitive)
+    float tA, tB;           // each side's curve parameter in the segment (Bridge::GetPointInfo)
+    uint32_t key;           // Box2D contact id (warm starting)
+    int16_t levelA, levelB; // the absolute levels of segA and segB (the query may refine the body's)
 };
 
 // A contact patch: one normal, one or two points, owned by one proxy pair (pieces of A and B; -1 for
@@ -310,6 +315,14 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
         b2Vec2 p, n;
     };
     std::vector<DrawnContact> lastContacts;
+    // Bridge::GetPointInfo's data: two PointInfo per slot, a slot per RoughContact that has written
+    // points (RoughContact::infoSlot), free slots chained through infoNext (bridge_contact.cpp).
+    std::vector<PointInfo> pointInfo;
+    std::vector<int> infoNext;
+    int infoFree = -1;
+    PointInfo* pointInfoOf(RoughContact* rc);
+    void reservePointInfo(size_t bodyCount); // room for the slots of that many bodies' contacts
+    void releasePointInfo(RoughContact* rc);
     // Inside Detach's DestroyFixture calls, or a user EndContact that Box2D raised outside Step
     // (DestroyBody, DestroyFixture, SetEnabled, SetType walk a contact list meanwhile): Attach and
     // Detach refuse (WORLD_LOCKED).
@@ -410,6 +423,7 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
         return def.reuseDistance > 0.0 && std::isfinite(def.reuseDistance) ? def.reuseDistance : 0.0;
     }
     void rollingResistance(RoughContact* rc, float impulse, double arm);
+    void surfaceAt(const RoughContact* rc, const PatchPoint& q, bool flip, PointInfo* out) const;
     void giveUnowned(uint32_t first, const BodyRec* qa, const void* other, int child,
                      const RoughContact* current);
 
@@ -453,6 +467,7 @@ class RUGO_BRIDGE_HIDDEN RoughContact : public b2Contact {
     uint64_t lastStep = 0;
     float lastPose[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     bool repeated = false; // the last evaluation repeated the one before at the same poses (disabled)
+    int infoSlot = -1;     // its points' surface data in Impl::pointInfo (-1: none written yet)
     // The last query's answer for this contact (BridgeDef::reuseDistance): the step, the two body poses
     // and the margin it ran at, and its patch (query orientation, material points) if it had one.
     bool warm = false, warmHasPatch = false;

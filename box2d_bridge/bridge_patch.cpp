@@ -130,10 +130,13 @@ bool primitiveFace(const PatchSide& s, rugo_vec2 o, rugo_vec2 t, rugo_vec2 facin
 }
 
 // The point of a face at tangent coordinate u (within its interval): on the curve (rough) or on the
-// primitive's surface, with the band there (0 for a primitive) and the segment (rough).
-rugo_vec2 facePoint(const FaceView& f, rugo_vec2 o, rugo_vec2 t, double u, double* lambda, int* segment) {
+// primitive's surface, with the band there (0 for a primitive), the segment and the parameter in it
+// (rough; the face is straight, so the parameter is taken along the chord between its joints).
+rugo_vec2 facePoint(const FaceView& f, rugo_vec2 o, rugo_vec2 t, double u, double* lambda, int* segment,
+                    double* param) {
     *lambda = 0.0;
     *segment = -1;
+    *param = 0.0;
     if (f.face != nullptr) {
         const std::vector<rugo_vec2>& j = f.face->joints;
         rugo_vec2 prev = rugo_transform_point(f.x, j[0]);
@@ -147,6 +150,7 @@ rugo_vec2 facePoint(const FaceView& f, rugo_vec2 o, rugo_vec2 t, double u, doubl
                 const double tau = du != 0.0 ? std::min(1.0, std::max(0.0, (u - uPrev) / du)) : 0.0;
                 const int seg = (f.face->first + static_cast<int>(i) - 1) % f.levelCount;
                 *segment = seg;
+                *param = tau;
                 *lambda = rugo_tolerance_at(f.tl.total, f.tl.count, seg, tau, 0.0);
                 return lerp(prev, cur, tau);
             }
@@ -162,21 +166,20 @@ rugo_vec2 facePoint(const FaceView& f, rugo_vec2 o, rugo_vec2 t, double u, doubl
     return rugo_v2_add(q, rugo_v2_scale(static_cast<double>(f.radius), toRv(f.normal)));
 }
 
-double sideFriction(const PatchSide& s, double lambda) {
-    if (s.data != nullptr) return rugo_friction(&s.data->friction, lambda);
-    return s.mu;
-}
-
 // The band-adjusted deepest point near a contact, on one rough side: librugo's contact is a minimum of
 // the curves' distance, and where the band thickens beside it the band-adjusted separation is lower
 // there (a ball rolling onto a thicker band climbs it). Samples `side`'s curve over a segment on each
 // side of (segment, t) at the given level, eight per segment, against the other side's surface as the
 // line through `other` along the tangent, bent away by its curvature otherKappa (> 0: convex there),
 // with the band `otherBand` there. True with the deepest sample (curve point, foot on the other
-// surface, band sum, separation) if it lies below `than`.
+// surface, band sum, separation, and the sample's own band, segment and t) if it lies below `than`.
+struct SideSample {
+    double lam = 0.0, t = 0.0;
+    int segment = -1;
+};
 bool bandDeepest(const PatchSide& side, int segment, double t, int level, rugo_vec2 nOut, rugo_vec2 other,
                  double otherBand, double otherKappa, double than, rugo_vec2* pSide, rugo_vec2* pOther,
-                 double* band, double* sep) {
+                 double* band, double* sep, SideSample* own) {
     const ShapeData* d = side.data;
     if (d == nullptr || segment < 0) return false;
     rugo_contour c;
@@ -207,6 +210,9 @@ bool bandDeepest(const PatchSide& side, int segment, double t, int level, rugo_v
             *pOther = rugo_v2_add(x, rugo_v2_scale(rugo_v2_dot(rugo_v2_sub(other, x), nOut) + bend, nOut));
             *band = lam + otherBand;
             *sep = s;
+            own->lam = lam;
+            own->t = tt;
+            own->segment = k;
         }
     }
     return found;
@@ -267,8 +273,14 @@ int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& 
             q.p.pb = k.pb;
             q.p.band = k.tolA + k.tolB;
             q.p.s = rugo_v2_dot(rugo_v2_sub(k.pb, k.pa), nrm) - q.p.band;
-            q.p.mu = primitive ? std::max(k.mu, B.mu) : k.mu;
-            q.p.eps = primitive ? std::min(k.eps, B.eps) : k.eps;
+            q.p.lamA = k.tolA;
+            q.p.lamB = k.tolB;
+            q.p.segA = k.segA;
+            q.p.segB = k.segB;
+            q.p.levelA = static_cast<int16_t>(k.levelA);
+            q.p.levelB = static_cast<int16_t>(k.levelB);
+            q.p.tA = static_cast<float>(k.tA);
+            q.p.tB = static_cast<float>(k.tB);
             q.p.key = hashId(primitive ? k.id ^ (static_cast<uint64_t>(static_cast<uint32_t>(B.child)) << 40)
                                        : k.id);
             q.n = k.n;
@@ -296,18 +308,23 @@ int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& 
             if (hi - lo >= static_cast<double>(b2_linearSlop)) {
                 for (int end = 0; end < 2; ++end) {
                     const double u = end == 0 ? lo : hi;
-                    double la = 0.0, lb = 0.0;
+                    double la = 0.0, lb = 0.0, ta = 0.0, tb = 0.0;
                     int sa = -1, sb = -1;
-                    const rugo_vec2 qa = facePoint(fa, o, t, u, &la, &sa);
-                    const rugo_vec2 qb = facePoint(fb, o, t, u, &lb, &sb);
+                    const rugo_vec2 qa = facePoint(fa, o, t, u, &la, &sa, &ta);
+                    const rugo_vec2 qb = facePoint(fb, o, t, u, &lb, &sb, &tb);
                     Cand& q = cands[nc++];
                     q.p.pa = qa;
                     q.p.pb = qb;
                     q.p.band = la + lb;
                     q.p.s = rugo_v2_dot(rugo_v2_sub(qb, qa), nrm) - q.p.band;
-                    const double muA = sideFriction(A, la), muB = sideFriction(B, lb);
-                    q.p.mu = std::max(muA, muB); // thesis 7.2: max for friction
-                    q.p.eps = primitive ? std::min(D.eps, B.eps) : D.eps;
+                    q.p.lamA = la;
+                    q.p.lamB = lb;
+                    q.p.segA = sa;
+                    q.p.segB = sb;
+                    q.p.levelA = static_cast<int16_t>(D.levelA);
+                    q.p.levelB = static_cast<int16_t>(D.levelB);
+                    q.p.tA = static_cast<float>(ta);
+                    q.p.tB = static_cast<float>(tb);
                     uint64_t h = mixHash(0xFACEull, static_cast<uint64_t>(fa.faceIndex));
                     h = mixHash(h, static_cast<uint64_t>(primitive ? 0x10000 + B.child : fb.faceIndex));
                     q.p.key = hashId(mixHash(h, static_cast<uint64_t>(end)));
@@ -327,20 +344,37 @@ int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& 
             rugo_vec2 ps, po;
             double band = 0.0, sep = 0.0;
             int side = -1;
+            SideSample own;
             Cand extra;
             const double deeper = sD0 - 1e-4;
             const double kB = sideCurvature(B, D.segB, D.tB, D.levelB),
                          kA = sideCurvature(A, D.segA, D.tA, D.levelA);
-            if (bandDeepest(A, D.segA, D.tA, D.levelA, nrm, D.pb, D.tolB, kB, deeper, &ps, &po, &band,
-                            &sep)) {
+            if (bandDeepest(A, D.segA, D.tA, D.levelA, nrm, D.pb, D.tolB, kB, deeper, &ps, &po, &band, &sep,
+                            &own)) {
                 extra.p.pa = ps;
                 extra.p.pb = po;
+                extra.p.lamA = own.lam;
+                extra.p.segA = own.segment;
+                extra.p.tA = static_cast<float>(own.t);
+                extra.p.lamB = D.tolB;
+                extra.p.segB = D.segB;
+                extra.p.tB = static_cast<float>(D.tB);
+                extra.p.levelA = static_cast<int16_t>(D.levelA);
+                extra.p.levelB = static_cast<int16_t>(D.levelB);
                 side = 0;
             }
             if (bandDeepest(B, D.segB, D.tB, D.levelB, rugo_v2_scale(-1.0, nrm), D.pa, D.tolA, kA,
-                            side >= 0 ? sep : deeper, &ps, &po, &band, &sep)) {
+                            side >= 0 ? sep : deeper, &ps, &po, &band, &sep, &own)) {
                 extra.p.pa = po;
                 extra.p.pb = ps;
+                extra.p.lamA = D.tolA;
+                extra.p.segA = D.segA;
+                extra.p.tA = static_cast<float>(D.tA);
+                extra.p.lamB = own.lam;
+                extra.p.segB = own.segment;
+                extra.p.tB = static_cast<float>(own.t);
+                extra.p.levelA = static_cast<int16_t>(D.levelA);
+                extra.p.levelB = static_cast<int16_t>(D.levelB);
                 side = 1;
             }
             if (side >= 0) {
@@ -348,9 +382,6 @@ int buildPatches(const QContact* c, int n, const PatchSide& A, const PatchSide& 
                 q = extra;
                 q.p.band = band;
                 q.p.s = sep;
-                const double lamA = side == 0 ? band - D.tolB : D.tolA, lamB = band - lamA;
-                q.p.mu = std::max(sideFriction(A, lamA), sideFriction(B, lamB));
-                q.p.eps = primitive ? std::min(D.eps, B.eps) : D.eps;
                 q.p.key = hashId(mixHash(D.id, 0xBA4Dull + static_cast<uint64_t>(side)));
                 q.n = nrm;
                 q.u = rugo_v2_dot(rugo_v2_sub(rugo_v2_scale(0.5, rugo_v2_add(q.p.pa, q.p.pb)), o), t);

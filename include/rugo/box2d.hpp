@@ -85,11 +85,29 @@ struct BridgeDef {
     /// Friction of a contact: how the per-point μ of its (at most 2) points are combined (a value that
     /// is not a rugo_mix_rule falls back to this default).
     rugo_mix_rule pointFrictionMix = RUGO_MIX_MEAN;
+    /// Friction at a point of a rough body against an ordinary fixture: the rough surface's μ(λ(t)) at
+    /// the point mixed with the fixture's friction. Default: the world's own rule, √(μ_rough μ_fixture)
+    /// as b2MixFriction, so rough and ordinary bodies on one ramp follow one rule (a frictionless
+    /// rough body slides on any floor). RUGO_MIX_MAX is the thesis' rule (7.2). A value that is not a
+    /// rugo_mix_rule falls back to this default. (docs/box2d.md, "Friction and restitution".)
+    rugo_mix_rule fixtureFrictionMix = RUGO_MIX_GEOMETRIC;
+    /// Restitution at a point of a rough body against an ordinary fixture: the shape's ε mixed with the
+    /// fixture's restitution. Default: the world's rule, max as b2MixRestitution; RUGO_MIX_MIN is the
+    /// thesis'.
+    rugo_mix_rule fixtureRestitutionMix = RUGO_MIX_MAX;
+    /// Friction at a point of two rough bodies: μ_A(λ_A(t_A)) and μ_B(λ_B(t_B)) mixed. Default: the
+    /// thesis' max (7.2: the rougher surface's asperities decide).
+    rugo_mix_rule roughFrictionMix = RUGO_MIX_MAX;
+    /// Restitution at a point of two rough bodies: the shapes' ε mixed. Default: the thesis' min.
+    rugo_mix_rule roughRestitutionMix = RUGO_MIX_MIN;
     /// Box2D has no getter for the world's destruction listener: give the one you had set on the world
     /// here (or later with Bridge::SetDestructionListener); the bridge installs its own and chains to it.
     /// Not owned; must outlive the bridge.
     b2DestructionListener* destructionListener = nullptr;
 };
+
+/// RoughBodyDef::rollingResistance's default (docs/roughness.md, "Rolling resistance").
+constexpr double kDefaultRollingResistance = 1.5;
 
 /// How Bridge::Attach makes a b2Body rough.
 struct RoughBodyDef {
@@ -103,6 +121,14 @@ struct RoughBodyDef {
     double errorBudget = -1.0; ///< metres; < 0 or NaN = BridgeDef::errorBudget
     /// Most proxy fixtures of this body (1 .. 8); 0 = BridgeDef::maxProxies.
     int maxProxies = 0;
+    /// Rolling resistance from roughness (docs/roughness.md, "Rolling resistance"): k >= 0, a
+    /// dimensionless factor on this body's own band. At each contact the bridge resists the two bodies'
+    /// relative turning with a torque of at most N (k_A λ_A + k_B λ_B) (N the normal force, λ the bands at
+    /// the contact; an ordinary fixture has no band), never more than stops the turning. 0 switches it
+    /// off for this body (a smooth curve then rolls and rocks on its asperities as Box2D 2.4 lets it).
+    /// The default is calibrated so that a rough rock dropped on a floor comes to rest about as soon as
+    /// its polygon twin (samples/box2d/b2_surface). Errors: BAD_ARGUMENT if negative or not finite.
+    double rollingResistance = kDefaultRollingResistance;
     /// Given to every proxy fixture, as b2FixtureDef would.
     b2Filter filter;
     bool isSensor = false;      ///< makes every proxy fixture a sensor (Box2D reports, no contact response)
@@ -126,6 +152,33 @@ struct RayHit {
     float fraction = 1.0f;        ///< along p1 -> p2
     int segment = -1;             ///< curve segment at the body's contact level (-1: ordinary fixture)
     double t = 0.0;               ///< curve parameter in [0, 1)
+};
+
+/// One side of a manifold point of a rough contact (PointInfo): the surface of fixture A's or B's body.
+struct SurfacePoint {
+    bool rough = false; ///< a rough body's curve (false: an ordinary fixture)
+    /// Absolute level of detail of segment and t: the body's contact level (Bridge::GetLevel), or a
+    /// finer one where the query refined it (-1: ordinary fixture).
+    int level = -1;
+    int segment = -1;         ///< curve segment at that level (-1: ordinary fixture)
+    double t = 0.0;           ///< curve parameter in [0, 1] within the segment (0: ordinary fixture)
+    double lambda = 0.0;      ///< tolerance band λ(t) there, metres (0: ordinary fixture)
+    double friction = 0.0;    ///< μ(λ) of the body's friction map there, or the fixture's friction
+    double restitution = 0.0; ///< the shape's base ε (rugo_restitution::epsilon), or the fixture's
+};
+
+/// The surface data of one manifold point of a rough contact (Bridge::GetPointInfo).
+struct PointInfo {
+    /// The point's μ: a.friction and b.friction mixed by the BridgeDef rule of the pair (rough against
+    /// rough: roughFrictionMix; against an ordinary fixture: fixtureFrictionMix). The contact's friction
+    /// (b2Contact::GetFriction before your PreSolve changes it) is these mixed over its points by
+    /// BridgeDef::pointFrictionMix.
+    double friction = 0.0;
+    /// The point's ε, mixed likewise (roughRestitutionMix, fixtureRestitutionMix). The contact's
+    /// restitution is the smaller of its points', except on speculative manifolds (docs/box2d.md).
+    double restitution = 0.0;
+    SurfacePoint a; ///< the surface of b2Contact::GetFixtureA()'s body at the point
+    SurfacePoint b; ///< the surface of b2Contact::GetFixtureB()'s body at the point
 };
 
 /// Counters since construction or ResetStats().
@@ -229,6 +282,15 @@ class RUGO_API Bridge {
     /// Bodies whose true geometry overlaps the box: rough bodies by their curve (plus band), ordinary
     /// bodies by their fixtures' AABBs as Box2D would. Each body reported once; return false to stop.
     void QueryAABB(const b2AABB& aabb, const std::function<bool(b2Body*)>& callback) const;
+
+    /// The surface data of manifold point `index` (0 .. GetManifold()->pointCount - 1, as
+    /// b2WorldManifold numbers the points) of a contact the bridge wrote (one with a rough body): μ, ε,
+    /// λ, segment and t on each side, into *out. Valid in BeginContact, PreSolve and PostSolve and until
+    /// the contact is next evaluated (the manifold it describes). Errors (*out untouched):
+    /// RUGO_ERR_NULL_ARGUMENT (contact or out), RUGO_ERR_NOT_ATTACHED (a contact without a rough body
+    /// of this bridge: IsProxy tells), RUGO_ERR_BAD_ARGUMENT (index outside the manifold's points; a
+    /// contact that does not touch has none).
+    rugo_status GetPointInfo(const b2Contact* contact, int index, PointInfo* out) const;
 
     /// Draws every rough body through any b2Draw (flags: DrawFlags); nothing for nullptr.
     void Draw(b2Draw* draw, unsigned flags = kDrawCurve) const;

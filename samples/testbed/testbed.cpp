@@ -219,6 +219,9 @@ void Testbed::GatherContacts() {
         v.normal = wm.normal;
         v.friction = c->GetFriction();
         v.restitution = c->GetRestitution();
+        v.hasInfo = v.rough;
+        for (int k = 0; k < v.points && v.hasInfo; ++k)
+            v.hasInfo = br->GetPointInfo(c, k, &v.info[k]) == RUGO_OK;
         m_contacts.push_back(v);
     }
 }

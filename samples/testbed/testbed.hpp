@@ -99,6 +99,9 @@ struct ContactView {
     float normalImpulse[2] = {0.0f, 0.0f};
     b2Vec2 normal{0.0f, 0.0f}; // from a to b
     float friction = 0.0f, restitution = 0.0f;
+    // The surfaces at each point as the bridge computed them (Bridge::GetPointInfo; rough contacts).
+    bool hasInfo = false;
+    rugo::PointInfo info[2];
 };
 
 // What the public API tells about one rough body at a world point: the closest point of its curve at

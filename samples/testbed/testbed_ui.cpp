@@ -80,17 +80,33 @@ void HoverTooltip(Testbed& tb) {
                 static_cast<double>(c.restitution));
     ImGui::Text("separation %.2f mm (band-adjusted)  normal impulse %.4f N s",
                 1e3 * static_cast<double>(c.separation[k]), static_cast<double>(c.normalImpulse[k]));
-    for (const b2Body* b : {c.a, c.b}) {
-        const SurfacePoint sp = tb.Surface(b, c.p[k]);
-        if (!sp.rough) {
-            ImGui::Text("%s body: ordinary fixture", b == c.a ? "A" : "B");
-            continue;
+    if (c.hasInfo) { // the bridge's own values at this point (Bridge::GetPointInfo)
+        const rugo::PointInfo& info = c.info[k];
+        ImGui::Text("this point: mu %.3f  eps %.3f (its surfaces mixed, docs/box2d.md)", info.friction,
+                    info.restitution);
+        for (int side = 0; side < 2; ++side) {
+            const rugo::SurfacePoint& sp = side == 0 ? info.a : info.b;
+            if (!sp.rough) {
+                ImGui::Text("%s body: ordinary fixture, mu %.3f, eps %.3f", side == 0 ? "A" : "B",
+                            sp.friction, sp.restitution);
+                continue;
+            }
+            ImGui::Text("%s body: level %d, segment %d, t %.3f, lambda %.2f mm, mu(lambda) %.3f",
+                        side == 0 ? "A" : "B", sp.level, sp.segment, sp.t, 1e3 * sp.lambda, sp.friction);
         }
-        ImGui::Text("%s body: level %d, segment %d, t %.3f, lambda %.2f mm, mu(lambda) %.3f, %.2f mm off",
-                    b == c.a ? "A" : "B", sp.level, sp.segment, sp.t, 1e3 * sp.lambda, sp.mu,
-                    1e3 * sp.distance);
+    } else {
+        for (const b2Body* b : {c.a, c.b}) {
+            const SurfacePoint sp = tb.Surface(b, c.p[k]);
+            if (!sp.rough) {
+                ImGui::Text("%s body: ordinary fixture", b == c.a ? "A" : "B");
+                continue;
+            }
+            ImGui::Text("%s body: level %d, segment %d, t %.3f, lambda %.2f mm, mu(lambda) %.3f, %.2f mm off",
+                        b == c.a ? "A" : "B", sp.level, sp.segment, sp.t, 1e3 * sp.lambda, sp.mu,
+                        1e3 * sp.distance);
+        }
+        ImGui::TextDisabled("segment, t, lambda: the closest curve point");
     }
-    ImGui::TextDisabled("segment, t, lambda: the closest curve point (the bridge has no per-point getter)");
     ImGui::EndTooltip();
 }
 

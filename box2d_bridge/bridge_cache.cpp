@@ -21,6 +21,7 @@ void Bridge::Impl::reserveFor(size_t n) {
         used = 0;
         patches.clear();
     }
+    pairCaches.reserve(kPairCachesPerBody * n); // short of memory: the pairs beyond search every step
     patches.reserve(16 * n);
     patchScratch.reserve(scratch.size());
     lastContacts.reserve(std::max<size_t>(4096, 8 * n));

@@ -87,21 +87,6 @@ PatchSide primitiveSide(const b2Fixture* f, int child, const b2Transform& x) {
     return s;
 }
 
-// A bound on how far any point of either body has moved in the other's frame between poses (a0, b0)
-// and (a1, b1): the smaller of the two ways of looking at it, each the motion of the other body's frame
-// origin plus its turn times its reach (reach about the local centre lc, plus |lc|).
-double relativeMotion(const b2Transform& a0, const b2Transform& b0, const b2Transform& a1,
-                      const b2Transform& b1, double reachA, b2Vec2 lcA, double reachB, b2Vec2 lcB) {
-    auto oneWay = [](const b2Transform& x0, const b2Transform& y0, const b2Transform& x1,
-                     const b2Transform& y1, double reachY, b2Vec2 lcY) {
-        const b2Transform r0 = b2MulT(x0, y0), r1 = b2MulT(x1, y1); // y in x's frame
-        const double dp = static_cast<double>((r1.p - r0.p).Length());
-        const double dq = std::fabs(static_cast<double>(b2MulT(r0.q, r1.q).GetAngle()));
-        return dp + dq * (reachY + static_cast<double>(lcY.Length()));
-    };
-    return std::min(oneWay(a0, b0, a1, b1, reachB, lcB), oneWay(b0, a0, b1, a1, reachA, lcA));
-}
-
 } // namespace
 
 // The patches of a rough body pair (query order: attach order) at poses xa, xb, cached per poses.
@@ -114,16 +99,31 @@ bool Bridge::Impl::roughPatches(BodyRec* QA, BodyRec* QB, const b2Transform& xa,
         [&]() {
             QueryParams qp;
             qp.level = level;
-            qp.margin = margin + warmDistance();
             qp.resolution = resolutionFor(QA, QB);
+            qp.margin = searchMargin(margin);
             int n = 0, found = 0;
             const rugo_transform ta = toRugo(xa), tb = toRugo(xb);
-            rugo_status st = queryShapes(query, QA->shape, ta, QB->shape, tb, qp, scratch.data(),
-                                         static_cast<int>(scratch.size()), &n, &found, &stats);
-            if (st == RUGO_OK && found > static_cast<int>(scratch.size())) {
-                scratch.resize(static_cast<size_t>(found) * 2); // a warm-up: the next such query fits
+            // The pair's kept answer, moved with the bodies, or a search kept for the next steps (not
+            // at the poses a fast pair's turn is predicted at: the pair is not searched there next).
+            PairCache* pc = current != nullptr && keepDistance() > 0.0
+                                ? pairCaches.find(QA->serial, QB->serial, nullptr, -1, stepSerial)
+                                : nullptr;
+            const PrimitiveGeometry none;
+            rugo_status st = RUGO_OK;
+            if (keptAnswer(pc, none, ta, tb, qp, margin, scratch.data(), static_cast<int>(scratch.size()),
+                           &n)) {
+                ++stats.queriesReused;
+            } else {
                 st = queryShapes(query, QA->shape, ta, QB->shape, tb, qp, scratch.data(),
                                  static_cast<int>(scratch.size()), &n, &found, &stats);
+                if (st == RUGO_OK && found > static_cast<int>(scratch.size())) {
+                    scratch.resize(static_cast<size_t>(found) * 2); // a warm-up: the next such query fits
+                    st = queryShapes(query, QA->shape, ta, QB->shape, tb, qp, scratch.data(),
+                                     static_cast<int>(scratch.size()), &n, &found, &stats);
+                }
+                if (st == RUGO_OK)
+                    keepAnswer(pc, originReach(QA), originReach(QB), none, ta, tb, qp, scratch.data(), n,
+                               found);
             }
             ++stats.queries;
             if (st != RUGO_OK) return false;
@@ -242,16 +242,31 @@ bool Bridge::Impl::primitivePatches(BodyRec* R, b2Fixture* other, int child, con
             if (os.on && !os.roundEnds && b2Dot(os.n1, centroid - os.v1) < 0.0f) return true;
             QueryParams qp;
             qp.level = level;
-            qp.margin = margin + warmDistance();
             qp.resolution = resolutionFor(R, nullptr);
+            qp.margin = searchMargin(margin);
             int n = 0, found = 0;
-            const rugo_transform tr = toRugo(xr);
-            rugo_status st = queryPrimitive(query, R->shape, tr, B, qp, scratch.data(),
-                                            static_cast<int>(scratch.size()), &n, &found, &stats);
-            if (st == RUGO_OK && found > static_cast<int>(scratch.size())) {
-                scratch.resize(static_cast<size_t>(found) * 2);
+            const rugo_transform tr = toRugo(xr), to = toRugo(xo);
+            // As roughPatches: the kept answer (of the edge's raw contacts: its rules apply below).
+            PairCache* pc = current != nullptr && keepDistance() > 0.0
+                                ? pairCaches.find(R->serial, -1, other, child, stepSerial)
+                                : nullptr;
+            const PrimitiveGeometry geometry =
+                pc != nullptr ? primitiveGeometry(other, child) : PrimitiveGeometry();
+            rugo_status st = RUGO_OK;
+            if (keptAnswer(pc, geometry, tr, to, qp, margin, scratch.data(), static_cast<int>(scratch.size()),
+                           &n)) {
+                ++stats.queriesReused;
+            } else {
                 st = queryPrimitive(query, R->shape, tr, B, qp, scratch.data(),
                                     static_cast<int>(scratch.size()), &n, &found, &stats);
+                if (st == RUGO_OK && found > static_cast<int>(scratch.size())) {
+                    scratch.resize(static_cast<size_t>(found) * 2);
+                    st = queryPrimitive(query, R->shape, tr, B, qp, scratch.data(),
+                                        static_cast<int>(scratch.size()), &n, &found, &stats);
+                }
+                if (st == RUGO_OK)
+                    keepAnswer(pc, originReach(R), originReach(geometry), geometry, tr, to, qp,
+                               scratch.data(), n, found);
             }
             ++stats.queries;
             if (st != RUGO_OK) return false;
@@ -373,101 +388,58 @@ void Bridge::Impl::evaluate(RoughContact* rc, b2Manifold* m, const b2Transform& 
             primitivePatches(R, other, child, RA ? xa : xb, RA ? xb : xa, margin, owner, st, ct);
         }
     };
-    // A warm contact answers from its last query (BridgeDef::reuseDistance).
     Patch carried;
     const Patch* patch = nullptr;
-    bool answered = false;
-    if (warmDistance() > 0.0 && inStep && !toi && !fast && rc->warm &&
-        stepSerial - rc->warmStep < kWarmMaxAge) {
-        const double moved = relativeMotion(rc->warmA, rc->warmB, xfA, xfB, reachA, bA->GetLocalCenter(),
-                                            reachB, bB->GetLocalCenter());
-        // A contact with points carries them only over a tenth of the distance: they are material points,
-        // and a body rolling or sliding on the other moves its contact along its surface.
-        const double limit = rc->warmHasPatch ? kWarmPatchShare * warmDistance() : warmDistance();
-        if (moved + std::max(0.0, margin - rc->warmMargin) <= limit) {
-            ++stats.reusedEvaluations;
-            answered = true;
-            if (rc->warmHasPatch) {
-                carried = rc->warmPatch;
-                carried.n = rugo_rotate(toRugo(xqa).q, rc->warmNormal);
-                const rugo_transform ta = toRugo(xqa), tb = toRugo(xqb);
-                for (int k = 0; k < carried.count; ++k) {
-                    PatchPoint& q = carried.p[k];
-                    q.pa = rugo_transform_point(ta, q.la);
-                    q.pb = rugo_transform_point(tb, q.lb);
-                    q.s = rugo_v2_dot(rugo_v2_sub(q.pb, q.pa), carried.n) - q.band;
-                }
-                patch = &carried;
-            }
+    // The proxies alone decide a pair that cannot touch within the step (no query), unless the pair's
+    // query has run at these poses already: it may have given this contact a patch (giveUnowned).
+    bool cached = false;
+    if (RA && RB) {
+        const bool swap = RB->serial < RA->serial;
+        cached = cacheHas(swap ? RB : RA, swap ? RA : RB, -1, swap ? xfB : xfA, swap ? xfA : xfB, margin,
+                          std::max(RA->relLevel, RB->relLevel));
+    } else {
+        const BodyRec* R = RA ? RA : RB;
+        cached = cacheHas(R, RA ? fB : fA, RA ? rc->GetChildIndexB() : rc->GetChildIndexA(), RA ? xfA : xfB,
+                          RA ? xfB : xfA, margin, R->relLevel);
+    }
+    if (!cached) {
+        b2DistanceInput in;
+        in.proxyA.Set(fA->GetShape(), rc->GetChildIndexA());
+        in.proxyB.Set(fB->GetShape(), rc->GetChildIndexB());
+        in.transformA = xfA;
+        in.transformB = xfB;
+        in.useRadii = false;
+        b2SimplexCache cache;
+        cache.count = 0;
+        b2DistanceOutput out;
+        b2Distance(&out, &cache, &in);
+        const double gap = static_cast<double>(out.distance) - static_cast<double>(fA->GetShape()->m_radius) -
+                           static_cast<double>(fB->GetShape()->m_radius);
+        // A body with several proxies: another proxy contact of the pair may touch and owe this one a
+        // patch of its query (giveUnowned); so the pair's query runs once the bodies' reaches meet.
+        const bool several = (RA && RA->proxies.size() > 1) || (RB && RB->proxies.size() > 1);
+        const double reach =
+            static_cast<double>((bA->GetWorldCenter() - bB->GetWorldCenter()).Length()) - reachA - reachB;
+        if (gap > margin && (!several || reach > margin)) {
+            ++stats.proxyRejections;
+            ++stats.emptyEvaluations;
+            return;
         }
     }
-    if (!answered) {
-        // The proxies alone decide a pair that cannot touch within the step (no query), unless the pair's
-        // query has run at these poses already: it may have given this contact a patch (giveUnowned).
-        bool cached = false;
-        if (RA && RB) {
-            const bool swap = RB->serial < RA->serial;
-            cached = cacheHas(swap ? RB : RA, swap ? RA : RB, -1, swap ? xfB : xfA, swap ? xfA : xfB, margin,
-                              std::max(RA->relLevel, RB->relLevel));
-        } else {
-            const BodyRec* R = RA ? RA : RB;
-            cached = cacheHas(R, RA ? fB : fA, RA ? rc->GetChildIndexB() : rc->GetChildIndexA(),
-                              RA ? xfA : xfB, RA ? xfB : xfA, margin, R->relLevel);
-        }
-        if (!cached) {
-            b2DistanceInput in;
-            in.proxyA.Set(fA->GetShape(), rc->GetChildIndexA());
-            in.proxyB.Set(fB->GetShape(), rc->GetChildIndexB());
-            in.transformA = xfA;
-            in.transformB = xfB;
-            in.useRadii = false;
-            b2SimplexCache cache;
-            cache.count = 0;
-            b2DistanceOutput out;
-            b2Distance(&out, &cache, &in);
-            const double gap = static_cast<double>(out.distance) -
-                               static_cast<double>(fA->GetShape()->m_radius) -
-                               static_cast<double>(fB->GetShape()->m_radius);
-            // A body with several proxies: another proxy contact of the pair may touch and owe this one a
-            // patch of its query (giveUnowned); so the pair's query runs once the bodies' reaches meet.
-            const bool several = (RA && RA->proxies.size() > 1) || (RB && RB->proxies.size() > 1);
-            const double reach =
-                static_cast<double>((bA->GetWorldCenter() - bB->GetWorldCenter()).Length()) - reachA - reachB;
-            if (gap > margin && (!several || reach > margin)) {
-                ++stats.proxyRejections;
-                ++stats.emptyEvaluations;
-                return;
-            }
-        }
 
-        // This proxy pair's patch, in the query's orientation (rough-rough: attach order; rough-primitive:
-        // the rough body first).
-        uint32_t start = 0, count = 0;
-        patchesAt(xfA, xfB, rc, &start, &count);
-        // Held by value: a fast pair's second query below appends to `patches`, which may move it.
-        for (uint32_t i = 0; i < count; ++i) {
-            const Patch& p = patches[start + i];
-            if (p.ownerA == ownA && p.ownerB == ownB) {
-                carried = p;
-                patch = &carried;
-                break;
-            }
+    // This proxy pair's patch, in the query's orientation (rough-rough: attach order; rough-primitive:
+    // the rough body first).
+    uint32_t start = 0, count = 0;
+    patchesAt(xfA, xfB, rc, &start, &count);
+    // Held by value: a fast pair's second query below appends to `patches`, which may move it.
+    for (uint32_t i = 0; i < count; ++i) {
+        const Patch& p = patches[start + i];
+        if (p.ownerA == ownA && p.ownerB == ownB) {
+            carried = p;
+            patch = &carried;
+            break;
         }
-        // What this query answered, for the next steps (outside the continuous phase, whose poses are
-        // sub-step poses).
-        if (!toi) {
-            rc->warm = true;
-            rc->warmStep = stepSerial;
-            rc->warmA = xfA;
-            rc->warmB = xfB;
-            rc->warmMargin = margin;
-            rc->warmHasPatch = patch != nullptr;
-            if (patch != nullptr) {
-                rc->warmPatch = *patch;
-                rc->warmNormal = rugo_inv_rotate(toRugo(xqa).q, patch->n);
-            }
-        }
-    } // !answered
+    }
     if (patch == nullptr) {
         ++stats.emptyEvaluations;
         return;

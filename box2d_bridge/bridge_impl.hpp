@@ -12,6 +12,8 @@
 //   bridge_evaluate.cpp  RoughContact::Evaluate: a patch into Box2D's manifold, friction, restitution,
 //                        speculative points
 //   bridge_cache.cpp     the per-step cache of patches (one query per body pair and poses)
+//   bridge_pair_cache.cpp the answers kept from step to step, one per body pair (or rough body and
+//                        ordinary fixture child): resting and slow pairs skip their queries
 //   bridge_one_sided.cpp one-sided edges as Box2D 2.4.1 collides them
 //   bridge_queries.cpp   ray cast / point / AABB queries on the curves
 //   bridge_draw.cpp      debug drawing
@@ -20,6 +22,7 @@
 
 #include "rugo/box2d.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -169,16 +172,69 @@ struct CacheEntry {
     uint32_t start = 0, count = 0; // Impl::patches[start, start + count)
 };
 
+// ---- answers kept from step to step (bridge_pair_cache.cpp) -------------------------------------------
+
+// Contacts of an answer the bridge keeps (an answer with more is searched again every step).
+constexpr int kPairCacheContacts = 8;
+// Pair slots per rough body reserved when it is attached (a body in a pile touches about three others
+// and the ground in the mean; a step that needs more searches the rest every step until some are free).
+constexpr int kPairCachesPerBody = 4;
+// A kept answer covers a speculative margin of at least this many reuse distances, so that a pair at
+// rest or creeping (whose margin changes by a hair each step) is not searched again for its margin.
+constexpr double kKeptMarginFloor = 4.0;
+
+// An ordinary fixture's child in its body's frame, as a kept answer was asked for.
+struct PrimitiveGeometry {
+    int type = -1;
+    float radius = 0.0f;
+    int n = 0;
+    b2Vec2 v[b2_maxPolygonVertices];
+};
+
+// One pair's last search, kept from step to step (BridgeDef::reuseDistance): a rough body pair's or a
+// rough body and ordinary fixture child's contacts, in the query's orientation, with what was asked
+// and where. Reused, moved with the bodies, while the bodies have moved relative to each other by at
+// most the reuse distance since the search.
+struct PairCache {
+    int serialA = -1, serialB = -1; // query order; serialB -1: a rough body and an ordinary fixture
+    const b2Fixture* fixture = nullptr;
+    int child = 0;
+    uint64_t lastUsed = 0; // Bridge::Impl::stepSerial
+    bool valid = false;
+    PrimitiveGeometry geometry; // the fixture's child (serialB -1)
+    double covers = 0.0;        // the speculative margin the answer covers (its search's margin less r)
+    double resolution = 0.0;
+    int level = 0;
+    rugo_transform xa, xb;         // the search's poses (query order: A rough; B rough or the fixture's body)
+    double reachA = 0, reachB = 0; // farthest point of each side from its body's origin
+    int count = 0;
+    QContact contacts[kPairCacheContacts];
+};
+
+// The pair caches: a pool of slots found by pair (open addressing). Slots are made in reserve (when a
+// body is attached), never in a step; a step that finds none free takes back the slots of pairs not
+// queried in this step or the last.
+class PairCaches {
+  public:
+    // Room for `count` pairs; false if memory runs out (the slots made so far are kept).
+    bool reserve(size_t count);
+    // The pair's slot (a fresh one, cleared, for a pair it does not hold), or nullptr if none is free.
+    PairCache* find(int serialA, int serialB, const b2Fixture* fixture, int child, uint64_t step);
+
+  private:
+    std::vector<PairCache> slots_;
+    std::vector<int> index_; // slot of each hash bucket, -1 empty; size a power of two >= 2 slots
+    std::vector<int> free_;
+    size_t at(int serialA, int serialB, const b2Fixture* fixture, int child) const;
+    void sweep(uint64_t step);
+};
+
 // Largest |restitution| a speculative manifold gets: a point approaching 1000x slower than its gap
 // per step is as good as not approaching.
 constexpr double kMaxSpeculativeRestitution = 1000.0;
 // A pair turning by more than this (radians) in a step is fast: Box2D's continuous phase re-solves it
 // even at the poses its step solve had (bridge_evaluate.cpp).
 constexpr double kFastTurn = 0.3;
-// A contact answers from its last query (BridgeDef::reuseDistance) for at most this many steps.
-constexpr uint64_t kWarmMaxAge = 16;
-// ... and one with points only while the bodies moved by at most this share of the distance.
-constexpr double kWarmPatchShare = 0.1;
 // Depth (in linear slops) given to a point of a time of impact whose curves are still apart: Box2D's
 // position solve of the continuous phase stops at 1.5 slops, so it moves the bodies back by half a
 // slop, out of the target of its next time-of-impact search.
@@ -236,7 +292,7 @@ inline rugo_vec2 toRv(b2Vec2 v) { return rugo_v2(static_cast<double>(v.x), stati
 struct QueryParams {
     int level = 0;           // relative level (0 finest)
     double margin = 0.0;     // speculative reach beyond the bands (m)
-    double resolution = 0.0; // the error budget librugo may use (m); today's queries use round-off
+    double resolution = 0.0; // the resolution δ librugo certifies its answer to (m; 0: round-off)
 };
 // librugo's query context and a buffer of its contacts; opaque outside bridge_query.cpp.
 struct QueryEngine;
@@ -311,6 +367,7 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
     std::vector<int> patchScratch; // buildPatches' work list
     uint64_t gen = 1;
     size_t used = 0;
+    PairCaches pairCaches; // the answers kept from step to step
     struct DrawnContact {
         b2Vec2 p, n;
     };
@@ -404,6 +461,30 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
                    int level, uint32_t start);
     static uint64_t cacheHash(const void* a, const void* b, int child, const float* xf);
 
+    // bridge_pair_cache.cpp: the pair's kept answer. keptAnswer puts it, moved with the bodies, into
+    // out[0, *n) if it was asked the same (level, resolution, the fixture's geometry), covers `margin`
+    // and the bodies have moved by at most the reuse distance since; keepAnswer stores a search's answer
+    // (whole answers that fit only).
+    bool keptAnswer(PairCache* pc, const PrimitiveGeometry& g, const rugo_transform& xa,
+                    const rugo_transform& xb, const QueryParams& qp, double margin, QContact* out, int cap,
+                    int* n) const;
+    void keepAnswer(PairCache* pc, double reachA, double reachB, const PrimitiveGeometry& g,
+                    const rugo_transform& xa, const rugo_transform& xb, const QueryParams& qp,
+                    const QContact* c, int n, int found) const;
+    static PrimitiveGeometry primitiveGeometry(const b2Fixture* f, int child);
+    static double originReach(const BodyRec* r);
+    static double originReach(const PrimitiveGeometry& g);
+    // The reuse distance r (BridgeDef::reuseDistance; 0: every pair is searched every step).
+    double keepDistance() const {
+        return def.reuseDistance > 0.0 && std::isfinite(def.reuseDistance) ? def.reuseDistance : 0.0;
+    }
+    // A search's margin: the speculative margin, at least kKeptMarginFloor r, plus r, so that its answer
+    // covers the margin of the next steps while they move by at most r.
+    double searchMargin(double margin) const {
+        const double r = keepDistance();
+        return r > 0.0 ? std::max(margin, kKeptMarginFloor * r) + r : margin;
+    }
+
     // bridge_evaluate.cpp: the patches of a pair, into a manifold.
     bool roughPatches(BodyRec* qa, BodyRec* qb, const b2Transform& xa, const b2Transform& xb, double margin,
                       const RoughContact* current, uint32_t* start, uint32_t* count);
@@ -412,15 +493,17 @@ struct RUGO_BRIDGE_HIDDEN Bridge::Impl : public b2ContactListener,
                           uint32_t* count);
     void evaluate(RoughContact* c, b2Manifold* m, const b2Transform& xfA, const b2Transform& xfB);
     // The resolution of a query between a and b (b nullptr: an ordinary fixture): queryResolution times
-    // the smaller budget; 0 (round-off) without one.
+    // the smaller error budget of the two, or times Box2D's linear slop when neither body has one (a
+    // world's positions are good to a slop: Box2D lets resting bodies overlap by that much); 0 when
+    // queryResolution is 0 (round-off answers, searched every step).
     double resolutionFor(const BodyRec* a, const BodyRec* b) const {
         const double f = def.queryResolution;
-        double budget = a->budget;
-        if (b != nullptr && !(b->budget >= budget)) budget = b->budget;
-        return f > 0.0 && std::isfinite(f) && budget > 0.0 && std::isfinite(budget) ? f * budget : 0.0;
-    }
-    double warmDistance() const {
-        return def.reuseDistance > 0.0 && std::isfinite(def.reuseDistance) ? def.reuseDistance : 0.0;
+        if (!(f > 0.0) || !std::isfinite(f)) return 0.0;
+        double budget = a->budget > 0.0 && std::isfinite(a->budget) ? a->budget : 0.0;
+        if (b != nullptr && b->budget > 0.0 && std::isfinite(b->budget) &&
+            (budget == 0.0 || b->budget < budget))
+            budget = b->budget;
+        return f * (budget > 0.0 ? budget : static_cast<double>(b2_linearSlop));
     }
     void rollingResistance(RoughContact* rc, float impulse, double arm);
     void surfaceAt(const RoughContact* rc, const PatchPoint& q, bool flip, PointInfo* out) const;
@@ -468,14 +551,6 @@ class RUGO_BRIDGE_HIDDEN RoughContact : public b2Contact {
     float lastPose[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     bool repeated = false; // the last evaluation repeated the one before at the same poses (disabled)
     int infoSlot = -1;     // its points' surface data in Impl::pointInfo (-1: none written yet)
-    // The last query's answer for this contact (BridgeDef::reuseDistance): the step, the two body poses
-    // and the margin it ran at, and its patch (query orientation, material points) if it had one.
-    bool warm = false, warmHasPatch = false;
-    uint64_t warmStep = 0;
-    b2Transform warmA, warmB;
-    double warmMargin = 0.0;
-    Patch warmPatch;
-    rugo_vec2 warmNormal; // the patch normal in the query's A side's frame
 
     // Installs the bridge's create and destroy functions in Box2D's registry (once per process).
     static void install();

@@ -909,10 +909,16 @@ START_TEST(test_manifold_encoding) {
     rugo_shape* s = makeShape(pts, &tol, 0.5, 0.0);
     rugo_collide_context* ctx = nullptr;
     ck_assert_int_eq(rugo_collide_context_create(nullptr, &ctx), RUGO_OK);
-    for (int pair = 0; pair < 2; ++pair) {
+    // Every pair searched every step (reuseDistance 0) against the exact query to float precision; with
+    // the default kept answers (reused while the pair moves by at most r = 1.25 mm) to within 2r.
+    for (int run = 0; run < 4; ++run) {
+        const int pair = run % 2;
+        const bool exact = run < 2;
         b2World w(b2Vec2(0.0f, -9.8f));
         ManifoldChecker chk; // outlives the bridge, which chains to it
-        rugo::Bridge bridge(&w);
+        rugo::BridgeDef bdef;
+        if (exact) bdef.reuseDistance = 0.0;
+        rugo::Bridge bridge(&w, bdef);
         chk.bridge = &bridge;
         chk.ctx = ctx;
         w.SetContactListener(&chk);
@@ -931,17 +937,25 @@ START_TEST(test_manifold_encoding) {
         for (int i = 0; i < 90; ++i)
             bridge.Step(1.0f / 60.0f, 8, 3);
         std::printf(
-            "manifold %s: %d checked against librugo (and %d led by a completed point), max |ds| %.3g m, max "
-            "|dn| %.3g; %d points warm-started, %d ids persisted; completed points' normals within %.3g deg "
-            "of a "
-            "contact's\n",
-            pair == 0 ? "rough-circle" : "rough-rough", chk.checked, chk.completed, chk.maxSepErr,
-            chk.maxNormalErr, chk.warm, chk.persisted, chk.maxCompletedAngle);
-        ck_assert(chk.completed <= chk.checked);
-        ck_assert_int_gt(chk.checked, 10);
-        // Float precision of Box2D's manifold (positions ~1 m: 1e-7 relative, a few roundings).
-        ck_assert(chk.maxSepErr <= 2e-5);
-        ck_assert(chk.maxNormalErr <= 2e-5);
+            "manifold %s, %s: %d checked against librugo (and %d led by a completed point), max |ds| %.3g m, "
+            "max |dn| %.3g; %d points warm-started, %d ids persisted; completed points' normals within %.3g "
+            "deg of a contact's; %ld of %ld queries answered from the kept answer\n",
+            pair == 0 ? "rough-circle" : "rough-rough", exact ? "searched every step" : "kept answers",
+            chk.checked, chk.completed, chk.maxSepErr, chk.maxNormalErr, chk.warm, chk.persisted,
+            chk.maxCompletedAngle, bridge.GetStats().queriesReused, bridge.GetStats().queries);
+        if (exact) {
+            ck_assert(chk.completed <= chk.checked);
+            ck_assert_int_gt(chk.checked, 10);
+            // Float precision of Box2D's manifold (positions ~1 m: 1e-7 relative, a few roundings).
+            ck_assert(chk.maxSepErr <= 2e-5);
+            ck_assert(chk.maxNormalErr <= 2e-5);
+            ck_assert_int_eq(bridge.GetStats().queriesReused, 0);
+        } else {
+            ck_assert_int_gt(chk.checked + chk.completed, 10);
+            ck_assert(chk.maxSepErr <= 2.0 * bdef.reuseDistance);
+            ck_assert(chk.maxNormalErr <= 0.05);
+            ck_assert_int_gt(bridge.GetStats().queriesReused, 0);
+        }
         ck_assert(chk.maxCompletedAngle <= 30.0); // within the merge angle of a region
         ck_assert_int_gt(chk.warm, 10);
         ck_assert_int_gt(chk.persisted, 10);

@@ -69,18 +69,20 @@ struct BridgeDef {
     /// ends, which Box2D's solver lets close by their gap and no further, so fast rough bodies do not
     /// tunnel and flat faces land flat. false: only touching points (s <= 0) are ever submitted.
     bool speculative = true;
-    /// Experimental, off by default (docs/box2d.md, "Warm contacts"): a proxy contact whose two bodies have
-    /// moved relative to each other by at most this distance (metres: a bound on how far any point of one
-    /// moved in the other's frame) since its last librugo query, within 16 steps and outside Box2D's
-    /// continuous phase, answers from that query instead of querying again (an empty answer over this
-    /// distance, its points carried with the bodies over a tenth of it); queries then look this much
-    /// farther (their margin). 0 (or negative, NaN): query every step. With 2.5 mm, scene 3 of
-    /// bench_box2d_scenes runs 2.8x faster, but the rolling-disc, sliding-block and landing tests of
-    /// test_box2d fail: a reused patch misses the contact points that appear meanwhile.
-    double reuseDistance = 0.0;
+    /// Kept answers (docs/box2d.md, "Kept answers"): each rough body pair (and rough body and ordinary
+    /// fixture child) keeps its last librugo search and answers from it, its contacts moved with the
+    /// bodies, while the two have moved relative to each other by at most this distance since (metres: a
+    /// bound on how far any point of one moved in the other's frame); its searches look this much farther
+    /// and at least 4x this far (their margin), so the kept answer still holds every contact within the
+    /// step's reach, each separation within 2x this distance of a search's. The default, a quarter of
+    /// Box2D's linear slop (5 mm), keeps answers within half a slop: resting and creeping pairs skip their
+    /// searches. 0 (or negative, NaN): every pair is searched every step.
+    double reuseDistance = 0.25 * b2_linearSlop;
     /// Resolution of the bridge's librugo queries (rugo_contact_query.resolution) as a fraction of the
-    /// pair's error budget (the smaller of the two bodies' errorBudget): 0 = round-off answers. Negative
-    /// or NaN: 0. The contact rule is the thesis' (minima of the curves' distance) either way.
+    /// pair's error budget (the smaller of the two bodies' errorBudget; Box2D's linear slop, 5 mm, when
+    /// neither body has one): 0 = round-off answers (the default: librugo's answers at a resolution are
+    /// not yet certified, docs/accuracy.md). Negative or NaN: 0. The contact rule is the thesis' (minima
+    /// of the curves' distance) either way.
     double queryResolution = 0.0;
     /// Friction of a contact: how the per-point μ of its (at most 2) points are combined (a value that
     /// is not a rugo_mix_rule falls back to this default).
@@ -187,9 +189,10 @@ struct BridgeStats {
     long toiEvaluations = 0;    ///< of those, during Box2D's continuous (TOI) phase
     long emptyEvaluations = 0;  ///< of those, with no manifold point (not touching)
     long proxyRejections = 0;   ///< of those, decided by the proxies' distance alone (no query)
-    long reusedEvaluations = 0; ///< of those, answered from the contact's last query (reuseDistance)
+    long reusedEvaluations = 0; ///< not counted any more (see queriesReused); kept for source compatibility
     long preSolves = 0;         ///< PreSolve calls Box2D made on contacts with a proxy (chained to yours)
     long queries = 0;           ///< librugo collision queries run (one per body pair and pose)
+    long queriesReused = 0;     ///< of those, answered from the pair's kept answer (reuseDistance; no search)
     long cacheHits = 0;         ///< proxy contacts answered from a query already run for the same poses
     long patches = 0;           ///< contact patches built from the queries
     long patchesDropped = 0;    ///< patches whose proxy pair already owned a deeper one (not submitted)

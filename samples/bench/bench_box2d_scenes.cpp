@@ -40,7 +40,7 @@
 // Default: N = 16, 64, 256, 1024 at S = 64, and S = 32, 64, 128, 512 at N = 256 (--grid: every pair);
 // 300 steps of which 60 warm-up (--steps-large K: K steps for N >= 1024 or S >= 512; warm-up at most
 // half the steps). --max-n caps N; --variants picks a(uto), f(inest), p(olygon), c(ircle); --repeat
-// keeps the best time of R runs, the variants' runs alternating. --max-proxies and --no-ccd change the
+// reports the median time of R runs, the variants' runs alternating. --max-proxies and --no-ccd change the
 // bridge's proxy cap (BridgeDef::maxProxies) and Box2D's continuous collision for an experiment; --reuse D
 // sets BridgeDef::reuseDistance (metres; 0: query every step) and --resolution F BridgeDef::queryResolution
 // (a fraction of the error budget; 0: round-off); --alloc-trace prints
@@ -614,6 +614,7 @@ struct Row {
     int n = 0, s = 0, steps = 0;
     Stats st[kVariants];
     bool ran[kVariants] = {false, false, false, false};
+    std::vector<double> ms[kVariants]; // every repeat's time
 };
 
 const Row* FindRow(const std::vector<Row>& rows, int n, int s) {
@@ -740,7 +741,7 @@ int main(int argc, char** argv) {
          "hits_per_step,"
          "segment_pairs_per_step,toi_presolves_per_step,final_kinetic_J,final_hash,max_gap_ratio,contact_"
          "above_gap_mm,"
-         "gap_pairs\n");
+         "gap_pairs,queries_reused_per_step\n");
     std::fflush(stdout);
 
     std::vector<Row> rows;
@@ -785,14 +786,19 @@ int main(int argc, char** argv) {
             for (int v = 0; v < kVariants; ++v) {
                 if (opt.variants.find(kVariantLetter[v]) == std::string::npos) continue;
                 Stats st = RunScene(static_cast<Variant>(v), n, set, opt, steps, warmup);
-                if (r == 0) {
+                if (r == 0) { // the first run's measurements (deterministic), the repeats' median time
                     row.st[v] = st;
                     row.ran[v] = true;
-                } else {
-                    // keep the first run's measurements (deterministic) but the best time
-                    row.st[v].ms = std::min(row.st[v].ms, st.ms);
                 }
+                row.ms[v].push_back(st.ms);
             }
+        for (int v = 0; v < kVariants; ++v) {
+            std::vector<double>& t = row.ms[v];
+            if (t.empty()) continue;
+            std::sort(t.begin(), t.end());
+            const size_t h = t.size() / 2;
+            row.st[v].ms = t.size() % 2 == 1 ? t[h] : 0.5 * (t[h - 1] + t[h]);
+        }
         for (int v = 0; v < kVariants; ++v) {
             if (!row.ran[v]) continue;
             const Stats& st = row.st[v];
@@ -800,7 +806,7 @@ int main(int argc, char** argv) {
             const double all = ts + warmup;
             Emit("%s,%d,%d,%d,%.4f,%.3f,%.3f,%ld,%zu,%zu,%d,%d,%.1f,%.1f,%.1f,%.2f,%.4f,%.4f,%.2f,%.3f,%ld,%."
                  "1f,%.1f,%.1f,"
-                 "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld\n",
+                 "%.1f,%.4g,%016" PRIx64 ",%.4f,%.3f,%ld,%.1f\n",
                  kVariantName[v], n, s, row.steps, st.ms, st.allocOwn, st.allocBox2d, st.stepsWithOwnAlloc,
                  st.bytesPerBody, st.bytesPerShape, st.proxies, st.level, st.contacts, st.points,
                  st.worldContacts, 1e3 * st.deepest, st.maxBudgetRatio, st.maxBudgetRatioShallow,
@@ -810,7 +816,7 @@ int main(int argc, char** argv) {
                  1e3 * st.maxBudgetDiff, st.budgetPairs, static_cast<double>(st.bs.queries) / all,
                  static_cast<double>(st.bs.cacheHits) / all, static_cast<double>(st.bs.segmentPairs) / all,
                  static_cast<double>(st.bs.toiEvaluations) / all, st.keFinal, st.hash, st.maxGapRatio,
-                 1e3 * st.maxContactAboveGap, st.gapPairs);
+                 1e3 * st.maxContactAboveGap, st.gapPairs, static_cast<double>(st.bs.queriesReused) / all);
             std::fflush(stdout);
             if (!st.contained) allOk = false;
         }

@@ -109,6 +109,21 @@ b2Vec2 gravityDownSlope(double degrees) {
     return b2Vec2(static_cast<float>(9.8 * std::sin(t)), static_cast<float>(-9.8 * std::cos(t)));
 }
 
+// Five 1 x 0.5 m rough boxes (32 jittered control points, a constant band, mu 0.6) stacked on the
+// ground from y = 0.26 m, attached at the finest level; their shapes go to *shapes.
+std::vector<b2Body*> stackFiveRoughBoxes(b2World& w, rugo::Bridge& bridge, test_rng* rng, double band,
+                                         std::vector<rugo_shape*>* shapes) {
+    std::vector<b2Body*> bodies;
+    for (int i = 0; i < 5; ++i) {
+        std::vector<double> tol(32, band);
+        shapes->push_back(makeShape(rectPoints(32, 1.0, 0.5, rng, 0.003), &tol, 0.6, 0.0));
+        b2Body* b = dynamicBody(w, b2Vec2(0.0f, 0.26f + 0.52f * static_cast<float>(i)));
+        ck_assert_int_eq(bridge.Attach(b, roughDef(shapes->back(), 1.0, 0)), RUGO_OK);
+        bodies.push_back(b);
+    }
+    return bodies;
+}
+
 } // namespace
 
 // ---- rolling disc against a native circle ----------------------------------------------------------
@@ -192,14 +207,7 @@ START_TEST(test_stack_rests) {
     b2World w(b2Vec2(0.0f, -9.8f));
     groundBox(w, 20.0f, 1.0f, b2Vec2(0.0f, -1.0f), 0.6f);
     rugo::Bridge bridge(&w);
-    std::vector<b2Body*> bodies;
-    for (int i = 0; i < 5; ++i) {
-        std::vector<double> tol(32, band);
-        shapes.push_back(makeShape(rectPoints(32, 1.0, 0.5, &rng, 0.003), &tol, 0.6, 0.0));
-        b2Body* b = dynamicBody(w, b2Vec2(0.0f, 0.26f + 0.52f * static_cast<float>(i)));
-        ck_assert_int_eq(bridge.Attach(b, roughDef(shapes.back(), 1.0, 0)), RUGO_OK);
-        bodies.push_back(b);
-    }
+    std::vector<b2Body*> bodies = stackFiveRoughBoxes(w, bridge, &rng, band, &shapes);
     std::vector<b2Vec2> settled;
     double maxPen = 0.0, maxPenBand = 0.0;
     rugo_collide_context* ctx = nullptr;
@@ -255,14 +263,7 @@ START_TEST(test_rough_bodies_fall_asleep) {
     b2World w(b2Vec2(0.0f, -9.8f));
     groundBox(w, 20.0f, 1.0f, b2Vec2(0.0f, -1.0f), 0.6f);
     rugo::Bridge bridge(&w);
-    std::vector<b2Body*> bodies;
-    for (int i = 0; i < 5; ++i) {
-        std::vector<double> tol(32, band);
-        shapes.push_back(makeShape(rectPoints(32, 1.0, 0.5, &rng, 0.003), &tol, 0.6, 0.0));
-        b2Body* b = dynamicBody(w, b2Vec2(0.0f, 0.26f + 0.52f * static_cast<float>(i)));
-        ck_assert_int_eq(bridge.Attach(b, roughDef(shapes.back(), 1.0, 0)), RUGO_OK);
-        bodies.push_back(b);
-    }
+    std::vector<b2Body*> bodies = stackFiveRoughBoxes(w, bridge, &rng, band, &shapes);
     {
         std::vector<double> tol(64, band);
         std::vector<rugo_vec2> p(64);

@@ -777,34 +777,28 @@ void build_profile(const Side& P, const Side& Q, const Near& nr, bool band, Prof
     pr.start[(size_t)np] = (int)pr.nodes.size();
     /* links: mutual nearest valley points of consecutive samples, close on Q */
     const ld lim = 2 * (P.h + Q.h);
+    // The valley point of sample k nearest on Q to node `from` (the last of equals), -1 if none within lim.
+    auto nearest = [&](int from, int k) {
+        const Ev q = eval(Q, pr.nodes[(size_t)from].t);
+        int best = -1;
+        ld bd = lim;
+        for (int c = pr.start[(size_t)k]; c < pr.start[(size_t)k + 1]; ++c) {
+            const Ev qc = eval(Q, pr.nodes[(size_t)c].t);
+            const ld dd = lhypot(q.x - qc.x, q.y - qc.y);
+            if (dd <= bd) {
+                bd = dd;
+                best = c;
+            }
+        }
+        return best;
+    };
     for (int i = 0; i < np; ++i) {
         const int i2 = (i + 1) % np;
         for (int a = pr.start[(size_t)i]; a < pr.start[(size_t)i + 1]; ++a) {
-            const Ev qa = eval(Q, pr.nodes[(size_t)a].t);
-            int best = -1;
-            ld bd = lim;
-            for (int c = pr.start[(size_t)i2]; c < pr.start[(size_t)i2 + 1]; ++c) {
-                const Ev qc = eval(Q, pr.nodes[(size_t)c].t);
-                const ld dd = lhypot(qa.x - qc.x, qa.y - qc.y);
-                if (dd <= bd) {
-                    bd = dd;
-                    best = c;
-                }
-            }
+            const int best = nearest(a, i2);
             if (best < 0 || pr.nodes[(size_t)best].prev >= 0) continue;
             /* mutual: a is also the nearest of i's points to best */
-            const Ev qb = eval(Q, pr.nodes[(size_t)best].t);
-            int back = -1;
-            ld bb = lim;
-            for (int c = pr.start[(size_t)i]; c < pr.start[(size_t)i + 1]; ++c) {
-                const Ev qc = eval(Q, pr.nodes[(size_t)c].t);
-                const ld dd = lhypot(qb.x - qc.x, qb.y - qc.y);
-                if (dd <= bb) {
-                    bb = dd;
-                    back = c;
-                }
-            }
-            if (back != a) continue;
+            if (nearest(best, i) != a) continue;
             pr.nodes[(size_t)a].next = best;
             pr.nodes[(size_t)best].prev = a;
         }
